@@ -1,0 +1,322 @@
+use std::time::Instant;
+
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+use super::local::{integrate_face_into, LocalBlocks};
+use super::CouplingOptions;
+use crate::error::{MortarError, Result};
+use crate::integration::{PairedRule, SegmentContext};
+use crate::interface::Interface;
+use crate::linalg::{SparseMatrix, Triplets};
+use crate::search::{find_candidates, Candidates};
+
+/// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
+/// and M) does not depend on the thread count.
+const CHUNK: usize = 256;
+
+/// Wall-clock seconds per phase. The per-face phases (`segments`, `integration`) are summed
+/// over all threads, so with several threads they may exceed `total`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PhaseSeconds {
+    /// Bounding-box search.
+    pub search: f64,
+    /// Segmentation (clipping, triangulation, point pairing), summed over threads.
+    pub segments: f64,
+    /// Integration of the local blocks, summed over threads.
+    pub integration: f64,
+    /// Assembly of the sparse matrices.
+    pub assembly: f64,
+    /// Everything, wall-clock.
+    pub total: f64,
+}
+
+/// Counts and timings of a coupling run.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct CouplingStats {
+    /// Candidate pairs from the search.
+    pub candidates: usize,
+    /// Slave-master face pairs with a non-empty overlap.
+    pub pairs: usize,
+    /// Integration cells (clip triangles, 2D segments, or slave faces for element-based).
+    pub segments: usize,
+    /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D).
+    pub area: f64,
+    /// Threads used.
+    pub threads: usize,
+    /// Timings.
+    pub seconds: PhaseSeconds,
+}
+
+/// The mortar coupling of an interface: D, M, the node maps and the slave nodal normals.
+#[derive(Debug, Clone)]
+pub struct Coupling {
+    /// `D[j,k] = int Phi_j N_k^s` (slave x slave, CSR).
+    pub d: SparseMatrix,
+    /// `M[j,l] = int Phi_j N_l^m` (slave x master, CSR).
+    pub m: SparseMatrix,
+    /// Slave node tags in row order (ascending).
+    pub slave_nodes: Vec<u64>,
+    /// Master node tags in column order (ascending).
+    pub master_nodes: Vec<u64>,
+    /// Unit averaged nodal normals of the slave nodes, in row order.
+    pub slave_normals: Vec<Vector3<f64>>,
+    /// What was computed: multipliers, integration, projector.
+    pub formulation: String,
+    /// Counts and timings.
+    pub stats: CouplingStats,
+}
+
+impl Coupling {
+    /// The weighted gap vectors `G = D x_s - M x_m`, one per slave node (row order), for slave
+    /// positions `x_s` (row order) and master positions `x_m` (column order).
+    ///
+    /// # Panics
+    /// If the lengths of `x_s` and `x_m` do not match the node counts.
+    pub fn weighted_gap(&self, x_s: &[Vector3<f64>], x_m: &[Vector3<f64>]) -> Vec<Vector3<f64>> {
+        assert_eq!(
+            x_s.len(),
+            self.slave_nodes.len(),
+            "one slave position per row"
+        );
+        assert_eq!(
+            x_m.len(),
+            self.master_nodes.len(),
+            "one master position per column"
+        );
+        let mut g = vec![Vector3::zeros(); self.slave_nodes.len()];
+        for (row, gj) in g.iter_mut().enumerate() {
+            if let Some(r) = self.d.outer_view(row) {
+                for (k, v) in r.iter() {
+                    *gj += x_s[k] * *v;
+                }
+            }
+            if let Some(r) = self.m.outer_view(row) {
+                for (l, v) in r.iter() {
+                    *gj -= x_m[l] * *v;
+                }
+            }
+        }
+        g
+    }
+
+    /// The weighted normal gaps `g_j = -n_j . G_j`, positive where the surfaces are apart
+    /// (the slave normal points out of the slave body, towards the master).
+    pub fn normal_gaps(&self, x_s: &[Vector3<f64>], x_m: &[Vector3<f64>]) -> Vec<f64> {
+        self.weighted_gap(x_s, x_m)
+            .iter()
+            .zip(&self.slave_normals)
+            .map(|(g, n)| -n.dot(g))
+            .collect()
+    }
+
+    /// The current slave node positions of `interface`, in row order.
+    pub fn slave_positions(&self, interface: &Interface) -> Vec<Vector3<f64>> {
+        let c = interface.slave().coords();
+        interface
+            .slave_nodes()
+            .iter()
+            .map(|&n| c[n as usize])
+            .collect()
+    }
+
+    /// The current master node positions of `interface`, in column order.
+    pub fn master_positions(&self, interface: &Interface) -> Vec<Vector3<f64>> {
+        let c = interface.master().coords();
+        interface
+            .master_nodes()
+            .iter()
+            .map(|&n| c[n as usize])
+            .collect()
+    }
+}
+
+/// One chunk's output.
+#[derive(Default)]
+struct ChunkOut {
+    d: Triplets,
+    m: Triplets,
+    pairs: usize,
+    segments: usize,
+    seconds_segments: f64,
+    seconds_integration: f64,
+}
+
+/// Computes D and M for an interface.
+///
+/// # Errors
+/// [`MortarError::NoOverlap`] when no slave face overlaps a master face; the errors of the
+/// integration strategy and the multiplier space (the first in slave-face order);
+/// [`MortarError::InvalidOption`] for a thread count of zero or a pool that cannot start.
+pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Result<Coupling> {
+    let pool = build_pool(options.threads)?;
+    pool.install(|| assemble_on_pool(interface, options, pool.current_num_threads()))
+}
+
+fn build_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
+    if threads == Some(0) {
+        return Err(MortarError::InvalidOption(
+            "thread count must be at least 1".into(),
+        ));
+    }
+    let mut builder = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = threads {
+        builder = builder.num_threads(t);
+    }
+    builder
+        .build()
+        .map_err(|e| MortarError::InvalidOption(format!("cannot start a thread pool: {e}")))
+}
+
+fn assemble_on_pool(
+    interface: &Interface,
+    options: &CouplingOptions,
+    threads: usize,
+) -> Result<Coupling> {
+    let start = Instant::now();
+    let candidates = find_candidates(interface);
+    let search = start.elapsed().as_secs_f64();
+
+    let ctx = SegmentContext {
+        interface,
+        projector: options.projector.as_ref(),
+    };
+    let faces = interface.slave().face_count();
+    let chunks: Vec<Result<ChunkOut>> = (0..faces.div_ceil(CHUNK))
+        .into_par_iter()
+        .map(|c| {
+            chunk(
+                interface,
+                options,
+                &ctx,
+                &candidates,
+                c * CHUNK..((c + 1) * CHUNK).min(faces),
+            )
+        })
+        .collect();
+
+    let t_asm = Instant::now();
+    let mut outs = Vec::with_capacity(chunks.len());
+    for c in chunks {
+        outs.push(c?);
+    }
+    let pairs: usize = outs.iter().map(|o| o.pairs).sum();
+    if pairs == 0 {
+        return Err(MortarError::NoOverlap {
+            slave_faces: faces,
+            master_faces: interface.master().face_count(),
+            candidates: candidates.len(),
+        });
+    }
+    let ns = interface.slave_nodes().len();
+    let nm = interface.master_nodes().len();
+    let d = Triplets::concat(outs.iter().map(|o| &o.d)).to_csr(ns, ns);
+    let m = Triplets::concat(outs.iter().map(|o| &o.m)).to_csr(ns, nm);
+    let assembly = t_asm.elapsed().as_secs_f64();
+
+    let slave_tags = interface.slave().node_tags();
+    let master_tags = interface.master().node_tags();
+    let normals = interface.slave_nodal_normals();
+    let area = d.data().iter().sum();
+    Ok(Coupling {
+        slave_nodes: interface
+            .slave_nodes()
+            .iter()
+            .map(|&n| slave_tags[n as usize])
+            .collect(),
+        master_nodes: interface
+            .master_nodes()
+            .iter()
+            .map(|&n| master_tags[n as usize])
+            .collect(),
+        slave_normals: interface
+            .slave_nodes()
+            .iter()
+            .map(|&n| normals[n as usize])
+            .collect(),
+        d,
+        m,
+        formulation: options.describe(),
+        stats: CouplingStats {
+            candidates: candidates.len(),
+            pairs,
+            segments: outs.iter().map(|o| o.segments).sum(),
+            area,
+            threads,
+            seconds: PhaseSeconds {
+                search,
+                segments: outs.iter().map(|o| o.seconds_segments).sum(),
+                integration: outs.iter().map(|o| o.seconds_integration).sum(),
+                assembly,
+                total: start.elapsed().as_secs_f64(),
+            },
+        },
+    })
+}
+
+/// Segments, integrates and scatters one chunk of slave faces.
+fn chunk(
+    interface: &Interface,
+    options: &CouplingOptions,
+    ctx: &SegmentContext<'_>,
+    candidates: &Candidates,
+    faces: std::ops::Range<usize>,
+) -> Result<ChunkOut> {
+    let mut out = ChunkOut::default();
+    let tol = interface.tolerances();
+    let mut rules: Vec<PairedRule> = Vec::with_capacity(faces.len());
+    let t0 = Instant::now();
+    for s in faces.clone() {
+        let cands = candidates.of(s);
+        let mut rule = PairedRule::default();
+        if !cands.is_empty() {
+            let face = interface.slave_face(s);
+            options
+                .integration
+                .paired_rule_into(ctx, &face, cands, &mut rule)?;
+        }
+        out.pairs += rule.pairs as usize;
+        out.segments += rule.cells as usize;
+        rules.push(rule);
+    }
+    let t1 = Instant::now();
+    let mut blocks = LocalBlocks::default();
+    let slave_mesh = interface.slave();
+    let master_mesh = interface.master();
+    for (s, rule) in faces.zip(&rules) {
+        if rule.points.is_empty() {
+            continue;
+        }
+        let face = interface.slave_face(s);
+        let basis = options.multipliers.basis(&face, tol)?;
+        integrate_face_into(interface, &face, &basis, rule, &mut blocks);
+        let snodes = slave_mesh.face(s).nodes;
+        let rows: Vec<u32> = snodes
+            .iter()
+            .map(|&n| {
+                interface
+                    .slave_row(n)
+                    .expect("face nodes are on the interface")
+            })
+            .collect();
+        for (j, &r) in rows.iter().enumerate() {
+            for (k, &c) in rows.iter().enumerate() {
+                out.d.push(r, c, blocks.d[j][k]);
+            }
+        }
+        for (mf, block) in &blocks.m {
+            let mnodes = master_mesh.face(*mf as usize).nodes;
+            for (j, &r) in rows.iter().enumerate() {
+                for (l, &n) in mnodes.iter().enumerate() {
+                    let c = interface
+                        .master_col(n)
+                        .expect("face nodes are on the interface");
+                    out.m.push(r, c, block[j][l]);
+                }
+            }
+        }
+    }
+    out.seconds_segments = (t1 - t0).as_secs_f64();
+    out.seconds_integration = t1.elapsed().as_secs_f64();
+    Ok(out)
+}

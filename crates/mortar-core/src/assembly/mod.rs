@@ -1,0 +1,18 @@
+//! Assembly of the mortar operators D and M.
+//!
+//! `D[j,k] = int Phi_j N_k^s` and `M[j,l] = int Phi_j N_l^m` over the overlap of the two
+//! surfaces, rows following the slave interface nodes and columns the slave (D) or master (M)
+//! interface nodes, each by ascending node tag.
+//!
+//! Work is split into fixed chunks of slave faces, processed in parallel on a rayon pool of
+//! the requested size; every chunk writes its own triplets and chunks are concatenated in
+//! order, so the sum of each entry is taken in the same order whatever the thread count: D and
+//! M are bit-for-bit identical serial or parallel.
+
+mod coupling;
+mod local;
+mod options;
+
+pub use coupling::{assemble_coupling, Coupling, CouplingStats, PhaseSeconds};
+pub use local::{integrate_face_into, LocalBlocks};
+pub use options::CouplingOptions;

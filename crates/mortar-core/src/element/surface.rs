@@ -1,0 +1,85 @@
+use nalgebra::{Vector2, Vector3};
+
+use super::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};
+
+/// A surface element shared between threads and meshes: element types are zero-sized statics.
+pub type ElementRef = &'static dyn SurfaceElement;
+
+/// A surface element: the geometric map of a reference element into space.
+///
+/// All points are 3D; a 2D problem lives in the plane `z = 0` and uses line elements.
+/// The provided methods compute the map `x(xi) = sum_i N_i(xi) x_i`, its tangents, the unit
+/// normal and the measure (Jacobian determinant) from the shape functions; an element may
+/// override them with faster closed forms.
+///
+/// Normal convention: for a line in the xy-plane with tangent `t = dx/dxi`, `n = (t_y, -t_x)`
+/// normalised (outward for a boundary traversed counter-clockwise); for a face,
+/// `n = (dx/dxi x dx/deta) / |.|` (right-hand rule on the node order).
+pub trait SurfaceElement: ReferenceElement {
+    /// Whether the geometric map is affine for every placement of the nodes (Line2, Tri3):
+    /// then its inverse is found in one Newton step and its Jacobian is constant.
+    fn is_affine(&self) -> bool {
+        false
+    }
+
+    /// The Gmsh element type number, when the element has one (1 = 2-node line, 2 = 3-node
+    /// triangle, 3 = 4-node quadrangle, ...). Readers use it to map Gmsh elements to types.
+    fn gmsh_type(&self) -> Option<u32> {
+        None
+    }
+
+    /// The point `x(xi)` for the node coordinates `nodes`.
+    fn map(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> Vector3<f64> {
+        let mut n = [0.0; MAX_FACE_NODES];
+        let k = self.node_count();
+        self.shape_values_into(xi, &mut n[..k]);
+        let mut x = Vector3::zeros();
+        for i in 0..k {
+            x += nodes[i] * n[i];
+        }
+        x
+    }
+
+    /// The tangents `dx/dxi` and `dx/deta` at `xi` (for lines the second is `e_z`).
+    fn tangents(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> [Vector3<f64>; 2] {
+        let mut g = [[0.0; 2]; MAX_FACE_NODES];
+        let k = self.node_count();
+        self.shape_gradients_into(xi, &mut g[..k]);
+        let mut t = [Vector3::zeros(), Vector3::zeros()];
+        for i in 0..k {
+            t[0] += nodes[i] * g[i][0];
+            t[1] += nodes[i] * g[i][1];
+        }
+        if self.domain() == ReferenceDomain::Line {
+            t[1] = Vector3::z();
+        }
+        t
+    }
+
+    /// The (non-normalised) normal `t1 x t2`, whose length is the measure density; for lines
+    /// `(t_y, -t_x, 0)`.
+    fn scaled_normal(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> Vector3<f64> {
+        let [t1, t2] = self.tangents(nodes, xi);
+        if self.domain() == ReferenceDomain::Line {
+            Vector3::new(t1.y, -t1.x, 0.0)
+        } else {
+            t1.cross(&t2)
+        }
+    }
+
+    /// The unit normal at `xi` (zero if the face is degenerate there).
+    fn unit_normal(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> Vector3<f64> {
+        let n = self.scaled_normal(nodes, xi);
+        let len = n.norm();
+        if len > 0.0 {
+            n / len
+        } else {
+            n
+        }
+    }
+
+    /// The measure density `|dx/dxi|` (lines) or `|dx/dxi x dx/deta|` (faces) at `xi`.
+    fn jacobian_det(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> f64 {
+        self.scaled_normal(nodes, xi).norm()
+    }
+}

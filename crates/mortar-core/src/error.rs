@@ -1,0 +1,144 @@
+//! Typed errors of the core. Every error names what went wrong and where (side, face, node).
+
+use std::fmt;
+
+/// Which surface of an interface a face or node belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// The slave (non-mortar) surface: it carries the Lagrange multipliers.
+    Slave,
+    /// The master (mortar) surface.
+    Master,
+}
+
+impl fmt::Display for Side {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Side::Slave => write!(f, "slave"),
+            Side::Master => write!(f, "master"),
+        }
+    }
+}
+
+/// Where in a surface mesh a problem was found: the side (when known) and the face tag.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FaceLocation {
+    /// The surface, when the face belongs to an interface.
+    pub side: Option<Side>,
+    /// The face's tag (the element tag of the input mesh, or its insertion index plus one).
+    pub tag: u64,
+}
+
+impl fmt::Display for FaceLocation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.side {
+            Some(side) => write!(f, "{side} face {}", self.tag),
+            None => write!(f, "face {}", self.tag),
+        }
+    }
+}
+
+/// Errors of the mortar core.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MortarError {
+    /// A node coordinate is NaN or infinite.
+    #[error("node {tag} has a non-finite coordinate {coords:?}")]
+    NonFiniteCoordinate {
+        /// Node tag.
+        tag: u64,
+        /// The offending coordinates.
+        coords: [f64; 3],
+    },
+    /// Two nodes were given the same tag.
+    #[error("node tag {tag} is used twice")]
+    DuplicateNode {
+        /// Node tag.
+        tag: u64,
+    },
+    /// A face refers to a node that the mesh does not have.
+    #[error("{face} refers to node {node}, which the mesh does not have")]
+    UnknownNode {
+        /// The face.
+        face: FaceLocation,
+        /// The missing node tag.
+        node: u64,
+    },
+    /// A face was given the wrong number of nodes for its element.
+    #[error("{face} is a {element} and needs {expected} nodes, got {got}")]
+    WrongNodeCount {
+        /// The face.
+        face: FaceLocation,
+        /// Element name.
+        element: &'static str,
+        /// Nodes the element needs.
+        expected: usize,
+        /// Nodes given.
+        got: usize,
+    },
+    /// A face has (nearly) zero length or area, or repeats a node.
+    #[error("{face} is degenerate: {reason}")]
+    DegenerateFace {
+        /// The face.
+        face: FaceLocation,
+        /// What makes it degenerate.
+        reason: String,
+    },
+    /// A face is inverted: folded or self-intersecting, or oriented against its neighbours.
+    #[error("{face} is inverted: {reason}")]
+    InvertedFace {
+        /// The face.
+        face: FaceLocation,
+        /// What makes it inverted.
+        reason: String,
+    },
+    /// Faces of different reference dimension (lines and triangles) in one interface, or a
+    /// 2D interface with a node off the xy-plane.
+    #[error("dimension mismatch: {0}")]
+    DimensionMismatch(String),
+    /// A surface has no faces.
+    #[error("the {side} surface has no faces")]
+    EmptySurface {
+        /// The empty side.
+        side: Side,
+    },
+    /// No slave face overlaps any master face.
+    #[error("the interface has no overlap: no slave face overlaps a master face ({slave_faces} slave faces, {master_faces} master faces, {candidates} candidate pairs from the search)")]
+    NoOverlap {
+        /// Slave face count.
+        slave_faces: usize,
+        /// Master face count.
+        master_faces: usize,
+        /// Candidate pairs the bounding-box search found.
+        candidates: usize,
+    },
+    /// The Newton iteration that maps a physical point back to a face's reference
+    /// coordinates did not converge.
+    #[error("projection of point {point:?} onto {face} did not converge after {iterations} Newton iterations (residual {residual:e})")]
+    ProjectionFailed {
+        /// The face projected onto.
+        face: FaceLocation,
+        /// The physical point.
+        point: [f64; 3],
+        /// Iterations made.
+        iterations: usize,
+        /// Final residual norm.
+        residual: f64,
+    },
+    /// An option is out of its range (a quadrature degree no rule reaches, a zero thread count).
+    #[error("invalid option: {0}")]
+    InvalidOption(String),
+    /// A multiplier space could not be built on a face (a singular local mass matrix).
+    #[error("multiplier space {space} cannot be built on {face}: {reason}")]
+    MultiplierSpace {
+        /// The space.
+        space: &'static str,
+        /// The face.
+        face: FaceLocation,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// The core's result type.
+pub type Result<T, E = MortarError> = std::result::Result<T, E>;

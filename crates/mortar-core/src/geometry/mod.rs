@@ -1,0 +1,12 @@
+//! Geometry kernels: the auxiliary plane, convex polygon clipping and triangulation, and the
+//! inverse maps from physical points to reference coordinates.
+//!
+//! Everything here works on stack arrays and allocates nothing.
+
+mod inverse_map;
+mod plane;
+mod polygon;
+
+pub use inverse_map::{invert_line_map, invert_surface_map, InverseMapFailure};
+pub use plane::AuxiliaryPlane;
+pub use polygon::{clip_convex, Polygon, MAX_POLYGON_VERTICES};

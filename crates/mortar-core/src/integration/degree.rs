@@ -1,0 +1,9 @@
+use crate::element::SurfaceElement;
+
+/// The degree of the mortar integrands `Phi_j N_k` and `Phi_j N_l^m` on affine faces: the
+/// slave shape degree plus the larger of the slave and master shape degrees (2 for tri-tri and
+/// line-line, 3 for a triangle against a bilinear quad, 4 for quad-quad).
+pub fn default_degree(slave: &dyn SurfaceElement, master: &dyn SurfaceElement) -> u32 {
+    let ps = slave.shape_degree();
+    ps + ps.max(master.shape_degree())
+}

@@ -1,0 +1,92 @@
+//! Integration strategies: they turn a slave face and its candidate master faces into a
+//! *paired quadrature rule* — points each with a slave and a master reference coordinate and a
+//! weight. They see geometry only, never shape functions or multipliers; the integrator
+//! (`assembly`) never sees polygons.
+//!
+//! - [`SegmentBased`]: exact segmentation. In 2D, the master nodes are projected onto the slave
+//!   line along the projector's field and Gauss points placed on each overlap segment. In 3D,
+//!   both faces are projected onto the auxiliary plane through the slave face centre, clipped,
+//!   the clip polygon triangulated from its centroid, and each triangle's quadrature points
+//!   mapped back to both faces.
+//! - [`ElementBased`]: quadrature points of the slave face, each projected onto the master face
+//!   it falls on. Cheap, but inexact where a slave face spans master edges.
+
+mod degree;
+mod element_based;
+mod segment_based;
+mod segments_2d;
+mod segments_3d;
+
+use nalgebra::Vector2;
+
+pub use degree::default_degree;
+pub use element_based::ElementBased;
+pub use segment_based::SegmentBased;
+
+use crate::error::Result;
+use crate::interface::{FaceGeometry, Interface};
+use crate::projector::Projector;
+
+/// One point of a paired quadrature rule.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairedPoint {
+    /// The master face (index in the master mesh).
+    pub master: u32,
+    /// Reference coordinates on the slave face.
+    pub xi_slave: Vector2<f64>,
+    /// Reference coordinates on the master face.
+    pub xi_master: Vector2<f64>,
+    /// The weight (a measure of slave surface: quadrature weight times Jacobian).
+    pub weight: f64,
+}
+
+/// A paired quadrature rule for one slave face, with its counts. Points of one master face are
+/// consecutive.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PairedRule {
+    /// The points.
+    pub points: Vec<PairedPoint>,
+    /// Master faces with a non-empty overlap.
+    pub pairs: u32,
+    /// Integration cells (clip triangles, 2D segments, or slave faces for element-based).
+    pub cells: u32,
+}
+
+impl PairedRule {
+    /// Empties the rule, keeping its allocation.
+    pub fn clear(&mut self) {
+        self.points.clear();
+        self.pairs = 0;
+        self.cells = 0;
+    }
+}
+
+/// What a strategy may look at besides the slave face: the interface and the projector.
+#[derive(Debug, Clone, Copy)]
+pub struct SegmentContext<'a> {
+    /// The interface.
+    pub interface: &'a Interface,
+    /// The projection direction field.
+    pub projector: &'a dyn Projector,
+}
+
+/// An integration strategy: the user's speed-for-accuracy dial.
+pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
+    /// A description, such as `"segment-based, degree auto"`.
+    fn name(&self) -> String;
+
+    /// Writes the paired rule of `slave` against its `candidates` (master face indices,
+    /// ascending) into `out` (cleared first).
+    ///
+    /// # Errors
+    /// A typed error when a point cannot be mapped back to a face
+    /// ([`MortarError::ProjectionFailed`](crate::error::MortarError::ProjectionFailed)) or an
+    /// option is invalid.
+    fn paired_rule_into(
+        &self,
+        ctx: &SegmentContext<'_>,
+        slave: &FaceGeometry,
+        candidates: &[u32],
+        out: &mut PairedRule,
+    ) -> Result<()>;
+}

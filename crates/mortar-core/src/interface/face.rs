@@ -1,0 +1,111 @@
+use nalgebra::{Vector2, Vector3};
+
+use crate::element::{ElementRef, MAX_FACE_NODES};
+use crate::error::{FaceLocation, Side};
+use crate::mesh::SurfaceMesh;
+
+/// One face's geometry gathered on the stack: element, node coordinates and (on the slave side)
+/// the averaged nodal normals at its nodes. What the segmenter and the integrator work on.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceGeometry {
+    /// Face index in its mesh.
+    pub index: u32,
+    /// Face tag.
+    pub tag: u64,
+    /// Which side.
+    pub side: Side,
+    /// The element type.
+    pub element: ElementRef,
+    /// Node coordinates (the first `element.node_count()` are valid).
+    pub nodes: [Vector3<f64>; MAX_FACE_NODES],
+    /// Averaged nodal normals (slave side; zero on the master side).
+    pub normals: [Vector3<f64>; MAX_FACE_NODES],
+}
+
+impl FaceGeometry {
+    /// Gathers face `index` of `mesh`; `nodal_normals`, when given, is indexed by mesh node.
+    pub fn gather(
+        mesh: &SurfaceMesh,
+        side: Side,
+        index: usize,
+        nodal_normals: Option<&[Vector3<f64>]>,
+    ) -> Self {
+        let view = mesh.face(index);
+        let mut nodes = [Vector3::zeros(); MAX_FACE_NODES];
+        let mut normals = [Vector3::zeros(); MAX_FACE_NODES];
+        for (i, &n) in view.nodes.iter().enumerate() {
+            nodes[i] = mesh.coords()[n as usize];
+            if let Some(nn) = nodal_normals {
+                normals[i] = nn[n as usize];
+            }
+        }
+        Self {
+            index: index as u32,
+            tag: view.tag,
+            side,
+            element: view.element,
+            nodes,
+            normals,
+        }
+    }
+
+    /// Number of nodes.
+    #[inline]
+    pub fn node_count(&self) -> usize {
+        self.element.node_count()
+    }
+
+    /// The valid node coordinates.
+    #[inline]
+    pub fn node_coords(&self) -> &[Vector3<f64>] {
+        &self.nodes[..self.node_count()]
+    }
+
+    /// The face's location, for error messages.
+    pub fn location(&self) -> FaceLocation {
+        FaceLocation {
+            side: Some(self.side),
+            tag: self.tag,
+        }
+    }
+
+    /// The point at reference coordinates `xi`.
+    pub fn map(&self, xi: &Vector2<f64>) -> Vector3<f64> {
+        self.element.map(self.node_coords(), xi)
+    }
+
+    /// The point at the centre of the reference domain.
+    pub fn centre(&self) -> Vector3<f64> {
+        self.map(&self.element.domain().centre())
+    }
+
+    /// The largest distance between two corner nodes.
+    pub fn diameter(&self) -> f64 {
+        let c = self.element.corner_count();
+        let mut d: f64 = 0.0;
+        for i in 0..c {
+            for j in i + 1..c {
+                d = d.max((self.nodes[i] - self.nodes[j]).norm());
+            }
+        }
+        d
+    }
+
+    /// The interpolated nodal normal field `sum_i N_i(xi) n_i` (not normalised) and its
+    /// derivatives with respect to `xi`.
+    pub fn normal_field(&self, xi: &Vector2<f64>) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        let k = self.node_count();
+        let mut n = [0.0; MAX_FACE_NODES];
+        let mut g = [[0.0; 2]; MAX_FACE_NODES];
+        self.element.shape_values_into(xi, &mut n[..k]);
+        self.element.shape_gradients_into(xi, &mut g[..k]);
+        let mut v = Vector3::zeros();
+        let mut d = [Vector3::zeros(), Vector3::zeros()];
+        for i in 0..k {
+            v += self.normals[i] * n[i];
+            d[0] += self.normals[i] * g[i][0];
+            d[1] += self.normals[i] * g[i][1];
+        }
+        (v, d)
+    }
+}

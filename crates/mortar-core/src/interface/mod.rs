@@ -1,0 +1,10 @@
+//! The interface: a slave and a master surface, validated, with node maps and the slave's
+//! averaged nodal normals.
+
+mod face;
+#[allow(clippy::module_inception)]
+mod interface;
+mod validate;
+
+pub use face::FaceGeometry;
+pub use interface::{Interface, SpatialDim};

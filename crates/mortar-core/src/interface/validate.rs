@@ -1,0 +1,173 @@
+//! Checks of the faces of an interface, and the averaged nodal normals.
+
+use nalgebra::{Vector2, Vector3};
+
+use super::SpatialDim;
+use crate::element::ReferenceDomain;
+use crate::error::{FaceLocation, MortarError, Result, Side};
+use crate::mesh::SurfaceMesh;
+use crate::tolerances::Tolerances;
+
+/// All faces of both sides must share one reference dimension; lines make a 2D problem whose
+/// nodes must lie in the plane `z = 0`.
+pub(super) fn check_dimension(
+    slave: &SurfaceMesh,
+    master: &SurfaceMesh,
+    tol: &Tolerances,
+) -> Result<SpatialDim> {
+    let first = slave.face(0).element.domain().dim();
+    for (mesh, side) in [(slave, Side::Slave), (master, Side::Master)] {
+        for f in 0..mesh.face_count() {
+            let view = mesh.face(f);
+            if view.element.domain().dim() != first {
+                return Err(MortarError::DimensionMismatch(format!(
+                    "{side} face {} is a {} but slave face {} is a {}: an interface is all lines (2D) or all faces (3D)",
+                    view.tag,
+                    view.element.name(),
+                    slave.face(0).tag,
+                    slave.face(0).element.name()
+                )));
+            }
+        }
+    }
+    if first == 2 {
+        return Ok(SpatialDim::Three);
+    }
+    for (mesh, side) in [(slave, Side::Slave), (master, Side::Master)] {
+        let Some((lo, hi)) = mesh.bounding_box() else {
+            continue;
+        };
+        let scale = (hi - lo).norm().max(lo.abs().max().max(hi.abs().max()));
+        for (i, x) in mesh.coords().iter().enumerate() {
+            if x.z.abs() > tol.degenerate * scale.max(f64::MIN_POSITIVE) {
+                return Err(MortarError::DimensionMismatch(format!(
+                    "{side} node {} has z = {:e}: line elements make a 2D problem in the plane z = 0",
+                    mesh.node_tags()[i],
+                    x.z
+                )));
+            }
+        }
+    }
+    Ok(SpatialDim::Two)
+}
+
+/// Degenerate faces (repeated nodes, zero length or area) and inverted ones (a Jacobian that
+/// changes sign over the face: folded, self-intersecting or non-convex quadrilaterals).
+pub(super) fn check_faces(
+    mesh: &SurfaceMesh,
+    side: Side,
+    scale: f64,
+    tol: &Tolerances,
+) -> Result<()> {
+    for f in 0..mesh.face_count() {
+        let view = mesh.face(f);
+        let loc = FaceLocation {
+            side: Some(side),
+            tag: view.tag,
+        };
+        let degenerate = |reason: String| MortarError::DegenerateFace { face: loc, reason };
+        for (i, a) in view.nodes.iter().enumerate() {
+            if view.nodes[i + 1..].contains(a) {
+                return Err(degenerate(format!(
+                    "node {} appears twice",
+                    mesh.node_tags()[*a as usize]
+                )));
+            }
+        }
+        let el = view.element;
+        let nodes: Vec<Vector3<f64>> = view
+            .nodes
+            .iter()
+            .map(|&n| mesh.coords()[n as usize])
+            .collect();
+        let corners = el.corner_count();
+        let mut diameter: f64 = 0.0;
+        for i in 0..corners {
+            for j in i + 1..corners {
+                diameter = diameter.max((nodes[i] - nodes[j]).norm());
+            }
+        }
+        if diameter <= tol.degenerate * scale {
+            return Err(degenerate(format!(
+                "its size {diameter:e} is negligible against the interface size {scale:e}"
+            )));
+        }
+        if el.domain() == ReferenceDomain::Line {
+            continue;
+        }
+        let centre = el.scaled_normal(&nodes, &el.domain().centre());
+        let area_scale = diameter * diameter;
+        if centre.norm() * el.domain().measure() <= tol.degenerate * area_scale {
+            return Err(degenerate(format!(
+                "its area is negligible against its size {diameter:e} squared (collinear corners)"
+            )));
+        }
+        for (c, xi) in el.node_reference_coords().iter().enumerate() {
+            let n = el.scaled_normal(&nodes, &Vector2::new(xi[0], xi[1]));
+            if n.dot(&centre) <= tol.degenerate * area_scale * centre.norm() {
+                return Err(MortarError::InvertedFace {
+                    face: loc,
+                    reason: format!(
+                        "its Jacobian vanishes or changes sign at node {} (self-intersecting or non-convex)",
+                        mesh.node_tags()[view.nodes[c] as usize]
+                    ),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Averaged unit nodal normals (sum of the faces' unit normals at the node, normalised), and
+/// the check that every face agrees in orientation with its neighbours.
+pub(super) fn nodal_normals(mesh: &SurfaceMesh, side: Side) -> Result<Vec<Vector3<f64>>> {
+    let mut sum = vec![Vector3::zeros(); mesh.node_count()];
+    let mut count = vec![0u32; mesh.node_count()];
+    for f in 0..mesh.face_count() {
+        let view = mesh.face(f);
+        let nodes: Vec<Vector3<f64>> = view
+            .nodes
+            .iter()
+            .map(|&n| mesh.coords()[n as usize])
+            .collect();
+        for (i, xi) in view.element.node_reference_coords().iter().enumerate() {
+            let n = view
+                .element
+                .unit_normal(&nodes, &Vector2::new(xi[0], xi[1]));
+            sum[view.nodes[i] as usize] += n;
+            count[view.nodes[i] as usize] += 1;
+        }
+    }
+    for f in 0..mesh.face_count() {
+        let view = mesh.face(f);
+        let nodes: Vec<Vector3<f64>> = view
+            .nodes
+            .iter()
+            .map(|&n| mesh.coords()[n as usize])
+            .collect();
+        for (i, xi) in view.element.node_reference_coords().iter().enumerate() {
+            let node = view.nodes[i] as usize;
+            let n = view
+                .element
+                .unit_normal(&nodes, &Vector2::new(xi[0], xi[1]));
+            // A face whose normal does not point to the side of the average (sum) is folded
+            // back on its neighbours, or numbered the other way round.
+            if n.dot(&sum[node]) <= 1e-8 * count[node] as f64 {
+                return Err(MortarError::InvertedFace {
+                    face: FaceLocation {
+                        side: Some(side),
+                        tag: view.tag,
+                    },
+                    reason: format!(
+                        "it is oriented against its neighbours at node {} (check the node order of the faces around it)",
+                        mesh.node_tags()[node]
+                    ),
+                });
+            }
+        }
+    }
+    Ok(sum
+        .into_iter()
+        .map(|s| s.try_normalize(0.0).unwrap_or_default())
+        .collect())
+}

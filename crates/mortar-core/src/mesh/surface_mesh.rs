@@ -1,0 +1,210 @@
+use std::collections::HashMap;
+
+use nalgebra::Vector3;
+
+use crate::element::{ElementRef, MAX_FACE_NODES};
+use crate::error::{FaceLocation, MortarError, Result};
+
+/// A surface mesh: the faces of one side of an interface.
+///
+/// Nodes carry a tag (the node number of the input mesh) and 3D coordinates (`z = 0` for 2D
+/// problems). Faces carry an element type, their node indices and a tag. Rows and columns of
+/// the coupling operators follow the ascending node tags.
+///
+/// ```
+/// # use mortar_core::mesh::SurfaceMesh;
+/// # fn tri3() -> mortar_core::element::ElementRef { unimplemented!() }
+/// # fn demo() -> mortar_core::error::Result<()> {
+/// let mut mesh = SurfaceMesh::new();
+/// mesh.add_node(1, [0.0, 0.0, 0.0])?;
+/// mesh.add_node(2, [1.0, 0.0, 0.0])?;
+/// mesh.add_node(3, [0.0, 1.0, 0.0])?;
+/// mesh.add_face(tri3(), &[1, 2, 3])?;
+/// # Ok(()) }
+/// ```
+#[derive(Debug, Clone, Default)]
+pub struct SurfaceMesh {
+    coords: Vec<Vector3<f64>>,
+    node_tags: Vec<u64>,
+    tag_to_index: HashMap<u64, u32>,
+    face_offsets: Vec<u32>,
+    face_nodes: Vec<u32>,
+    face_elements: Vec<ElementRef>,
+    face_tags: Vec<u64>,
+}
+
+/// A borrowed view of one face.
+#[derive(Debug, Clone, Copy)]
+pub struct FaceView<'a> {
+    /// The element type.
+    pub element: ElementRef,
+    /// Node indices (into the mesh's node arrays), in element order.
+    pub nodes: &'a [u32],
+    /// The face tag.
+    pub tag: u64,
+}
+
+impl SurfaceMesh {
+    /// An empty mesh.
+    pub fn new() -> Self {
+        Self {
+            face_offsets: vec![0],
+            ..Default::default()
+        }
+    }
+
+    /// An empty mesh with room for `nodes` nodes and `faces` faces.
+    pub fn with_capacity(nodes: usize, faces: usize) -> Self {
+        let mut mesh = Self::new();
+        mesh.coords.reserve(nodes);
+        mesh.node_tags.reserve(nodes);
+        mesh.tag_to_index.reserve(nodes);
+        mesh.face_offsets.reserve(faces);
+        mesh.face_elements.reserve(faces);
+        mesh.face_tags.reserve(faces);
+        mesh
+    }
+
+    /// Adds a node and returns its index.
+    ///
+    /// # Errors
+    /// [`MortarError::NonFiniteCoordinate`] for NaN or infinite coordinates,
+    /// [`MortarError::DuplicateNode`] if the tag is already used.
+    pub fn add_node(&mut self, tag: u64, coords: [f64; 3]) -> Result<u32> {
+        if coords.iter().any(|c| !c.is_finite()) {
+            return Err(MortarError::NonFiniteCoordinate { tag, coords });
+        }
+        let index = self.coords.len() as u32;
+        if self.tag_to_index.insert(tag, index).is_some() {
+            return Err(MortarError::DuplicateNode { tag });
+        }
+        self.coords.push(Vector3::from(coords));
+        self.node_tags.push(tag);
+        Ok(index)
+    }
+
+    /// Adds a face given by node tags; its tag is its position plus one.
+    ///
+    /// # Errors
+    /// See [`add_face_with_tag`](Self::add_face_with_tag).
+    pub fn add_face(&mut self, element: ElementRef, node_tags: &[u64]) -> Result<u32> {
+        let tag = self.face_count() as u64 + 1;
+        self.add_face_with_tag(tag, element, node_tags)
+    }
+
+    /// Adds a face with an explicit tag and returns its index.
+    ///
+    /// # Errors
+    /// [`MortarError::WrongNodeCount`] if `node_tags` does not match the element,
+    /// [`MortarError::UnknownNode`] if a node tag is not in the mesh.
+    pub fn add_face_with_tag(
+        &mut self,
+        tag: u64,
+        element: ElementRef,
+        node_tags: &[u64],
+    ) -> Result<u32> {
+        let face = FaceLocation { side: None, tag };
+        if node_tags.len() != element.node_count() || node_tags.len() > MAX_FACE_NODES {
+            return Err(MortarError::WrongNodeCount {
+                face,
+                element: element.name(),
+                expected: element.node_count(),
+                got: node_tags.len(),
+            });
+        }
+        let start = self.face_nodes.len();
+        for &t in node_tags {
+            match self.tag_to_index.get(&t) {
+                Some(&i) => self.face_nodes.push(i),
+                None => {
+                    self.face_nodes.truncate(start);
+                    return Err(MortarError::UnknownNode { face, node: t });
+                }
+            }
+        }
+        self.face_offsets.push(self.face_nodes.len() as u32);
+        self.face_elements.push(element);
+        self.face_tags.push(tag);
+        Ok(self.face_elements.len() as u32 - 1)
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.coords.len()
+    }
+
+    /// Number of faces.
+    pub fn face_count(&self) -> usize {
+        self.face_elements.len()
+    }
+
+    /// All node coordinates.
+    pub fn coords(&self) -> &[Vector3<f64>] {
+        &self.coords
+    }
+
+    /// All node tags.
+    pub fn node_tags(&self) -> &[u64] {
+        &self.node_tags
+    }
+
+    /// The index of the node with tag `tag`.
+    pub fn node_index(&self, tag: u64) -> Option<u32> {
+        self.tag_to_index.get(&tag).copied()
+    }
+
+    /// One face.
+    ///
+    /// # Panics
+    /// If `face >= face_count()`.
+    pub fn face(&self, face: usize) -> FaceView<'_> {
+        let (a, b) = (
+            self.face_offsets[face] as usize,
+            self.face_offsets[face + 1] as usize,
+        );
+        FaceView {
+            element: self.face_elements[face],
+            nodes: &self.face_nodes[a..b],
+            tag: self.face_tags[face],
+        }
+    }
+
+    /// Copies the coordinates of a face's nodes into `out` and returns the node count.
+    ///
+    /// # Panics
+    /// If `face >= face_count()`.
+    pub fn face_coords_into(&self, face: usize, out: &mut [Vector3<f64>; MAX_FACE_NODES]) -> usize {
+        let view = self.face(face);
+        for (o, &n) in out.iter_mut().zip(view.nodes) {
+            *o = self.coords[n as usize];
+        }
+        view.nodes.len()
+    }
+
+    /// Moves every node by `f` (rigid motions, scaling, or a deformed configuration).
+    ///
+    /// # Errors
+    /// [`MortarError::NonFiniteCoordinate`] if `f` returns a non-finite point; the mesh is then
+    /// left unchanged.
+    pub fn transform(&mut self, f: impl Fn(Vector3<f64>) -> Vector3<f64>) -> Result<()> {
+        let moved: Vec<Vector3<f64>> = self.coords.iter().map(|&x| f(x)).collect();
+        if let Some(i) = moved.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
+            return Err(MortarError::NonFiniteCoordinate {
+                tag: self.node_tags[i],
+                coords: moved[i].into(),
+            });
+        }
+        self.coords = moved;
+        Ok(())
+    }
+
+    /// The smallest axis-aligned box holding every node, as `(min, max)`; `None` if empty.
+    pub fn bounding_box(&self) -> Option<(Vector3<f64>, Vector3<f64>)> {
+        let first = *self.coords.first()?;
+        Some(
+            self.coords
+                .iter()
+                .fold((first, first), |(lo, hi), x| (lo.inf(x), hi.sup(x))),
+        )
+    }
+}

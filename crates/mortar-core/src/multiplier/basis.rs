@@ -1,0 +1,69 @@
+use crate::element::MAX_FACE_NODES;
+use crate::error::Result;
+use crate::interface::FaceGeometry;
+use crate::tolerances::Tolerances;
+
+/// The multiplier basis on one slave face: `Phi_j = sum_k a[j][k] N_k`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LmBasis {
+    /// Node count of the face.
+    pub nodes: usize,
+    /// `true` when `a` is the identity (standard multipliers): then `Phi = N`.
+    pub identity: bool,
+    /// The coefficients (the first `nodes` rows and columns are valid).
+    pub a: [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
+}
+
+impl LmBasis {
+    /// The identity transformation (standard multipliers) on a face of `nodes` nodes.
+    pub fn identity(nodes: usize) -> Self {
+        let mut a = [[0.0; MAX_FACE_NODES]; MAX_FACE_NODES];
+        for (i, row) in a.iter_mut().enumerate() {
+            row[i] = 1.0;
+        }
+        Self {
+            nodes,
+            identity: true,
+            a,
+        }
+    }
+
+    /// Multiplier values from shape function values: `phi[j] = sum_k a[j][k] n[k]`.
+    #[inline]
+    pub fn eval_into(&self, n: &[f64], phi: &mut [f64]) {
+        let k = self.nodes;
+        if self.identity {
+            phi[..k].copy_from_slice(&n[..k]);
+            return;
+        }
+        for j in 0..k {
+            let mut s = 0.0;
+            for (i, ni) in n[..k].iter().enumerate() {
+                s += self.a[j][i] * ni;
+            }
+            phi[j] = s;
+        }
+    }
+}
+
+/// A Lagrange multiplier space: how the multiplier basis is built on each slave face.
+///
+/// Implement this to add a space (for example a boundary-modified dual basis); the
+/// integration and assembly code calls [`basis`](MultiplierSpace::basis) once per slave face.
+pub trait MultiplierSpace: Send + Sync + std::fmt::Debug {
+    /// A short name (`"standard"`, `"dual"`).
+    fn name(&self) -> &'static str;
+
+    /// The basis on one slave face.
+    ///
+    /// # Errors
+    /// [`MortarError::MultiplierSpace`](crate::error::MortarError::MultiplierSpace) when the
+    /// space cannot be built on the face.
+    fn basis(&self, face: &FaceGeometry, tol: &Tolerances) -> Result<LmBasis>;
+
+    /// Whether D is diagonal for this space on a fully covered interface (so that the slave
+    /// unknowns condense out cheaply).
+    fn diagonal_d(&self) -> bool {
+        false
+    }
+}

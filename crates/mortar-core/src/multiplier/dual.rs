@@ -1,0 +1,76 @@
+use nalgebra::SMatrix;
+
+use super::{LmBasis, MultiplierSpace};
+use crate::element::MAX_FACE_NODES;
+use crate::error::{MortarError, Result};
+use crate::interface::FaceGeometry;
+use crate::quadrature::{Quadrature, QuadratureRule};
+use crate::tolerances::Tolerances;
+
+type Square = SMatrix<f64, MAX_FACE_NODES, MAX_FACE_NODES>;
+
+/// Dual (biorthogonal) multipliers (Wohlmuth): `Phi_j = sum_k A_jk N_k` with
+/// `A = D_e M_e^-1`, computed per slave face with the face's own Jacobian, so that
+/// `int_face Phi_j N_k = delta_jk int_face N_k`. On a fully covered interface D is diagonal.
+///
+/// For a flat Tri3 this gives the classical `Phi_j = 3 N_j - 1`, for a straight Line2
+/// `Phi_1 = 2 N_1 - N_2`; for a Quad4, `A` depends on the face's shape.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct DualMultipliers;
+
+impl MultiplierSpace for DualMultipliers {
+    fn name(&self) -> &'static str {
+        "dual"
+    }
+
+    fn diagonal_d(&self) -> bool {
+        true
+    }
+
+    fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
+        let el = face.element;
+        let k = face.node_count();
+        // N_j N_k has degree 2p; the Jacobian of a planar quad adds 1 (2 with margin).
+        let degree = (2 * el.shape_degree() + 2).min(20);
+        let rule = QuadratureRule::cached(el.domain(), degree)?;
+        let mut me = Square::identity();
+        for j in 0..k {
+            me[(j, j)] = 0.0;
+        }
+        let mut de = [0.0; MAX_FACE_NODES];
+        let mut n = [0.0; MAX_FACE_NODES];
+        for (xi, w) in rule.points().iter().zip(rule.weights()) {
+            el.shape_values_into(xi, &mut n[..k]);
+            let wj = w * el.jacobian_det(face.node_coords(), xi);
+            for a in 0..k {
+                de[a] += wj * n[a];
+                for b in 0..k {
+                    me[(a, b)] += wj * n[a] * n[b];
+                }
+            }
+        }
+        let fail = |reason: &str| MortarError::MultiplierSpace {
+            space: "dual",
+            face: face.location(),
+            reason: reason.to_string(),
+        };
+        let chol = me
+            .cholesky()
+            .ok_or_else(|| fail("the local mass matrix is not positive definite"))?;
+        let inv = chol.inverse();
+        let mut basis = LmBasis::identity(k);
+        basis.identity = false;
+        for j in 0..k {
+            for i in 0..k {
+                basis.a[j][i] = de[j] * inv[(j, i)];
+            }
+        }
+        if basis.a[..k]
+            .iter()
+            .any(|row| row[..k].iter().any(|v| !v.is_finite()))
+        {
+            return Err(fail("non-finite coefficients"));
+        }
+        Ok(basis)
+    }
+}

@@ -1,0 +1,14 @@
+//! Lagrange multiplier spaces on the slave surface.
+//!
+//! A space is a transformation of the slave shape functions on each face:
+//! `Phi_j = sum_k A_jk N_k`. The standard space has `A = I`; the dual (biorthogonal) space has
+//! `A = D_e M_e^-1` with `M_e[j][k] = int N_j N_k` and `D_e = diag(int N_j)` over the face, so
+//! that `int Phi_j N_k = delta_jk int N_k`: D becomes diagonal.
+
+mod basis;
+mod dual;
+mod standard;
+
+pub use basis::{LmBasis, MultiplierSpace};
+pub use dual::DualMultipliers;
+pub use standard::StandardMultipliers;

@@ -1,0 +1,18 @@
+use super::{LmBasis, MultiplierSpace};
+use crate::error::Result;
+use crate::interface::FaceGeometry;
+use crate::tolerances::Tolerances;
+
+/// Standard multipliers: `Phi_j = N_j`, the slave shape functions themselves.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct StandardMultipliers;
+
+impl MultiplierSpace for StandardMultipliers {
+    fn name(&self) -> &'static str {
+        "standard"
+    }
+
+    fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
+        Ok(LmBasis::identity(face.node_count()))
+    }
+}

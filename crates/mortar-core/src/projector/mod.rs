@@ -1,0 +1,66 @@
+//! Projectors: the direction along which points move between the slave and the master side.
+//!
+//! The 3D segment-based method projects both faces onto the auxiliary plane through the slave
+//! face centre, with the projector's direction at that centre as the plane normal. The 2D
+//! segment-based method and element-based integration project along the direction field at
+//! each point.
+
+use nalgebra::{Vector2, Vector3};
+
+use crate::interface::FaceGeometry;
+
+/// A projection direction field on a slave face.
+pub trait Projector: Send + Sync + std::fmt::Debug {
+    /// A short name.
+    fn name(&self) -> &'static str;
+
+    /// The direction at `xi` (any length, pointing out of the slave body) and its derivatives
+    /// with respect to `xi`.
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        xi: &Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]);
+}
+
+/// The slave face's own normal at its centre, constant over the face.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ElementNormal;
+
+impl Projector for ElementNormal {
+    fn name(&self) -> &'static str {
+        "element-normal"
+    }
+
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        _xi: &Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        let c = slave.element.domain().centre();
+        (
+            slave.element.unit_normal(slave.node_coords(), &c),
+            [Vector3::zeros(); 2],
+        )
+    }
+}
+
+/// The continuous field of averaged nodal normals, interpolated with the slave shape
+/// functions: `n(xi) = sum_i N_i(xi) n_i`. The default: it is continuous across slave faces,
+/// which keeps the projection consistent on curved interfaces.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct NodalNormalField;
+
+impl Projector for NodalNormalField {
+    fn name(&self) -> &'static str {
+        "nodal-normal-field"
+    }
+
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        xi: &Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        slave.normal_field(xi)
+    }
+}

@@ -1,0 +1,42 @@
+//! Tolerances, relative to element size, gathered in one place.
+
+/// Tolerances used by the geometry, projection and validation code.
+///
+/// Every length tolerance is relative to the size of the face concerned (its diameter), every
+/// area tolerance relative to its area, so results do not change under uniform scaling.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerances {
+    /// A face whose measure (length or area) is below `degenerate * diameter^k` is degenerate.
+    pub degenerate: f64,
+    /// Clip polygons whose area is below `clip_area * min(slave area, master area)` are
+    /// discarded (zero-measure touching, e.g. along a shared edge).
+    pub clip_area: f64,
+    /// Points closer than `merge * diameter` are merged when clipping.
+    pub merge: f64,
+    /// Newton convergence on reference coordinates.
+    pub newton: f64,
+    /// Newton iteration limit.
+    pub newton_max_iterations: usize,
+    /// How far outside its reference domain (in reference units) a projected point may fall
+    /// and still count as on the face.
+    pub reference_inside: f64,
+    /// Bounding boxes are inflated by this fraction of the face diameter for the search.
+    pub search_inflation: f64,
+    /// Absolute distance added to the search boxes, for contact problems with an open gap.
+    pub search_distance: f64,
+}
+
+impl Default for Tolerances {
+    fn default() -> Self {
+        Self {
+            degenerate: 1e-10,
+            clip_area: 1e-12,
+            merge: 1e-12,
+            newton: 1e-13,
+            newton_max_iterations: 30,
+            reference_inside: 1e-9,
+            search_inflation: 0.25,
+            search_distance: 0.0,
+        }
+    }
+}

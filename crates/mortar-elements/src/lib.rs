@@ -1,0 +1,64 @@
+//! # mortar-elements
+//!
+//! Concrete surface elements for the mortar toolkit: [`Line2`] (2D), [`Tri3`] and [`Quad4`]
+//! (3D), and an [`ElementRegistry`] that maps Gmsh element types to them.
+//!
+//! Reference domains: line `[-1, 1]`; triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`.
+//! Node order follows Gmsh.
+//!
+//! ## Adding an element
+//!
+//! One new type implementing [`ReferenceElement`](mortar_core::element::ReferenceElement)
+//! and [`SurfaceElement`](mortar_core::element::SurfaceElement); nothing else changes. A
+//! three-node quadratic line, say:
+//!
+//! ```
+//! use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
+//! use nalgebra::Vector2;
+//!
+//! #[derive(Debug)]
+//! pub struct Line3;
+//!
+//! impl ReferenceElement for Line3 {
+//!     fn name(&self) -> &'static str { "Line3" }
+//!     fn domain(&self) -> ReferenceDomain { ReferenceDomain::Line }
+//!     fn node_count(&self) -> usize { 3 }
+//!     fn corner_count(&self) -> usize { 2 }
+//!     fn shape_degree(&self) -> u32 { 2 }
+//!     // Gmsh order: the two ends, then the middle node.
+//!     fn node_reference_coords(&self) -> &'static [[f64; 2]] {
+//!         &[[-1.0, 0.0], [1.0, 0.0], [0.0, 0.0]]
+//!     }
+//!     fn shape_values_into(&self, xi: &Vector2<f64>, out: &mut [f64]) {
+//!         let x = xi.x;
+//!         out[0] = 0.5 * x * (x - 1.0);
+//!         out[1] = 0.5 * x * (x + 1.0);
+//!         out[2] = 1.0 - x * x;
+//!     }
+//!     fn shape_gradients_into(&self, xi: &Vector2<f64>, out: &mut [[f64; 2]]) {
+//!         let x = xi.x;
+//!         out[0] = [x - 0.5, 0.0];
+//!         out[1] = [x + 0.5, 0.0];
+//!         out[2] = [-2.0 * x, 0.0];
+//!     }
+//! }
+//!
+//! impl SurfaceElement for Line3 {
+//!     fn gmsh_type(&self) -> Option<u32> { Some(8) }
+//! }
+//!
+//! static LINE3: Line3 = Line3;
+//! let mut registry = mortar_elements::ElementRegistry::new();
+//! registry.register(&LINE3);
+//! assert_eq!(registry.by_gmsh_type(8).unwrap().name(), "Line3");
+//! ```
+
+mod line2;
+mod quad4;
+mod registry;
+mod tri3;
+
+pub use line2::{Line2, LINE2};
+pub use quad4::{Quad4, QUAD4};
+pub use registry::ElementRegistry;
+pub use tri3::{Tri3, TRI3};

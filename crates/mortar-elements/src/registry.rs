@@ -1,0 +1,51 @@
+use mortar_core::element::ElementRef;
+
+use crate::{LINE2, QUAD4, TRI3};
+
+/// Maps Gmsh element type numbers to surface elements. Starts with the built-in elements;
+/// register your own with [`ElementRegistry::register`].
+#[derive(Debug, Clone)]
+pub struct ElementRegistry {
+    elements: Vec<ElementRef>,
+}
+
+impl Default for ElementRegistry {
+    fn default() -> Self {
+        Self {
+            elements: vec![&LINE2, &TRI3, &QUAD4],
+        }
+    }
+}
+
+impl ElementRegistry {
+    /// A registry of the built-in elements (Line2, Tri3, Quad4).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds (or replaces, for the same Gmsh type) an element.
+    pub fn register(&mut self, element: ElementRef) {
+        if let Some(t) = element.gmsh_type() {
+            self.elements.retain(|e| e.gmsh_type() != Some(t));
+        }
+        self.elements.push(element);
+    }
+
+    /// The element of a Gmsh type number.
+    pub fn by_gmsh_type(&self, gmsh_type: u32) -> Option<ElementRef> {
+        self.elements
+            .iter()
+            .copied()
+            .find(|e| e.gmsh_type() == Some(gmsh_type))
+    }
+
+    /// The element with a name.
+    pub fn by_name(&self, name: &str) -> Option<ElementRef> {
+        self.elements.iter().copied().find(|e| e.name() == name)
+    }
+
+    /// All registered elements.
+    pub fn elements(&self) -> &[ElementRef] {
+        &self.elements
+    }
+}
