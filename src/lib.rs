@@ -21,6 +21,9 @@
 //! ```
 
 pub mod generate;
+pub mod io;
+#[cfg(feature = "proptest-support")]
+pub mod testing;
 
 pub use mortar_core::{
     self as core, assemble_coupling, Coupling, CouplingOptions, CouplingStats, Interface,

@@ -1,0 +1,1 @@
+//! proptest strategies for property-based patch tests (feature `proptest-support`).
