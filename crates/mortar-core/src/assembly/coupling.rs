@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use super::local::{integrate_face_into, LocalBlocks};
 use super::CouplingOptions;
+use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
 use crate::interface::Interface;
@@ -254,7 +255,9 @@ fn assemble_on_pool(
     })
 }
 
-/// Segments, integrates and scatters one chunk of slave faces.
+/// Segments, integrates and scatters one chunk of slave faces. The paired points of the whole
+/// chunk go into one flat vector, so the per-face work allocates nothing once the buffers
+/// have grown.
 fn chunk(
     interface: &Interface,
     options: &CouplingOptions,
@@ -264,41 +267,43 @@ fn chunk(
 ) -> Result<ChunkOut> {
     let mut out = ChunkOut::default();
     let tol = interface.tolerances();
-    let mut rules: Vec<PairedRule> = Vec::with_capacity(faces.len());
+    let mut rule = PairedRule::default();
+    let mut points = Vec::new();
+    let mut ranges = Vec::with_capacity(faces.len());
     let t0 = Instant::now();
     for s in faces.clone() {
         let cands = candidates.of(s);
-        let mut rule = PairedRule::default();
+        let start = points.len();
         if !cands.is_empty() {
             let face = interface.slave_face(s);
             options
                 .integration
                 .paired_rule_into(ctx, &face, cands, &mut rule)?;
+            out.pairs += rule.pairs as usize;
+            out.segments += rule.cells as usize;
+            points.extend_from_slice(&rule.points);
         }
-        out.pairs += rule.pairs as usize;
-        out.segments += rule.cells as usize;
-        rules.push(rule);
+        ranges.push(start..points.len());
     }
     let t1 = Instant::now();
     let mut blocks = LocalBlocks::default();
     let slave_mesh = interface.slave();
     let master_mesh = interface.master();
-    for (s, rule) in faces.zip(&rules) {
-        if rule.points.is_empty() {
+    for (s, range) in faces.zip(ranges) {
+        if range.is_empty() {
             continue;
         }
         let face = interface.slave_face(s);
         let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(interface, &face, &basis, rule, &mut blocks);
+        integrate_face_into(interface, &face, &basis, &points[range], &mut blocks);
+        let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
-        let rows: Vec<u32> = snodes
-            .iter()
-            .map(|&n| {
-                interface
-                    .slave_row(n)
-                    .expect("face nodes are on the interface")
-            })
-            .collect();
+        for (r, &n) in rows.iter_mut().zip(snodes) {
+            *r = interface
+                .slave_row(n)
+                .expect("face nodes are on the interface");
+        }
+        let rows = &rows[..snodes.len()];
         for (j, &r) in rows.iter().enumerate() {
             for (k, &c) in rows.iter().enumerate() {
                 out.d.push(r, c, blocks.d[j][k]);

@@ -1,5 +1,5 @@
 use crate::element::MAX_FACE_NODES;
-use crate::integration::PairedRule;
+use crate::integration::PairedPoint;
 use crate::interface::{FaceGeometry, Interface};
 use crate::multiplier::LmBasis;
 
@@ -34,13 +34,13 @@ impl LocalBlocks {
     }
 }
 
-/// Integrates one slave face's paired rule into local blocks (cleared first):
+/// Integrates one slave face's paired points into local blocks (cleared first):
 /// `D += w Phi_j(xi_s) N_k(xi_s)`, `M += w Phi_j(xi_s) N_l^m(xi_m)`.
 pub fn integrate_face_into(
     interface: &Interface,
     slave: &FaceGeometry,
     basis: &LmBasis,
-    rule: &PairedRule,
+    points: &[PairedPoint],
     out: &mut LocalBlocks,
 ) {
     out.clear();
@@ -49,7 +49,7 @@ pub fn integrate_face_into(
     let mut ns = [0.0; MAX_FACE_NODES];
     let mut phi = [0.0; MAX_FACE_NODES];
     let mut nm = [0.0; MAX_FACE_NODES];
-    for p in &rule.points {
+    for p in points {
         slave.element.shape_values_into(&p.xi_slave, &mut ns[..ks]);
         basis.eval_into(&ns, &mut phi);
         let master_el = master_mesh.face(p.master as usize).element;
