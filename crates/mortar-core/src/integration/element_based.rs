@@ -54,20 +54,16 @@ impl IntegrationStrategy for ElementBased {
         let el = slave.element;
         let deg = self.degree.unwrap_or_else(|| default_degree(el, el));
         let rule = QuadratureRule::cached(el.domain(), deg)?;
-        let mut hit = [u32::MAX; 64];
-        let mut hits = 0usize;
+        // Distinct master faces hit, for the pair count (a handful per slave face).
+        let mut hit: Vec<u32> = Vec::new();
         for (xi, w) in rule.points().iter().zip(rule.weights()) {
             let x = slave.map(xi);
             let (d, _) = ctx.projector.direction(slave, xi);
             let Some((m, eta)) = find_master(ctx, &x, &d, candidates) else {
                 continue;
             };
-            if !hit[..hits].contains(&m) {
-                if hits < hit.len() {
-                    hit[hits] = m;
-                }
-                hits += 1;
-                out.pairs += 1;
+            if !hit.contains(&m) {
+                hit.push(m);
             }
             out.points.push(PairedPoint {
                 master: m,
@@ -76,7 +72,11 @@ impl IntegrationStrategy for ElementBased {
                 weight: w * el.jacobian_det(slave.node_coords(), xi),
             });
         }
+        out.pairs = hit.len() as u32;
         out.cells = u32::from(!out.points.is_empty());
+        if out.cells > 0 {
+            out.degrees |= 1 << deg;
+        }
         Ok(())
     }
 }
