@@ -2,9 +2,9 @@ use mortar_core::error::Result;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_elements::LINE2;
 
-/// The segment `[0, 1]` on the x-axis with `n` Line2 elements. Traversed towards `+x` the
-/// normal is `-y` (the body above it is on its left... its outward normal points down); with
-/// `flip` the lines run towards `-x` and the normal is `+y`.
+/// The segment `[0, 1]` on the x-axis with `n` Line2 elements. The lines run towards `+x`, so
+/// the normal `(t_y, -t_x)` is `-y`: the outward normal of a body lying above the segment. With
+/// `flip` they run towards `-x` and the normal is `+y` (a body below).
 ///
 /// # Errors
 /// None for `n >= 1`.

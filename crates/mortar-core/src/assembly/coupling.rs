@@ -45,6 +45,9 @@ pub struct CouplingStats {
     pub area: f64,
     /// Threads used.
     pub threads: usize,
+    /// The quadrature degrees actually used, ascending (with automatic degree, the degree
+    /// picked for each kind of face pair: 2 for Tri3-Tri3, 3 for Tri3-Quad4, 4 for Quad4-Quad4).
+    pub degrees_used: [bool; 21],
     /// Timings.
     pub seconds: PhaseSeconds,
 }
@@ -111,6 +114,13 @@ impl Coupling {
             .collect()
     }
 
+    /// The quadrature degrees used, ascending.
+    pub fn degrees_used(&self) -> Vec<u32> {
+        (0..21u32)
+            .filter(|&d| self.stats.degrees_used[d as usize])
+            .collect()
+    }
+
     /// The current slave node positions of `interface`, in row order.
     pub fn slave_positions(&self, interface: &Interface) -> Vec<Vector3<f64>> {
         let c = interface.slave().coords();
@@ -139,6 +149,7 @@ struct ChunkOut {
     m: Triplets,
     pairs: usize,
     segments: usize,
+    degrees: u32,
     seconds_segments: f64,
     seconds_integration: f64,
 }
@@ -244,6 +255,10 @@ fn assemble_on_pool(
             segments: outs.iter().map(|o| o.segments).sum(),
             area,
             threads,
+            degrees_used: {
+                let bits = outs.iter().fold(0u32, |b, o| b | o.degrees);
+                std::array::from_fn(|d| bits & (1 << d) != 0)
+            },
             seconds: PhaseSeconds {
                 search,
                 segments: outs.iter().map(|o| o.seconds_segments).sum(),
@@ -281,6 +296,7 @@ fn chunk(
                 .paired_rule_into(ctx, &face, cands, &mut rule)?;
             out.pairs += rule.pairs as usize;
             out.segments += rule.cells as usize;
+            out.degrees |= rule.degrees;
             points.extend_from_slice(&rule.points);
         }
         ranges.push(start..points.len());

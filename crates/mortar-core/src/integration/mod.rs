@@ -50,6 +50,8 @@ pub struct PairedRule {
     pub pairs: u32,
     /// Integration cells (clip triangles, 2D segments, or slave faces for element-based).
     pub cells: u32,
+    /// The quadrature degrees used, as a bit set (bit `d` set when degree `d` was used).
+    pub degrees: u32,
 }
 
 impl PairedRule {
@@ -58,6 +60,7 @@ impl PairedRule {
         self.points.clear();
         self.pairs = 0;
         self.cells = 0;
+        self.degrees = 0;
     }
 }
 

@@ -41,6 +41,7 @@ pub(super) fn segments_into(
         let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
         out.pairs += 1;
         out.cells += 1;
+        out.degrees |= 1 << deg;
         let half = 0.5 * (hi - lo);
         let mut values = [0.0; MAX_FACE_NODES];
         let km = master.node_count();

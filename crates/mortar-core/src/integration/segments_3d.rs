@@ -95,6 +95,7 @@ pub(super) fn segments_into(
         }
         if any {
             out.pairs += 1;
+            out.degrees |= 1 << deg;
         }
     }
     Ok(())
