@@ -35,7 +35,7 @@ impl Default for Tolerances {
             newton: 1e-13,
             newton_max_iterations: 30,
             reference_inside: 1e-9,
-            search_inflation: 0.25,
+            search_inflation: 0.1,
             search_distance: 0.0,
         }
     }

@@ -4,9 +4,11 @@
 //! Everything here works on stack arrays and allocates nothing.
 
 mod inverse_map;
+mod planar_map;
 mod plane;
 mod polygon;
 
 pub use inverse_map::{invert_line_map, invert_surface_map, InverseMapFailure};
+pub use planar_map::PlanarMap;
 pub use plane::AuxiliaryPlane;
 pub use polygon::{clip_convex, Polygon, MAX_POLYGON_VERTICES};

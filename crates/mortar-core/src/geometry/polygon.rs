@@ -126,47 +126,69 @@ impl Polygon {
 /// its left within `tol` (a length). Consecutive vertices closer than `tol` are merged. The
 /// result is written into `out` (cleared first).
 pub fn clip_convex(subject: &Polygon, clip: &Polygon, tol: f64, out: &mut Polygon) {
-    out.vertices.clear();
-    out.vertices.extend(subject.vertices.iter().copied());
+    // Two stack buffers used in turn, so no polygon is copied per edge.
+    let mut buf = [[Vector2::zeros(); MAX_POLYGON_VERTICES]; 2];
+    let mut len = [subject.len(), 0];
+    buf[0][..subject.len()].copy_from_slice(&subject.vertices);
+    let mut cur = 0usize;
     let n = clip.vertices.len();
-    let mut input = Polygon::default();
     for i in 0..n {
-        if out.vertices.is_empty() {
-            return;
+        if len[cur] == 0 {
+            break;
         }
         let a = clip.vertices[i];
-        let b = clip.vertices[(i + 1) % n];
-        let e = b - a;
-        let len = e.norm();
-        if len == 0.0 {
+        let e = clip.vertices[(i + 1) % n] - a;
+        let elen = e.norm();
+        if elen == 0.0 {
             continue;
         }
-        // Signed distance to the left of edge a->b.
-        let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) / len;
-        std::mem::swap(&mut input, out);
-        out.vertices.clear();
-        let m = input.vertices.len();
-        for j in 0..m {
-            let p = input.vertices[j];
-            let q = input.vertices[(j + 1) % m];
-            let dp = dist(&p);
+        let inv = 1.0 / elen;
+        let (src, dst) = if cur == 0 {
+            let (x, y) = buf.split_at_mut(1);
+            (&x[0], &mut y[0])
+        } else {
+            let (x, y) = buf.split_at_mut(1);
+            (&y[0], &mut x[0])
+        };
+        let m = len[cur];
+        let mut k = 0usize;
+        // Signed distance to the left of the edge.
+        let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;
+        let mut p = src[m - 1];
+        let mut dp = dist(&p);
+        for &q in &src[..m] {
             let dq = dist(&q);
             let p_in = dp >= -tol;
             let q_in = dq >= -tol;
-            if p_in {
-                push(out, p);
-            }
-            if p_in != q_in {
+            if p_in != q_in && k < MAX_POLYGON_VERTICES {
                 let t = dp / (dp - dq);
-                push(out, p + (q - p) * t);
+                dst[k] = p + (q - p) * t;
+                k += 1;
             }
+            if q_in && k < MAX_POLYGON_VERTICES {
+                dst[k] = q;
+                k += 1;
+            }
+            p = q;
+            dp = dq;
+        }
+        cur = 1 - cur;
+        len[cur] = k;
+    }
+    out.vertices.clear();
+    let tol2 = tol * tol;
+    for v in &buf[cur][..len[cur]] {
+        if out
+            .vertices
+            .last()
+            .is_none_or(|l: &Vector2<f64>| (v - l).norm_squared() > tol2)
+        {
+            out.vertices.push(*v);
         }
     }
-    out.dedup(tol);
-}
-
-#[inline]
-fn push(poly: &mut Polygon, v: Vector2<f64>) {
-    // Convex inputs give at most n + m vertices; the capacity check only guards bad input.
-    let _ = poly.vertices.try_push(v);
+    while out.vertices.len() > 1
+        && (out.vertices[0] - out.vertices[out.vertices.len() - 1]).norm_squared() <= tol2
+    {
+        out.vertices.pop();
+    }
 }

@@ -5,9 +5,9 @@ use nalgebra::Vector2;
 
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
-use crate::error::{MortarError, Result};
+use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
-    clip_convex, invert_surface_map, AuxiliaryPlane, Polygon, MAX_POLYGON_VERTICES,
+    clip_convex, AuxiliaryPlane, InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
 };
 use crate::interface::FaceGeometry;
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -44,18 +44,40 @@ pub(super) fn segments_into(
             reason: "its normal points against the projection direction at its centre".into(),
         });
     }
+    let slave_map = PlanarMap::new(el, &sp[..ks]);
+    let (s_lo, s_hi) = spoly
+        .vertices
+        .iter()
+        .fold((sp[0], sp[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
     let merge = tol.merge * spoly.diameter();
+    let master_mesh = ctx.interface.master();
+    let coords = master_mesh.coords();
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
 
     for &m in candidates {
-        let master = ctx.interface.master_face(m as usize);
-        let km = master.node_count();
-        for i in 0..km {
-            mp[i] = plane.project(&master.nodes[i]);
+        let view = master_mesh.face(m as usize);
+        let mel = view.element;
+        let km = view.nodes.len();
+        for (p, &n) in mp.iter_mut().zip(view.nodes) {
+            *p = plane.project(&coords[n as usize]);
         }
-        let mut mpoly = Polygon::from_slice(&mp[..master.element.corner_count()]);
+        // Quick rejection by in-plane bounding boxes before clipping.
+        let corners = &mp[..mel.corner_count()];
+        let (lo, hi) = corners
+            .iter()
+            .fold((corners[0], corners[0]), |(lo, hi), p| {
+                (lo.inf(p), hi.sup(p))
+            });
+        if lo.x > s_hi.x + merge
+            || lo.y > s_hi.y + merge
+            || hi.x < s_lo.x - merge
+            || hi.y < s_lo.y - merge
+        {
+            continue;
+        }
+        let mut mpoly = Polygon::from_slice(corners);
         let area_m = mpoly.signed_area();
         if area_m.abs() <= tol.clip_area * area_s {
             continue; // seen edge-on from the plane
@@ -67,8 +89,9 @@ pub(super) fn segments_into(
         if clip.len() < 3 || clip.signed_area() <= tol.clip_area * area_s.min(area_m.abs()) {
             continue;
         }
-        let deg = degree.unwrap_or_else(|| default_degree(el, master.element));
+        let deg = degree.unwrap_or_else(|| default_degree(el, mel));
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
+        let master_map = PlanarMap::new(mel, &mp[..km]);
         tris.clear();
         clip.for_each_triangle(|t| tris.push(t));
         let mut any = false;
@@ -83,8 +106,21 @@ pub(super) fn segments_into(
             out.cells += 1;
             for (q, w) in rule.points().iter().zip(rule.weights()) {
                 let p = t[0] + e1 * q.x + e2 * q.y;
-                let xi_s = invert(slave, &sp[..ks], &p, &plane, ctx)?;
-                let xi_m = invert(&master, &mp[..km], &p, &plane, ctx)?;
+                let fail = |f: InverseMapFailure, side, tag| MortarError::ProjectionFailed {
+                    face: FaceLocation {
+                        side: Some(side),
+                        tag,
+                    },
+                    point: plane.lift(&p).into(),
+                    iterations: f.iterations,
+                    residual: f.residual,
+                };
+                let xi_s = slave_map
+                    .invert(&p, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, Side::Slave, slave.tag))?;
+                let xi_m = master_map
+                    .invert(&p, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, Side::Master, view.tag))?;
                 out.points.push(PairedPoint {
                     master: m,
                     xi_slave: xi_s,
@@ -99,29 +135,4 @@ pub(super) fn segments_into(
         }
     }
     Ok(())
-}
-
-/// Reference coordinates of the face point that projects to `p` in the plane.
-fn invert(
-    face: &FaceGeometry,
-    projected: &[Vector2<f64>],
-    p: &Vector2<f64>,
-    plane: &AuxiliaryPlane,
-    ctx: &SegmentContext<'_>,
-) -> Result<Vector2<f64>> {
-    let tol = ctx.interface.tolerances();
-    invert_surface_map(
-        face.element,
-        face.element.is_affine(),
-        projected,
-        p,
-        tol.newton,
-        tol.newton_max_iterations,
-    )
-    .map_err(|f| MortarError::ProjectionFailed {
-        face: face.location(),
-        point: plane.lift(p).into(),
-        iterations: f.iterations,
-        residual: f.residual,
-    })
 }

@@ -135,11 +135,8 @@ impl Quadrature for QuadratureRule {
 }
 
 /// Rules cached per domain and degree, built once on first use and shared by all threads.
-static CACHE: [[std::sync::OnceLock<QuadratureRule>; CACHED_DEGREES]; 3] = {
-    const EMPTY: std::sync::OnceLock<QuadratureRule> = std::sync::OnceLock::new();
-    const ROW: [std::sync::OnceLock<QuadratureRule>; CACHED_DEGREES] = [EMPTY; CACHED_DEGREES];
-    [ROW; 3]
-};
+static CACHE: [[std::sync::OnceLock<QuadratureRule>; CACHED_DEGREES]; 3] =
+    [const { [const { std::sync::OnceLock::new() }; CACHED_DEGREES] }; 3];
 
 /// Degrees `0..CACHED_DEGREES` are cached.
 const CACHED_DEGREES: usize = MAX_DEGREE_2D as usize + 1;

@@ -34,20 +34,50 @@ impl Candidates {
     }
 }
 
-/// Finds the candidate pairs of an interface with parry's BVH (built over the master faces,
-/// queried with each slave face). Runs on the current rayon pool; the result does not depend
-/// on the thread count.
+/// A BVH over the master faces' inflated bounding boxes, queried one slave face at a time.
+pub struct MasterTree {
+    tree: BoxTree,
+}
+
+impl std::fmt::Debug for MasterTree {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("MasterTree")
+    }
+}
+
+impl MasterTree {
+    /// Builds the tree over the master faces of `interface` (boxes computed in parallel on the
+    /// current rayon pool).
+    pub fn build(interface: &Interface) -> Self {
+        let tol = interface.tolerances();
+        let master = interface.master();
+        let boxes: Vec<_> = (0..master.face_count())
+            .into_par_iter()
+            .map(|f| face_box(master, f, tol))
+            .collect();
+        Self {
+            tree: BoxTree::build(&boxes, interface.dim() == SpatialDim::Two),
+        }
+    }
+
+    /// The candidate master faces of slave face `s`, ascending, written into `out` (cleared
+    /// first).
+    pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
+        let b = face_box(interface.slave(), s, interface.tolerances());
+        self.tree.intersecting_into(&b, out);
+    }
+}
+
+/// Finds the candidate pairs of a whole interface with parry's BVH (built over the master
+/// faces, queried with each slave face). Runs on the current rayon pool; the result does not
+/// depend on the thread count. (`assemble_coupling` queries chunk by chunk instead, without
+/// storing every candidate.)
 pub fn find_candidates(interface: &Interface) -> Candidates {
-    let tol = interface.tolerances();
-    let planar = interface.dim() == SpatialDim::Two;
-    let master_boxes = face_boxes(interface.master(), tol);
-    let tree = BoxTree::build(&master_boxes, planar);
-    let slave = interface.slave();
-    let lists: Vec<Vec<u32>> = (0..slave.face_count())
+    let tree = MasterTree::build(interface);
+    let lists: Vec<Vec<u32>> = (0..interface.slave().face_count())
         .into_par_iter()
         .map_init(Vec::new, |scratch, s| {
-            let b = face_box(slave, s, tol);
-            tree.intersecting_into(&b, scratch);
+            tree.candidates_into(interface, s, scratch);
             scratch.clone()
         })
         .collect();
@@ -59,13 +89,6 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
         offsets.push(masters.len() as u32);
     }
     Candidates { offsets, masters }
-}
-
-fn face_boxes(mesh: &SurfaceMesh, tol: &Tolerances) -> Vec<(Vector3<f64>, Vector3<f64>)> {
-    (0..mesh.face_count())
-        .into_par_iter()
-        .map(|f| face_box(mesh, f, tol))
-        .collect()
 }
 
 /// The face's bounding box, inflated for the search.

@@ -11,4 +11,4 @@
 mod bvh;
 mod candidates;
 
-pub use candidates::{find_candidates, Candidates};
+pub use candidates::{find_candidates, Candidates, MasterTree};

@@ -1,0 +1,71 @@
+use nalgebra::{Matrix2, Vector2};
+
+use super::{invert_surface_map, InverseMapFailure};
+use crate::element::{ElementRef, MAX_FACE_NODES};
+
+/// A face's map from reference coordinates into a plane (its nodes projected onto the
+/// auxiliary plane), ready to be inverted many times: for affine elements the inverse
+/// Jacobian is computed once, so each inversion is a 2x2 product; otherwise Newton.
+#[derive(Debug, Clone, Copy)]
+pub struct PlanarMap {
+    element: ElementRef,
+    nodes: [Vector2<f64>; MAX_FACE_NODES],
+    affine: Option<(Vector2<f64>, Vector2<f64>, Matrix2<f64>)>,
+}
+
+impl PlanarMap {
+    /// The map of `element` with projected nodes `nodes`.
+    pub fn new(element: ElementRef, nodes: &[Vector2<f64>]) -> Self {
+        let k = element.node_count();
+        let mut all = [Vector2::zeros(); MAX_FACE_NODES];
+        all[..k].copy_from_slice(&nodes[..k]);
+        let affine = if element.is_affine() {
+            let centre = element.domain().centre();
+            let mut n = [0.0; MAX_FACE_NODES];
+            let mut g = [[0.0; 2]; MAX_FACE_NODES];
+            element.shape_values_into(&centre, &mut n[..k]);
+            element.shape_gradients_into(&centre, &mut g[..k]);
+            let mut x = Vector2::zeros();
+            let mut j = Matrix2::zeros();
+            for i in 0..k {
+                x += all[i] * n[i];
+                j[(0, 0)] += all[i].x * g[i][0];
+                j[(0, 1)] += all[i].x * g[i][1];
+                j[(1, 0)] += all[i].y * g[i][0];
+                j[(1, 1)] += all[i].y * g[i][1];
+            }
+            j.try_inverse().map(|inv| (centre, x, inv))
+        } else {
+            None
+        };
+        Self {
+            element,
+            nodes: all,
+            affine,
+        }
+    }
+
+    /// Reference coordinates of the face point that maps to `p`.
+    ///
+    /// # Errors
+    /// [`InverseMapFailure`] if Newton fails (non-affine faces) or the map is singular.
+    #[inline]
+    pub fn invert(
+        &self,
+        p: &Vector2<f64>,
+        tol: f64,
+        max_iterations: usize,
+    ) -> Result<Vector2<f64>, InverseMapFailure> {
+        match &self.affine {
+            Some((centre, x, inv)) => Ok(centre + inv * (p - x)),
+            None => invert_surface_map(
+                self.element,
+                self.element.is_affine(),
+                &self.nodes[..self.element.node_count()],
+                p,
+                tol,
+                max_iterations,
+            ),
+        }
+    }
+}
