@@ -304,38 +304,34 @@ fn chunk(
         offsets.push(all.len());
     }
     out.candidates = all.len();
-    let mut rule = PairedRule::default();
-    let mut points = Vec::new();
-    let mut ranges = Vec::with_capacity(faces.len());
     let t0 = Instant::now();
     out.seconds_search = (t0 - t_search).as_secs_f64();
-    for (i, s) in faces.clone().enumerate() {
-        let cands = &all[offsets[i]..offsets[i + 1]];
-        let start = points.len();
-        if !cands.is_empty() {
-            let face = interface.slave_face(s);
-            options
-                .integration
-                .paired_rule_into(ctx, &face, cands, &mut rule)?;
-            out.pairs += rule.pairs as usize;
-            out.segments += rule.cells as usize;
-            out.degrees |= rule.degrees;
-            points.extend_from_slice(&rule.points);
-        }
-        ranges.push(start..points.len());
-    }
-    let t1 = Instant::now();
+    // Each face is segmented and integrated at once, while its points are in cache.
+    let mut rule = PairedRule::default();
     let mut blocks = LocalBlocks::default();
     let mut cols: Vec<(u32, [f64; MAX_FACE_NODES])> = Vec::new();
     let slave_mesh = interface.slave();
     let master_mesh = interface.master();
-    for (s, range) in faces.zip(ranges) {
-        if range.is_empty() {
+    for (i, s) in faces.clone().enumerate() {
+        let cands = &all[offsets[i]..offsets[i + 1]];
+        if cands.is_empty() {
             continue;
         }
+        let ta = Instant::now();
         let face = interface.slave_face(s);
+        options
+            .integration
+            .paired_rule_into(ctx, &face, cands, &mut rule)?;
+        out.pairs += rule.pairs as usize;
+        out.segments += rule.cells as usize;
+        out.degrees |= rule.degrees;
+        let tb = Instant::now();
+        out.seconds_segments += (tb - ta).as_secs_f64();
+        if rule.points.is_empty() {
+            continue;
+        }
         let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(interface, &face, &basis, &points[range], &mut blocks);
+        integrate_face_into(interface, &face, &basis, &rule.points, &mut blocks);
         let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
         for (r, &n) in rows.iter_mut().zip(snodes) {
@@ -378,7 +374,6 @@ fn chunk(
     }
     out.d.compress();
     out.m.compress();
-    out.seconds_segments = (t1 - t0).as_secs_f64();
-    out.seconds_integration = t1.elapsed().as_secs_f64();
+    out.seconds_integration = t0.elapsed().as_secs_f64() - out.seconds_segments;
     Ok(out)
 }
