@@ -27,23 +27,11 @@ pub fn invert_surface_map<E: ReferenceElement + ?Sized>(
     tol: f64,
     max_iterations: usize,
 ) -> Result<Vector2<f64>, InverseMapFailure> {
-    let k = element.node_count();
     let mut xi = element.domain().centre();
-    let mut n = [0.0; MAX_FACE_NODES];
-    let mut g = [[0.0; 2]; MAX_FACE_NODES];
     let mut last = f64::INFINITY;
     for it in 0..max_iterations.max(1) {
-        element.shape_values_into(&xi, &mut n[..k]);
-        element.shape_gradients_into(&xi, &mut g[..k]);
-        let mut r = -target;
-        let mut j = Matrix2::zeros();
-        for i in 0..k {
-            r += nodes[i] * n[i];
-            j[(0, 0)] += nodes[i].x * g[i][0];
-            j[(0, 1)] += nodes[i].x * g[i][1];
-            j[(1, 0)] += nodes[i].y * g[i][0];
-            j[(1, 1)] += nodes[i].y * g[i][1];
-        }
+        let (x, j) = planar_map_and_jacobian(element, nodes, &xi);
+        let r = x - target;
         let Some(inv) = j.try_inverse() else {
             return Err(InverseMapFailure {
                 iterations: it,
@@ -61,6 +49,30 @@ pub fn invert_surface_map<E: ReferenceElement + ?Sized>(
         iterations: max_iterations,
         residual: last,
     })
+}
+
+/// The point `sum_i N_i(xi) p_i` of a face whose nodes `p_i` lie in a plane, and its 2x2
+/// Jacobian with respect to `xi`.
+pub(super) fn planar_map_and_jacobian<E: ReferenceElement + ?Sized>(
+    element: &E,
+    nodes: &[Vector2<f64>],
+    xi: &Vector2<f64>,
+) -> (Vector2<f64>, Matrix2<f64>) {
+    let k = element.node_count();
+    let mut n = [0.0; MAX_FACE_NODES];
+    let mut g = [[0.0; 2]; MAX_FACE_NODES];
+    element.shape_values_into(xi, &mut n[..k]);
+    element.shape_gradients_into(xi, &mut g[..k]);
+    let mut x = Vector2::zeros();
+    let mut j = Matrix2::zeros();
+    for i in 0..k {
+        x += nodes[i] * n[i];
+        j[(0, 0)] += nodes[i].x * g[i][0];
+        j[(0, 1)] += nodes[i].x * g[i][1];
+        j[(1, 0)] += nodes[i].y * g[i][0];
+        j[(1, 1)] += nodes[i].y * g[i][1];
+    }
+    (x, j)
 }
 
 /// Finds the reference coordinate `xi` of a line element with `sum_i N_i(xi) s_i = target`,

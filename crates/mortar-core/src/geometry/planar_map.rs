@@ -1,5 +1,6 @@
 use nalgebra::{Matrix2, Vector2};
 
+use super::inverse_map::planar_map_and_jacobian;
 use super::{invert_surface_map, InverseMapFailure};
 use crate::element::{ElementRef, MAX_FACE_NODES};
 
@@ -21,19 +22,7 @@ impl PlanarMap {
         all[..k].copy_from_slice(&nodes[..k]);
         let affine = if element.is_affine() {
             let centre = element.domain().centre();
-            let mut n = [0.0; MAX_FACE_NODES];
-            let mut g = [[0.0; 2]; MAX_FACE_NODES];
-            element.shape_values_into(&centre, &mut n[..k]);
-            element.shape_gradients_into(&centre, &mut g[..k]);
-            let mut x = Vector2::zeros();
-            let mut j = Matrix2::zeros();
-            for i in 0..k {
-                x += all[i] * n[i];
-                j[(0, 0)] += all[i].x * g[i][0];
-                j[(0, 1)] += all[i].x * g[i][1];
-                j[(1, 0)] += all[i].y * g[i][0];
-                j[(1, 1)] += all[i].y * g[i][1];
-            }
+            let (x, j) = planar_map_and_jacobian(element, &all[..k], &centre);
             j.try_inverse().map(|inv| (centre, x, inv))
         } else {
             None

@@ -75,11 +75,7 @@ pub(super) fn check_faces(
             }
         }
         let el = view.element;
-        let nodes: Vec<Vector3<f64>> = view
-            .nodes
-            .iter()
-            .map(|&n| mesh.coords()[n as usize])
-            .collect();
+        let nodes = face_coords(mesh, view.nodes);
         let corners = el.corner_count();
         let mut diameter: f64 = 0.0;
         for i in 0..corners {
@@ -118,6 +114,11 @@ pub(super) fn check_faces(
     Ok(())
 }
 
+/// The coordinates of a face's nodes.
+fn face_coords(mesh: &SurfaceMesh, nodes: &[u32]) -> Vec<Vector3<f64>> {
+    nodes.iter().map(|&n| mesh.coords()[n as usize]).collect()
+}
+
 /// Averaged unit nodal normals (sum of the faces' unit normals at the node, normalised), and
 /// the check that every face agrees in orientation with its neighbours.
 pub(super) fn nodal_normals(mesh: &SurfaceMesh, side: Side) -> Result<Vec<Vector3<f64>>> {
@@ -125,11 +126,7 @@ pub(super) fn nodal_normals(mesh: &SurfaceMesh, side: Side) -> Result<Vec<Vector
     let mut count = vec![0u32; mesh.node_count()];
     for f in 0..mesh.face_count() {
         let view = mesh.face(f);
-        let nodes: Vec<Vector3<f64>> = view
-            .nodes
-            .iter()
-            .map(|&n| mesh.coords()[n as usize])
-            .collect();
+        let nodes = face_coords(mesh, view.nodes);
         for (i, xi) in view.element.node_reference_coords().iter().enumerate() {
             let n = view
                 .element
@@ -140,11 +137,7 @@ pub(super) fn nodal_normals(mesh: &SurfaceMesh, side: Side) -> Result<Vec<Vector
     }
     for f in 0..mesh.face_count() {
         let view = mesh.face(f);
-        let nodes: Vec<Vector3<f64>> = view
-            .nodes
-            .iter()
-            .map(|&n| mesh.coords()[n as usize])
-            .collect();
+        let nodes = face_coords(mesh, view.nodes);
         for (i, xi) in view.element.node_reference_coords().iter().enumerate() {
             let node = view.nodes[i] as usize;
             let n = view
