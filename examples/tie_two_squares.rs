@@ -13,10 +13,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let coupling = assemble_coupling(&interface, &CouplingOptions::default().dual())?;
 
     // A linear field f = 1 + 2x - 3y is tied exactly: D f_s = M f_m.
-    let f = |x: &nalgebra::Vector3<f64>| nalgebra::Vector3::new(1.0 + 2.0 * x.x - 3.0 * x.y, 0.0, 0.0);
+    let f =
+        |x: &nalgebra::Vector3<f64>| nalgebra::Vector3::new(1.0 + 2.0 * x.x - 3.0 * x.y, 0.0, 0.0);
     let fs: Vec<_> = coupling.slave_positions(&interface).iter().map(f).collect();
-    let fm: Vec<_> = coupling.master_positions(&interface).iter().map(f).collect();
-    let worst = coupling.weighted_gap(&fs, &fm).iter().map(|g| g.x.abs()).fold(0.0, f64::max);
+    let fm: Vec<_> = coupling
+        .master_positions(&interface)
+        .iter()
+        .map(f)
+        .collect();
+    let worst = coupling
+        .weighted_gap(&fs, &fm)
+        .iter()
+        .map(|g| g.x.abs())
+        .fold(0.0, f64::max);
 
     println!("{}", coupling.formulation);
     println!(

@@ -94,7 +94,8 @@ mod tests {
     fn line(n: usize, flip: bool) -> SurfaceMesh {
         let mut m = SurfaceMesh::new();
         for i in 0..=n {
-            m.add_node(i as u64 + 1, [i as f64 / n as f64, 0.0, 0.0]).unwrap();
+            m.add_node(i as u64 + 1, [i as f64 / n as f64, 0.0, 0.0])
+                .unwrap();
         }
         for i in 0..n {
             let (a, b) = (i as u64 + 1, i as u64 + 2);
@@ -114,7 +115,11 @@ mod tests {
         let f = |x: f64| 0.3 + 2.0 * x;
         for (r, row) in p.outer_iterator().enumerate() {
             let us: f64 = row.iter().map(|(k, v)| v * f(xm[k].x)).sum();
-            assert!((us - f(xs[r].x)).abs() < 1e-13, "row {r}: {us} vs {}", f(xs[r].x));
+            assert!(
+                (us - f(xs[r].x)).abs() < 1e-13,
+                "row {r}: {us} vs {}",
+                f(xs[r].x)
+            );
         }
     }
 

@@ -1,0 +1,126 @@
+//! Command-line parsing and the commands.
+
+mod couple;
+mod report;
+mod scene;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use mortar::io::{CouplingSettings, Integration, Multipliers};
+
+/// Mortar coupling of non-conforming interfaces: the operators D and M.
+///
+/// With no command, couples a built-in pair of non-matching meshes of the unit square and
+/// prints the summary.
+#[derive(Debug, Parser)]
+#[command(name = "mortar", version, about, long_about)]
+struct Cli {
+    /// Print the summary as JSON instead of text.
+    #[arg(long, global = true)]
+    json: bool,
+
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Couple two Gmsh 4.1 surfaces: write DIR/D.mtx, DIR/M.mtx and DIR/summary.json.
+    ///
+    /// FILE#GROUP selects the elements of a physical group (by name, or by physical tag);
+    /// FILE alone takes all elements of dimension 2 of the file, or of dimension 1 if it has
+    /// none (a 2D problem with lines in the plane z = 0). Rows of D and M are the slave nodes,
+    /// columns the slave (D) or master (M) nodes, each by ascending node tag. Nothing is
+    /// written unless everything succeeds.
+    #[command(
+        after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"
+    )]
+    Couple(CoupleArgs),
+}
+
+/// Arguments of `mortar couple`.
+#[derive(Debug, Args)]
+struct CoupleArgs {
+    /// Slave (non-mortar) surface: carries the multipliers; its normal points to the master.
+    #[arg(long, value_name = "FILE[#GROUP]")]
+    slave: String,
+
+    /// Master (mortar) surface.
+    #[arg(long, value_name = "FILE[#GROUP]")]
+    master: String,
+
+    /// Output directory (created if missing).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+
+    /// Lagrange-multiplier space.
+    #[arg(long, value_enum, default_value_t = Lm::Standard)]
+    lm: Lm,
+
+    /// Integration strategy: exact segmentation, or slave quadrature points projected.
+    #[arg(long, value_enum, default_value_t = IntegrationArg::Segment)]
+    integration: IntegrationArg,
+
+    /// Quadrature degree (1 to 20; default: automatic, exact on flat faces).
+    #[arg(long, value_name = "N")]
+    degree: Option<u32>,
+
+    /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum Lm {
+    /// Standard multipliers (slave shape functions).
+    Standard,
+    /// Dual (biorthogonal) multipliers: D is diagonal.
+    Dual,
+}
+
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum IntegrationArg {
+    /// Segment-based: exact clipping of each slave-master pair.
+    Segment,
+    /// Element-based: cheaper, inexact where slave faces span master edges.
+    Element,
+}
+
+impl CoupleArgs {
+    fn settings(&self) -> CouplingSettings {
+        CouplingSettings {
+            multipliers: match self.lm {
+                Lm::Standard => Multipliers::Standard,
+                Lm::Dual => Multipliers::Dual,
+            },
+            integration: match self.integration {
+                IntegrationArg::Segment => Integration::Segment,
+                IntegrationArg::Element => Integration::Element,
+            },
+            degree: self.degree,
+            threads: self.threads,
+        }
+    }
+}
+
+/// Parses the command line, runs, and turns a failure into one line on stderr.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        None => scene::run(cli.json),
+        Some(Command::Couple(args)) => couple::run(args, cli.json),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            let line: String = message
+                .chars()
+                .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
+                .collect();
+            eprintln!("mortar: error: {line}");
+            ExitCode::FAILURE
+        }
+    }
+}

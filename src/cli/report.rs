@@ -1,0 +1,46 @@
+//! Messages and summaries for the user.
+
+use mortar::io::{CouplingSummary, GmshSurface};
+use mortar::{MortarError, Side};
+
+/// A core error with the file, group and line of the face it names, or the two surfaces.
+pub(super) fn core_error(
+    e: &MortarError,
+    surfaces: Option<(&GmshSurface, &GmshSurface)>,
+) -> String {
+    let Some((slave, master)) = surfaces else {
+        return e.to_string();
+    };
+    let face = match e {
+        MortarError::DegenerateFace { face, .. }
+        | MortarError::InvertedFace { face, .. }
+        | MortarError::MultiplierSpace { face, .. }
+        | MortarError::ProjectionFailed { face, .. }
+        | MortarError::WrongNodeCount { face, .. }
+        | MortarError::UnknownNode { face, .. } => Some(*face),
+        _ => None,
+    };
+    match face {
+        Some(face) => {
+            let surface = if face.side == Some(Side::Master) {
+                master
+            } else {
+                slave
+            };
+            match surface.face_location(face.tag) {
+                Some(at) => format!("{}, {at}: {e}", surface.label()),
+                None => format!("{}: {e}", surface.label()),
+            }
+        }
+        None => format!("slave {} and master {}: {e}", slave.label(), master.label()),
+    }
+}
+
+/// Prints the summary as text or JSON on stdout.
+pub(super) fn print_summary(summary: &CouplingSummary, json: bool) {
+    if json {
+        println!("{}", summary.to_json());
+    } else {
+        println!("{summary}");
+    }
+}

@@ -1,0 +1,380 @@
+//! Gmsh MSH 4.1 meshes: read the faces of a surface (a whole file or one physical group),
+//! write surface meshes (ASCII or binary) for tests and examples.
+//!
+//! Why our own reader rather than the `mshio` crate (0.4): `mshio` does parse MSH 4.1 ASCII
+//! and binary, but it skips `$PhysicalNames`, so a group cannot be selected by name; its errors
+//! are nom backtraces (an input slice and a kind), not "file, line 17: node 12 ..."; and its
+//! node-count table has slips (18-node prisms read as 28 nodes). The subset a mortar interface
+//! needs (`$MeshFormat`, `$PhysicalNames`, `$Entities`, `$Nodes`, `$Elements`) is a few hundred
+//! lines here, with every message naming the file, the line (ASCII) or byte offset (binary),
+//! the group and the element or node tag.
+//!
+//! What is read:
+//! - without a group: all elements of dimension 2 if the file has any, else all of
+//!   dimension 1; a file with volume elements asks for a group instead;
+//! - with a group (by physical name, or by physical tag if no name matches): the elements of
+//!   the group's entities; groups of dimension 2 are preferred to groups of dimension 1 of
+//!   the same name; groups of dimension 3 (and 0) are refused.
+//!
+//! Only nodes used by the selected faces go into the [`SurfaceMesh`], with their Gmsh tags,
+//! and faces keep their Gmsh element tags. Points and unselected elements are ignored; an
+//! element type the [`ElementRegistry`] does not know is an error only when selected.
+//! Partitioned files (`$PartitionedEntities`) are read as if unpartitioned, which is right
+//! only for whole-file selection.
+
+mod cursor;
+mod element_types;
+mod parse;
+mod write;
+
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+
+use mortar_core::SurfaceMesh;
+use mortar_elements::ElementRegistry;
+
+pub use write::{
+    msh41_bytes, write_msh41, write_msh41_ascii, write_msh41_binary, Endianness, MshFormat,
+};
+
+use self::cursor::{locations_of, Cursor, Encoding};
+use self::parse::{ElementBlock, MshData};
+use crate::io::error::{IoError, Location};
+
+/// A physical group of a Gmsh file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PhysicalGroup {
+    /// Its dimension (1 for lines, 2 for surfaces).
+    pub dim: i32,
+    /// Its physical tag.
+    pub tag: i32,
+    /// Its name (empty if the file names it not).
+    pub name: String,
+}
+
+/// A surface read from a Gmsh file, with where each face came from.
+#[derive(Debug, Clone)]
+pub struct GmshSurface {
+    /// The faces and the nodes they use.
+    pub mesh: SurfaceMesh,
+    /// The dimension of the faces: 1 (lines, a 2D problem) or 2 (a 3D problem).
+    pub dimension: u8,
+    /// The file.
+    pub path: PathBuf,
+    /// The physical group read, if one was asked for.
+    pub group: Option<PhysicalGroup>,
+    /// Whether the file is binary.
+    pub binary: bool,
+    face_locations: HashMap<u64, Location>,
+}
+
+impl GmshSurface {
+    /// Where in the file the face (element) with tag `tag` is.
+    pub fn face_location(&self, tag: u64) -> Option<Location> {
+        self.face_locations.get(&tag).copied()
+    }
+
+    /// `path` or `path#group`, for messages.
+    pub fn label(&self) -> String {
+        match &self.group {
+            Some(g) if !g.name.is_empty() => format!("{}#{}", self.path.display(), g.name),
+            Some(g) => format!("{}#{}", self.path.display(), g.tag),
+            None => self.path.display().to_string(),
+        }
+    }
+}
+
+/// Reads the faces of a Gmsh 4.1 file (ASCII or binary) into a surface mesh: the whole file,
+/// or the physical group `group` (a name, or a physical tag).
+///
+/// # Errors
+/// Every [`IoError`] of [`read_gmsh_surface`].
+pub fn read_surface(
+    path: impl AsRef<Path>,
+    group: Option<&str>,
+    registry: &ElementRegistry,
+) -> Result<SurfaceMesh, IoError> {
+    read_gmsh_surface(path, group, registry).map(|s| s.mesh)
+}
+
+/// As [`read_surface`], and keeps where each face is in the file, to point at it when the
+/// interface check later finds it degenerate or inverted.
+///
+/// # Errors
+/// [`IoError::Read`] if the file cannot be read; [`IoError::Malformed`],
+/// [`IoError::Truncated`] and [`IoError::UnsupportedVersion`] for a broken file;
+/// [`IoError::GroupNotFound`], [`IoError::GroupDimension`], [`IoError::GroupRequired`],
+/// [`IoError::NoFaces`] and [`IoError::MissingSection`] for a selection that cannot be made;
+/// [`IoError::UnsupportedElement`], [`IoError::UndefinedNode`],
+/// [`IoError::NonFiniteCoordinate`], [`IoError::DuplicateNode`] and [`IoError::Mesh`] for
+/// selected faces that cannot be built.
+pub fn read_gmsh_surface(
+    path: impl AsRef<Path>,
+    group: Option<&str>,
+    registry: &ElementRegistry,
+) -> Result<GmshSurface, IoError> {
+    let path = path.as_ref();
+    let bytes = std::fs::read(path).map_err(|source| IoError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    parse_gmsh_surface(&bytes, path, group, registry)
+}
+
+/// As [`read_gmsh_surface`], from the bytes of a file; `path` names it in messages.
+///
+/// # Errors
+/// As [`read_gmsh_surface`], except [`IoError::Read`].
+pub fn parse_gmsh_surface(
+    bytes: &[u8],
+    path: &Path,
+    group: Option<&str>,
+    registry: &ElementRegistry,
+) -> Result<GmshSurface, IoError> {
+    let mut cur = Cursor::new(bytes, path);
+    let data = parse::parse(&mut cur, registry)?;
+    let encoding = cur.encoding();
+    let (blocks, dimension, group) = select(&data, path, group)?;
+    build(
+        &data, &blocks, dimension, group, path, bytes, encoding, registry,
+    )
+}
+
+/// The element blocks to read, their dimension and the group.
+fn select<'d>(
+    data: &'d MshData,
+    path: &Path,
+    group: Option<&str>,
+) -> Result<(Vec<&'d ElementBlock>, i32, Option<PhysicalGroup>), IoError> {
+    let has = |dim: i32| data.blocks.iter().any(|b| b.dim == dim && b.count > 0);
+    let Some(name) = group else {
+        if has(3) {
+            return Err(IoError::GroupRequired {
+                path: path.to_path_buf(),
+            });
+        }
+        let dim = if has(2) { 2 } else { 1 };
+        let blocks: Vec<_> = data
+            .blocks
+            .iter()
+            .filter(|b| b.dim == dim && b.count > 0)
+            .collect();
+        if blocks.is_empty() {
+            return Err(IoError::NoFaces {
+                path: path.to_path_buf(),
+                group: None,
+            });
+        }
+        return Ok((blocks, dim, None));
+    };
+
+    let group = find_group(data, path, name)?;
+    if group.dim != 1 && group.dim != 2 {
+        return Err(IoError::GroupDimension {
+            path: path.to_path_buf(),
+            group: name.to_string(),
+            dim: group.dim,
+        });
+    }
+    let Some(entities) = &data.entities else {
+        return Err(IoError::MissingSection {
+            path: path.to_path_buf(),
+            section: "$Entities",
+            needed_for: format!("selecting physical group \"{name}\""),
+        });
+    };
+    let members: HashSet<i32> = entities
+        .iter()
+        .filter(|((dim, _), phys)| *dim == group.dim && phys.iter().any(|p| p.abs() == group.tag))
+        .map(|((_, tag), _)| *tag)
+        .collect();
+    let blocks: Vec<_> = data
+        .blocks
+        .iter()
+        .filter(|b| b.dim == group.dim && b.count > 0 && members.contains(&b.entity))
+        .collect();
+    if blocks.is_empty() {
+        return Err(IoError::NoFaces {
+            path: path.to_path_buf(),
+            group: Some(name.to_string()),
+        });
+    }
+    let dim = group.dim;
+    Ok((blocks, dim, Some(group)))
+}
+
+/// The group named `name`, or else the group whose physical tag is `name`. Of several, the
+/// one of dimension 2, then 1, then the highest.
+fn find_group(data: &MshData, path: &Path, name: &str) -> Result<PhysicalGroup, IoError> {
+    let mut found: Vec<PhysicalGroup> = data
+        .physical_names
+        .iter()
+        .filter(|p| p.name == name)
+        .map(|p| PhysicalGroup {
+            dim: p.dim,
+            tag: p.tag,
+            name: p.name.clone(),
+        })
+        .collect();
+    if found.is_empty() {
+        if let Ok(tag) = name.parse::<i32>() {
+            let mut dims: Vec<i32> = data
+                .entities
+                .iter()
+                .flatten()
+                .filter(|(_, phys)| phys.iter().any(|p| p.abs() == tag))
+                .map(|((dim, _), _)| *dim)
+                .collect();
+            dims.sort_unstable();
+            dims.dedup();
+            found = dims
+                .into_iter()
+                .map(|dim| PhysicalGroup {
+                    dim,
+                    tag,
+                    name: data
+                        .physical_names
+                        .iter()
+                        .find(|p| p.dim == dim && p.tag == tag)
+                        .map(|p| p.name.clone())
+                        .unwrap_or_default(),
+                })
+                .collect();
+        }
+    }
+    let rank = |g: &PhysicalGroup| match g.dim {
+        2 => 5,
+        1 => 4,
+        d => d,
+    };
+    found.sort_by_key(|g| std::cmp::Reverse(rank(g)));
+    found
+        .into_iter()
+        .next()
+        .ok_or_else(|| IoError::GroupNotFound {
+            path: path.to_path_buf(),
+            group: name.to_string(),
+            available: data
+                .physical_names
+                .iter()
+                .map(|p| format!("\"{}\" (dimension {}, tag {})", p.name, p.dim, p.tag))
+                .collect(),
+        })
+}
+
+/// The surface mesh of the selected blocks.
+#[allow(clippy::too_many_arguments)]
+fn build(
+    data: &MshData,
+    blocks: &[&ElementBlock],
+    dimension: i32,
+    group: Option<PhysicalGroup>,
+    path: &Path,
+    bytes: &[u8],
+    encoding: Encoding,
+    registry: &ElementRegistry,
+) -> Result<GmshSurface, IoError> {
+    let at = |pos: usize| cursor::location_of(bytes, pos, encoding);
+    // Element types, then node references, then coordinates.
+    for b in blocks {
+        if !b.kept {
+            let (tag, pos) = (
+                b.tags.first().copied().unwrap_or(0),
+                b.positions.first().copied().unwrap_or(0),
+            );
+            return Err(IoError::UnsupportedElement {
+                path: path.to_path_buf(),
+                at: at(pos),
+                element: tag,
+                element_type: b.element_type,
+                type_name: element_types::type_name(b.element_type),
+                supported: registry
+                    .elements()
+                    .iter()
+                    .filter_map(|e| e.gmsh_type().map(|t| format!("{t} ({})", e.name())))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+    }
+    let mut used: Vec<u64> = Vec::new();
+    for b in blocks {
+        for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
+            for &node in nodes {
+                if !data.node_index.contains_key(&node) {
+                    return Err(IoError::UndefinedNode {
+                        path: path.to_path_buf(),
+                        at: at(b.positions[i]),
+                        element: b.tags[i],
+                        node,
+                    });
+                }
+            }
+            used.extend_from_slice(nodes);
+        }
+    }
+    used.sort_unstable();
+    used.dedup();
+
+    let faces: usize = blocks.iter().map(|b| b.tags.len()).sum();
+    let mut mesh = SurfaceMesh::with_capacity(used.len(), faces);
+    for &tag in &used {
+        let index = data.node_index[&tag];
+        let x = data.coords[index];
+        if x.iter().any(|c| !c.is_finite()) {
+            return Err(IoError::NonFiniteCoordinate {
+                path: path.to_path_buf(),
+                at: at(data.node_positions[index]),
+                node: tag,
+                coords: x,
+            });
+        }
+        // Tags are unique and coordinates finite here; any other refusal is reported as is.
+        mesh.add_node(tag, x).map_err(|e| IoError::Malformed {
+            path: path.to_path_buf(),
+            at: at(data.node_positions[index]),
+            message: e.to_string(),
+        })?;
+    }
+
+    let mut positions = Vec::with_capacity(faces);
+    let mut tags = Vec::with_capacity(faces);
+    for b in blocks {
+        let Some(element) = u32::try_from(b.element_type)
+            .ok()
+            .and_then(|t| registry.by_gmsh_type(t))
+        else {
+            continue; // unreachable: unknown types were refused above
+        };
+        for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
+            let tag = b.tags[i];
+            mesh.add_face_with_tag(tag, element, nodes)
+                .map_err(|source| IoError::Mesh {
+                    path: path.to_path_buf(),
+                    at: at(b.positions[i]),
+                    element: tag,
+                    source,
+                })?;
+            positions.push(b.positions[i]);
+            tags.push(tag);
+        }
+    }
+    let mut order: Vec<usize> = (0..positions.len()).collect();
+    order.sort_by_key(|&i| positions[i]);
+    let sorted: Vec<usize> = order.iter().map(|&i| positions[i]).collect();
+    let locations = locations_of(bytes, &sorted, encoding);
+    let face_locations = order
+        .iter()
+        .zip(locations)
+        .map(|(&i, loc)| (tags[i], loc))
+        .collect();
+
+    Ok(GmshSurface {
+        mesh,
+        dimension: if dimension == 1 { 1 } else { 2 },
+        path: path.to_path_buf(),
+        group,
+        binary: encoding != Encoding::Ascii,
+        face_locations,
+    })
+}

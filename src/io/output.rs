@@ -1,0 +1,140 @@
+//! All output files or none: everything is rendered in memory first, written under temporary
+//! names inside the output directory, and renamed at the end.
+
+use std::path::{Path, PathBuf};
+
+use mortar_core::Coupling;
+
+use super::error::IoError;
+use super::matrix_market;
+use super::summary::CouplingSummary;
+
+/// Writes `D.mtx`, `M.mtx` and `summary.json` into `dir` (created if missing), all or none.
+///
+/// Rows of D and M are the slave nodes, columns the slave (D) or master (M) nodes, each in
+/// ascending node tag order: `summary.slave_nodes` and `summary.master_nodes`.
+///
+/// # Errors
+/// As [`write_outputs`].
+pub fn write_coupling(
+    dir: impl AsRef<Path>,
+    coupling: &Coupling,
+    summary: &CouplingSummary,
+) -> Result<(), IoError> {
+    let d = matrix_market::to_string(
+        &coupling.d,
+        &[
+            "D[j,k] = int Phi_j N_k^s (mortar)",
+            "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)",
+        ],
+    );
+    let m = matrix_market::to_string(
+        &coupling.m,
+        &[
+            "M[j,l] = int Phi_j N_l^m (mortar)",
+            "rows: slave nodes, columns: master nodes, both by ascending node tag (summary.json: slave_nodes, master_nodes)",
+        ],
+    );
+    let mut json = summary.to_json();
+    json.push('\n');
+    write_outputs(
+        dir,
+        &[
+            ("D.mtx", d.into_bytes()),
+            ("M.mtx", m.into_bytes()),
+            ("summary.json", json.into_bytes()),
+        ],
+    )
+}
+
+/// Writes `files` (name, contents) into `dir`, all or none: `dir` is created if missing (with
+/// its missing parents), each file is written as `.NAME.tmp-PID` and, once all are written,
+/// renamed to `NAME`. On failure the temporary files, any file already renamed, and the
+/// directories this call created are removed.
+///
+/// # Errors
+/// [`IoError::Write`] naming the directory or file that could not be created, written or
+/// renamed.
+pub fn write_outputs(dir: impl AsRef<Path>, files: &[(&str, Vec<u8>)]) -> Result<(), IoError> {
+    let dir = dir.as_ref();
+    let created = create_dirs(dir)?;
+    let result = write_all(dir, files);
+    if result.is_err() {
+        for d in created.iter().rev() {
+            let _ = std::fs::remove_dir(d);
+        }
+    }
+    result
+}
+
+/// Creates `dir` and its missing parents; returns those created, outermost first.
+fn create_dirs(dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let mut missing = Vec::new();
+    let mut p = Some(dir);
+    while let Some(d) = p {
+        if d.as_os_str().is_empty() || d.exists() {
+            break;
+        }
+        missing.push(d.to_path_buf());
+        p = d.parent();
+    }
+    missing.reverse();
+    for (i, d) in missing.iter().enumerate() {
+        if let Err(source) = std::fs::create_dir(d) {
+            if !d.is_dir() {
+                for made in missing[..i].iter().rev() {
+                    let _ = std::fs::remove_dir(made);
+                }
+                return Err(IoError::Write {
+                    path: d.clone(),
+                    source,
+                });
+            }
+        }
+    }
+    if !dir.is_dir() {
+        return Err(IoError::Write {
+            path: dir.to_path_buf(),
+            source: std::io::Error::other("exists and is not a directory"),
+        });
+    }
+    Ok(missing)
+}
+
+fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), IoError> {
+    let pid = std::process::id();
+    let temps: Vec<PathBuf> = files
+        .iter()
+        .map(|(name, _)| dir.join(format!(".{name}.tmp-{pid}")))
+        .collect();
+    let cleanup = |upto: usize| {
+        for t in &temps[..upto] {
+            let _ = std::fs::remove_file(t);
+        }
+    };
+    for (i, ((_, contents), temp)) in files.iter().zip(&temps).enumerate() {
+        if let Err(source) = std::fs::write(temp, contents) {
+            cleanup(i + 1);
+            return Err(IoError::Write {
+                path: temp.clone(),
+                source,
+            });
+        }
+    }
+    for (i, ((name, _), temp)) in files.iter().zip(&temps).enumerate() {
+        let target = dir.join(name);
+        if let Err(source) = std::fs::rename(temp, &target) {
+            for (done, _) in &files[..i] {
+                let _ = std::fs::remove_file(dir.join(done));
+            }
+            for t in &temps[i..] {
+                let _ = std::fs::remove_file(t);
+            }
+            return Err(IoError::Write {
+                path: target,
+                source,
+            });
+        }
+    }
+    Ok(())
+}

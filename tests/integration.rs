@@ -1,0 +1,17 @@
+//! Integration tests of the facade: Gmsh input and output, Matrix Market output, and the
+//! `mortar` command-line program (run as a process).
+
+#[path = "integration/common.rs"]
+mod common;
+
+#[path = "integration/gmsh_read.rs"]
+mod gmsh_read;
+
+#[path = "integration/gmsh_errors.rs"]
+mod gmsh_errors;
+
+#[path = "integration/cli.rs"]
+mod cli;
+
+#[path = "integration/cli_errors.rs"]
+mod cli_errors;

@@ -1,0 +1,271 @@
+//! The `mortar` program end to end: Gmsh files in, D.mtx, M.mtx and summary.json out.
+
+use mortar::elements::ElementRegistry;
+use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
+use mortar::io::{
+    read_surface, write_msh41, write_msh41_ascii, write_msh41_binary, Endianness, MshFormat,
+};
+use mortar::{assemble_coupling, CouplingOptions, Interface};
+
+use crate::common::{mortar, offset_tags, read_mtx, row_sums, TempDir};
+
+fn json(path: &std::path::Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn tags(value: &serde_json::Value) -> Vec<u64> {
+    value
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_u64().unwrap())
+        .collect()
+}
+
+/// Runs `mortar couple` and checks what every tied unit interface satisfies: the files parse,
+/// their sizes match the node lists of the summary, D 1 = M 1 (constants are tied), the sum of
+/// D and the summary's area are 1, and no temporary file is left.
+fn couple_and_check(
+    out: &std::path::Path,
+    extra: &[&str],
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, serde_json::Value) {
+    let out_s = out.to_string_lossy().into_owned();
+    let mut args = vec!["couple", "--out", &out_s];
+    args.extend_from_slice(extra);
+    let run = mortar(&args);
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "mortar {args:?} failed: {stderr}");
+    let d = read_mtx(&out.join("D.mtx"));
+    let m = read_mtx(&out.join("M.mtx"));
+    let summary = json(&out.join("summary.json"));
+    let slave = tags(&summary["slave_nodes"]);
+    let master = tags(&summary["master_nodes"]);
+    assert!(
+        slave.windows(2).all(|w| w[0] < w[1]),
+        "slave nodes ascending"
+    );
+    assert!(
+        master.windows(2).all(|w| w[0] < w[1]),
+        "master nodes ascending"
+    );
+    assert_eq!((d.len(), d[0].len()), (slave.len(), slave.len()));
+    assert_eq!((m.len(), m[0].len()), (slave.len(), master.len()));
+    for (j, (a, b)) in row_sums(&d).iter().zip(row_sums(&m)).enumerate() {
+        assert!(
+            (a - b).abs() < 1e-12,
+            "row {j} (slave node {}): D 1 = {a}, M 1 = {b}",
+            slave[j]
+        );
+    }
+    let total: f64 = row_sums(&d).iter().sum();
+    assert!((total - 1.0).abs() < 1e-12, "sum of D = {total}");
+    let area = summary["area"].as_f64().unwrap();
+    assert!((area - 1.0).abs() < 1e-12, "summary area = {area}");
+    for key in [
+        "pairs",
+        "segments",
+        "candidates",
+        "threads",
+        "slave_faces",
+        "master_faces",
+    ] {
+        assert!(summary[key].as_u64().unwrap() > 0, "{key}");
+    }
+    assert!(summary["seconds"].as_f64().unwrap() >= 0.0);
+    assert!(summary["seconds_by_phase"]["search"].as_f64().is_some());
+    let mut names: Vec<String> = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["D.mtx", "M.mtx", "summary.json"],
+        "only the outputs, no temporaries"
+    );
+    (d, m, summary)
+}
+
+#[test]
+fn couples_a_3d_interface_from_an_ascii_group_and_a_binary_file() {
+    let dir = TempDir::new("cli3d");
+    let slave = square_triangles(4, Diagonal::Main, 0.0, false, 1).unwrap();
+    let master = square_quads(5, 0.0, true, 1000).unwrap();
+    let s = dir.join("slave.msh");
+    let m = dir.join("master.msh");
+    write_msh41_ascii(&slave, &s, "top").unwrap();
+    write_msh41_binary(&master, &m, "bottom", Endianness::Big).unwrap();
+    let out = dir.join("out/nested");
+    let slave_arg = format!("{}#top", s.display());
+    let master_arg = m.to_string_lossy().into_owned();
+    let (d, m_mat, summary) =
+        couple_and_check(&out, &["--slave", &slave_arg, "--master", &master_arg]);
+    assert_eq!(summary["dimension"], 3);
+    assert_eq!(summary["multipliers"], "standard");
+    assert_eq!(summary["integration"], "segment");
+    assert_eq!(summary["slave_faces"], 32);
+    assert_eq!(summary["master_faces"], 25);
+    assert_eq!(
+        tags(&summary["slave_nodes"]),
+        (1..=25).collect::<Vec<u64>>()
+    );
+    assert_eq!(
+        tags(&summary["master_nodes"]),
+        (1000..1036).collect::<Vec<u64>>()
+    );
+
+    // The files hold exactly what the library computes: values survive the text format.
+    let registry = ElementRegistry::new();
+    let interface = Interface::new(
+        read_surface(&s, Some("top"), &registry).unwrap(),
+        read_surface(&m, None, &registry).unwrap(),
+    )
+    .unwrap();
+    let coupling = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    for (v, (r, c)) in coupling.d.iter() {
+        assert_eq!(v.to_bits(), d[r][c].to_bits(), "D[{r},{c}]");
+    }
+    for (v, (r, c)) in coupling.m.iter() {
+        assert_eq!(v.to_bits(), m_mat[r][c].to_bits(), "M[{r},{c}]");
+    }
+}
+
+#[test]
+fn couples_a_2d_interface_of_lines_with_dual_multipliers() {
+    let dir = TempDir::new("cli2d");
+    let s = dir.join("slave.msh");
+    let m = dir.join("master.msh");
+    write_msh41_binary(
+        &line_mesh(6, false, 1).unwrap(),
+        &s,
+        "bottom",
+        Endianness::Little,
+    )
+    .unwrap();
+    write_msh41_ascii(&line_mesh(7, true, 100).unwrap(), &m, "top").unwrap();
+    let out = dir.join("out");
+    let (s, m) = (
+        s.to_string_lossy().into_owned(),
+        m.to_string_lossy().into_owned(),
+    );
+    let (d, _, summary) = couple_and_check(&out, &["--slave", &s, "--master", &m, "--lm", "dual"]);
+    assert_eq!(summary["dimension"], 2);
+    assert_eq!(summary["multipliers"], "dual");
+    assert_eq!(tags(&summary["slave_nodes"]), (1..=7).collect::<Vec<u64>>());
+    assert_eq!(
+        tags(&summary["master_nodes"]),
+        (100..=107).collect::<Vec<u64>>()
+    );
+    // Dual multipliers: D is diagonal.
+    for (r, row) in d.iter().enumerate() {
+        for (c, v) in row.iter().enumerate() {
+            assert!(r == c || v.abs() < 1e-14, "D[{r},{c}] = {v}");
+        }
+    }
+}
+
+#[test]
+fn couples_two_groups_of_one_file_with_element_based_integration() {
+    let dir = TempDir::new("cligroups");
+    let slave = square_triangles(3, Diagonal::Anti, 0.0, false, 1).unwrap();
+    let master = offset_tags(&square_quads(4, 0.0, true, 1).unwrap(), 500, 500);
+    let file = dir.join("both.msh");
+    write_msh41(
+        &[(&slave, "slave"), (&master, "master")],
+        &file,
+        MshFormat::Ascii,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let s = format!("{}#slave", file.display());
+    let m = format!("{}#master", file.display());
+    let run = mortar(&[
+        "couple",
+        "--slave",
+        &s,
+        "--master",
+        &m,
+        "--out",
+        &out.to_string_lossy(),
+        "--integration",
+        "element",
+        "--degree",
+        "6",
+        "--threads",
+        "1",
+        "--json",
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    // --json prints the summary, the same as the file.
+    let printed: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert_eq!(printed, json(&out.join("summary.json")));
+    assert_eq!(printed["slave_faces"], 18);
+    assert_eq!(printed["master_faces"], 16);
+    assert_eq!(printed["integration"], "element");
+    assert_eq!(printed["degree"], 6);
+    assert_eq!(printed["threads"], 1);
+    assert_eq!(
+        tags(&printed["master_nodes"]),
+        (501..=525).collect::<Vec<u64>>()
+    );
+    // Element-based integration is inexact across master edges, but D 1 = M 1 still holds
+    // row by row up to quadrature error, and the slave area is exact.
+    let d = read_mtx(&out.join("D.mtx"));
+    let total: f64 = row_sums(&d).iter().sum();
+    assert!((total - 1.0).abs() < 1e-10, "{total}");
+}
+
+#[test]
+fn no_arguments_runs_the_default_scene() {
+    let run = mortar(&[]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = String::from_utf8_lossy(&run.stdout);
+    for needle in [
+        "default scene",
+        "slave",
+        "master",
+        "pairs",
+        "segments",
+        "area",
+        "time",
+        "standard multipliers",
+        "1.0000000000",
+    ] {
+        assert!(text.contains(needle), "no {needle:?} in\n{text}");
+    }
+    let run = mortar(&["--json"]);
+    assert!(run.status.success());
+    let summary: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
+    assert!((summary["area"].as_f64().unwrap() - 1.0).abs() < 1e-12);
+    assert_eq!(summary["slave_faces"], 2 * 24 * 24);
+    assert_eq!(summary["master_faces"], 35 * 35);
+}
+
+#[test]
+fn help_is_printed() {
+    let run = mortar(&["--help"]);
+    assert!(run.status.success());
+    assert!(String::from_utf8_lossy(&run.stdout).contains("couple"));
+    let run = mortar(&["couple", "--help"]);
+    assert!(run.status.success());
+    let text = String::from_utf8_lossy(&run.stdout);
+    for flag in [
+        "--slave",
+        "--master",
+        "--out",
+        "--lm",
+        "--integration",
+        "--degree",
+        "--threads",
+    ] {
+        assert!(text.contains(flag), "{flag}");
+    }
+}
