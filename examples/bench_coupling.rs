@@ -1,0 +1,371 @@
+//! Benchmark of the assembly of the mortar operators D and M, and the speed-for-accuracy table.
+//!
+//! ```text
+//! cargo run --release --example bench_coupling -- --json docs/bench.json   # the full benchmark
+//! cargo run --release --example bench_coupling -- --quick                  # a smoke run (seconds)
+//! cargo run --release --example bench_coupling -- --max-n 316 --json b.json
+//! cargo run --release --example bench_coupling -- --tradeoff               # docs/tradeoff.{md,png}
+//! ```
+//!
+//! Cases, built in memory (mesh generation is not timed):
+//! - `plane3d`: the unit square at z = 0; slave `n x n` cells cut into triangles along the
+//!   (0,0)-(1,1) diagonal, master `floor(1.5 n) + 1` cells per side cut along the other one;
+//! - `cylinder`: the lateral surface of the unit cylinder (radius 1, height 1); slave `n` x
+//!   `n / 4` quads, master `floor(1.5 n) + 1` x `floor(1.5 n / 4) + 1` cells cut into triangles;
+//! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements.
+//!
+//! Each (case, n, threads) runs in a child process (this program re-executed with the hidden
+//! `--single CASE N THREADS`), so that its peak memory (`VmHWM`) is its own. The child assembles
+//! D and M (segment-based, standard multipliers) `--repeats` times (once for 1e6 slave faces and
+//! more) and prints one JSON line with the phases of the run of median total time. The parent
+//! writes the JSON array to `--json PATH` and prints a table. `bit_identical_to_1_thread`
+//! compares a SipHash digest of the bit patterns (`f64::to_bits`) of `data`, `indices` and
+//! `indptr` of D and M with the one of the 1-thread run of the same case.
+//!
+//! `--tradeoff` writes `docs/tradeoff.md` and `docs/tradeoff.png` instead (see `tradeoff.rs`).
+
+#[path = "bench_coupling/plot.rs"]
+mod plot;
+#[path = "bench_coupling/tradeoff.rs"]
+mod tradeoff;
+
+use std::hash::Hasher;
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::Instant;
+
+use clap::Parser;
+use mortar::generate::{cylinder_surface, line_mesh, square_triangles, Diagonal};
+use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
+use serde_json::{json, Value};
+
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+#[derive(Parser, Debug)]
+#[command(about = "Benchmark of the mortar coupling assembly, and the speed-for-accuracy table")]
+struct Args {
+    /// Write the benchmark records (a JSON array) here.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Runs per (case, n, threads); the median total is reported. Sizes of 1e6 slave faces and
+    /// more run once.
+    #[arg(long, default_value_t = 3)]
+    repeats: usize,
+    /// Largest n of the plane3d and cylinder cases (line2d is not capped).
+    #[arg(long)]
+    max_n: Option<usize>,
+    /// A small smoke run of a few seconds.
+    #[arg(long)]
+    quick: bool,
+    /// Produce the speed-for-accuracy table and plot instead of the benchmark.
+    #[arg(long)]
+    tradeoff: bool,
+    /// Runs per option in the tradeoff table (median time).
+    #[arg(long, default_value_t = 7)]
+    tradeoff_repeats: usize,
+    /// Folder of tradeoff.md and tradeoff.png.
+    #[arg(long, default_value = "docs")]
+    out_dir: PathBuf,
+    /// Internal: run one case in this process and print one JSON line.
+    #[arg(long, num_args = 3, value_names = ["CASE", "N", "THREADS"], hide = true)]
+    single: Option<Vec<String>>,
+}
+
+fn main() -> Res<()> {
+    let args = Args::parse();
+    if let Some(s) = &args.single {
+        let record = single(&s[0], s[1].parse()?, s[2].parse()?, args.repeats)?;
+        println!("{record}");
+        return Ok(());
+    }
+    if args.tradeoff {
+        return tradeoff::run(&args.out_dir, args.tradeoff_repeats.max(1));
+    }
+    bench(&args)
+}
+
+/// `floor(1.5 n) + 1`: the master resolution.
+fn master_n(n: usize) -> usize {
+    n * 3 / 2 + 1
+}
+
+/// The interface of `case` at size `n`.
+fn build(case: &str, n: usize) -> Res<Interface> {
+    let (slave, master) = match case {
+        "plane3d" => (
+            square_triangles(n, Diagonal::Main, 0.0, false, 1)?,
+            square_triangles(master_n(n), Diagonal::Anti, 0.0, true, 1)?,
+        ),
+        "cylinder" => {
+            let along = (n / 4).max(1);
+            (
+                cylinder_surface(1.0, n, along, false, false, 1)?,
+                cylinder_surface(1.0, master_n(n), master_n(along), true, true, 1)?,
+            )
+        }
+        "line2d" => (line_mesh(n, false, 1)?, line_mesh(master_n(n), true, 1)?),
+        _ => return Err(format!("unknown case {case:?}").into()),
+    };
+    Ok(Interface::new(slave, master)?)
+}
+
+/// The peak resident set size of this process (`VmHWM`), in bytes.
+fn peak_memory() -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        .map_or(0, |kb| kb * 1024)
+}
+
+fn load_average() -> f64 {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse().ok())
+        .unwrap_or(f64::NAN)
+}
+
+/// A digest of the exact bits of D and M (structure and values).
+fn digest(c: &Coupling) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    for a in [&c.d, &c.m] {
+        h.write_usize(a.rows());
+        h.write_usize(a.cols());
+        for &p in a.indptr().raw_storage() {
+            h.write_usize(p);
+        }
+        for &i in a.indices() {
+            h.write_usize(i);
+        }
+        for &v in a.data() {
+            h.write_u64(v.to_bits());
+        }
+    }
+    h.finish()
+}
+
+/// Estimated bytes of the two meshes: 24 + 8 bytes per node (coordinates, tag), 4 per face
+/// node index and 4 per face offset.
+fn mesh_bytes(i: &Interface) -> usize {
+    [i.slave(), i.master()]
+        .iter()
+        .map(|m| {
+            let conn: usize = (0..m.face_count()).map(|f| m.face(f).nodes.len()).sum();
+            m.node_count() * (24 + 8) + conn * 4 + m.face_count() * 4
+        })
+        .sum()
+}
+
+/// Bytes of the CSR arrays of D and M: 8 + 8 per entry, 8 per row.
+fn output_bytes(c: &Coupling) -> usize {
+    [&c.d, &c.m]
+        .iter()
+        .map(|a| a.nnz() * 16 + a.rows() * 8)
+        .sum()
+}
+
+/// Sizes of 1e6 slave faces and more run once.
+fn repeats_for(case: &str, n: usize, repeats: usize) -> usize {
+    let faces = match case {
+        "plane3d" => 2 * n * n,
+        "cylinder" => n * (n / 4).max(1),
+        _ => n,
+    };
+    if faces >= 1_000_000 {
+        1
+    } else {
+        repeats.max(1)
+    }
+}
+
+/// One (case, n, threads), in this process.
+fn single(case: &str, n: usize, threads: usize, repeats: usize) -> Res<Value> {
+    let baseline = peak_memory();
+    let load = load_average();
+    let t = Instant::now();
+    let interface = build(case, n)?;
+    let mesh_seconds = t.elapsed().as_secs_f64();
+    let options = CouplingOptions::default().threads(threads);
+    let mut runs = Vec::new();
+    let mut digests = Vec::new();
+    let mut last = None;
+    for _ in 0..repeats_for(case, n, repeats) {
+        drop(last.take()); // one coupling alive at a time
+        let c = assemble_coupling(&interface, &options)?;
+        runs.push(c.stats);
+        digests.push(digest(&c));
+        last = Some(c);
+    }
+    let c = last.ok_or("no run")?;
+    let peak = peak_memory();
+    let mut order: Vec<usize> = (0..runs.len()).collect();
+    order.sort_by(|&a, &b| runs[a].seconds.total.total_cmp(&runs[b].seconds.total));
+    let med = runs[order[order.len() / 2]];
+    let s = med.seconds;
+    let (mesh, out) = (mesh_bytes(&interface), output_bytes(&c));
+    Ok(json!({
+        "case": case, "n": n, "threads": threads,
+        "slave_faces": interface.slave().face_count(),
+        "master_faces": interface.master().face_count(),
+        "slave_nodes": c.slave_nodes.len(), "master_nodes": c.master_nodes.len(),
+        "candidates": med.candidates, "pairs": med.pairs, "segments": med.segments,
+        "area": med.area,
+        "seconds": {"search": s.search, "segments": s.segments, "integration": s.integration,
+                    "assembly": s.assembly, "total": s.total},
+        "seconds_note": "segments and integration are summed over threads",
+        "repeats": runs.len(),
+        "totals_all_repeats": runs.iter().map(|r| r.seconds.total).collect::<Vec<_>>(),
+        "pairs_per_second_per_thread": med.pairs as f64 / s.total / threads as f64,
+        "ns_per_pair": s.total / med.pairs as f64 * 1e9,
+        "mesh_seconds_untimed": mesh_seconds,
+        "baseline_memory_bytes": baseline,
+        "peak_memory_bytes": peak,
+        "mesh_bytes": mesh, "output_bytes": out,
+        "memory_ratio": (peak.saturating_sub(baseline)) as f64 / (mesh + out) as f64,
+        "memory_ratio_note": "(peak - baseline) / (mesh_bytes + output_bytes)",
+        "dm_digest": format!("{:016x}", digests[0]),
+        "deterministic_across_repeats": digests.iter().all(|&d| d == digests[0]),
+        "load_average_1min": load,
+    }))
+}
+
+fn bench(args: &Args) -> Res<()> {
+    let cap = args.max_n.unwrap_or(usize::MAX);
+    let mut sizes: Vec<(&str, Vec<usize>)> = if args.quick {
+        vec![
+            ("plane3d", vec![16, 32, 100]),
+            ("cylinder", vec![64]),
+            ("line2d", vec![1_000, 10_000]),
+        ]
+    } else {
+        vec![
+            ("plane3d", vec![16, 32, 100, 316, 708, 1000]),
+            ("cylinder", vec![64, 256, 1024]),
+            ("line2d", vec![1_000, 10_000, 100_000, 1_000_000]),
+        ]
+    };
+    for (case, ns) in &mut sizes {
+        if *case != "line2d" {
+            ns.retain(|&n| n <= cap);
+        }
+    }
+    let repeats = args.repeats;
+    let exe = std::env::current_exe()?;
+    let start = Instant::now();
+    let mut records: Vec<Value> = Vec::new();
+    for (case, ns) in &sizes {
+        for &n in ns {
+            let mut one_thread_digest = None;
+            for threads in [1usize, 2] {
+                eprint!("{case} n={n} threads={threads} ... ");
+                let out = Command::new(&exe)
+                    .args(["--single", case, &n.to_string(), &threads.to_string()])
+                    .args(["--repeats", &repeats.to_string()])
+                    .output()?;
+                let line = String::from_utf8_lossy(&out.stdout);
+                let Some(Ok(mut r)) = line
+                    .lines()
+                    .last()
+                    .map(serde_json::from_str::<Value>)
+                    .filter(|_| out.status.success())
+                else {
+                    eprintln!(
+                        "failed ({}): {}",
+                        out.status,
+                        String::from_utf8_lossy(&out.stderr).trim()
+                    );
+                    continue;
+                };
+                let dig = r["dm_digest"].as_str().map(str::to_owned);
+                if threads == 1 {
+                    one_thread_digest = dig.clone();
+                }
+                r["bit_identical_to_1_thread"] = match &one_thread_digest {
+                    Some(d) => json!(Some(d) == dig.as_ref()),
+                    None => Value::Null,
+                };
+                if threads > 1 {
+                    let t1 = records
+                        .iter()
+                        .rev()
+                        .find(|p| p["case"] == r["case"] && p["n"] == r["n"] && p["threads"] == 1);
+                    if let Some(t1) = t1 {
+                        let speedup = t1["seconds"]["total"].as_f64().unwrap_or(f64::NAN)
+                            / r["seconds"]["total"].as_f64().unwrap_or(f64::NAN);
+                        r["speedup_vs_1_thread"] = json!(speedup);
+                    }
+                }
+                eprintln!(
+                    "{:.3} s",
+                    r["seconds"]["total"].as_f64().unwrap_or(f64::NAN)
+                );
+                records.push(r);
+            }
+        }
+    }
+    print_table(&records);
+    println!(
+        "wall time of the benchmark: {:.0} s; load average (1 min) now {:.2} on {} cores",
+        start.elapsed().as_secs_f64(),
+        load_average(),
+        std::thread::available_parallelism().map_or(0, |n| n.get())
+    );
+    if let Some(path) = &args.json {
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)?;
+        }
+        std::fs::write(path, serde_json::to_string_pretty(&records)? + "\n")?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+fn print_table(records: &[Value]) {
+    let f = |r: &Value, k: &str| r[k].as_f64().unwrap_or(f64::NAN);
+    let s = |r: &Value, k: &str| r["seconds"][k].as_f64().unwrap_or(f64::NAN);
+    let u = |r: &Value, k: &str| r[k].as_u64().unwrap_or(0);
+    println!(
+        "{:<8} {:>7} {:>3} {:>9} {:>9} {:>9} {:>7} {:>8} {:>8} {:>7} {:>8} {:>10} {:>7} {:>8} {:>5} {:>5} {:>6} {:>5}",
+        "case", "n", "thr", "slave_f", "master_f", "pairs", "search", "segm*", "integr*",
+        "assem", "total", "pairs/s/t", "ns/pair", "peak MB", "mem", "rep", "speed", "bits"
+    );
+    for r in records {
+        let ratio = f(r, "memory_ratio");
+        let bits = match r["bit_identical_to_1_thread"].as_bool() {
+            Some(true) => "same",
+            Some(false) => "DIFF",
+            None => "?",
+        };
+        let speed = r
+            .get("speedup_vs_1_thread")
+            .and_then(Value::as_f64)
+            .map_or(String::from("-"), |v| format!("{v:.2}x"));
+        println!(
+            "{:<8} {:>7} {:>3} {:>9} {:>9} {:>9} {:>7.3} {:>8.3} {:>8.3} {:>7.3} {:>8.3} {:>10.3e} {:>7.0} {:>8.1} {:>5.2} {:>5} {:>6} {:>5}",
+            r["case"].as_str().unwrap_or("?"),
+            u(r, "n"),
+            u(r, "threads"),
+            u(r, "slave_faces"),
+            u(r, "master_faces"),
+            u(r, "pairs"),
+            s(r, "search"),
+            s(r, "segments"),
+            s(r, "integration"),
+            s(r, "assembly"),
+            s(r, "total"),
+            f(r, "pairs_per_second_per_thread"),
+            f(r, "ns_per_pair"),
+            f(r, "peak_memory_bytes") / 1e6,
+            ratio,
+            u(r, "repeats"),
+            speed,
+            bits,
+        );
+    }
+    println!(
+        "times in seconds (median total of `rep` runs); * segm and integr are summed over \
+         threads; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
+         to the 1-thread run"
+    );
+}
