@@ -211,6 +211,7 @@ fn assemble_on_pool(
         })
         .collect();
 
+    drop(tree);
     let t_asm = Instant::now();
     let mut outs = Vec::with_capacity(chunks.len());
     for c in chunks {
@@ -227,13 +228,13 @@ fn assemble_on_pool(
     }
     let ns = interface.slave_nodes().len();
     let nm = interface.master_nodes().len();
-    let (d_parts, m_parts): (Vec<Triplets>, Vec<Triplets>) = outs
+    let (mut d_parts, mut m_parts): (Vec<Triplets>, Vec<Triplets>) = outs
         .iter_mut()
         .map(|o| (std::mem::take(&mut o.d), std::mem::take(&mut o.m)))
         .unzip();
-    let d = Triplets::to_csr_from_parts(&d_parts, ns, ns);
+    let d = Triplets::to_csr_from_parts(&mut d_parts, ns, ns);
     drop(d_parts);
-    let m = Triplets::to_csr_from_parts(&m_parts, ns, nm);
+    let m = Triplets::to_csr_from_parts(&mut m_parts, ns, nm);
     drop(m_parts);
     let assembly = t_asm.elapsed().as_secs_f64();
 

@@ -16,6 +16,8 @@ struct Entry {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Triplets {
     entries: Vec<Entry>,
+    /// Whether `entries` is sorted by (row, column) without duplicates.
+    compressed: bool,
 }
 
 /// Rows per parallel work block when sorting rows.
@@ -25,6 +27,7 @@ impl Triplets {
     /// Adds one entry.
     #[inline]
     pub fn push(&mut self, row: u32, col: u32, val: f64) {
+        self.compressed = false;
         self.entries.push(Entry { row, col, val });
     }
 
@@ -100,86 +103,94 @@ impl Triplets {
         }
         self.entries.truncate(w);
         self.entries.shrink_to_fit();
+        self.compressed = true;
     }
 
     /// The `nrows x ncols` CSR matrix of all `parts`, duplicates summed (see the type's
-    /// documentation for the order).
+    /// documentation for the order). Parts not yet compressed are compressed first. Rows are
+    /// built in parallel blocks on the current rayon pool; each entry's sum is taken in the
+    /// same order whatever the thread count.
     ///
     /// # Panics
     /// If an index is out of range.
-    pub fn to_csr_from_parts(parts: &[Triplets], nrows: usize, ncols: usize) -> SparseMatrix {
-        // 1. Stable counting sort by row: entries of one row keep part order, then insertion
-        //    order.
-        let mut indptr = vec![0usize; nrows + 1];
-        for p in parts {
-            for e in &p.entries {
-                indptr[e.row as usize + 1] += 1;
+    pub fn to_csr_from_parts(parts: &mut [Triplets], nrows: usize, ncols: usize) -> SparseMatrix {
+        parts
+            .par_iter_mut()
+            .filter(|p| !p.compressed)
+            .for_each(Triplets::compress);
+        for p in parts.iter() {
+            if let Some(e) = p
+                .entries
+                .iter()
+                .find(|e| e.row as usize >= nrows || e.col as usize >= ncols)
+            {
+                panic!(
+                    "entry ({}, {}) outside a {nrows}x{ncols} matrix",
+                    e.row, e.col
+                );
             }
         }
-        for r in 0..nrows {
-            indptr[r + 1] += indptr[r];
-        }
-        let total = indptr[nrows];
-        let mut cols = vec![0u32; total];
-        let mut vals = vec![0.0f64; total];
-        let mut next = indptr.clone();
-        for p in parts {
-            for e in &p.entries {
-                assert!((e.col as usize) < ncols, "column {} out of range", e.col);
-                let at = &mut next[e.row as usize];
-                cols[*at] = e.col;
-                vals[*at] = e.val;
-                *at += 1;
-            }
-        }
-        drop(next);
-
-        // 2. Per row: stable sort by column and sum duplicates in order; rows in parallel
-        //    blocks (each row is summed by one thread, in a fixed order).
-        let mut blocks = Vec::new();
-        {
-            let (mut c_rest, mut v_rest) = (&mut cols[..], &mut vals[..]);
-            let mut start = 0usize;
-            while start < nrows {
-                let end = (start + ROW_BLOCK).min(nrows);
-                let len = indptr[end] - indptr[start];
-                let (c, cr) = c_rest.split_at_mut(len);
-                let (v, vr) = v_rest.split_at_mut(len);
-                blocks.push((start..end, c, v));
-                c_rest = cr;
-                v_rest = vr;
-                start = end;
-            }
-        }
-        let merged: Vec<Vec<usize>> = blocks
+        let parts: &[Triplets] = parts;
+        let blocks: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..nrows.div_ceil(ROW_BLOCK))
             .into_par_iter()
-            .map(|(rows, c, v)| {
-                let base = indptr[rows.start];
-                let mut lens = Vec::with_capacity(rows.len());
-                for r in rows {
-                    let (a, b) = (indptr[r] - base, indptr[r + 1] - base);
-                    lens.push(merge_row(&mut c[a..b], &mut v[a..b]));
+            .map(|b| {
+                let (r0, r1) = (b * ROW_BLOCK, ((b + 1) * ROW_BLOCK).min(nrows));
+                // This block's entries, part after part (each part sorted by row).
+                let mut local: Vec<Entry> = Vec::new();
+                for p in parts {
+                    let e = &p.entries;
+                    let a = e.partition_point(|x| (x.row as usize) < r0);
+                    let z = e.partition_point(|x| (x.row as usize) < r1);
+                    local.extend_from_slice(&e[a..z]);
                 }
-                lens
+                // Stable counting sort by row, then per row a stable sort by column and the
+                // sums in that order.
+                let rows = r1 - r0;
+                let mut start = vec![0usize; rows + 1];
+                for e in &local {
+                    start[e.row as usize - r0 + 1] += 1;
+                }
+                for r in 0..rows {
+                    start[r + 1] += start[r];
+                }
+                let mut cols = vec![0u32; local.len()];
+                let mut vals = vec![0.0f64; local.len()];
+                let mut next = start.clone();
+                for e in &local {
+                    let at = &mut next[e.row as usize - r0];
+                    cols[*at] = e.col;
+                    vals[*at] = e.val;
+                    *at += 1;
+                }
+                drop(local);
+                let mut lens = Vec::with_capacity(rows);
+                let mut w = 0usize;
+                for r in 0..rows {
+                    let (a, z) = (start[r], start[r + 1]);
+                    let len = merge_row(&mut cols[a..z], &mut vals[a..z]);
+                    cols.copy_within(a..a + len, w);
+                    vals.copy_within(a..a + len, w);
+                    w += len;
+                    lens.push(len);
+                }
+                cols.truncate(w);
+                vals.truncate(w);
+                (lens, cols, vals)
             })
             .collect();
-
-        // 3. Compact the merged rows.
-        let mut out_ptr = Vec::with_capacity(nrows + 1);
-        out_ptr.push(0usize);
-        let mut indices = Vec::new();
-        let mut data = Vec::new();
-        let mut r = 0usize;
-        for lens in &merged {
-            for &len in lens {
-                let a = indptr[r];
-                indices.extend(cols[a..a + len].iter().map(|&c| c as usize));
-                data.extend_from_slice(&vals[a..a + len]);
-                out_ptr.push(indices.len());
-                r += 1;
+        let nnz: usize = blocks.iter().map(|b| b.1.len()).sum();
+        let mut indptr = Vec::with_capacity(nrows + 1);
+        indptr.push(0usize);
+        let mut indices = Vec::with_capacity(nnz);
+        let mut data = Vec::with_capacity(nnz);
+        for (lens, cols, vals) in blocks {
+            for len in lens {
+                indptr.push(indptr[indptr.len() - 1] + len);
             }
+            indices.extend(cols.iter().map(|&c| c as usize));
+            data.extend_from_slice(&vals);
         }
-        SparseMatrix::new((nrows, ncols), out_ptr, indices, data)
+        SparseMatrix::new((nrows, ncols), indptr, indices, data)
     }
 
     /// The `nrows x ncols` CSR matrix of these triplets.
@@ -187,7 +198,7 @@ impl Triplets {
     /// # Panics
     /// If an index is out of range.
     pub fn to_csr(self, nrows: usize, ncols: usize) -> SparseMatrix {
-        Self::to_csr_from_parts(std::slice::from_ref(&self), nrows, ncols)
+        Self::to_csr_from_parts(&mut [self], nrows, ncols)
     }
 }
 

@@ -29,7 +29,9 @@ pub struct SurfaceMesh {
     tag_to_index: HashMap<u64, u32>,
     face_offsets: Vec<u32>,
     face_nodes: Vec<u32>,
-    face_elements: Vec<ElementRef>,
+    /// The distinct element types, and each face's index into them (one byte a face).
+    element_types: Vec<ElementRef>,
+    face_types: Vec<u8>,
     face_tags: Vec<u64>,
 }
 
@@ -60,7 +62,7 @@ impl SurfaceMesh {
         mesh.node_tags.reserve(nodes);
         mesh.tag_to_index.reserve(nodes);
         mesh.face_offsets.reserve(faces);
-        mesh.face_elements.reserve(faces);
+        mesh.face_types.reserve(faces);
         mesh.face_tags.reserve(faces);
         mesh
     }
@@ -122,10 +124,31 @@ impl SurfaceMesh {
                 }
             }
         }
+        let kind = match self
+            .element_types
+            .iter()
+            // Same data pointer and same vtable: zero-sized element types of different kinds
+            // may share an address, but not a vtable; two types whose vtables were merged have
+            // the same methods and so behave the same.
+            .position(|e| std::ptr::eq(*e, element))
+        {
+            Some(k) => k,
+            None if self.element_types.len() < u8::MAX as usize => {
+                self.element_types.push(element);
+                self.element_types.len() - 1
+            }
+            None => {
+                self.face_nodes.truncate(start);
+                return Err(MortarError::InvalidOption(format!(
+                    "a surface mesh holds at most {} element types",
+                    u8::MAX
+                )));
+            }
+        };
         self.face_offsets.push(self.face_nodes.len() as u32);
-        self.face_elements.push(element);
+        self.face_types.push(kind as u8);
         self.face_tags.push(tag);
-        Ok(self.face_elements.len() as u32 - 1)
+        Ok(self.face_types.len() as u32 - 1)
     }
 
     /// Number of nodes.
@@ -135,7 +158,7 @@ impl SurfaceMesh {
 
     /// Number of faces.
     pub fn face_count(&self) -> usize {
-        self.face_elements.len()
+        self.face_types.len()
     }
 
     /// All node coordinates.
@@ -163,7 +186,7 @@ impl SurfaceMesh {
             self.face_offsets[face + 1] as usize,
         );
         FaceView {
-            element: self.face_elements[face],
+            element: self.element_types[self.face_types[face] as usize],
             nodes: &self.face_nodes[a..b],
             tag: self.face_tags[face],
         }
@@ -196,6 +219,20 @@ impl SurfaceMesh {
         }
         self.coords = moved;
         Ok(())
+    }
+
+    /// The heap memory the mesh holds, in bytes (its arrays at their capacity, and an estimate
+    /// of the tag lookup table).
+    pub fn memory_bytes(&self) -> usize {
+        use std::mem::size_of;
+        self.coords.capacity() * size_of::<Vector3<f64>>()
+            + self.node_tags.capacity() * size_of::<u64>()
+            + self.tag_to_index.capacity() * (size_of::<(u64, u32)>() + 1)
+            + self.face_offsets.capacity() * size_of::<u32>()
+            + self.face_nodes.capacity() * size_of::<u32>()
+            + self.element_types.capacity() * size_of::<ElementRef>()
+            + self.face_types.capacity()
+            + self.face_tags.capacity() * size_of::<u64>()
     }
 
     /// The smallest axis-aligned box holding every node, as `(min, max)`; `None` if empty.

@@ -2,6 +2,9 @@
 
 use nalgebra::Vector3;
 
+/// An axis-aligned box as `(min, max)`.
+pub(super) type Box3 = (Vector3<f64>, Vector3<f64>);
+
 /// A BVH over axis-aligned boxes, 2D or 3D.
 pub(super) enum BoxTree {
     Two(parry2d_f64::partitioning::Bvh),
@@ -9,34 +12,22 @@ pub(super) enum BoxTree {
 }
 
 impl BoxTree {
-    /// Builds the tree over `boxes` (leaf `i` is `boxes[i]`); `planar` uses the 2D tree and
+    /// Builds the tree over `leaves` (`(leaf index, box)`); `planar` uses the 2D tree and
     /// ignores z.
-    pub(super) fn build(boxes: &[(Vector3<f64>, Vector3<f64>)], planar: bool) -> Self {
-        use parry2d_f64::partitioning::BvhBuildStrategy as S2;
-        use parry3d_f64::partitioning::BvhBuildStrategy as S3;
+    pub(super) fn build(leaves: &[(u32, Box3)], planar: bool) -> Self {
+        use parry2d_f64::partitioning::{Bvh as Bvh2, BvhBuildStrategy as S2};
+        use parry3d_f64::partitioning::{Bvh as Bvh3, BvhBuildStrategy as S3};
         if planar {
-            let leaves: Vec<_> = boxes.iter().map(aabb2).collect();
-            BoxTree::Two(parry2d_f64::partitioning::Bvh::from_leaves(
-                S2::Binned,
-                &leaves,
-            ))
+            let it = leaves.iter().map(|(i, b)| (*i as usize, aabb2(b)));
+            BoxTree::Two(Bvh2::from_iter(S2::Binned, it))
         } else {
-            let leaves: Vec<_> = boxes.iter().map(aabb3).collect();
-            BoxTree::Three(parry3d_f64::partitioning::Bvh::from_leaves(
-                S3::Binned,
-                &leaves,
-            ))
+            let it = leaves.iter().map(|(i, b)| (*i as usize, aabb3(b)));
+            BoxTree::Three(Bvh3::from_iter(S3::Binned, it))
         }
     }
 
-    /// Leaves whose boxes intersect `query`, appended to `out` (cleared first) in ascending
-    /// order.
-    pub(super) fn intersecting_into(
-        &self,
-        query: &(Vector3<f64>, Vector3<f64>),
-        out: &mut Vec<u32>,
-    ) {
-        out.clear();
+    /// Appends to `out` the leaves whose boxes intersect `query` (unordered).
+    pub(super) fn append_intersecting(&self, query: &Box3, out: &mut Vec<u32>) {
         match self {
             BoxTree::Two(t) => {
                 let q = aabb2(query);
@@ -47,17 +38,15 @@ impl BoxTree {
                 out.extend(t.intersect_aabb(&q));
             }
         }
-        out.sort_unstable();
-        out.dedup();
     }
 }
 
-fn aabb2(b: &(Vector3<f64>, Vector3<f64>)) -> parry2d_f64::bounding_volume::Aabb {
+fn aabb2(b: &Box3) -> parry2d_f64::bounding_volume::Aabb {
     use parry2d_f64::math::Vector;
     parry2d_f64::bounding_volume::Aabb::new(Vector::new(b.0.x, b.0.y), Vector::new(b.1.x, b.1.y))
 }
 
-fn aabb3(b: &(Vector3<f64>, Vector3<f64>)) -> parry3d_f64::bounding_volume::Aabb {
+fn aabb3(b: &Box3) -> parry3d_f64::bounding_volume::Aabb {
     use parry3d_f64::math::Vector;
     parry3d_f64::bounding_volume::Aabb::new(
         Vector::new(b.0.x, b.0.y, b.0.z),
