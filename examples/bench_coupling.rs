@@ -145,16 +145,10 @@ fn digest(c: &Coupling) -> u64 {
     h.finish()
 }
 
-/// Estimated bytes of the two meshes: 24 + 8 bytes per node (coordinates, tag), 4 per face
-/// node index and 4 per face offset.
+/// Bytes the two meshes hold (`SurfaceMesh::memory_bytes`: coordinates, tags, tag lookup,
+/// connectivity, element types).
 fn mesh_bytes(i: &Interface) -> usize {
-    [i.slave(), i.master()]
-        .iter()
-        .map(|m| {
-            let conn: usize = (0..m.face_count()).map(|f| m.face(f).nodes.len()).sum();
-            m.node_count() * (24 + 8) + conn * 4 + m.face_count() * 4
-        })
-        .sum()
+    i.slave().memory_bytes() + i.master().memory_bytes()
 }
 
 /// Bytes of the CSR arrays of D and M: 8 + 8 per entry, 8 per row.

@@ -1,3 +1,4 @@
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use nalgebra::Vector3;
@@ -9,7 +10,7 @@ use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
 use crate::interface::Interface;
-use crate::linalg::{SparseMatrix, Triplets};
+use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::MasterTree;
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -144,11 +145,23 @@ impl Coupling {
     }
 }
 
-/// One chunk's output.
+/// Buffers a worker reuses from chunk to chunk, so that only the compressed results grow.
 #[derive(Default)]
-struct ChunkOut {
+struct ChunkWorkspace {
+    offsets: Vec<usize>,
+    all: Vec<u32>,
+    scratch: Vec<u32>,
+    rule: PairedRule,
+    blocks: LocalBlocks,
+    cols: Vec<(u32, [f64; MAX_FACE_NODES])>,
     d: Triplets,
     m: Triplets,
+    sort: CompressWorkspace,
+}
+
+/// Counts and timings summed over chunks.
+#[derive(Default, Clone, Copy)]
+struct ChunkStats {
     candidates: usize,
     pairs: usize,
     segments: usize,
@@ -156,6 +169,29 @@ struct ChunkOut {
     seconds_search: f64,
     seconds_segments: f64,
     seconds_integration: f64,
+}
+
+impl ChunkStats {
+    fn add(&mut self, o: &ChunkStats) {
+        self.candidates += o.candidates;
+        self.pairs += o.pairs;
+        self.segments += o.segments;
+        self.degrees |= o.degrees;
+        self.seconds_search += o.seconds_search;
+        self.seconds_segments += o.seconds_segments;
+        self.seconds_integration += o.seconds_integration;
+    }
+}
+
+/// What one worker accumulates: its buffers, its compressed parts of D and M (keyed by chunk),
+/// its counts, and the first error it met (with its chunk).
+#[derive(Default)]
+struct Accumulator {
+    ws: ChunkWorkspace,
+    d: PartList,
+    m: PartList,
+    stats: ChunkStats,
+    error: Option<(usize, MortarError)>,
 }
 
 /// Computes D and M for an interface.
@@ -198,44 +234,58 @@ fn assemble_on_pool(
         projector: options.projector.as_ref(),
     };
     let faces = interface.slave().face_count();
-    let chunks: Vec<Result<ChunkOut>> = (0..faces.div_ceil(CHUNK))
+    // Each worker folds its chunks into one accumulator (its buffers and its part lists); the
+    // first failing chunk in slave-face order decides the error, and chunks after a known
+    // failure are skipped.
+    let first_error = AtomicUsize::new(usize::MAX);
+    let accs: Vec<Accumulator> = (0..faces.div_ceil(CHUNK))
         .into_par_iter()
-        .map(|c| {
-            chunk(
-                interface,
-                options,
-                &ctx,
-                &tree,
-                c * CHUNK..((c + 1) * CHUNK).min(faces),
-            )
+        .fold(Accumulator::default, |mut acc, c| {
+            if c > first_error.load(Ordering::Relaxed) {
+                return acc;
+            }
+            let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
+            match chunk(interface, options, &ctx, &tree, range, c as u64, &mut acc) {
+                Ok(()) => {}
+                Err(e) => {
+                    first_error.fetch_min(c, Ordering::Relaxed);
+                    if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
+                        acc.error = Some((c, e));
+                    }
+                }
+            }
+            acc
         })
         .collect();
 
     drop(tree);
     let t_asm = Instant::now();
-    let mut outs = Vec::with_capacity(chunks.len());
-    for c in chunks {
-        outs.push(c?);
+    let mut total = Accumulator::default();
+    for acc in accs {
+        if let Some((c, e)) = acc.error {
+            if total.error.as_ref().is_none_or(|(k, _)| c < *k) {
+                total.error = Some((c, e));
+            }
+        }
+        total.stats.add(&acc.stats);
+        total.d.append(acc.d);
+        total.m.append(acc.m);
     }
-    let pairs: usize = outs.iter().map(|o| o.pairs).sum();
-    let candidates: usize = outs.iter().map(|o| o.candidates).sum();
-    if pairs == 0 {
+    if let Some((_, e)) = total.error {
+        return Err(e);
+    }
+    let stats = total.stats;
+    if stats.pairs == 0 {
         return Err(MortarError::NoOverlap {
             slave_faces: faces,
             master_faces: interface.master().face_count(),
-            candidates,
+            candidates: stats.candidates,
         });
     }
     let ns = interface.slave_nodes().len();
     let nm = interface.master_nodes().len();
-    let (mut d_parts, mut m_parts): (Vec<Triplets>, Vec<Triplets>) = outs
-        .iter_mut()
-        .map(|o| (std::mem::take(&mut o.d), std::mem::take(&mut o.m)))
-        .unzip();
-    let d = Triplets::to_csr_from_parts(&mut d_parts, ns, ns);
-    drop(d_parts);
-    let m = Triplets::to_csr_from_parts(&mut m_parts, ns, nm);
-    drop(m_parts);
+    let d = total.d.to_csr(ns, ns);
+    let m = total.m.to_csr(ns, nm);
     let assembly = t_asm.elapsed().as_secs_f64();
 
     let slave_tags = interface.slave().node_tags();
@@ -262,19 +312,16 @@ fn assemble_on_pool(
         m,
         formulation: options.describe(),
         stats: CouplingStats {
-            candidates,
-            pairs,
-            segments: outs.iter().map(|o| o.segments).sum(),
+            candidates: stats.candidates,
+            pairs: stats.pairs,
+            segments: stats.segments,
             area,
             threads,
-            degrees_used: {
-                let bits = outs.iter().fold(0u32, |b, o| b | o.degrees);
-                std::array::from_fn(|d| bits & (1 << d) != 0)
-            },
+            degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
             seconds: PhaseSeconds {
-                search: tree_seconds + outs.iter().map(|o| o.seconds_search).sum::<f64>(),
-                segments: outs.iter().map(|o| o.seconds_segments).sum(),
-                integration: outs.iter().map(|o| o.seconds_integration).sum(),
+                search: tree_seconds + stats.seconds_search,
+                segments: stats.seconds_segments,
+                integration: stats.seconds_integration,
                 assembly,
                 total: start.elapsed().as_secs_f64(),
             },
@@ -291,26 +338,38 @@ fn chunk(
     ctx: &SegmentContext<'_>,
     tree: &MasterTree,
     faces: std::ops::Range<usize>,
-) -> Result<ChunkOut> {
-    let mut out = ChunkOut::default();
+    key: u64,
+    acc: &mut Accumulator,
+) -> Result<()> {
+    let mut out = ChunkStats::default();
     let tol = interface.tolerances();
     let t_search = Instant::now();
-    let mut offsets = Vec::with_capacity(faces.len() + 1);
+    let ChunkWorkspace {
+        offsets,
+        all,
+        scratch,
+        rule,
+        blocks,
+        cols,
+        d,
+        m,
+        sort,
+    } = &mut acc.ws;
+    // A chunk that failed may have left triplets behind.
+    d.clear();
+    m.clear();
+    offsets.clear();
     offsets.push(0usize);
-    let mut all = Vec::new();
-    let mut scratch = Vec::new();
+    all.clear();
     for s in faces.clone() {
-        tree.candidates_into(interface, s, &mut scratch);
-        all.extend_from_slice(&scratch);
+        tree.candidates_into(interface, s, scratch);
+        all.extend_from_slice(scratch);
         offsets.push(all.len());
     }
     out.candidates = all.len();
     let t0 = Instant::now();
     out.seconds_search = (t0 - t_search).as_secs_f64();
     // Each face is segmented and integrated at once, while its points are in cache.
-    let mut rule = PairedRule::default();
-    let mut blocks = LocalBlocks::default();
-    let mut cols: Vec<(u32, [f64; MAX_FACE_NODES])> = Vec::new();
     let slave_mesh = interface.slave();
     let master_mesh = interface.master();
     for (i, s) in faces.clone().enumerate() {
@@ -322,7 +381,7 @@ fn chunk(
         let face = interface.slave_face(s);
         options
             .integration
-            .paired_rule_into(ctx, &face, cands, &mut rule)?;
+            .paired_rule_into(ctx, &face, cands, rule)?;
         out.pairs += rule.pairs as usize;
         out.segments += rule.cells as usize;
         out.degrees |= rule.degrees;
@@ -332,7 +391,7 @@ fn chunk(
             continue;
         }
         let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(interface, &face, &basis, &rule.points, &mut blocks);
+        integrate_face_into(interface, &face, &basis, &rule.points, blocks);
         let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
         for (r, &n) in rows.iter_mut().zip(snodes) {
@@ -343,7 +402,7 @@ fn chunk(
         let rows = &rows[..snodes.len()];
         for (j, &r) in rows.iter().enumerate() {
             for (k, &c) in rows.iter().enumerate() {
-                out.d.push(r, c, blocks.d[j][k]);
+                d.push(r, c, blocks.d[j][k]);
             }
         }
         // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
@@ -367,14 +426,15 @@ fn chunk(
                 }
             }
         }
-        for (c, vals) in &cols {
+        for (c, vals) in cols.iter() {
             for (j, &r) in rows.iter().enumerate() {
-                out.m.push(r, *c, vals[j]);
+                m.push(r, *c, vals[j]);
             }
         }
     }
-    out.d.compress();
-    out.m.compress();
+    acc.d.push_compressed(key, d, sort);
+    acc.m.push_compressed(key, m, sort);
     out.seconds_integration = t0.elapsed().as_secs_f64() - out.seconds_segments;
-    Ok(out)
+    acc.stats.add(&out);
+    Ok(())
 }

@@ -5,7 +5,7 @@ mod faer_backend;
 mod triplets;
 
 pub use faer_backend::{solve_sparse_lu, FaerError};
-pub use triplets::Triplets;
+pub use triplets::{CompressWorkspace, PartList, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.
 pub type SparseMatrix = sprs::CsMat<f64>;

@@ -16,18 +16,22 @@ struct Entry {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Triplets {
     entries: Vec<Entry>,
-    /// Whether `entries` is sorted by (row, column) without duplicates.
-    compressed: bool,
 }
 
-/// Rows per parallel work block when sorting rows.
+/// Reusable sort buffers for compressing triplets.
+#[derive(Debug, Clone, Default)]
+pub struct CompressWorkspace {
+    sorted: Vec<Entry>,
+    start: Vec<u32>,
+}
+
+/// Rows per parallel work block when building the CSR arrays.
 const ROW_BLOCK: usize = 4096;
 
 impl Triplets {
     /// Adds one entry.
     #[inline]
     pub fn push(&mut self, row: u32, col: u32, val: f64) {
-        self.compressed = false;
         self.entries.push(Entry { row, col, val });
     }
 
@@ -36,15 +40,19 @@ impl Triplets {
         self.entries.len()
     }
 
+    /// Removes every triplet, keeping the allocation.
+    pub fn clear(&mut self) {
+        self.entries.clear();
+    }
+
     /// Whether there is no triplet.
     pub fn is_empty(&self) -> bool {
         self.entries.is_empty()
     }
 
-    /// Sums duplicate entries (in insertion order) and sorts by row, then column. Shrinks the
-    /// list before it is kept: a slave face chunk's triplets repeat each (row, column) several
-    /// times.
-    pub fn compress(&mut self) {
+    /// Sorts the triplets by row, then column, and sums duplicates in insertion order,
+    /// appending the result to `out`; empties `self` (keeping its allocation).
+    fn compress_into(&mut self, ws: &mut CompressWorkspace, out: &mut Vec<Entry>) {
         let Some(first) = self.entries.first() else {
             return;
         };
@@ -55,142 +63,70 @@ impl Triplets {
                 (lo.min(e.row), hi.max(e.row))
             });
         let span = (hi - lo) as usize + 1;
+        let sorted = &mut ws.sorted;
+        sorted.clear();
         if span > 4 * self.entries.len() + 1024 {
             // Rows too scattered for a counting sort: a stable comparison sort keeps equal keys
             // in insertion order.
-            self.entries
-                .sort_by_key(|e| ((e.row as u64) << 32) | e.col as u64);
+            sorted.extend_from_slice(&self.entries);
+            sorted.sort_by_key(|e| ((e.row as u64) << 32) | e.col as u64);
         } else {
-            // Stable counting sort by row.
-            let mut start = vec![0u32; span + 1];
+            // Stable counting sort by row, then a stable sort of each row by column.
+            let start = &mut ws.start;
+            start.clear();
+            start.resize(span + 1, 0);
             for e in &self.entries {
                 start[(e.row - lo) as usize + 1] += 1;
             }
             for r in 0..span {
                 start[r + 1] += start[r];
             }
-            let mut sorted = vec![
+            sorted.resize(
+                self.entries.len(),
                 Entry {
                     row: 0,
                     col: 0,
-                    val: 0.0
-                };
-                self.entries.len()
-            ];
+                    val: 0.0,
+                },
+            );
             for e in &self.entries {
                 let at = &mut start[(e.row - lo) as usize];
                 sorted[*at as usize] = *e;
                 *at += 1;
             }
-            // `start[r]` is now the end of row r; sort each row by column (stable).
+            // `start[r]` is now the end of row r.
             let mut a = 0usize;
             for &end in &start[..span] {
-                let row = &mut sorted[a..end as usize];
-                insertion_sort_by_col(row);
+                insertion_sort_by_col(&mut sorted[a..end as usize]);
                 a = end as usize;
             }
-            self.entries = sorted;
         }
-        let mut w = 0usize;
-        for r in 0..self.entries.len() {
-            let e = self.entries[r];
-            if w > 0 && self.entries[w - 1].row == e.row && self.entries[w - 1].col == e.col {
-                self.entries[w - 1].val += e.val;
+        self.entries.clear();
+        let base = out.len();
+        for e in sorted.iter() {
+            // Merge only within this part: `out` may hold earlier parts.
+            let n = out.len();
+            if n > base && out[n - 1].row == e.row && out[n - 1].col == e.col {
+                out[n - 1].val += e.val;
             } else {
-                self.entries[w] = e;
-                w += 1;
+                out.push(*e);
             }
         }
-        self.entries.truncate(w);
-        self.entries.shrink_to_fit();
-        self.compressed = true;
     }
 
     /// The `nrows x ncols` CSR matrix of all `parts`, duplicates summed (see the type's
-    /// documentation for the order). Parts not yet compressed are compressed first. Rows are
-    /// built in parallel blocks on the current rayon pool; each entry's sum is taken in the
-    /// same order whatever the thread count.
+    /// documentation for the order). Rows are built in parallel blocks on the current rayon
+    /// pool; each entry's sum is taken in the same order whatever the thread count.
     ///
     /// # Panics
     /// If an index is out of range.
-    pub fn to_csr_from_parts(parts: &mut [Triplets], nrows: usize, ncols: usize) -> SparseMatrix {
-        parts
-            .par_iter_mut()
-            .filter(|p| !p.compressed)
-            .for_each(Triplets::compress);
-        for p in parts.iter() {
-            if let Some(e) = p
-                .entries
-                .iter()
-                .find(|e| e.row as usize >= nrows || e.col as usize >= ncols)
-            {
-                panic!(
-                    "entry ({}, {}) outside a {nrows}x{ncols} matrix",
-                    e.row, e.col
-                );
-            }
+    pub fn to_csr_from_parts(parts: Vec<Triplets>, nrows: usize, ncols: usize) -> SparseMatrix {
+        let mut list = PartList::default();
+        let mut ws = CompressWorkspace::default();
+        for (k, mut p) in parts.into_iter().enumerate() {
+            list.push_compressed(k as u64, &mut p, &mut ws);
         }
-        let parts: &[Triplets] = parts;
-        let blocks: Vec<(Vec<usize>, Vec<u32>, Vec<f64>)> = (0..nrows.div_ceil(ROW_BLOCK))
-            .into_par_iter()
-            .map(|b| {
-                let (r0, r1) = (b * ROW_BLOCK, ((b + 1) * ROW_BLOCK).min(nrows));
-                // This block's entries, part after part (each part sorted by row).
-                let mut local: Vec<Entry> = Vec::new();
-                for p in parts {
-                    let e = &p.entries;
-                    let a = e.partition_point(|x| (x.row as usize) < r0);
-                    let z = e.partition_point(|x| (x.row as usize) < r1);
-                    local.extend_from_slice(&e[a..z]);
-                }
-                // Stable counting sort by row, then per row a stable sort by column and the
-                // sums in that order.
-                let rows = r1 - r0;
-                let mut start = vec![0usize; rows + 1];
-                for e in &local {
-                    start[e.row as usize - r0 + 1] += 1;
-                }
-                for r in 0..rows {
-                    start[r + 1] += start[r];
-                }
-                let mut cols = vec![0u32; local.len()];
-                let mut vals = vec![0.0f64; local.len()];
-                let mut next = start.clone();
-                for e in &local {
-                    let at = &mut next[e.row as usize - r0];
-                    cols[*at] = e.col;
-                    vals[*at] = e.val;
-                    *at += 1;
-                }
-                drop(local);
-                let mut lens = Vec::with_capacity(rows);
-                let mut w = 0usize;
-                for r in 0..rows {
-                    let (a, z) = (start[r], start[r + 1]);
-                    let len = merge_row(&mut cols[a..z], &mut vals[a..z]);
-                    cols.copy_within(a..a + len, w);
-                    vals.copy_within(a..a + len, w);
-                    w += len;
-                    lens.push(len);
-                }
-                cols.truncate(w);
-                vals.truncate(w);
-                (lens, cols, vals)
-            })
-            .collect();
-        let nnz: usize = blocks.iter().map(|b| b.1.len()).sum();
-        let mut indptr = Vec::with_capacity(nrows + 1);
-        indptr.push(0usize);
-        let mut indices = Vec::with_capacity(nnz);
-        let mut data = Vec::with_capacity(nnz);
-        for (lens, cols, vals) in blocks {
-            for len in lens {
-                indptr.push(indptr[indptr.len() - 1] + len);
-            }
-            indices.extend(cols.iter().map(|&c| c as usize));
-            data.extend_from_slice(&vals);
-        }
-        SparseMatrix::new((nrows, ncols), indptr, indices, data)
+        list.to_csr(nrows, ncols)
     }
 
     /// The `nrows x ncols` CSR matrix of these triplets.
@@ -198,8 +134,173 @@ impl Triplets {
     /// # Panics
     /// If an index is out of range.
     pub fn to_csr(self, nrows: usize, ncols: usize) -> SparseMatrix {
-        Self::to_csr_from_parts(&mut [self], nrows, ncols)
+        Self::to_csr_from_parts(vec![self], nrows, ncols)
     }
+}
+
+/// Compressed triplet parts, each with a key, stored back to back in a few large buffers.
+///
+/// Parallel assembly gives each worker one `PartList` and merges the lists at the end; the
+/// matrix is then built from the parts in key order, so it does not depend on which worker
+/// built which part. A few large buffers, rather than one small allocation per part, keep
+/// the allocator from fragmenting and go back to the system as soon as they are dropped.
+#[derive(Debug, Clone, Default)]
+pub struct PartList {
+    buffers: Vec<Vec<Entry>>,
+    /// `(key, buffer, start, end)`.
+    parts: Vec<(u64, u32, usize, usize)>,
+}
+
+impl PartList {
+    /// Compresses `raw` (emptying it, keeping its allocation) and stores it as part `key`.
+    pub fn push_compressed(&mut self, key: u64, raw: &mut Triplets, ws: &mut CompressWorkspace) {
+        if self.buffers.is_empty() {
+            self.buffers.push(Vec::new());
+        }
+        let b = self.buffers.len() - 1;
+        let buf = &mut self.buffers[b];
+        let start = buf.len();
+        raw.compress_into(ws, buf);
+        self.parts.push((key, b as u32, start, buf.len()));
+    }
+
+    /// Moves the parts of `other` into this list.
+    pub fn append(&mut self, other: PartList) {
+        let shift = self.buffers.len() as u32;
+        self.buffers.extend(other.buffers);
+        self.parts.extend(
+            other
+                .parts
+                .into_iter()
+                .map(|(k, b, s, e)| (k, b + shift, s, e)),
+        );
+    }
+
+    /// Number of stored triplets.
+    pub fn len(&self) -> usize {
+        self.parts.iter().map(|p| p.3 - p.2).sum()
+    }
+
+    /// Whether no triplet is stored.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The `nrows x ncols` CSR matrix of the parts in key order, duplicates summed in that
+    /// order. The parts are freed before the matrix arrays are filled.
+    ///
+    /// # Panics
+    /// If an index is out of range, or two parts have the same key.
+    pub fn to_csr(mut self, nrows: usize, ncols: usize) -> SparseMatrix {
+        self.parts.sort_unstable_by_key(|p| p.0);
+        assert!(
+            self.parts.windows(2).all(|w| w[0].0 != w[1].0),
+            "two triplet parts with the same key"
+        );
+        let blocks = {
+            let slices: Vec<&[Entry]> = self
+                .parts
+                .iter()
+                .map(|&(_, b, s, e)| &self.buffers[b as usize][s..e])
+                .collect();
+            for sl in &slices {
+                if let Some(e) = sl
+                    .iter()
+                    .find(|e| e.row as usize >= nrows || e.col as usize >= ncols)
+                {
+                    panic!(
+                        "entry ({}, {}) outside a {nrows}x{ncols} matrix",
+                        e.row, e.col
+                    );
+                }
+            }
+            row_blocks(&slices, nrows)
+        };
+        drop(self);
+        concat_blocks(blocks, nrows, ncols)
+    }
+}
+
+/// Rows of one block of the matrix: merged row lengths, columns, values.
+type RowBlock = (Vec<usize>, Vec<u32>, Vec<f64>);
+
+/// Per-thread buffers of the row blocks.
+#[derive(Default)]
+struct BlockWorkspace {
+    local: Vec<Entry>,
+    start: Vec<usize>,
+    next: Vec<usize>,
+    cols: Vec<u32>,
+    vals: Vec<f64>,
+}
+
+/// Merges the row-sorted `slices` into blocks of [`ROW_BLOCK`] rows, in parallel; within a
+/// row, entries are summed in slice order, then in their order within a slice.
+fn row_blocks(slices: &[&[Entry]], nrows: usize) -> Vec<RowBlock> {
+    (0..nrows.div_ceil(ROW_BLOCK))
+        .into_par_iter()
+        .map_init(BlockWorkspace::default, |ws, b| {
+            let (r0, r1) = (b * ROW_BLOCK, ((b + 1) * ROW_BLOCK).min(nrows));
+            // This block's entries, slice after slice (each sorted by row).
+            ws.local.clear();
+            for e in slices {
+                let a = e.partition_point(|x| (x.row as usize) < r0);
+                let z = e.partition_point(|x| (x.row as usize) < r1);
+                ws.local.extend_from_slice(&e[a..z]);
+            }
+            // Stable counting sort by row, then per row a stable sort by column and the sums
+            // in that order.
+            let rows = r1 - r0;
+            ws.start.clear();
+            ws.start.resize(rows + 1, 0);
+            for e in &ws.local {
+                ws.start[e.row as usize - r0 + 1] += 1;
+            }
+            for r in 0..rows {
+                ws.start[r + 1] += ws.start[r];
+            }
+            ws.cols.clear();
+            ws.cols.resize(ws.local.len(), 0);
+            ws.vals.clear();
+            ws.vals.resize(ws.local.len(), 0.0);
+            ws.next.clear();
+            ws.next.extend_from_slice(&ws.start);
+            for e in &ws.local {
+                let at = &mut ws.next[e.row as usize - r0];
+                ws.cols[*at] = e.col;
+                ws.vals[*at] = e.val;
+                *at += 1;
+            }
+            let mut lens = Vec::with_capacity(rows);
+            let mut w = 0usize;
+            for r in 0..rows {
+                let (a, z) = (ws.start[r], ws.start[r + 1]);
+                let len = merge_row(&mut ws.cols[a..z], &mut ws.vals[a..z]);
+                ws.cols.copy_within(a..a + len, w);
+                ws.vals.copy_within(a..a + len, w);
+                w += len;
+                lens.push(len);
+            }
+            (lens, ws.cols[..w].to_vec(), ws.vals[..w].to_vec())
+        })
+        .collect()
+}
+
+/// Concatenates the row blocks into the CSR arrays, freeing each block once copied.
+fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMatrix {
+    let nnz: usize = blocks.iter().map(|b| b.1.len()).sum();
+    let mut indptr = Vec::with_capacity(nrows + 1);
+    indptr.push(0usize);
+    let mut indices = Vec::with_capacity(nnz);
+    let mut data = Vec::with_capacity(nnz);
+    for (lens, cols, vals) in blocks {
+        for len in lens {
+            indptr.push(indptr[indptr.len() - 1] + len);
+        }
+        indices.extend(cols.iter().map(|&c| c as usize));
+        data.extend_from_slice(&vals);
+    }
+    SparseMatrix::new((nrows, ncols), indptr, indices, data)
 }
 
 /// Stable sort of one row's entries by column (insertion sort for short rows).
@@ -219,8 +320,7 @@ fn insertion_sort_by_col(row: &mut [Entry]) {
     }
 }
 
-/// Sorts one row by column (stable insertion sort: rows are short) and sums duplicates in
-/// order; returns the merged length.
+/// Sorts one row by column (stable) and sums duplicates in order; returns the merged length.
 fn merge_row(cols: &mut [u32], vals: &mut [f64]) -> usize {
     if cols.len() > 32 {
         let mut pairs: Vec<(u32, f64)> = cols.iter().copied().zip(vals.iter().copied()).collect();
@@ -229,17 +329,18 @@ fn merge_row(cols: &mut [u32], vals: &mut [f64]) -> usize {
             cols[i] = c;
             vals[i] = v;
         }
-    }
-    for i in 1..cols.len() {
-        let (c, v) = (cols[i], vals[i]);
-        let mut j = i;
-        while j > 0 && cols[j - 1] > c {
-            cols[j] = cols[j - 1];
-            vals[j] = vals[j - 1];
-            j -= 1;
+    } else {
+        for i in 1..cols.len() {
+            let (c, v) = (cols[i], vals[i]);
+            let mut j = i;
+            while j > 0 && cols[j - 1] > c {
+                cols[j] = cols[j - 1];
+                vals[j] = vals[j - 1];
+                j -= 1;
+            }
+            cols[j] = c;
+            vals[j] = v;
         }
-        cols[j] = c;
-        vals[j] = v;
     }
     let mut w = 0usize;
     for r in 0..cols.len() {
