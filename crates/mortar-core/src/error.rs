@@ -103,7 +103,7 @@ pub enum MortarError {
         side: Side,
     },
     /// No slave face overlaps any master face.
-    #[error("the interface has no overlap: no slave face overlaps a master face ({slave_faces} slave faces, {master_faces} master faces, {candidates} candidate pairs from the search)")]
+    #[error("the interface has no overlap: no slave face overlaps a master face ({slave_faces} slave faces, {master_faces} master faces, {candidates} candidate pairs from the search{})", if *back_facing > 0 { format!(", {back_facing} of them skipped because the master face looks the same way as the slave: the master's normals must oppose the slave's (reverse the node order of the master faces)") } else { String::new() })]
     NoOverlap {
         /// Slave face count.
         slave_faces: usize,
@@ -111,6 +111,8 @@ pub enum MortarError {
         master_faces: usize,
         /// Candidate pairs the bounding-box search found.
         candidates: usize,
+        /// Candidate pairs skipped because the master face faces away from the slave.
+        back_facing: usize,
     },
     /// The Newton iteration that maps a physical point back to a face's reference
     /// coordinates did not converge.

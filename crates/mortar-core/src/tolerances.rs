@@ -8,8 +8,10 @@
 pub struct Tolerances {
     /// A face whose measure (length or area) is below `degenerate * diameter^k` is degenerate.
     pub degenerate: f64,
-    /// Clip polygons whose area is below `clip_area * min(slave area, master area)` are
-    /// discarded (zero-measure touching, e.g. along a shared edge).
+    /// Clip polygons whose area is below `clip_area * min(slave area, master area)` (or below
+    /// the rounding of the coordinates, for meshes far from the origin) are discarded: they
+    /// are zero-measure touching, e.g. along a shared edge. Small, so that genuine slivers
+    /// (a node pushed 1e-3 h across an edge gives overlaps of 1e-13 of a face) are kept.
     pub clip_area: f64,
     /// Points closer than `merge * diameter` are merged when clipping.
     pub merge: f64,
@@ -30,7 +32,7 @@ impl Default for Tolerances {
     fn default() -> Self {
         Self {
             degenerate: 1e-10,
-            clip_area: 1e-12,
+            clip_area: 1e-14,
             merge: 1e-12,
             newton: 1e-13,
             newton_max_iterations: 30,

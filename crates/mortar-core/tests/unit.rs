@@ -7,4 +7,17 @@ mod unit {
     mod polygon;
     mod quadrature;
     pub mod strategies;
+
+    /// The proptest configuration of a block: `cases` cases, or as many as the environment
+    /// variable `PROPTEST_CASES` says (to run the tests harder: `PROPTEST_CASES=1000 cargo test`).
+    pub fn config(cases: u32) -> proptest::test_runner::Config {
+        let cases = std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(cases);
+        proptest::test_runner::Config {
+            cases,
+            ..Default::default()
+        }
+    }
 }

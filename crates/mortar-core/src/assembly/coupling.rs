@@ -44,6 +44,8 @@ pub struct CouplingStats {
     pub pairs: usize,
     /// Integration cells (clip triangles, 2D segments, or slave faces for element-based).
     pub segments: usize,
+    /// Candidate pairs skipped because the master face faces away from the slave.
+    pub back_facing: usize,
     /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D).
     pub area: f64,
     /// Threads used.
@@ -165,6 +167,7 @@ struct ChunkStats {
     candidates: usize,
     pairs: usize,
     segments: usize,
+    back_facing: usize,
     degrees: u32,
     seconds_search: f64,
     seconds_segments: f64,
@@ -176,6 +179,7 @@ impl ChunkStats {
         self.candidates += o.candidates;
         self.pairs += o.pairs;
         self.segments += o.segments;
+        self.back_facing += o.back_facing;
         self.degrees |= o.degrees;
         self.seconds_search += o.seconds_search;
         self.seconds_segments += o.seconds_segments;
@@ -280,6 +284,7 @@ fn assemble_on_pool(
             slave_faces: faces,
             master_faces: interface.master().face_count(),
             candidates: stats.candidates,
+            back_facing: stats.back_facing,
         });
     }
     let ns = interface.slave_nodes().len();
@@ -315,6 +320,7 @@ fn assemble_on_pool(
             candidates: stats.candidates,
             pairs: stats.pairs,
             segments: stats.segments,
+            back_facing: stats.back_facing,
             area,
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
@@ -384,6 +390,7 @@ fn chunk(
             .paired_rule_into(ctx, &face, cands, rule)?;
         out.pairs += rule.pairs as usize;
         out.segments += rule.cells as usize;
+        out.back_facing += rule.back_facing as usize;
         out.degrees |= rule.degrees;
         let tb = Instant::now();
         out.seconds_segments += (tb - ta).as_secs_f64();

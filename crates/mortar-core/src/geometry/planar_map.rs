@@ -34,6 +34,15 @@ impl PlanarMap {
         }
     }
 
+    /// The in-plane point at reference coordinates `xi`, and the Jacobian determinant of the
+    /// map there (in-plane area per reference area).
+    #[inline]
+    pub fn eval(&self, xi: &Vector2<f64>) -> (Vector2<f64>, f64) {
+        let (x, j) =
+            planar_map_and_jacobian(self.element, &self.nodes[..self.element.node_count()], xi);
+        (x, j.determinant())
+    }
+
     /// Reference coordinates of the face point that maps to `p`.
     ///
     /// # Errors

@@ -161,7 +161,9 @@ pub fn clip_convex(subject: &Polygon, clip: &Polygon, tol: f64, out: &mut Polygo
             let p_in = dp >= -tol;
             let q_in = dq >= -tol;
             if p_in != q_in && k < MAX_POLYGON_VERTICES {
-                let t = dp / (dp - dq);
+                // A point inside only by the tolerance can put the crossing of the zero line
+                // outside the segment: clamp, so the vertex stays on the subject's edge.
+                let t = (dp / (dp - dq)).clamp(0.0, 1.0);
                 dst[k] = p + (q - p) * t;
                 k += 1;
             }

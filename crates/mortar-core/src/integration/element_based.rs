@@ -134,7 +134,10 @@ fn find_master(
             }
         };
         if let Some(eta) = eta {
-            if el.domain().contains(&eta, tol.reference_inside) {
+            // Only a master face that faces the slave (normal against the direction) counts.
+            if el.domain().contains(&eta, tol.reference_inside)
+                && el.unit_normal(master.node_coords(), &eta).dot(d) < 0.0
+            {
                 return Some((m, eta));
             }
         }

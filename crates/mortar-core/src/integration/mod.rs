@@ -8,6 +8,11 @@
 //!   both faces are projected onto the auxiliary plane through the slave face centre, clipped,
 //!   the clip polygon triangulated from its centroid, and each triangle's quadrature points
 //!   mapped back to both faces.
+//!
+//! Only master faces that face the slave count: their normal must oppose the projection
+//! direction (the slave's outward normal), as it does when both surfaces carry their bodies'
+//! outward normals. This keeps the far side of a thin master body out of the coupling.
+//!
 //! - [`ElementBased`]: quadrature points of the slave face, each projected onto the master face
 //!   it falls on. Cheap, but inexact where a slave face spans master edges.
 
@@ -52,6 +57,10 @@ pub struct PairedRule {
     pub cells: u32,
     /// The quadrature degrees used, as a bit set (bit `d` set when degree `d` was used).
     pub degrees: u32,
+    /// Candidate master faces skipped because they face away from the slave (their normal
+    /// does not oppose the projection direction): the far side of a thin body, or a master
+    /// surface oriented the wrong way round.
+    pub back_facing: u32,
 }
 
 impl PairedRule {
@@ -61,6 +70,7 @@ impl PairedRule {
         self.pairs = 0;
         self.cells = 0;
         self.degrees = 0;
+        self.back_facing = 0;
     }
 }
 

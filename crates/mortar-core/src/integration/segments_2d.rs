@@ -23,8 +23,17 @@ pub(super) fn segments_into(
     out: &mut PairedRule,
 ) -> Result<()> {
     let tol = ctx.interface.tolerances();
+    let centre = Vector2::zeros();
+    let (n_s, _) = ctx.projector.direction(slave, &centre);
     for &m in candidates {
         let master = ctx.interface.master_face(m as usize);
+        let n_m = master.element.unit_normal(master.node_coords(), &centre);
+        if n_m.dot(&n_s) >= 0.0 {
+            // The master line does not face the slave (far side of a thin body, or oriented
+            // the wrong way round).
+            out.back_facing += 1;
+            continue;
+        }
         // The master's end nodes, projected onto the slave line along the direction field.
         let Some(a) = project_onto_slave(ctx, slave, &master.nodes[0]) else {
             continue;

@@ -49,7 +49,12 @@ pub(super) fn segments_into(
         .vertices
         .iter()
         .fold((sp[0], sp[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
-    let merge = tol.merge * spoly.diameter();
+    // Coordinates far from the origin carry an absolute rounding of a few ulps of their
+    // magnitude: the merge tolerance cannot be finer than that.
+    let rounding = 8.0 * f64::EPSILON * x0.amax();
+    let merge = (tol.merge * spoly.diameter()).max(rounding);
+    // The area the rounding of the coordinates alone can give a zero-measure overlap.
+    let area_noise = rounding * spoly.diameter();
     let master_mesh = ctx.interface.master();
     let coords = master_mesh.coords();
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
@@ -82,18 +87,52 @@ pub(super) fn segments_into(
         if area_m.abs() <= tol.clip_area * area_s {
             continue; // seen edge-on from the plane
         }
-        if area_m < 0.0 {
-            mpoly.reverse();
+        if area_m > 0.0 {
+            // Counter-clockwise about the slave normal: the master face looks the same way as
+            // the slave, so it is not the surface facing it.
+            out.back_facing += 1;
+            continue;
         }
+        mpoly.reverse();
         clip_convex(&mpoly, &spoly, merge, &mut clip);
-        if clip.len() < 3 || clip.signed_area() <= tol.clip_area * area_s.min(area_m.abs()) {
+        if clip.len() < 3
+            || clip.signed_area() <= (tol.clip_area * area_s.min(area_m.abs())).max(area_noise)
+        {
             continue;
         }
         let deg = degree.unwrap_or_else(|| default_degree(el, mel));
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
         let master_map = PlanarMap::new(mel, &mp[..km]);
-        tris.clear();
-        clip.for_each_triangle(|t| tris.push(t));
+        let fail =
+            |f: InverseMapFailure, p: &Vector2<f64>, side, tag| MortarError::ProjectionFailed {
+                face: FaceLocation {
+                    side: Some(side),
+                    tag,
+                },
+                point: plane.lift(p).into(),
+                iterations: f.iterations,
+                residual: f.residual,
+            };
+        // An affine slave is integrated on the clip triangles in the plane. A non-affine
+        // slave (bilinear quad) is integrated in its reference coordinates: the clip polygon's
+        // vertices are mapped back and triangulated there, and the weights carry the surface
+        // Jacobian, so that on a planar face Phi_j N_k J stays a polynomial and D is exact on
+        // a covered face.
+        let in_reference = !el.is_affine();
+        if in_reference {
+            let mut xi_poly = Polygon::default();
+            for v in &clip.vertices {
+                let xi = slave_map
+                    .invert(v, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
+                xi_poly.vertices.push(xi);
+            }
+            tris.clear();
+            xi_poly.for_each_triangle(|t| tris.push(t));
+        } else {
+            tris.clear();
+            clip.for_each_triangle(|t| tris.push(t));
+        }
         let mut any = false;
         for t in &tris {
             let e1 = t[1] - t[0];
@@ -105,27 +144,26 @@ pub(super) fn segments_into(
             any = true;
             out.cells += 1;
             for (q, w) in rule.points().iter().zip(rule.weights()) {
-                let p = t[0] + e1 * q.x + e2 * q.y;
-                let fail = |f: InverseMapFailure, side, tag| MortarError::ProjectionFailed {
-                    face: FaceLocation {
-                        side: Some(side),
-                        tag,
-                    },
-                    point: plane.lift(&p).into(),
-                    iterations: f.iterations,
-                    residual: f.residual,
+                let c = t[0] + e1 * q.x + e2 * q.y;
+                let (p, xi_s, jac) = if in_reference {
+                    // The surface's own measure (not the plane's): the measure the dual basis
+                    // is built with, so D stays diagonal on warped faces too.
+                    let (p, _) = slave_map.eval(&c);
+                    (p, c, el.jacobian_det(slave.node_coords(), &c))
+                } else {
+                    let xi_s = slave_map
+                        .invert(&c, tol.newton, tol.newton_max_iterations)
+                        .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
+                    (c, xi_s, 1.0)
                 };
-                let xi_s = slave_map
-                    .invert(&p, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, Side::Slave, slave.tag))?;
                 let xi_m = master_map
                     .invert(&p, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, Side::Master, view.tag))?;
+                    .map_err(|f| fail(f, &p, Side::Master, view.tag))?;
                 out.points.push(PairedPoint {
                     master: m,
                     xi_slave: xi_s,
                     xi_master: xi_m,
-                    weight: w * twice_area,
+                    weight: w * twice_area * jac,
                 });
             }
         }

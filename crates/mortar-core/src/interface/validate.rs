@@ -91,15 +91,35 @@ pub(super) fn check_faces(
         if el.domain() == ReferenceDomain::Line {
             continue;
         }
-        let centre = el.scaled_normal(&nodes, &el.domain().centre());
         let area_scale = diameter * diameter;
+        // Jacobians at the nodes: a sign change between two of them means the face folds over
+        // itself (a bow-tie), whatever its centre looks like.
+        let node_normals: Vec<Vector3<f64>> = el
+            .node_reference_coords()
+            .iter()
+            .map(|xi| el.scaled_normal(&nodes, &Vector2::new(xi[0], xi[1])))
+            .collect();
+        for (a, na) in node_normals.iter().enumerate() {
+            for (b, nb) in node_normals.iter().enumerate().skip(a + 1) {
+                if na.dot(nb) < -(tol.degenerate * area_scale).powi(2) {
+                    return Err(MortarError::InvertedFace {
+                        face: loc,
+                        reason: format!(
+                            "its Jacobian changes sign between nodes {} and {} (self-intersecting or non-convex)",
+                            mesh.node_tags()[view.nodes[a] as usize],
+                            mesh.node_tags()[view.nodes[b] as usize]
+                        ),
+                    });
+                }
+            }
+        }
+        let centre = el.scaled_normal(&nodes, &el.domain().centre());
         if centre.norm() * el.domain().measure() <= tol.degenerate * area_scale {
             return Err(degenerate(format!(
                 "its area is negligible against its size {diameter:e} squared (collinear corners)"
             )));
         }
-        for (c, xi) in el.node_reference_coords().iter().enumerate() {
-            let n = el.scaled_normal(&nodes, &Vector2::new(xi[0], xi[1]));
+        for (c, n) in node_normals.iter().enumerate() {
             if n.dot(&centre) <= tol.degenerate * area_scale * centre.norm() {
                 return Err(MortarError::InvertedFace {
                     face: loc,

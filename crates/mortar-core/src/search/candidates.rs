@@ -38,7 +38,7 @@ impl Candidates {
 ///
 /// The master faces are cut into slabs of equal width along the longest axis of their
 /// bounding box (by box centre) and one tree is built per slab, in parallel. Each leaf holds
-/// up to [`LEAF_FACES`] faces that follow each other in the slab (mesh numberings keep such
+/// up to four faces (`LEAF_FACES`) that follow each other in the slab (mesh numberings keep such
 /// faces close), which makes the trees several times cheaper to build; a hit leaf's faces are
 /// then tested one by one. A query visits the slabs whose bounds meet its box. The candidates
 /// are sorted, so they depend neither on the slab layout nor on the thread count.
@@ -58,7 +58,7 @@ struct Slab {
 const SLAB_FACES: usize = 1 << 16;
 
 /// Master faces per BVH leaf.
-pub const LEAF_FACES: usize = 4;
+const LEAF_FACES: usize = 4;
 
 impl std::fmt::Debug for MasterTree {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

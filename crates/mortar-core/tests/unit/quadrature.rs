@@ -17,7 +17,7 @@ fn factorial(n: u32) -> f64 {
 
 /// `int_{-1}^{1} x^a dx`.
 fn line_moment(a: u32) -> f64 {
-    if a % 2 == 0 {
+    if a.is_multiple_of(2) {
         2.0 / (a as f64 + 1.0)
     } else {
         0.0
@@ -103,7 +103,7 @@ fn rules_are_not_exact_beyond_their_degree() {
             let rule = QuadratureRule::for_domain(domain, requested).unwrap();
             let stated = rule.degree();
             let expected = match domain {
-                ReferenceDomain::Quadrilateral if stated % 2 == 0 => stated + 1,
+                ReferenceDomain::Quadrilateral if stated.is_multiple_of(2) => stated + 1,
                 ReferenceDomain::Triangle if stated == 3 => 4,
                 _ => stated,
             };
@@ -122,11 +122,11 @@ fn high_degree_line_rules_are_exact() {
     for degree in [41, 99, 199] {
         let rule = QuadratureRule::line(degree).unwrap();
         assert_eq!(rule.degree(), degree);
-        // Odd moments vanish by symmetry; check the even ones up to the degree, and x^(d+1).
-        for a in (0..=degree).step_by(2) {
+        // Every moment up to the degree. (One degree above, the Gauss error on x^(2n) is of
+        // order 4^-n: below round-off here, so there is nothing to check beyond.)
+        for a in 0..=degree {
             assert!(exact_for(&rule, a, 0), "degree {degree}: x^{a}");
         }
-        assert!(!exact_for(&rule, degree + 1, 0), "degree {degree} is exact beyond");
     }
 }
 
@@ -141,7 +141,10 @@ fn weights_are_positive_sum_to_the_measure_and_points_lie_inside() {
             assert!((sum - domain.measure()).abs() <= 1e-14 * domain.measure());
             for (p, w) in rule.points().iter().zip(rule.weights()) {
                 assert!(*w > 0.0, "{domain:?} {degree}: weight {w}");
-                assert!(domain.contains(p, 1e-14), "{domain:?} {degree}: point {p:?}");
+                assert!(
+                    domain.contains(p, 1e-14),
+                    "{domain:?} {degree}: point {p:?}"
+                );
                 if domain == ReferenceDomain::Line {
                     assert_eq!(p.y, 0.0);
                 }
@@ -168,7 +171,7 @@ fn degrees_out_of_range_are_invalid_options() {
         QuadratureRule::triangle(21),
         QuadratureRule::quadrilateral(21),
         QuadratureRule::line(200),
-        QuadratureRule::cached(ReferenceDomain::Line, 21).map(Clone::clone),
+        QuadratureRule::cached(ReferenceDomain::Line, 21).cloned(),
     ] {
         assert!(
             matches!(result, Err(MortarError::InvalidOption(_))),

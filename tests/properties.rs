@@ -1,0 +1,21 @@
+//! Property tests of the mortar operators D and M on covered, non-matching interfaces drawn
+//! by the strategies of `mortar::testing` (one binary, a folder of modules).
+//!
+//! Each `proptest!` block runs 16 to 64 cases, so that the whole binary stays within a few
+//! seconds in the test profile. Failing cases are recorded in `*.proptest-regressions` files
+//! next to the module sources; commit them.
+
+mod properties {
+    pub mod common;
+
+    mod conservation;
+    mod curved;
+    mod dual;
+    mod element_based;
+    mod errors;
+    mod facing;
+    mod invariance;
+    mod patch;
+    mod strategies;
+    mod threads;
+}

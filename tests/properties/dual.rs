@@ -1,0 +1,163 @@
+//! Dual (biorthogonal) multipliers: `int Phi_j N_k = delta_jk int N_k` on every slave face,
+//! checked directly on the basis with a quadrature, and hence a diagonal D on a covered
+//! interface.
+
+use mortar::core::multiplier::{DualMultipliers, MultiplierSpace, StandardMultipliers};
+use mortar::core::quadrature::{Quadrature, QuadratureRule};
+use mortar::elements::{QUAD4, TRI3};
+use mortar::testing::{
+    covered_pair, covered_pair_2d, covered_pair_3d_with, CellKind, MeshPair, PairConfig,
+};
+use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh, Tolerances};
+use proptest::prelude::*;
+
+use super::common::{config, couple, ok};
+
+/// The largest off-diagonal entry of D relative to the smallest diagonal one.
+fn off_diagonal_ratio(pair: &MeshPair) -> Result<f64, TestCaseError> {
+    let (_, coupling) = couple(pair, &CouplingOptions::default().dual())?;
+    let mut off = 0.0f64;
+    let mut diag = f64::INFINITY;
+    for (v, (r, c)) in coupling.d.iter() {
+        if r == c {
+            diag = diag.min(v.abs());
+        } else {
+            off = off.max(v.abs());
+        }
+    }
+    prop_assert!(diag > 0.0, "a zero diagonal entry of D");
+    Ok(off / diag)
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    /// The basis on each slave face satisfies `int Phi_j N_k = delta_jk int N_k`, integrated
+    /// here with a degree-10 rule (exact: `Phi_j N_k det J` has degree at most 5 on a flat
+    /// Quad4), Jacobian from the element. Standard multipliers have the identity basis.
+    #[test]
+    fn dual_basis_is_biorthogonal_on_every_face(pair in covered_pair()) {
+        let interface = ok(pair.interface())?;
+        let tol = Tolerances::default();
+        for f in 0..interface.slave().face_count() {
+            let face = interface.slave_face(f);
+            let el = face.element;
+            let k = el.node_count();
+            let basis = ok(DualMultipliers.basis(&face, &tol))?;
+            prop_assert!(ok(StandardMultipliers.basis(&face, &tol))?.identity);
+            let rule = QuadratureRule::for_domain(el.domain(), 10).unwrap();
+            let mut n = vec![0.0; k];
+            let mut phi = vec![0.0; k];
+            let mut mixed = vec![vec![0.0; k]; k];
+            let mut mass = vec![0.0; k];
+            for (xi, w) in rule.points().iter().zip(rule.weights()) {
+                el.shape_values_into(xi, &mut n);
+                basis.eval_into(&n, &mut phi);
+                let wj = w * el.jacobian_det(face.node_coords(), xi);
+                for j in 0..k {
+                    mass[j] += wj * n[j];
+                    for l in 0..k {
+                        mixed[j][l] += wj * phi[j] * n[l];
+                    }
+                }
+            }
+            let scale = mass.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for j in 0..k {
+                for l in 0..k {
+                    let want = if j == l { mass[j] } else { 0.0 };
+                    prop_assert!(
+                        (mixed[j][l] - want).abs() <= 1e-13 * scale,
+                        "{} face {}: int Phi_{j} N_{l} = {:e}, want {want:e}",
+                        el.name(), face.tag, mixed[j][l]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn dual_d_is_diagonal_2d(pair in covered_pair_2d()) {
+        let ratio = off_diagonal_ratio(&pair)?;
+        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+    }
+
+    #[test]
+    fn dual_d_is_diagonal_3d_triangle_slave(
+        pair in covered_pair_3d_with(PairConfig {
+            slave_kinds: vec![CellKind::Triangles],
+            ..PairConfig::default()
+        })
+    ) {
+        let ratio = off_diagonal_ratio(&pair)?;
+        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+    }
+
+    /// Unjittered Quad4 slaves are parallelograms, hence affine.
+    #[test]
+    fn dual_d_is_diagonal_3d_parallelogram_quad_slave(
+        pair in covered_pair_3d_with(PairConfig {
+            slave_kinds: vec![CellKind::Quads],
+            slave_jitter: 0.0,
+            ..PairConfig::default()
+        })
+    ) {
+        let ratio = off_diagonal_ratio(&pair)?;
+        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+    }
+
+    /// Jittered Quad4 slaves: the basis is biorthogonal on each face (see above), so D must be
+    /// diagonal on a covered interface whatever the shape of the quads.
+    #[test]
+    fn dual_d_is_diagonal_3d_quad_slave(
+        pair in covered_pair_3d_with(PairConfig {
+            slave_kinds: vec![CellKind::Quads, CellKind::Mixed],
+            ..PairConfig::default()
+        })
+    ) {
+        let ratio = off_diagonal_ratio(&pair)?;
+        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+    }
+}
+
+/// The smallest case of the property above: one trapezoidal Quad4 slave face, covered by two
+/// Tri3 master faces with the same corners. Expected (dual, default options): D diagonal with
+/// `D_jj = int N_j` = (1/6, 5/24, 5/24, 1/6); standard: row sums the same nodal areas.
+#[test]
+fn one_trapezoid_quad_slave_gives_exact_d() {
+    let corners = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 0.5, 0.0],
+    ];
+    let mut slave = SurfaceMesh::new();
+    let mut master = SurfaceMesh::new();
+    for (t, x) in corners.iter().enumerate() {
+        slave.add_node(t as u64 + 1, *x).unwrap();
+        master.add_node(t as u64 + 1, *x).unwrap();
+    }
+    slave.add_face(&QUAD4, &[1, 2, 3, 4]).unwrap();
+    master.add_face(&TRI3, &[1, 4, 3]).unwrap();
+    master.add_face(&TRI3, &[1, 3, 2]).unwrap();
+    let interface = Interface::new(slave, master).unwrap();
+    let want = [1.0 / 6.0, 5.0 / 24.0, 5.0 / 24.0, 1.0 / 6.0];
+
+    let dual = assemble_coupling(&interface, &CouplingOptions::default().dual()).unwrap();
+    let d = dual.d.to_dense();
+    let standard = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    let sums = super::common::row_sums(&standard.d);
+    let mut worst_dual = 0.0f64;
+    let mut worst_sum = 0.0f64;
+    for j in 0..4 {
+        for k in 0..4 {
+            let w = if j == k { want[j] } else { 0.0 };
+            worst_dual = worst_dual.max((d[[j, k]] - w).abs());
+        }
+        worst_sum = worst_sum.max((sums[j] - want[j]).abs());
+    }
+    assert!(
+        worst_dual <= 1e-13 && worst_sum <= 1e-13,
+        "trapezoid Quad4 slave: dual D = {d:?} (largest error {worst_dual:e}); standard row sums \
+         {sums:?} (largest error {worst_sum:e}); want diag {want:?}"
+    );
+}

@@ -1,0 +1,313 @@
+//! Typed errors on bad input, each naming where it is: non-finite coordinates, degenerate and
+//! inverted faces, faces oriented against their neighbours, no overlap, mixed dimensions, and
+//! invalid options.
+
+use std::collections::HashMap;
+
+use mortar::core::error::FaceLocation;
+use mortar::elements::{LINE2, QUAD4, TRI3};
+use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
+use mortar::testing::{cell_kind, perturbed_square, CellKind, MAX_SQUARE_JITTER};
+use mortar::{assemble_coupling, CouplingOptions, Interface, MortarError, Side, SurfaceMesh};
+use nalgebra::Vector3;
+use proptest::prelude::*;
+
+use super::common::config;
+
+/// A copy of `mesh` with face `face` given the node tags `nodes` (same element and tag).
+fn with_face(mesh: &SurfaceMesh, face: usize, nodes: &[u64]) -> SurfaceMesh {
+    let mut out = SurfaceMesh::new();
+    for (t, x) in mesh.node_tags().iter().zip(mesh.coords()) {
+        out.add_node(*t, (*x).into()).unwrap();
+    }
+    for f in 0..mesh.face_count() {
+        let view = mesh.face(f);
+        let tags: Vec<u64> = if f == face {
+            nodes.to_vec()
+        } else {
+            view.nodes
+                .iter()
+                .map(|&n| mesh.node_tags()[n as usize])
+                .collect()
+        };
+        out.add_face_with_tag(view.tag, view.element, &tags)
+            .unwrap();
+    }
+    out
+}
+
+fn face_tags(mesh: &SurfaceMesh, face: usize) -> Vec<u64> {
+    mesh.face(face)
+        .nodes
+        .iter()
+        .map(|&n| mesh.node_tags()[n as usize])
+        .collect()
+}
+
+/// A master that covers the unit square.
+fn master() -> SurfaceMesh {
+    square_triangles(3, Diagonal::Anti, 0.0, true, 1).unwrap()
+}
+
+fn slave_face(tag: u64) -> FaceLocation {
+    FaceLocation {
+        side: Some(Side::Slave),
+        tag,
+    }
+}
+
+/// Faces all of whose nodes are shared by at least three faces: reversing one of them leaves
+/// its neighbours a majority at every one of its nodes.
+fn interior_faces(mesh: &SurfaceMesh) -> Vec<usize> {
+    let mut valence: HashMap<u32, usize> = HashMap::new();
+    for f in 0..mesh.face_count() {
+        for &n in mesh.face(f).nodes {
+            *valence.entry(n).or_insert(0) += 1;
+        }
+    }
+    (0..mesh.face_count())
+        .filter(|&f| mesh.face(f).nodes.iter().all(|n| valence[n] >= 3))
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    /// A NaN or infinite coordinate is refused when the node is added, and when a transform
+    /// produces it; the error names the node.
+    #[test]
+    fn non_finite_coordinates_are_refused(
+        mesh in (cell_kind(), 1..=4usize).prop_flat_map(|(k, n)| perturbed_square(k, n..=n, MAX_SQUARE_JITTER, false)),
+        node in any::<prop::sample::Index>(),
+        component in 0..3usize,
+        bad in prop::sample::select(vec![f64::NAN, f64::INFINITY, f64::NEG_INFINITY]),
+    ) {
+        let i = node.index(mesh.node_count());
+        let tag = mesh.node_tags()[i];
+        let mut x: [f64; 3] = mesh.coords()[i].into();
+        x[component] = bad;
+        let mut copy = SurfaceMesh::new();
+        let err = copy.add_node(tag, x).unwrap_err();
+        prop_assert!(
+            matches!(err, MortarError::NonFiniteCoordinate { tag: t, .. } if t == tag),
+            "{:?}", err
+        );
+        prop_assert!(err.to_string().contains(&format!("node {tag}")), "{err}");
+
+        let mut moved = mesh.clone();
+        let target = mesh.coords()[i];
+        let err = moved
+            .transform(|p| if p == target { Vector3::from(x) } else { p })
+            .unwrap_err();
+        prop_assert!(
+            matches!(err, MortarError::NonFiniteCoordinate { tag: t, .. } if t == tag),
+            "{:?}", err
+        );
+        prop_assert_eq!(moved.coords(), mesh.coords());
+    }
+
+    /// A triangle on three collinear nodes (along the bottom edge of the square).
+    #[test]
+    fn zero_area_triangle_is_degenerate(
+        mesh in (cell_kind(), 2..=5usize).prop_flat_map(|(k, n)| perturbed_square(k, n..=n, MAX_SQUARE_JITTER, false)),
+        start in 0..3usize,
+    ) {
+        let mut mesh = mesh;
+        // Bottom-edge nodes have tags 1..=n+1 and y = 0 exactly.
+        let t = [1u64, 2, 3];
+        let tri = [t[start], t[(start + 1) % 3], t[(start + 2) % 3]];
+        let tag = mesh.face_count() as u64 + 1;
+        mesh.add_face(&TRI3, &tri).unwrap();
+        let err = Interface::new(mesh, master()).unwrap_err();
+        prop_assert!(
+            matches!(err, MortarError::DegenerateFace { face, .. } if face == slave_face(tag)),
+            "{err:?}"
+        );
+        prop_assert!(err.to_string().contains(&format!("face {tag}")), "{err}");
+    }
+
+    /// A quad whose corners are taken in bow-tie order `[a, c, b, d]`: self-intersecting.
+    /// With one cell per side (corners fixed) the bow-tie is symmetric.
+    #[test]
+    fn bow_tie_quad_is_inverted(
+        mesh in (1..=4usize).prop_flat_map(|n| perturbed_square(CellKind::Quads, n..=n, MAX_SQUARE_JITTER, false)),
+        face in any::<prop::sample::Index>(),
+    ) {
+        let f = face.index(mesh.face_count());
+        let q = face_tags(&mesh, f);
+        let tag = mesh.face(f).tag;
+        let bad = with_face(&mesh, f, &[q[0], q[2], q[1], q[3]]);
+        let err = Interface::new(bad, master()).unwrap_err();
+        prop_assert!(
+            matches!(err, MortarError::InvertedFace { face, .. } if face == slave_face(tag)),
+            "{err:?}"
+        );
+        prop_assert!(err.to_string().contains(&format!("face {tag}")), "{err}");
+    }
+
+    /// One face numbered the other way round among neighbours that outnumber it at each of
+    /// its nodes: the error names that face.
+    #[test]
+    fn face_flipped_against_its_neighbours_is_inverted(
+        mesh in (cell_kind(), 3..=6usize).prop_flat_map(|(k, n)| perturbed_square(k, n..=n, MAX_SQUARE_JITTER, false)),
+        pick in any::<prop::sample::Index>(),
+        as_master in any::<bool>(),
+    ) {
+        let candidates = interior_faces(&mesh);
+        prop_assume!(!candidates.is_empty());
+        let f = candidates[pick.index(candidates.len())];
+        let mut nodes = face_tags(&mesh, f);
+        nodes.reverse();
+        let tag = mesh.face(f).tag;
+        let bad = with_face(&mesh, f, &nodes);
+        let (result, side) = if as_master {
+            let slave = square_quads(2, 0.0, true, 1).unwrap();
+            (Interface::new(slave, bad), Side::Master)
+        } else {
+            (Interface::new(bad, master()), Side::Slave)
+        };
+        let err = result.unwrap_err();
+        prop_assert!(
+            matches!(err, MortarError::InvertedFace { face, .. } if face == FaceLocation { side: Some(side), tag }),
+            "{err:?}"
+        );
+        prop_assert!(err.to_string().contains(&format!("{side} face {tag}")), "{err}");
+    }
+
+    /// Two squares side by side with a gap: far apart (no candidate pair) or close enough
+    /// that the inflated boxes meet (candidates, but no overlap).
+    #[test]
+    fn disjoint_squares_have_no_overlap(
+        gap in prop_oneof![1e-3..0.1f64, 2.0..10.0f64],
+        angle in 0.0..std::f64::consts::TAU,
+        kind in cell_kind(),
+        n in 1..=4usize,
+    ) {
+        let slave = square_quads(n, 0.0, false, 1).unwrap();
+        let mut master = if kind == CellKind::Quads {
+            square_quads(n + 1, 0.0, true, 1).unwrap()
+        } else {
+            square_triangles(n + 1, Diagonal::Main, 0.0, true, 1).unwrap()
+        };
+        // Shift the master by (1 + gap) along an axis-aligned direction chosen by `angle`.
+        let dir = match (angle / std::f64::consts::FRAC_PI_2) as usize {
+            0 => Vector3::x(),
+            1 => Vector3::y(),
+            2 => -Vector3::x(),
+            _ => -Vector3::y(),
+        };
+        master.transform(|x| x + dir * (1.0 + gap)).unwrap();
+        let interface = Interface::new(slave, master).unwrap();
+        let err = assemble_coupling(&interface, &CouplingOptions::default()).unwrap_err();
+        prop_assert!(matches!(err, MortarError::NoOverlap { .. }), "{err:?}");
+        let msg = err.to_string();
+        prop_assert!(msg.contains(&format!("{} slave faces", n * n)), "{msg}");
+    }
+}
+
+#[test]
+fn symmetric_bow_tie_quad_is_inverted_not_degenerate() {
+    // The unit square's corners in bow-tie order: the two lobes have equal area, so the
+    // Jacobian vanishes at the centre; the corners are not collinear.
+    let square = square_quads(1, 0.0, false, 1).unwrap();
+    let bad = with_face(&square, 0, &[1, 4, 2, 3]);
+    let err = Interface::new(bad, master()).unwrap_err();
+    assert!(
+        matches!(err, MortarError::InvertedFace { face, .. } if face == slave_face(1)),
+        "a symmetric bow-tie quad should be an InvertedFace, got {err:?}"
+    );
+}
+
+#[test]
+fn repeated_node_is_degenerate() {
+    let mut mesh = square_quads(1, 0.0, false, 1).unwrap();
+    mesh.add_face(&TRI3, &[1, 2, 2]).unwrap();
+    let err = Interface::new(mesh, master()).unwrap_err();
+    assert!(
+        matches!(err, MortarError::DegenerateFace { face, .. } if face == slave_face(2)),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("node 2"), "{err}");
+}
+
+#[test]
+fn lines_against_triangles_is_a_dimension_mismatch() {
+    let lines = line_mesh(3, false, 1).unwrap();
+    let err = Interface::new(lines.clone(), master()).unwrap_err();
+    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(err.to_string().contains("master face 1"), "{err}");
+
+    // One mesh with a line and a triangle.
+    let mut mixed = square_triangles(1, Diagonal::Main, 0.0, false, 1).unwrap();
+    mixed.add_face(&LINE2, &[1, 2]).unwrap();
+    let err = Interface::new(mixed, master()).unwrap_err();
+    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(err.to_string().contains("slave face 3"), "{err}");
+}
+
+#[test]
+fn line_off_the_xy_plane_is_a_dimension_mismatch() {
+    let mut lines = line_mesh(3, false, 10).unwrap();
+    let master = line_mesh(4, true, 1).unwrap();
+    lines
+        .transform(|x| {
+            if x.x == 1.0 {
+                x + Vector3::z() * 0.5
+            } else {
+                x
+            }
+        })
+        .unwrap();
+    let err = Interface::new(lines, master).unwrap_err();
+    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(err.to_string().contains("node 13"), "{err}");
+}
+
+#[test]
+fn mesh_building_errors_name_the_node_or_face() {
+    let mut mesh = SurfaceMesh::new();
+    mesh.add_node(7, [0.0; 3]).unwrap();
+    let err = mesh.add_node(7, [1.0, 0.0, 0.0]).unwrap_err();
+    assert_eq!(err, MortarError::DuplicateNode { tag: 7 });
+    let err = mesh.add_face(&TRI3, &[7, 8, 9]).unwrap_err();
+    assert!(
+        matches!(err, MortarError::UnknownNode { node: 8, .. }),
+        "{err:?}"
+    );
+    let err = mesh.add_face_with_tag(42, &QUAD4, &[7, 7, 7]).unwrap_err();
+    assert!(
+        matches!(
+            err,
+            MortarError::WrongNodeCount {
+                expected: 4,
+                got: 3,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
+    assert!(err.to_string().contains("face 42"), "{err}");
+    assert_eq!(mesh.face_count(), 0);
+}
+
+#[test]
+fn empty_surfaces_and_invalid_options_are_refused() {
+    let err = Interface::new(SurfaceMesh::new(), master()).unwrap_err();
+    assert_eq!(err, MortarError::EmptySurface { side: Side::Slave });
+    let err = Interface::new(master(), SurfaceMesh::new()).unwrap_err();
+    assert_eq!(err, MortarError::EmptySurface { side: Side::Master });
+
+    for d in [0, 21] {
+        assert!(matches!(
+            CouplingOptions::default().segment_based(Some(d)),
+            Err(MortarError::InvalidOption(_))
+        ));
+        assert!(matches!(
+            CouplingOptions::default().element_based(Some(d)),
+            Err(MortarError::InvalidOption(_))
+        ));
+    }
+    let interface = Interface::new(square_quads(2, 0.0, false, 1).unwrap(), master()).unwrap();
+    let err = assemble_coupling(&interface, &CouplingOptions::default().threads(0)).unwrap_err();
+    assert!(matches!(err, MortarError::InvalidOption(_)), "{err:?}");
+}

@@ -1,0 +1,53 @@
+//! D and M are the same bit for bit whatever the thread count. Work is split into chunks of
+//! 256 slave faces, so the slave meshes here have more than 256 faces (several chunks).
+
+use mortar::core::linalg::SparseMatrix;
+use mortar::testing::{covered_pair_3d_with, CellKind, MeshPair, PairConfig};
+use mortar::CouplingOptions;
+use proptest::prelude::*;
+
+use super::common::{config, couple};
+
+fn bits(a: &SparseMatrix) -> (Vec<u64>, Vec<usize>, Vec<usize>) {
+    (
+        a.data().iter().map(|v| v.to_bits()).collect(),
+        a.indices().to_vec(),
+        a.indptr().raw_storage().to_vec(),
+    )
+}
+
+/// Large covered pairs: 17 to 22 slave cells per side gives at least 289 slave faces.
+fn large_pair() -> impl Strategy<Value = MeshPair> {
+    covered_pair_3d_with(PairConfig {
+        slave_cells: 17..=22,
+        master_cells: 8..=20,
+        master_kinds: vec![CellKind::Triangles, CellKind::Mixed, CellKind::Quads],
+        ..PairConfig::default()
+    })
+}
+
+proptest! {
+    #![proptest_config(config(16))]
+
+    #[test]
+    fn one_and_several_threads_give_identical_bits(
+        pair in large_pair(),
+        which in 0..3usize,
+        threads in 2..=4usize,
+    ) {
+        prop_assert!(pair.slave.face_count() > 256);
+        let base = match which {
+            0 => CouplingOptions::default(),
+            1 => CouplingOptions::default().dual(),
+            _ => CouplingOptions::default().element_based(Some(6)).unwrap(),
+        };
+        let (_, serial) = couple(&pair, &base.clone().threads(1))?;
+        let (_, parallel) = couple(&pair, &base.threads(threads))?;
+        prop_assert_eq!(serial.stats.threads, 1);
+        prop_assert_eq!(parallel.stats.threads, threads);
+        prop_assert!(bits(&serial.d) == bits(&parallel.d), "D differs with {} threads", threads);
+        prop_assert!(bits(&serial.m) == bits(&parallel.m), "M differs with {} threads", threads);
+        prop_assert_eq!(serial.slave_nodes, parallel.slave_nodes);
+        prop_assert_eq!(serial.master_nodes, parallel.master_nodes);
+    }
+}
