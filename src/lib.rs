@@ -4,7 +4,8 @@
 //! simple contact by the mortar method, in 2D and 3D.
 //!
 //! This facade re-exports [`mortar_core`] (the operators D and M), [`mortar_elements`] and
-//! [`mortar_physics`], and adds mesh generators and file input/output.
+//! [`mortar_physics`], and adds mesh generators, file input/output (Gmsh, Matrix Market,
+//! JSON, VTU) and ready-made [`scenes`].
 //!
 //! ```
 //! use mortar::generate::{square_quads, square_triangles, Diagonal};
@@ -22,12 +23,13 @@
 
 pub mod generate;
 pub mod io;
+pub mod scenes;
 #[cfg(feature = "proptest-support")]
 pub mod testing;
 
 pub use mortar_core::{
     self as core, assemble_coupling, Coupling, CouplingOptions, CouplingStats, Interface,
-    MortarError, Side, SpatialDim, SurfaceMesh, Tolerances,
+    MortarError, Side, SpatialDim, SurfaceMesh, Tolerances, VolumeMesh,
 };
 pub use mortar_elements as elements;
 pub use mortar_physics as physics;

@@ -1,13 +1,23 @@
-//! Built-in meshes: structured surfaces for the default scene, tests and benchmarks.
+//! Built-in meshes: structured surfaces for the default scene, tests and benchmarks, and
+//! volume meshes of bodies for the physics.
 //!
-//! Every generator numbers nodes from `first_node_tag` and faces from 1, and orients faces so
-//! that the normal points along `normal` (for planes) or outward (for cylinders); `flip`
-//! reverses it, as the master side of a tied interface usually wants.
+//! Every surface generator numbers nodes from `first_node_tag` and faces from 1, and orients
+//! faces so that the normal points along `normal` (for planes) or outward (for cylinders);
+//! `flip` reverses it, as the master side of a tied interface usually wants.
+//!
+//! Volume generators ([`rectangle_mesh`], [`box_mesh`], and the O-grids [`ball_mesh`] and
+//! [`box_with_hole_mesh`] of a curved inclusion) number nodes from `first_node_tag` and cells
+//! from 1, all cells positively oriented; their boundary surfaces come from
+//! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
 
 mod cylinder;
+mod inclusion;
 mod line;
 mod plane;
+mod volume;
 
 pub use cylinder::cylinder_surface;
+pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
+pub use volume::{box_mesh, rectangle_mesh, CellShape};

@@ -7,6 +7,7 @@
 //! - [`write_msh41_ascii`], [`write_msh41_binary`], [`write_msh41`]: surface meshes as Gmsh 4.1.
 //! - [`matrix_market`]: D and M as Matrix Market `coordinate real general`, values round-trip.
 //! - [`CouplingSummary`]: the JSON summary of a run.
+//! - [`vtu`]: volume meshes and nodal fields as ASCII VTU files for ParaView.
 //! - [`write_outputs`] / [`write_coupling`]: all output files or none (temporary names, then
 //!   renames).
 //!
@@ -34,6 +35,7 @@ mod interface_arg;
 pub mod matrix_market;
 mod output;
 mod summary;
+pub mod vtu;
 
 pub use error::{IoError, Location};
 pub use gmsh::{

@@ -23,10 +23,15 @@
 //!   nodes, each by ascending node tag.
 //! - All coordinates are 3D; a 2D problem lives in the plane `z = 0` and uses line elements.
 //!
+//! Beside the interface, the core has what the physics of the bodies needs: volume elements
+//! ([`element::volume`]: trait, reference domains, [`element::volume::CellValues`]), volume
+//! quadrature, [`VolumeMesh`] with outward boundary extraction, and sparse LU and Cholesky
+//! factorisations with reusable symbolic analysis and a restarted GMRES ([`linalg`]).
+//!
 //! Elements come from `mortar-elements` (or your own types implementing
 //! [`element::SurfaceElement`]). With them:
 //!
-//! ```ignore
+//! ```text
 //! use mortar_core::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 //! let interface = Interface::new(slave_mesh, master_mesh)?;
 //! let coupling = assemble_coupling(&interface, &CouplingOptions::default().dual())?;
@@ -50,5 +55,5 @@ pub mod tolerances;
 pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats};
 pub use error::{MortarError, Result, Side};
 pub use interface::{Interface, SpatialDim};
-pub use mesh::SurfaceMesh;
+pub use mesh::{SurfaceMesh, VolumeMesh};
 pub use tolerances::Tolerances;

@@ -1,7 +1,8 @@
 //! # mortar-elements
 //!
 //! Concrete surface elements for the mortar toolkit: [`Line2`] (2D), [`Tri3`] and [`Quad4`]
-//! (3D), and an [`ElementRegistry`] that maps Gmsh element types to them.
+//! (3D), and an [`ElementRegistry`] that maps Gmsh element types to them; and, in
+//! [`volume`], the cells of the bodies: Tri3 and Quad4 (2D), Tet4 and Hex8 (3D).
 //!
 //! Reference domains: line `[-1, 1]`; triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`.
 //! Node order follows Gmsh.
@@ -57,6 +58,7 @@ mod line2;
 mod quad4;
 mod registry;
 mod tri3;
+pub mod volume;
 
 pub use line2::{Line2, LINE2};
 pub use quad4::{Quad4, QUAD4};

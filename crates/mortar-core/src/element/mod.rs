@@ -7,6 +7,7 @@
 
 mod reference;
 mod surface;
+pub mod volume;
 
 pub use reference::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};
 pub use surface::{ElementRef, SurfaceElement};

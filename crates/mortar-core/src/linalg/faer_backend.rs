@@ -1,33 +1,346 @@
-//! The bridge to faer's sparse direct solvers.
+//! The bridge to faer's sparse direct solvers: the one module of the toolkit that names faer.
+//!
+//! [`LuFactorization`] (general square matrices, partial pivoting) and
+//! [`CholeskyFactorization`] (symmetric positive definite) keep their symbolic analysis (fill
+//! reducing ordering, elimination tree, supernodes), so that a new matrix with the same
+//! sparsity pattern (a Newton step, a new time step size) is factorised numerically only, by
+//! [`refactor`](LuFactorization::refactor).
+//!
+//! Matrices are this toolkit's [`SparseMatrix`] (sprs, CSR or CSC); they are handed to faer
+//! without copying: the CSR arrays of `A` are the CSC arrays of `A^T`, so a CSR matrix is
+//! factorised as `A^T` and solved with the transposed factors.
 
-use faer::sparse::{SparseColMat, Triplet};
+use faer::linalg::solvers::SolveCore;
+use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::linalg::{LltError, LuError};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Side};
 
 use super::SparseMatrix;
 
-/// A failure of the faer backend (building the matrix, or factorising it).
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("sparse solver: {0}")]
-pub struct FaerError(pub String);
+/// Why a sparse factorisation or solve failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SolverError {
+    /// The matrix is not square, or a vector does not match its size.
+    #[error("dimension mismatch: {0}")]
+    DimensionMismatch(String),
+    /// The matrix is singular: no pivot could be found at `pivot`, or the solve produced
+    /// non-finite values (`pivot` is then `None`).
+    #[error("the matrix is singular{}", match .pivot { Some(p) => format!(" (no pivot at step {p})"), None => " (the solve produced non-finite values)".to_string() })]
+    Singular {
+        /// The elimination step without a pivot, when known.
+        pivot: Option<usize>,
+    },
+    /// The Cholesky factorisation met a non-positive pivot: the matrix is not symmetric
+    /// positive definite (a floating body, a missing Dirichlet condition, a wrong sign).
+    #[error("the matrix is not positive definite (non-positive pivot at step {pivot})")]
+    NotPositiveDefinite {
+        /// The elimination step (in the fill-reducing order).
+        pivot: usize,
+    },
+    /// [`refactor`](LuFactorization::refactor) was given a matrix whose sparsity pattern
+    /// differs from the one analysed.
+    #[error("the sparsity pattern differs from the analysed one: {0}")]
+    PatternMismatch(String),
+    /// An iterative solver did not reach its tolerance.
+    #[error("{method} did not converge: relative residual {residual:e} after {iterations} iterations (tolerance {tolerance:e})")]
+    NotConverged {
+        /// The method, e.g. `"GMRES(30)"`.
+        method: String,
+        /// Iterations made.
+        iterations: usize,
+        /// The final relative residual.
+        residual: f64,
+        /// The requested relative tolerance.
+        tolerance: f64,
+    },
+    /// Any other failure of the backend (out of memory, index overflow).
+    #[error("sparse solver backend: {0}")]
+    Backend(String),
+}
 
-/// Solves `a x = b` by faer's sparse LU factorisation.
-///
-/// # Errors
-/// [`FaerError`] if the matrix cannot be built or is singular, or the sizes disagree.
-pub fn solve_sparse_lu(a: &SparseMatrix, b: &[f64]) -> Result<Vec<f64>, FaerError> {
-    let (n, m) = a.shape();
-    if n != m || b.len() != n {
-        return Err(FaerError(format!(
-            "a {n}x{m} matrix cannot be solved against a vector of {}",
-            b.len()
+/// The former name of [`SolverError`].
+pub type FaerError = SolverError;
+
+/// The compressed arrays of a matrix as faer sees them (CSC: `A^T` for a CSR matrix).
+struct CscView<'a> {
+    n: usize,
+    col_ptr: std::borrow::Cow<'a, [usize]>,
+    row_idx: &'a [usize],
+    values: &'a [f64],
+}
+
+impl<'a> CscView<'a> {
+    fn of(a: &'a SparseMatrix) -> Result<Self, SolverError> {
+        let (n, m) = a.shape();
+        if n != m {
+            return Err(SolverError::DimensionMismatch(format!(
+                "a {n}x{m} matrix is not square"
+            )));
+        }
+        Ok(Self {
+            n,
+            col_ptr: a.proper_indptr(),
+            row_idx: a.indices(),
+            values: a.data(),
+        })
+    }
+
+    fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        // sprs guarantees sorted, in-range indices and a monotone pointer array.
+        SymbolicSparseColMatRef::new_checked(self.n, self.n, &self.col_ptr, None, self.row_idx)
+    }
+
+    fn matrix(&self) -> SparseColMatRef<'_, usize, f64> {
+        SparseColMatRef::new(self.symbolic(), self.values)
+    }
+}
+
+/// The sparsity pattern a factorisation was analysed for (CSR/CSC arrays and storage).
+#[derive(Debug, Clone, PartialEq)]
+struct Pattern {
+    n: usize,
+    csr: bool,
+    ptr: Vec<usize>,
+    idx: Vec<usize>,
+}
+
+impl Pattern {
+    fn of(a: &SparseMatrix) -> Self {
+        Self {
+            n: a.rows(),
+            csr: a.is_csr(),
+            ptr: a.proper_indptr().into_owned(),
+            idx: a.indices().to_vec(),
+        }
+    }
+
+    fn check(&self, a: &SparseMatrix) -> Result<(), SolverError> {
+        if a.rows() != self.n || a.cols() != self.n {
+            return Err(SolverError::PatternMismatch(format!(
+                "analysed {0}x{0}, got {1}x{2}",
+                self.n,
+                a.rows(),
+                a.cols()
+            )));
+        }
+        if a.is_csr() != self.csr {
+            return Err(SolverError::PatternMismatch(
+                "storage order (CSR/CSC) changed".into(),
+            ));
+        }
+        if a.proper_indptr()[..] != self.ptr[..] || a.indices() != &self.idx[..] {
+            return Err(SolverError::PatternMismatch(format!(
+                "{} stored entries, analysed {}",
+                a.nnz(),
+                self.idx.len()
+            )));
+        }
+        Ok(())
+    }
+}
+
+fn check_rhs(n: usize, len: usize) -> Result<(), SolverError> {
+    if n != len {
+        return Err(SolverError::DimensionMismatch(format!(
+            "a {n}x{n} matrix cannot be solved against a vector of {len}"
         )));
     }
-    let triplets: Vec<Triplet<usize, usize, f64>> =
-        a.iter().map(|(v, (r, c))| Triplet::new(r, c, *v)).collect();
-    let mat = SparseColMat::<usize, f64>::try_new_from_triplets(n, m, &triplets)
-        .map_err(|e| FaerError(format!("{e:?}")))?;
-    let lu = mat.sp_lu().map_err(|e| FaerError(format!("{e:?}")))?;
-    let mut x = faer::Mat::<f64>::from_fn(n, 1, |i, _| b[i]);
-    use faer::linalg::solvers::SolveCore;
-    lu.solve_in_place_with_conj(faer::Conj::No, x.as_mut());
-    Ok((0..n).map(|i| x[(i, 0)]).collect())
+    Ok(())
+}
+
+fn check_finite(x: &[f64]) -> Result<(), SolverError> {
+    if x.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(SolverError::Singular { pivot: None })
+    }
+}
+
+fn lu_error(e: LuError) -> SolverError {
+    match e {
+        LuError::SymbolicSingular { index } => SolverError::Singular { pivot: Some(index) },
+        LuError::Generic(e) => SolverError::Backend(format!("{e:?}")),
+    }
+}
+
+fn llt_error(e: LltError) -> SolverError {
+    match e {
+        LltError::Numeric(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot {
+            index,
+        }) => SolverError::NotPositiveDefinite { pivot: index },
+        LltError::Generic(e) => SolverError::Backend(format!("{e:?}")),
+    }
+}
+
+/// A sparse LU factorisation with partial pivoting (faer, supernodal or simplicial), for
+/// square non-singular matrices such as the saddle-point systems of mesh tying.
+///
+/// ```
+/// use mortar_core::linalg::{LuFactorization, Triplets};
+/// let mut t = Triplets::default();
+/// t.push(0, 0, 2.0);
+/// t.push(0, 1, 1.0);
+/// t.push(1, 0, 1.0); // a zero diagonal entry: pivoting handles it
+/// let a = t.to_csr(2, 2);
+/// let lu = LuFactorization::try_new(&a).unwrap();
+/// let x = lu.solve(&[4.0, 1.0]).unwrap();
+/// assert!((x[0] - 1.0).abs() < 1e-14 && (x[1] - 2.0).abs() < 1e-14);
+/// ```
+#[derive(Debug, Clone)]
+pub struct LuFactorization {
+    pattern: Pattern,
+    symbolic: SymbolicLu<usize>,
+    numeric: Lu<usize, f64>,
+}
+
+impl LuFactorization {
+    /// Analyses and factorises `a`.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`] for a non-square matrix, [`SolverError::Singular`]
+    /// for a structurally singular one, [`SolverError::Backend`] otherwise.
+    pub fn try_new(a: &SparseMatrix) -> Result<Self, SolverError> {
+        let view = CscView::of(a)?;
+        let symbolic = SymbolicLu::try_new(view.symbolic())
+            .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+        let numeric =
+            Lu::try_new_with_symbolic(symbolic.clone(), view.matrix()).map_err(lu_error)?;
+        Ok(Self {
+            pattern: Pattern::of(a),
+            symbolic,
+            numeric,
+        })
+    }
+
+    /// Factorises a new matrix with the same sparsity pattern, reusing the symbolic analysis.
+    ///
+    /// # Errors
+    /// [`SolverError::PatternMismatch`], and the errors of [`try_new`](Self::try_new); on
+    /// error the previous factors are kept.
+    pub fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        self.pattern.check(a)?;
+        let view = CscView::of(a)?;
+        self.numeric =
+            Lu::try_new_with_symbolic(self.symbolic.clone(), view.matrix()).map_err(lu_error)?;
+        Ok(())
+    }
+
+    /// The matrix size.
+    pub fn dim(&self) -> usize {
+        self.pattern.n
+    }
+
+    /// Overwrites `x` (the right-hand side) with the solution of `A x = b`.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`]; [`SolverError::Singular`] if the solution is not
+    /// finite (a numerically singular matrix).
+    pub fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        check_rhs(self.pattern.n, x.len())?;
+        let n = x.len();
+        let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
+        if self.pattern.csr {
+            self.numeric
+                .solve_transpose_in_place_with_conj(Conj::No, rhs);
+        } else {
+            self.numeric.solve_in_place_with_conj(Conj::No, rhs);
+        }
+        check_finite(x)
+    }
+
+    /// The solution of `A x = b`.
+    ///
+    /// # Errors
+    /// As [`solve_in_place`](Self::solve_in_place).
+    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>, SolverError> {
+        let mut x = b.to_vec();
+        self.solve_in_place(&mut x)?;
+        Ok(x)
+    }
+}
+
+/// A sparse Cholesky factorisation `A = L L^T` (faer) of a symmetric positive definite matrix.
+/// Only one triangle of `A` is read (for a CSR matrix the upper one, `col >= row`; for CSC the
+/// lower one); the caller guarantees the symmetry.
+#[derive(Debug, Clone)]
+pub struct CholeskyFactorization {
+    pattern: Pattern,
+    symbolic: SymbolicLlt<usize>,
+    numeric: Llt<usize, f64>,
+}
+
+impl CholeskyFactorization {
+    /// Analyses and factorises `a`.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`] for a non-square matrix,
+    /// [`SolverError::NotPositiveDefinite`], [`SolverError::Backend`].
+    pub fn try_new(a: &SparseMatrix) -> Result<Self, SolverError> {
+        let view = CscView::of(a)?;
+        let symbolic = SymbolicLlt::try_new(view.symbolic(), Side::Lower)
+            .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+        let numeric = Llt::try_new_with_symbolic(symbolic.clone(), view.matrix(), Side::Lower)
+            .map_err(llt_error)?;
+        Ok(Self {
+            pattern: Pattern::of(a),
+            symbolic,
+            numeric,
+        })
+    }
+
+    /// Factorises a new matrix with the same sparsity pattern, reusing the symbolic analysis.
+    ///
+    /// # Errors
+    /// [`SolverError::PatternMismatch`], and the errors of [`try_new`](Self::try_new); on
+    /// error the previous factors are kept.
+    pub fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        self.pattern.check(a)?;
+        let view = CscView::of(a)?;
+        self.numeric =
+            Llt::try_new_with_symbolic(self.symbolic.clone(), view.matrix(), Side::Lower)
+                .map_err(llt_error)?;
+        Ok(())
+    }
+
+    /// The matrix size.
+    pub fn dim(&self) -> usize {
+        self.pattern.n
+    }
+
+    /// Overwrites `x` (the right-hand side) with the solution of `A x = b`.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`]; [`SolverError::Singular`] if the solution is not
+    /// finite.
+    pub fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        check_rhs(self.pattern.n, x.len())?;
+        let n = x.len();
+        let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
+        // Symmetric: A = A^T, whichever storage the arrays came from.
+        self.numeric.solve_in_place_with_conj(Conj::No, rhs);
+        check_finite(x)
+    }
+
+    /// The solution of `A x = b`.
+    ///
+    /// # Errors
+    /// As [`solve_in_place`](Self::solve_in_place).
+    pub fn solve(&self, b: &[f64]) -> Result<Vec<f64>, SolverError> {
+        let mut x = b.to_vec();
+        self.solve_in_place(&mut x)?;
+        Ok(x)
+    }
+}
+
+/// Solves `a x = b` by faer's sparse LU factorisation (analysis, factorisation and solve in
+/// one call; keep a [`LuFactorization`] to solve again).
+///
+/// # Errors
+/// The errors of [`LuFactorization`].
+pub fn solve_sparse_lu(a: &SparseMatrix, b: &[f64]) -> Result<Vec<f64>, SolverError> {
+    let (n, _) = a.shape();
+    check_rhs(n, b.len())?;
+    LuFactorization::try_new(a)?.solve(b)
 }

@@ -1,10 +1,24 @@
 //! Sparse linear algebra: the matrix type of D and M (sprs CSR), deterministic triplet
-//! assembly, and the bridge to faer's sparse solvers. faer's API stays inside `faer_backend.rs`.
+//! assembly, sparse direct factorisations (faer's API stays inside `faer_backend.rs`) and a
+//! restarted GMRES.
+//!
+//! - [`LuFactorization`], [`CholeskyFactorization`]: factorise once, solve many times, and
+//!   [`refactor`](LuFactorization::refactor) a new matrix of the same pattern reusing the
+//!   symbolic analysis (Newton steps, new time step sizes).
+//! - [`gmres`]: right-preconditioned restarted GMRES(m) on any [`LinearOperator`] (an
+//!   assembled matrix or a matrix-free product), with any [`Preconditioner`] (the
+//!   factorisations above, or [`IdentityPreconditioner`]).
 
 mod faer_backend;
+mod gmres;
 mod triplets;
 
-pub use faer_backend::{solve_sparse_lu, FaerError};
+pub use faer_backend::{
+    solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization, SolverError,
+};
+pub use gmres::{
+    gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
+};
 pub use triplets::{CompressWorkspace, PartList, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.

@@ -1,0 +1,252 @@
+//! Tests of the sparse solvers: LU and Cholesky factorisations (solve, refactor with the
+//! symbolic analysis reused, typed errors) and restarted GMRES against the direct solve.
+
+use mortar_core::linalg::{
+    gmres, CholeskyFactorization, GmresOptions, IdentityPreconditioner, LinearOperator,
+    LuFactorization, SolverError, SparseMatrix, Triplets,
+};
+
+/// The 2D five-point Laplacian on an `n x n` grid plus a convection term `c` (non-symmetric
+/// for `c != 0`), scaled by `scale`.
+fn convection_diffusion(n: usize, c: f64, scale: f64) -> SparseMatrix {
+    let mut t = Triplets::default();
+    let id = |i: usize, j: usize| (i + n * j) as u32;
+    for j in 0..n {
+        for i in 0..n {
+            let r = id(i, j);
+            t.push(r, r, 4.0 * scale);
+            if i > 0 {
+                t.push(r, id(i - 1, j), (-1.0 - c) * scale);
+            }
+            if i + 1 < n {
+                t.push(r, id(i + 1, j), (-1.0 + c) * scale);
+            }
+            if j > 0 {
+                t.push(r, id(i, j - 1), -scale);
+            }
+            if j + 1 < n {
+                t.push(r, id(i, j + 1), -scale);
+            }
+        }
+    }
+    t.to_csr(n * n, n * n)
+}
+
+fn residual(a: &SparseMatrix, x: &[f64], b: &[f64]) -> f64 {
+    let mut ax = vec![0.0; b.len()];
+    a.apply(x, &mut ax);
+    let r: f64 = ax.iter().zip(b).map(|(p, q)| (p - q).powi(2)).sum();
+    let nb: f64 = b.iter().map(|v| v * v).sum();
+    (r / nb).sqrt()
+}
+
+fn rhs(n: usize) -> Vec<f64> {
+    (0..n).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect()
+}
+
+#[test]
+fn lu_solves_non_symmetric_systems_and_refactors() {
+    let a = convection_diffusion(12, 0.4, 1.0);
+    let b = rhs(a.rows());
+    let mut lu = LuFactorization::try_new(&a).unwrap();
+    assert_eq!(lu.dim(), 144);
+    let x = lu.solve(&b).unwrap();
+    assert!(residual(&a, &x, &b) < 1e-13);
+    // Same pattern, new values: the symbolic analysis is reused.
+    let a2 = convection_diffusion(12, -0.7, 3.0);
+    lu.refactor(&a2).unwrap();
+    let x2 = lu.solve(&b).unwrap();
+    assert!(residual(&a2, &x2, &b) < 1e-13);
+    // CSC storage of the same matrix gives the same solution.
+    let csc = a2.to_csc();
+    let x3 = LuFactorization::try_new(&csc).unwrap().solve(&b).unwrap();
+    for (p, q) in x2.iter().zip(&x3) {
+        assert!((p - q).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn lu_handles_a_zero_diagonal_block() {
+    // [[K, B^T], [B, 0]] with K = 2 I (3x3), B = [1 1 1].
+    let mut t = Triplets::default();
+    for i in 0..3 {
+        t.push(i, i, 2.0);
+        t.push(i, 3, 1.0);
+        t.push(3, i, 1.0);
+    }
+    let a = t.to_csr(4, 4);
+    let x = LuFactorization::try_new(&a)
+        .unwrap()
+        .solve(&[1.0, 2.0, 3.0, 0.0])
+        .unwrap();
+    // x_i = (f_i - lambda) / 2 with sum x = 0: lambda = 2.
+    assert!((x[3] - 2.0).abs() < 1e-14);
+    assert!((x[0] + 0.5).abs() < 1e-14 && x[1].abs() < 1e-14 && (x[2] - 0.5).abs() < 1e-14);
+}
+
+#[test]
+fn cholesky_solves_and_refactors_and_refuses_indefinite_matrices() {
+    let a = convection_diffusion(15, 0.0, 1.0);
+    let b = rhs(a.rows());
+    let mut llt = CholeskyFactorization::try_new(&a).unwrap();
+    let x = llt.solve(&b).unwrap();
+    assert!(residual(&a, &x, &b) < 1e-13);
+    let lu = LuFactorization::try_new(&a).unwrap().solve(&b).unwrap();
+    for (p, q) in x.iter().zip(&lu) {
+        assert!((p - q).abs() < 1e-12 * (1.0 + q.abs()));
+    }
+    let a2 = convection_diffusion(15, 0.0, 0.25);
+    llt.refactor(&a2).unwrap();
+    let x2 = llt.solve(&b).unwrap();
+    for (p, q) in x2.iter().zip(&x) {
+        assert!((p - 4.0 * q).abs() < 1e-11 * (1.0 + q.abs()));
+    }
+    let neg = convection_diffusion(15, 0.0, -1.0);
+    assert!(matches!(
+        llt.refactor(&neg),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
+    // The failed refactor kept the previous factors.
+    assert_eq!(llt.solve(&b).unwrap(), x2);
+    assert!(matches!(
+        CholeskyFactorization::try_new(&neg),
+        Err(SolverError::NotPositiveDefinite { .. })
+    ));
+}
+
+#[test]
+fn typed_errors() {
+    let a = convection_diffusion(4, 0.0, 1.0);
+    let mut lu = LuFactorization::try_new(&a).unwrap();
+    assert!(matches!(
+        lu.solve(&[1.0; 3]),
+        Err(SolverError::DimensionMismatch(_))
+    ));
+    // Another pattern: one more entry.
+    let mut t = Triplets::default();
+    for (v, (r, c)) in a.iter() {
+        t.push(r as u32, c as u32, *v);
+    }
+    t.push(5, 0, 0.0);
+    let b = t.to_csr(16, 16);
+    assert!(matches!(
+        lu.refactor(&b),
+        Err(SolverError::PatternMismatch(_))
+    ));
+    // Singular matrices: structurally (an empty column) and numerically.
+    let mut s = Triplets::default();
+    s.push(0, 0, 1.0);
+    s.push(1, 0, 1.0);
+    let s = s.to_csr(2, 2);
+    assert!(matches!(
+        LuFactorization::try_new(&s).and_then(|f| f.solve(&[1.0, 1.0])),
+        Err(SolverError::Singular { .. })
+    ));
+    let mut z = Triplets::default();
+    z.push(0, 0, 1.0);
+    z.push(0, 1, 1.0);
+    z.push(1, 0, 1.0);
+    z.push(1, 1, 1.0);
+    let z = z.to_csr(2, 2);
+    assert!(matches!(
+        LuFactorization::try_new(&z).and_then(|f| f.solve(&[1.0, 2.0])),
+        Err(SolverError::Singular { .. })
+    ));
+    let rect = Triplets::default().to_csr(2, 3);
+    assert!(matches!(
+        LuFactorization::try_new(&rect),
+        Err(SolverError::DimensionMismatch(_))
+    ));
+}
+
+#[test]
+fn gmres_matches_the_direct_solve() {
+    let a = convection_diffusion(20, 0.3, 1.0);
+    let b = rhs(a.rows());
+    let direct = LuFactorization::try_new(&a).unwrap().solve(&b).unwrap();
+    let mut x = vec![0.0; b.len()];
+    let opts = GmresOptions {
+        restart: 25,
+        max_iterations: 2000,
+        relative_tolerance: 1e-11,
+    };
+    let report = gmres(&a, &IdentityPreconditioner, &b, &mut x, &opts).unwrap();
+    assert!(report.relative_residual <= 1e-11, "{report:?}");
+    assert!(report.cycles > 1, "restarts happen: {report:?}");
+    for (p, q) in x.iter().zip(&direct) {
+        assert!((p - q).abs() < 1e-8 * (1.0 + q.abs()), "{p} vs {q}");
+    }
+}
+
+#[test]
+fn gmres_with_an_exact_preconditioner_converges_in_one_iteration() {
+    let a = convection_diffusion(20, 0.3, 1.0);
+    let b = rhs(a.rows());
+    let lu = LuFactorization::try_new(&a).unwrap();
+    let mut x = vec![0.0; b.len()];
+    let report = gmres(&a, &lu, &b, &mut x, &GmresOptions::default()).unwrap();
+    assert_eq!(report.iterations, 1, "{report:?}");
+    assert!(residual(&a, &x, &b) < 1e-12);
+    // A nearby matrix's factorisation as the preconditioner (as in Newton-Krylov).
+    let near = convection_diffusion(20, 0.35, 1.05);
+    let pre = LuFactorization::try_new(&near).unwrap();
+    let mut y = vec![0.0; b.len()];
+    let r = gmres(&a, &pre, &b, &mut y, &GmresOptions::default()).unwrap();
+    assert!(r.iterations < 15, "{r:?}");
+    // A matrix-free operator: the same product written as a closure-backed type.
+    struct Shifted<'a>(&'a SparseMatrix);
+    impl LinearOperator for Shifted<'_> {
+        fn dim(&self) -> usize {
+            self.0.rows()
+        }
+        fn apply(&self, x: &[f64], y: &mut [f64]) {
+            self.0.apply(x, y);
+            for (yi, xi) in y.iter_mut().zip(x) {
+                *yi += 0.5 * xi;
+            }
+        }
+    }
+    let mut z = vec![0.0; b.len()];
+    let r = gmres(&Shifted(&a), &lu, &b, &mut z, &GmresOptions::default()).unwrap();
+    assert!(r.relative_residual < 1e-10);
+}
+
+#[test]
+fn gmres_reports_non_convergence_and_sizes() {
+    let a = convection_diffusion(20, 0.3, 1.0);
+    let b = rhs(a.rows());
+    let mut x = vec![0.0; b.len()];
+    let opts = GmresOptions {
+        restart: 5,
+        max_iterations: 10,
+        relative_tolerance: 1e-12,
+    };
+    match gmres(&a, &IdentityPreconditioner, &b, &mut x, &opts) {
+        Err(SolverError::NotConverged {
+            iterations,
+            residual,
+            ..
+        }) => {
+            assert_eq!(iterations, 10);
+            assert!(residual > 1e-12 && residual < 1.0);
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut short = vec![0.0; 3];
+    assert!(matches!(
+        gmres(&a, &IdentityPreconditioner, &b, &mut short, &opts),
+        Err(SolverError::DimensionMismatch(_))
+    ));
+    // A zero right-hand side gives zero at once.
+    let mut w = vec![1.0; b.len()];
+    let r = gmres(
+        &a,
+        &IdentityPreconditioner,
+        &vec![0.0; b.len()],
+        &mut w,
+        &opts,
+    )
+    .unwrap();
+    assert_eq!(r.iterations, 0);
+    assert!(w.iter().all(|v| *v == 0.0));
+}

@@ -1,0 +1,33 @@
+//! Volume elements (the cells of the bodies): [`Tri3`] and [`Quad4`] for 2D bodies in the
+//! plane `z = 0`, [`Tet4`] and [`Hex8`] for 3D bodies, and a [`VolumeRegistry`] of them by
+//! Gmsh type and dimension.
+//!
+//! Reference domains: triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`; tetrahedron
+//! `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`; hexahedron `[-1, 1]^3`. Node order follows Gmsh, and
+//! each element's faces are listed with outward normals (see
+//! [`VolumeElement::faces`](mortar_core::element::volume::VolumeElement::faces)).
+//!
+//! The names repeat those of the surface elements of the crate root (a 2D body's triangle is
+//! a `volume::Tri3`, an interface triangle in 3D a [`crate::Tri3`]); the 2D cells reuse the
+//! surface elements' shape functions.
+//!
+//! ```
+//! use mortar_core::element::volume::VolumeElement;
+//! use mortar_elements::volume::HEX8;
+//! let mut n = [0.0; 8];
+//! HEX8.shape_values_into(&nalgebra::Vector3::new(0.2, -0.4, 0.9), &mut n);
+//! assert!((n.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+//! assert_eq!(HEX8.faces().len(), 6);
+//! ```
+
+mod hex8;
+mod quad4;
+mod registry;
+mod tet4;
+mod tri3;
+
+pub use hex8::{Hex8, HEX8};
+pub use quad4::{Quad4, QUAD4};
+pub use registry::VolumeRegistry;
+pub use tet4::{Tet4, TET4};
+pub use tri3::{Tri3, TRI3};

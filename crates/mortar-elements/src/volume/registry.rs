@@ -1,0 +1,53 @@
+use mortar_core::element::volume::VolumeElementRef;
+
+use super::{HEX8, QUAD4, TET4, TRI3};
+
+/// Maps Gmsh element types to volume elements, per reference dimension (Gmsh type 2 is a
+/// triangle cell in a 2D mesh and an interface face in a 3D one). Starts with the built-in
+/// cells; register your own with [`VolumeRegistry::register`].
+#[derive(Debug, Clone)]
+pub struct VolumeRegistry {
+    elements: Vec<VolumeElementRef>,
+}
+
+impl Default for VolumeRegistry {
+    fn default() -> Self {
+        Self {
+            elements: vec![&TRI3, &QUAD4, &TET4, &HEX8],
+        }
+    }
+}
+
+impl VolumeRegistry {
+    /// A registry of the built-in cells (Tri3, Quad4, Tet4, Hex8).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds (or replaces, for the same Gmsh type and dimension) an element.
+    pub fn register(&mut self, element: VolumeElementRef) {
+        if let Some(t) = element.gmsh_type() {
+            self.elements
+                .retain(|e| e.gmsh_type() != Some(t) || e.dim() != element.dim());
+        }
+        self.elements.push(element);
+    }
+
+    /// The element of a Gmsh type number in a mesh of reference dimension `dim`.
+    pub fn by_gmsh_type(&self, gmsh_type: u32, dim: usize) -> Option<VolumeElementRef> {
+        self.elements
+            .iter()
+            .copied()
+            .find(|e| e.gmsh_type() == Some(gmsh_type) && e.dim() == dim)
+    }
+
+    /// The element with a name.
+    pub fn by_name(&self, name: &str) -> Option<VolumeElementRef> {
+        self.elements.iter().copied().find(|e| e.name() == name)
+    }
+
+    /// All registered elements.
+    pub fn elements(&self) -> &[VolumeElementRef] {
+        &self.elements
+    }
+}

@@ -1,0 +1,70 @@
+//! The error type of the physics: every failure names the body, cell or node concerned.
+
+use mortar_core::element::volume::NonPositiveJacobian;
+use mortar_core::linalg::SolverError;
+use mortar_core::mesh::VolumeMeshError;
+use mortar_core::{MortarError, Side};
+
+use crate::tying::TyingError;
+
+/// Errors of the physics crate.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PhysicsError {
+    /// A volume mesh is invalid (see [`VolumeMeshError`]).
+    #[error(transparent)]
+    Mesh(#[from] VolumeMeshError),
+    /// The mortar core refused the interface or its options.
+    #[error(transparent)]
+    Mortar(#[from] MortarError),
+    /// A tying operator could not be built (a forced dual condensation with a non-diagonal D).
+    #[error(transparent)]
+    Tying(#[from] TyingError),
+    /// A factorisation or solve failed.
+    #[error(transparent)]
+    Solver(#[from] SolverError),
+    /// A cell's Jacobian determinant is not positive.
+    #[error("body {body:?}: cell {cell} is inverted or degenerate: {source}")]
+    InvertedCell {
+        /// The body.
+        body: String,
+        /// The cell tag.
+        cell: u64,
+        /// Where and how much.
+        source: NonPositiveJacobian,
+    },
+    /// Material data or options out of range (a non-positive conductivity, a zero time step).
+    #[error("body {body:?}: {what}")]
+    InvalidInput {
+        /// The body (or `"options"`).
+        body: String,
+        /// What is wrong.
+        what: String,
+    },
+    /// An interface surface names a node its body's mesh does not have.
+    #[error("the {side} interface surface refers to node {tag}, which the {side} body's mesh does not have")]
+    InterfaceNodeNotInBody {
+        /// The side.
+        side: Side,
+        /// The node tag.
+        tag: u64,
+    },
+    /// Slave interface nodes carry Dirichlet conditions and the options refuse them.
+    #[error("{count} slave interface node(s) carry Dirichlet conditions (first: node {tag}) and the tying options refuse them (SlaveDirichlet::Refuse); make that body the master side, or use SlaveDirichlet::Redistribute")]
+    DirichletOnSlave {
+        /// The first such node's tag.
+        tag: u64,
+        /// How many there are.
+        count: usize,
+    },
+    /// A vector has the wrong length.
+    #[error("{what}: expected length {expected}, got {got}")]
+    WrongLength {
+        /// Which vector.
+        what: String,
+        /// The expected length.
+        expected: usize,
+        /// The length given.
+        got: usize,
+    },
+}

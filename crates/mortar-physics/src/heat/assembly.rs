@@ -1,0 +1,236 @@
+use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
+use mortar_core::element::MAX_FACE_NODES;
+use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::quadrature::{
+    max_volume_degree, Quadrature, QuadratureRule, VolumeQuadratureRule,
+};
+use nalgebra::{Vector2, Vector3};
+use rayon::prelude::*;
+
+use super::body::HeatBody;
+use crate::error::PhysicsError;
+
+/// Cells per work chunk. Fixed, so that the summation order (and every bit of the result)
+/// does not depend on the thread count.
+pub(crate) const CELL_CHUNK: usize = 512;
+
+/// Assembly settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct HeatOptions {
+    /// The quadrature degree on the cells and Neumann faces; `None` uses `2 p + 1` for each
+    /// cell's (face's) shape functions of degree `p` (exact for the stiffness and capacity of
+    /// affine cells, and one more for the source).
+    pub quadrature_degree: Option<u32>,
+}
+
+impl HeatOptions {
+    /// The degree for shape functions of degree `p`.
+    pub(crate) fn degree(&self, p: u32) -> u32 {
+        self.quadrature_degree.unwrap_or(2 * p + 1)
+    }
+}
+
+/// The matrices of one body: `K[a][b] = int k grad N_a . grad N_b` and
+/// `C[a][b] = int rho c_p N_a N_b` (both symmetric; rows and columns follow the mesh's node
+/// indices).
+#[derive(Debug, Clone)]
+pub struct HeatMatrices {
+    /// The conductivity (stiffness) matrix K.
+    pub stiffness: SparseMatrix,
+    /// The capacity (mass) matrix C.
+    pub capacity: SparseMatrix,
+}
+
+impl HeatMatrices {
+    /// The backward Euler matrix `K + C / dt`, with the sparsity pattern of K (and C: they
+    /// share it), whatever `dt`, so that its factorisation can be reused.
+    pub fn backward_euler(&self, dt: f64) -> SparseMatrix {
+        let (k, c) = (&self.stiffness, &self.capacity);
+        if k.indptr() == c.indptr() && k.indices() == c.indices() && k.is_csr() && c.is_csr() {
+            let data = k
+                .data()
+                .iter()
+                .zip(c.data())
+                .map(|(a, b)| a + b / dt)
+                .collect();
+            SparseMatrix::new(
+                k.shape(),
+                k.proper_indptr().into_owned(),
+                k.indices().to_vec(),
+                data,
+            )
+        } else {
+            k + &c.map(|v| v / dt)
+        }
+    }
+}
+
+/// One chunk's triplets.
+#[derive(Default)]
+struct ChunkMatrices {
+    k: Triplets,
+    c: Triplets,
+}
+
+/// Assembles the stiffness K and capacity C of a body, in parallel over fixed chunks of cells
+/// merged in order (bit-for-bit the same for any thread count).
+///
+/// # Errors
+/// [`PhysicsError::InvalidInput`] for bad material data or a quadrature degree out of range,
+/// [`PhysicsError::InvertedCell`] for a cell with a non-positive Jacobian determinant (the
+/// first in cell order).
+pub fn assemble_heat_matrices(
+    body: &HeatBody,
+    options: &HeatOptions,
+) -> Result<HeatMatrices, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let (k, rho_cp) = (body.material.conductivity, body.material.capacity);
+    let cells = mesh.cell_count();
+    let chunks: Vec<Result<ChunkMatrices, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+        .into_par_iter()
+        .map(|ch| {
+            let mut out = ChunkMatrices::default();
+            let mut cv = CellValues::new();
+            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+            let mut ke = [[0.0; MAX_CELL_NODES]; MAX_CELL_NODES];
+            let mut ce = [[0.0; MAX_CELL_NODES]; MAX_CELL_NODES];
+            for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                let cell = mesh.cell(c);
+                let degree = options.degree(cell.element.shape_degree());
+                let rule = cell_rule(body, cell.element.domain(), degree)?;
+                let nn = mesh.cell_coords_into(c, &mut x);
+                cv.reinit(cell.element, rule, &x[..nn]).map_err(|source| {
+                    PhysicsError::InvertedCell {
+                        body: body.name.clone(),
+                        cell: cell.tag,
+                        source,
+                    }
+                })?;
+                for a in 0..nn {
+                    ke[a][..nn].fill(0.0);
+                    ce[a][..nn].fill(0.0);
+                }
+                for q in 0..cv.len() {
+                    let (g, n, w) = (cv.gradients(q), cv.shape(q), cv.jxw(q));
+                    for a in 0..nn {
+                        for b in 0..nn {
+                            ke[a][b] += k * g[a].dot(&g[b]) * w;
+                            ce[a][b] += rho_cp * n[a] * n[b] * w;
+                        }
+                    }
+                }
+                for (a, &na) in cell.nodes.iter().enumerate() {
+                    for (b, &nb) in cell.nodes.iter().enumerate() {
+                        out.k.push(na, nb, ke[a][b]);
+                        out.c.push(na, nb, ce[a][b]);
+                    }
+                }
+            }
+            Ok(out)
+        })
+        .collect();
+    let mut ks = Vec::with_capacity(chunks.len());
+    let mut cs = Vec::with_capacity(chunks.len());
+    for ch in chunks {
+        let ch = ch?;
+        ks.push(ch.k);
+        cs.push(ch.c);
+    }
+    let n = mesh.node_count();
+    Ok(HeatMatrices {
+        stiffness: Triplets::to_csr_from_parts(ks, n, n),
+        capacity: Triplets::to_csr_from_parts(cs, n, n),
+    })
+}
+
+/// Assembles the load vector of a body at time `t`: the source, `int Q(x, t) N_a`, plus the
+/// Neumann fluxes, `int_faces q(x, t) N_a`. Parallel over fixed chunks of cells, summed in
+/// order (bit-for-bit the same for any thread count).
+///
+/// # Errors
+/// As [`assemble_heat_matrices`].
+pub fn assemble_heat_load(
+    body: &HeatBody,
+    t: f64,
+    options: &HeatOptions,
+) -> Result<Vec<f64>, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let mut f = vec![0.0; mesh.node_count()];
+    if let Some(source) = &body.source {
+        let cells = mesh.cell_count();
+        let chunks: Vec<Result<Vec<(u32, f64)>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+            .into_par_iter()
+            .map(|ch| {
+                let mut out = Vec::new();
+                let mut cv = CellValues::new();
+                let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+                let mut fe = [0.0; MAX_CELL_NODES];
+                for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                    let cell = mesh.cell(c);
+                    let degree = options.degree(cell.element.shape_degree());
+                    let rule = cell_rule(body, cell.element.domain(), degree)?;
+                    let nn = mesh.cell_coords_into(c, &mut x);
+                    cv.reinit(cell.element, rule, &x[..nn]).map_err(|source| {
+                        PhysicsError::InvertedCell {
+                            body: body.name.clone(),
+                            cell: cell.tag,
+                            source,
+                        }
+                    })?;
+                    fe[..nn].fill(0.0);
+                    for q in 0..cv.len() {
+                        let s = source(&cv.point(q), t) * cv.jxw(q);
+                        for (fa, na) in fe.iter_mut().zip(cv.shape(q)) {
+                            *fa += s * na;
+                        }
+                    }
+                    out.extend(cell.nodes.iter().copied().zip(fe[..nn].iter().copied()));
+                }
+                Ok(out)
+            })
+            .collect();
+        for ch in chunks {
+            for (n, v) in ch? {
+                f[n as usize] += v;
+            }
+        }
+    }
+    let mut nvals = [0.0; MAX_FACE_NODES];
+    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+    for cond in &body.neumann {
+        for face in &cond.faces {
+            let el = face.element;
+            let rule = QuadratureRule::cached(el.domain(), options.degree(el.shape_degree()))?;
+            let k = face.nodes.len();
+            for (xi, &n) in x.iter_mut().zip(&face.nodes) {
+                *xi = mesh.coords()[n as usize];
+            }
+            for (p, w) in rule.points().iter().zip(rule.weights()) {
+                let p: &Vector2<f64> = p;
+                el.shape_values_into(p, &mut nvals[..k]);
+                let xp = el.map(&x[..k], p);
+                let s = (cond.flux)(&xp, t) * w * el.jacobian_det(&x[..k], p);
+                for (&n, na) in face.nodes.iter().zip(&nvals[..k]) {
+                    f[n as usize] += s * na;
+                }
+            }
+        }
+    }
+    Ok(f)
+}
+
+/// The cached rule of a cell's domain, or an error naming the body.
+pub(crate) fn cell_rule(
+    body: &HeatBody,
+    domain: mortar_core::element::volume::VolumeDomain,
+    degree: u32,
+) -> Result<&'static VolumeQuadratureRule, PhysicsError> {
+    VolumeQuadratureRule::cached(domain, degree).map_err(|_| {
+        body.invalid(format!(
+            "no {domain:?} quadrature of degree {degree} (at most {})",
+            max_volume_degree(domain)
+        ))
+    })
+}

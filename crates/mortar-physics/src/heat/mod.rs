@@ -1,0 +1,29 @@
+//! Heat conduction: `rho c_p T_t - div(k grad T) = Q` on 2D (Tri3, Quad4 in the plane
+//! `z = 0`) and 3D (Tet4, Hex8) volume meshes.
+//!
+//! - [`HeatBody`]: mesh, [`HeatMaterial`], source, Dirichlet and Neumann data (fields of
+//!   space and time).
+//! - [`assemble_heat_matrices`] (stiffness K, capacity C) and [`assemble_heat_load`] (F):
+//!   sparse, in parallel over fixed chunks of cells merged in order, so the result is the
+//!   same bit for bit whatever the thread count.
+//! - [`TiedHeat`]: two bodies tied along a non-conforming interface, steady
+//!   ([`TiedHeat::solve_steady`]) or transient by backward Euler ([`BackwardEuler`]); the tied
+//!   system is a saddle point (LU) or, with dual multipliers on a fully covered interface,
+//!   condensed to an SPD system (Cholesky), as the [`FormulationReport`](crate::tied::FormulationReport)
+//!   of the solution says.
+//! - [`error_norms`]: L2 and H1-seminorm errors against an exact solution, by quadrature.
+//!
+//! Weak form per body: `(rho c_p T_t, v) + (k grad T, grad v) + <lambda, v>_Gamma =
+//! (Q, v) + <q, v>_Gamma_N` on the slave body (`- <lambda, v>` on the master body), where
+//! `lambda` is the heat flux leaving the slave body and `q = k dT/dn` the heat flux entering
+//! through the Neumann boundary.
+
+mod assembly;
+mod body;
+mod norms;
+mod tied;
+
+pub use assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
+pub use body::{DirichletCondition, Field, HeatBody, HeatMaterial, NeumannCondition};
+pub use norms::{error_norms, ErrorNorms};
+pub use tied::{BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution};

@@ -1,0 +1,324 @@
+use std::time::Instant;
+
+use mortar_core::mesh::SurfaceMesh;
+use mortar_core::CouplingOptions;
+
+use super::assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
+use super::body::HeatBody;
+use crate::error::PhysicsError;
+use crate::tied::{FormulationReport, Tie, TiedOptions, TiedSystem};
+
+/// Wall-clock seconds of the phases of a tied heat solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct HeatSeconds {
+    /// Assembly of the body matrices (once per problem).
+    pub assembly: f64,
+    /// The mortar coupling D, M (once per problem).
+    pub coupling: f64,
+    /// Assembly of the loads and Dirichlet values (per solve or step).
+    pub loads: f64,
+    /// Building the tied system matrix.
+    pub system: f64,
+    /// The sparse factorisation.
+    pub factorisation: f64,
+    /// The triangular solves and the recovery of the slave values and multipliers.
+    pub solve: f64,
+}
+
+impl HeatSeconds {
+    /// The time of the linear algebra alone: system, factorisation and solve.
+    pub fn linear_algebra(&self) -> f64 {
+        self.system + self.factorisation + self.solve
+    }
+}
+
+/// The temperatures of the two bodies and the interface heat flux.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TiedHeatSolution {
+    /// Nodal temperatures of the slave body and the master body (by mesh node index).
+    pub temperatures: [Vec<f64>; 2],
+    /// The heat flux leaving the slave body at each slave interface node (rows of D: ascending
+    /// node tag), the multiplier `lambda`; `NaN` at Dirichlet slave nodes.
+    pub flux: Vec<f64>,
+    /// Which formulation was solved, and why.
+    pub formulation: FormulationReport,
+    /// Timings.
+    pub seconds: HeatSeconds,
+}
+
+/// Heat conduction in two bodies tied along a non-conforming interface by mortar:
+/// `rho c_p T_t - div(k grad T) = Q` in each body, `T_s = T_m` weakly on the interface (the
+/// multiplier is the heat flux leaving the slave body), Dirichlet and Neumann data on the
+/// outer boundaries.
+///
+/// The body matrices and the coupling are built once by [`new`](TiedHeat::new);
+/// [`solve_steady`](TiedHeat::solve_steady) and [`backward_euler`](TiedHeat::backward_euler)
+/// build and factorise the tied system of their formulation (see [`TiedSystem`]).
+#[derive(Debug, Clone)]
+pub struct TiedHeat {
+    bodies: [HeatBody; 2],
+    tie: Tie,
+    matrices: [HeatMatrices; 2],
+    options: HeatOptions,
+    dirichlet: [(Vec<u32>, Vec<usize>); 2],
+    seconds: HeatSeconds,
+}
+
+impl TiedHeat {
+    /// Assembles both bodies and couples them along `slave_surface` (faces of the slave
+    /// body's boundary) and `master_surface` (of the master body's), whose node tags are the
+    /// bodies' node tags (as [`boundary_surface`](mortar_core::VolumeMesh::boundary_surface)
+    /// gives them).
+    ///
+    /// # Errors
+    /// The errors of the assembly ([`PhysicsError::InvalidInput`],
+    /// [`PhysicsError::InvertedCell`]) and of [`Tie::new`].
+    pub fn new(
+        slave: HeatBody,
+        master: HeatBody,
+        slave_surface: SurfaceMesh,
+        master_surface: SurfaceMesh,
+        coupling: &CouplingOptions,
+        options: &HeatOptions,
+    ) -> Result<Self, PhysicsError> {
+        let t0 = Instant::now();
+        let matrices = [
+            assemble_heat_matrices(&slave, options)?,
+            assemble_heat_matrices(&master, options)?,
+        ];
+        let t1 = Instant::now();
+        let tie = Tie::new(
+            &slave.mesh,
+            &master.mesh,
+            slave_surface,
+            master_surface,
+            coupling,
+        )?;
+        let seconds = HeatSeconds {
+            assembly: (t1 - t0).as_secs_f64(),
+            coupling: t1.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        let dirichlet = [slave.dirichlet_nodes(), master.dirichlet_nodes()];
+        Ok(Self {
+            bodies: [slave, master],
+            tie,
+            matrices,
+            options: *options,
+            dirichlet,
+            seconds,
+        })
+    }
+
+    /// The slave and master bodies.
+    pub fn bodies(&self) -> &[HeatBody; 2] {
+        &self.bodies
+    }
+
+    /// The interface and its coupling.
+    pub fn tie(&self) -> &Tie {
+        &self.tie
+    }
+
+    /// The bodies' stiffness and capacity matrices.
+    pub fn matrices(&self) -> &[HeatMatrices; 2] {
+        &self.matrices
+    }
+
+    /// The tied system of the matrices `[A_slave, A_master]`, with this problem's Dirichlet
+    /// nodes.
+    ///
+    /// # Errors
+    /// See [`TiedSystem::new`].
+    pub fn system(
+        &self,
+        matrices: [&mortar_core::linalg::SparseMatrix; 2],
+        tied: &TiedOptions,
+    ) -> Result<TiedSystem, PhysicsError> {
+        TiedSystem::new(
+            matrices,
+            &self.tie,
+            [&self.dirichlet[0].0, &self.dirichlet[1].0],
+            tied,
+        )
+    }
+
+    /// The steady solution with sources and boundary data taken at time `t`.
+    ///
+    /// # Errors
+    /// The errors of [`TiedSystem::new`] and [`TiedSystem::solve`].
+    pub fn solve_steady(
+        &self,
+        tied: &TiedOptions,
+        t: f64,
+    ) -> Result<TiedHeatSolution, PhysicsError> {
+        let system = self.system(
+            [&self.matrices[0].stiffness, &self.matrices[1].stiffness],
+            tied,
+        )?;
+        let (loads, g, seconds_loads) = self.loads(t)?;
+        let fields = system.solve([&loads[0], &loads[1]], [&g[0], &g[1]])?;
+        Ok(self.solution(&system, fields, seconds_loads))
+    }
+
+    /// A backward Euler integrator from the temperatures `initial = [slave, master]` (by mesh
+    /// node index) at time `t0`, with time step `dt`.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for a non-positive time step,
+    /// [`PhysicsError::WrongLength`] for initial fields of the wrong size, and the errors of
+    /// [`TiedSystem::new`].
+    pub fn backward_euler(
+        &self,
+        tied: &TiedOptions,
+        initial: [Vec<f64>; 2],
+        t0: f64,
+        dt: f64,
+    ) -> Result<BackwardEuler<'_>, PhysicsError> {
+        check_dt(dt)?;
+        for (b, field) in initial.iter().enumerate() {
+            if field.len() != self.bodies[b].mesh.node_count() {
+                return Err(PhysicsError::WrongLength {
+                    what: format!("initial temperatures of body {:?}", self.bodies[b].name),
+                    expected: self.bodies[b].mesh.node_count(),
+                    got: field.len(),
+                });
+            }
+        }
+        let a = [
+            self.matrices[0].backward_euler(dt),
+            self.matrices[1].backward_euler(dt),
+        ];
+        let system = self.system([&a[0], &a[1]], tied)?;
+        let solution = TiedHeatSolution {
+            temperatures: initial,
+            flux: vec![f64::NAN; self.tie.slave_nodes().len()],
+            formulation: system.report().clone(),
+            seconds: HeatSeconds {
+                system: system.seconds().build,
+                factorisation: system.seconds().factorisation,
+                ..self.seconds
+            },
+        };
+        Ok(BackwardEuler {
+            problem: self,
+            system,
+            dt,
+            time: t0,
+            solution,
+        })
+    }
+
+    /// Loads and Dirichlet values at time `t`, and the seconds they took.
+    #[allow(clippy::type_complexity)]
+    fn loads(&self, t: f64) -> Result<([Vec<f64>; 2], [Vec<f64>; 2], f64), PhysicsError> {
+        let t0 = Instant::now();
+        let loads = [
+            assemble_heat_load(&self.bodies[0], t, &self.options)?,
+            assemble_heat_load(&self.bodies[1], t, &self.options)?,
+        ];
+        let g = [0, 1].map(|b| {
+            let (nodes, conds) = &self.dirichlet[b];
+            self.bodies[b].dirichlet_values(nodes, conds, t)
+        });
+        Ok((loads, g, t0.elapsed().as_secs_f64()))
+    }
+
+    fn solution(
+        &self,
+        system: &TiedSystem,
+        fields: crate::tied::TiedFields,
+        loads: f64,
+    ) -> TiedHeatSolution {
+        let [slave, master] = fields.fields;
+        TiedHeatSolution {
+            temperatures: [slave, master],
+            flux: fields.multipliers,
+            formulation: system.report().clone(),
+            seconds: HeatSeconds {
+                loads,
+                system: system.seconds().build,
+                factorisation: system.seconds().factorisation,
+                solve: fields.seconds,
+                ..self.seconds
+            },
+        }
+    }
+}
+
+fn check_dt(dt: f64) -> Result<(), PhysicsError> {
+    if dt > 0.0 && dt.is_finite() {
+        Ok(())
+    } else {
+        Err(PhysicsError::InvalidInput {
+            body: "options".into(),
+            what: format!("time step {dt} is not positive and finite"),
+        })
+    }
+}
+
+/// Backward Euler time stepping of a [`TiedHeat`] problem:
+/// `(K + C / dt) T^{n+1} = F(t^{n+1}) + (C / dt) T^n`, tied by mortar, with Dirichlet data at
+/// `t^{n+1}`. The system is factorised once per time step size;
+/// [`set_time_step`](BackwardEuler::set_time_step) refactorises with the symbolic analysis
+/// reused.
+#[derive(Debug)]
+pub struct BackwardEuler<'a> {
+    problem: &'a TiedHeat,
+    system: TiedSystem,
+    dt: f64,
+    time: f64,
+    solution: TiedHeatSolution,
+}
+
+impl BackwardEuler<'_> {
+    /// Advances one step.
+    ///
+    /// # Errors
+    /// The errors of the load assembly and of [`TiedSystem::solve`].
+    pub fn step(&mut self) -> Result<&TiedHeatSolution, PhysicsError> {
+        let t = self.time + self.dt;
+        let (mut loads, g, seconds_loads) = self.problem.loads(t)?;
+        for (b, load) in loads.iter_mut().enumerate() {
+            let c = &self.problem.matrices[b].capacity;
+            let old = &self.solution.temperatures[b];
+            for (r, row) in c.outer_iterator().enumerate() {
+                load[r] += row.iter().map(|(k, v)| v * old[k]).sum::<f64>() / self.dt;
+            }
+        }
+        let fields = self.system.solve([&loads[0], &loads[1]], [&g[0], &g[1]])?;
+        self.solution = self.problem.solution(&self.system, fields, seconds_loads);
+        self.time = t;
+        Ok(&self.solution)
+    }
+
+    /// Changes the time step, refactorising `K + C / dt` (symbolic analysis reused).
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for a non-positive step, and the errors of
+    /// [`TiedSystem::refactor`].
+    pub fn set_time_step(&mut self, dt: f64) -> Result<(), PhysicsError> {
+        check_dt(dt)?;
+        let m = &self.problem.matrices;
+        let a = [m[0].backward_euler(dt), m[1].backward_euler(dt)];
+        self.system.refactor([&a[0], &a[1]])?;
+        self.dt = dt;
+        Ok(())
+    }
+
+    /// The current time.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The time step.
+    pub fn time_step(&self) -> f64 {
+        self.dt
+    }
+
+    /// The current temperatures and interface flux (the initial temperatures and `NaN` fluxes
+    /// before the first step).
+    pub fn solution(&self) -> &TiedHeatSolution {
+        &self.solution
+    }
+}

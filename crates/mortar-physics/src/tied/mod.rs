@@ -1,0 +1,19 @@
+//! Two bodies tied by mortar: the interface and its coupling ([`Tie`]), and the tied linear
+//! system ([`TiedSystem`]) solved either as a saddle point (standard or dual multipliers,
+//! sparse LU) or, when D is diagonal, condensed to a symmetric positive definite system
+//! (sparse Cholesky). The choice is automatic by default and reported
+//! ([`FormulationReport`]).
+//!
+//! Dirichlet conditions on slave interface nodes (where the interface meets a Dirichlet
+//! boundary) conflict with the condensation; see [`SlaveDirichlet`] for how they are handled
+//! (or refused).
+
+mod formulation;
+mod system;
+mod tie;
+
+pub use formulation::{
+    Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
+};
+pub use system::{SystemSeconds, TiedFields, TiedSystem};
+pub use tie::Tie;

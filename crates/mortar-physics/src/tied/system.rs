@@ -1,0 +1,684 @@
+use std::time::Instant;
+
+use mortar_core::linalg::{
+    CholeskyFactorization, LuFactorization, SolverError, SparseMatrix, Triplets,
+};
+
+use super::formulation::{
+    Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
+};
+use super::tie::Tie;
+use crate::error::PhysicsError;
+use crate::tying::TyingError;
+
+/// Marks "none" in index maps.
+const NONE: u32 = u32::MAX;
+
+/// The two bodies' fields and the interface multipliers of a tied solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TiedFields {
+    /// The slave body's and the master body's nodal values (by mesh node index).
+    pub fields: [Vec<f64>; 2],
+    /// The multiplier of each row of D (slave interface node, coupling row order): for heat
+    /// conduction the heat flux leaving the slave body. `NaN` for a Dirichlet slave node,
+    /// whose multiplier was removed.
+    pub multipliers: Vec<f64>,
+    /// Seconds spent in this solve (right-hand side, triangular solves, recovery).
+    pub seconds: f64,
+}
+
+/// Seconds spent building and factorising a [`TiedSystem`].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SystemSeconds {
+    /// Building the constraint rows and the system matrix.
+    pub build: f64,
+    /// The sparse factorisation (symbolic and numeric, or numeric only after a refactor).
+    pub factorisation: f64,
+}
+
+/// The factorisation of the chosen formulation.
+#[derive(Debug, Clone)]
+enum Factor {
+    Lu(Box<LuFactorization>),
+    Cholesky(CholeskyFactorization),
+}
+
+/// The linear system of two bodies tied by mortar: per-body matrices `A_1`, `A_2`
+/// (symmetric positive semi-definite each, e.g. heat conduction stiffness, plus capacity over
+/// the time step), the tying constraint `D T_s - M T_m = 0`, and Dirichlet conditions,
+/// factorised once and solved for any right-hand side and Dirichlet values.
+///
+/// Unknowns are numbered per body (the slave body's nodes, then the master body's), one per
+/// node. Rows of the constraint are the slave interface nodes, after the treatment of
+/// Dirichlet slave nodes of [`SlaveDirichlet`].
+///
+/// - [`Formulation::SaddlePoint`]: `[[A_ff, B_f^T], [B_f, 0]] [T_f; lambda] =
+///   [b_f - A_fd g; -B_d g]` (f free, d Dirichlet), by sparse LU.
+/// - [`Formulation::DualCondensed`]: with D diagonal on the slave nodes that carry a row, each
+///   such node's value is an affine combination of the others,
+///   `T_s = D_ss^-1 (M T_m - D_sd g)`, i.e. `T = Q T_r`; the system `Q^T A Q` in the remaining
+///   free unknowns is symmetric positive definite and solved by sparse Cholesky. The
+///   multipliers follow from the slave rows: `lambda_j = (b - A T)_j / D_jj`.
+///
+/// Both give the same solution up to round-off.
+#[derive(Debug, Clone)]
+pub struct TiedSystem {
+    layout: Layout,
+    /// The global block-diagonal matrix.
+    a: SparseMatrix,
+    /// The system's coupling to the Dirichlet values (system rows x Dirichlet unknowns).
+    a_fd: SparseMatrix,
+    factor: Factor,
+    report: FormulationReport,
+    seconds: SystemSeconds,
+}
+
+/// How the global unknowns map to the factorised system.
+#[derive(Debug, Clone)]
+struct Layout {
+    formulation: Formulation,
+    n: [usize; 2],
+    /// Dirichlet unknowns per body.
+    nd: [usize; 2],
+    /// Dirichlet unknowns (global index), slave body's list then master body's.
+    dirichlet: Vec<u32>,
+    /// Global unknown -> position in `dirichlet`, or NONE.
+    dirichlet_pos: Vec<u32>,
+    /// Constraint rows over the global unknowns (after the Dirichlet slave treatment).
+    rows: SparseMatrix,
+    /// For each constraint row, its coupling row and its own slave unknown.
+    row_origin: Vec<u32>,
+    row_own: Vec<u32>,
+    coupling_rows: usize,
+    /// Global unknown -> index among the system's unknowns, or NONE.
+    free: Vec<u32>,
+    nfree: usize,
+    /// Expansion `T_g = sum w T_r` of every global unknown (identity for the retained ones).
+    exp_ptr: Vec<usize>,
+    exp_dof: Vec<u32>,
+    exp_w: Vec<f64>,
+}
+
+impl TiedSystem {
+    /// Builds and factorises the tied system of `matrices = [A_slave, A_master]` (each square,
+    /// of its body's node count), with Dirichlet conditions on the node indices
+    /// `dirichlet = [slave list, master list]` (each without repeats).
+    ///
+    /// # Errors
+    /// [`PhysicsError::WrongLength`] for mismatched sizes, [`PhysicsError::InvalidInput`] for a
+    /// repeated or out-of-range Dirichlet node, [`PhysicsError::DirichletOnSlave`] (with
+    /// [`SlaveDirichlet::Refuse`]), [`PhysicsError::Tying`] when the condensation is forced
+    /// and D is not diagonal, [`PhysicsError::Solver`] when the factorisation fails (a body
+    /// without Dirichlet condition that the interface does not hold, say).
+    pub fn new(
+        matrices: [&SparseMatrix; 2],
+        tie: &Tie,
+        dirichlet: [&[u32]; 2],
+        options: &TiedOptions,
+    ) -> Result<Self, PhysicsError> {
+        let t0 = Instant::now();
+        let n = [matrices[0].rows(), matrices[1].rows()];
+        for (b, m) in matrices.iter().enumerate() {
+            if m.cols() != n[b] {
+                return Err(PhysicsError::WrongLength {
+                    what: format!("columns of body {b}'s matrix"),
+                    expected: n[b],
+                    got: m.cols(),
+                });
+            }
+        }
+        let ndof = n[0] + n[1];
+        let mut dirichlet_pos = vec![NONE; ndof];
+        let mut dlist = Vec::with_capacity(dirichlet[0].len() + dirichlet[1].len());
+        for (b, list) in dirichlet.iter().enumerate() {
+            let offset = if b == 0 { 0 } else { n[0] };
+            for &node in *list {
+                if node as usize >= n[b] {
+                    return Err(PhysicsError::InvalidInput {
+                        body: format!("body {b}"),
+                        what: format!("Dirichlet node index {node} out of range ({})", n[b]),
+                    });
+                }
+                let g = offset + node as usize;
+                if dirichlet_pos[g] != NONE {
+                    return Err(PhysicsError::InvalidInput {
+                        body: format!("body {b}"),
+                        what: format!("Dirichlet node index {node} listed twice"),
+                    });
+                }
+                dirichlet_pos[g] = dlist.len() as u32;
+                dlist.push(g as u32);
+            }
+        }
+        for (r, &s) in tie.slave_nodes().iter().enumerate() {
+            if s as usize >= n[0] {
+                return Err(PhysicsError::WrongLength {
+                    what: format!("slave body matrix (interface row {r} is node {s})"),
+                    expected: s as usize + 1,
+                    got: n[0],
+                });
+            }
+        }
+        if let Some(&m) = tie.master_nodes().iter().max() {
+            if m as usize >= n[1] {
+                return Err(PhysicsError::WrongLength {
+                    what: "master body matrix".into(),
+                    expected: m as usize + 1,
+                    got: n[1],
+                });
+            }
+        }
+
+        let crossing = modified_rows(tie, n[0], &dirichlet_pos, options.slave_dirichlet)?;
+        let a = block_diagonal(matrices[0], matrices[1]);
+
+        // Condensable: positive own entries, and no entry (beyond the tolerance) on another
+        // row's own unknown.
+        let nrows = crossing.rows.rows();
+        let mut own_row = vec![NONE; ndof];
+        for (j, &s) in crossing.own.iter().enumerate() {
+            own_row[s as usize] = j as u32;
+        }
+        let check = check_diagonal(&crossing, &own_row, options.diagonal_tolerance, tie);
+        let (formulation, reason) = match (options.formulation, check) {
+            (FormulationChoice::SaddlePoint, _) => (
+                Formulation::SaddlePoint,
+                "the saddle point was requested".to_string(),
+            ),
+            (FormulationChoice::DualCondensed, Err(e)) => return Err(e.into()),
+            (_, Ok(())) if nrows == 0 => (
+                Formulation::DualCondensed,
+                "no multiplier is left (every slave interface node is a Dirichlet node)"
+                    .to_string(),
+            ),
+            (FormulationChoice::DualCondensed, Ok(())) => (
+                Formulation::DualCondensed,
+                "the condensation was requested, and D is diagonal".to_string(),
+            ),
+            (FormulationChoice::Auto, Ok(())) => (
+                Formulation::DualCondensed,
+                "D is diagonal (dual multipliers on a fully covered interface), so the slave \
+                 unknowns condense out (T_s = D^-1 M T_m) into a symmetric positive definite \
+                 system"
+                    .to_string(),
+            ),
+            (FormulationChoice::Auto, Err(e)) => (
+                Formulation::SaddlePoint,
+                why_not_diagonal(&e, options.diagonal_tolerance),
+            ),
+        };
+
+        // Unknowns of the factorised system.
+        let condensed = |g: usize| formulation == Formulation::DualCondensed && own_row[g] != NONE;
+        let mut free = vec![NONE; ndof];
+        let mut nfree = 0usize;
+        for g in 0..ndof {
+            if dirichlet_pos[g] == NONE && !condensed(g) {
+                free[g] = nfree as u32;
+                nfree += 1;
+            }
+        }
+        // Expansions T_g = sum w T_r.
+        let (mut exp_ptr, mut exp_dof, mut exp_w) = (vec![0usize], Vec::new(), Vec::new());
+        for g in 0..ndof {
+            if condensed(g) {
+                let j = own_row[g] as usize;
+                let row = crossing.rows.outer_view(j).expect("row in range");
+                let d = row.get(g).copied().unwrap_or(0.0);
+                for (k, v) in row.iter() {
+                    if k != g && own_row[k] == NONE {
+                        exp_dof.push(k as u32);
+                        exp_w.push(-v / d);
+                    }
+                }
+            } else {
+                exp_dof.push(g as u32);
+                exp_w.push(1.0);
+            }
+            exp_ptr.push(exp_dof.len());
+        }
+
+        let layout = Layout {
+            formulation,
+            n,
+            nd: [dirichlet[0].len(), dirichlet[1].len()],
+            dirichlet: dlist,
+            dirichlet_pos,
+            rows: crossing.rows,
+            row_origin: crossing.origin,
+            row_own: crossing.own,
+            coupling_rows: tie.slave_nodes().len(),
+            free,
+            nfree,
+            exp_ptr,
+            exp_dof,
+            exp_w,
+        };
+        let (matrix, a_fd) = layout.system_matrix(&a);
+        let t1 = Instant::now();
+        let factor = match formulation {
+            Formulation::SaddlePoint => Factor::Lu(Box::new(LuFactorization::try_new(&matrix)?)),
+            Formulation::DualCondensed => {
+                Factor::Cholesky(CholeskyFactorization::try_new(&matrix)?)
+            }
+        };
+        Ok(Self {
+            layout,
+            a,
+            a_fd,
+            factor,
+            report: FormulationReport {
+                formulation,
+                reason,
+                unknowns: matrix.rows(),
+                nonzeros: matrix.nnz(),
+                multipliers: nrows,
+                redistributed: crossing.redistributed,
+                dropped: crossing.dropped,
+            },
+            seconds: SystemSeconds {
+                build: (t1 - t0).as_secs_f64(),
+                factorisation: t1.elapsed().as_secs_f64(),
+            },
+        })
+    }
+
+    /// Factorises new body matrices with the same sparsity patterns as before (a new time
+    /// step size, a Newton step), reusing the symbolic analysis and the constraint.
+    ///
+    /// # Errors
+    /// [`PhysicsError::Solver`] if a pattern differs or the factorisation fails (the previous
+    /// factors are then kept).
+    pub fn refactor(&mut self, matrices: [&SparseMatrix; 2]) -> Result<(), PhysicsError> {
+        let t0 = Instant::now();
+        let a = block_diagonal(matrices[0], matrices[1]);
+        if a.shape() != self.a.shape() {
+            return Err(SolverError::PatternMismatch(format!(
+                "body matrices of {}x{} and {}x{} for a tied system of {} and {} nodes",
+                matrices[0].rows(),
+                matrices[0].cols(),
+                matrices[1].rows(),
+                matrices[1].cols(),
+                self.layout.n[0],
+                self.layout.n[1]
+            ))
+            .into());
+        }
+        let old = std::mem::replace(&mut self.a, a);
+        let (matrix, a_fd) = self.layout.system_matrix(&self.a);
+        let t1 = Instant::now();
+        let done = match &mut self.factor {
+            Factor::Lu(f) => f.refactor(&matrix),
+            Factor::Cholesky(f) => f.refactor(&matrix),
+        };
+        if let Err(e) = done {
+            self.a = old;
+            return Err(e.into());
+        }
+        self.a_fd = a_fd;
+        self.seconds = SystemSeconds {
+            build: (t1 - t0).as_secs_f64(),
+            factorisation: t1.elapsed().as_secs_f64(),
+        };
+        Ok(())
+    }
+
+    /// Which formulation is used, and why.
+    pub fn report(&self) -> &FormulationReport {
+        &self.report
+    }
+
+    /// Seconds of the last build and factorisation.
+    pub fn seconds(&self) -> SystemSeconds {
+        self.seconds
+    }
+
+    /// Solves for right-hand sides `rhs = [b_slave, b_master]` (per body node) and Dirichlet
+    /// values `dirichlet = [slave values, master values]`, in the order of the node lists given
+    /// to [`new`](Self::new).
+    ///
+    /// # Errors
+    /// [`PhysicsError::WrongLength`], [`PhysicsError::Solver`].
+    pub fn solve(
+        &self,
+        rhs: [&[f64]; 2],
+        dirichlet: [&[f64]; 2],
+    ) -> Result<TiedFields, PhysicsError> {
+        let t0 = Instant::now();
+        let l = &self.layout;
+        for b in 0..2 {
+            if rhs[b].len() != l.n[b] {
+                return Err(PhysicsError::WrongLength {
+                    what: format!("right-hand side of body {b}"),
+                    expected: l.n[b],
+                    got: rhs[b].len(),
+                });
+            }
+        }
+        for b in 0..2 {
+            if dirichlet[b].len() != l.nd[b] {
+                return Err(PhysicsError::WrongLength {
+                    what: format!("Dirichlet values of body {b}"),
+                    expected: l.nd[b],
+                    got: dirichlet[b].len(),
+                });
+            }
+        }
+        let g: Vec<f64> = dirichlet[0].iter().chain(dirichlet[1]).copied().collect();
+        let b: Vec<f64> = rhs[0].iter().chain(rhs[1]).copied().collect();
+        let ndof = b.len();
+        let nrows = l.rows.rows();
+        let saddle = l.formulation == Formulation::SaddlePoint;
+        let size = l.nfree + if saddle { nrows } else { 0 };
+
+        // Right-hand side: Q^T b on the free unknowns (saddle: Q = I), then - A_fd g, and for
+        // the saddle point the constraint rows' -B_d g (inside A_fd).
+        let mut x = vec![0.0; size];
+        for (a, ba) in b.iter().enumerate() {
+            for e in l.exp_ptr[a]..l.exp_ptr[a + 1] {
+                let r = l.free[l.exp_dof[e] as usize];
+                if r != NONE {
+                    x[r as usize] += l.exp_w[e] * ba;
+                }
+            }
+        }
+        for (r, row) in self.a_fd.outer_iterator().enumerate() {
+            x[r] -= row.iter().map(|(d, v)| v * g[d]).sum::<f64>();
+        }
+        match &self.factor {
+            Factor::Lu(f) => f.solve_in_place(&mut x)?,
+            Factor::Cholesky(f) => f.solve_in_place(&mut x)?,
+        }
+
+        // Recover every unknown: retained ones from x or g, condensed ones by expansion.
+        let retained = |r: usize| -> f64 {
+            match (l.free[r], l.dirichlet_pos[r]) {
+                (f, _) if f != NONE => x[f as usize],
+                (_, d) if d != NONE => g[d as usize],
+                _ => unreachable!("a retained unknown is free or Dirichlet"),
+            }
+        };
+        let mut t = vec![0.0; ndof];
+        for (gi, ti) in t.iter_mut().enumerate() {
+            *ti = (l.exp_ptr[gi]..l.exp_ptr[gi + 1])
+                .map(|e| l.exp_w[e] * retained(l.exp_dof[e] as usize))
+                .sum();
+        }
+        let mut multipliers = vec![f64::NAN; l.coupling_rows];
+        for j in 0..nrows {
+            let lambda = if saddle {
+                x[l.nfree + j]
+            } else {
+                let s = l.row_own[j] as usize;
+                let row = self.a.outer_view(s).expect("row in range");
+                let r = b[s] - row.iter().map(|(k, v)| v * t[k]).sum::<f64>();
+                let d = l
+                    .rows
+                    .outer_view(j)
+                    .and_then(|rv| rv.get(s).copied())
+                    .unwrap_or(f64::NAN);
+                r / d
+            };
+            multipliers[l.row_origin[j] as usize] = lambda;
+        }
+        let master = t.split_off(l.n[0]);
+        Ok(TiedFields {
+            fields: [t, master],
+            multipliers,
+            seconds: t0.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+impl Layout {
+    /// The matrix of the formulation and its coupling to the Dirichlet values.
+    fn system_matrix(&self, a: &SparseMatrix) -> (SparseMatrix, SparseMatrix) {
+        let saddle = self.formulation == Formulation::SaddlePoint;
+        let nrows = self.rows.rows();
+        let size = self.nfree + if saddle { nrows } else { 0 };
+        let mut m = Triplets::default();
+        let mut fd = Triplets::default();
+        for (a, row) in a.outer_iterator().enumerate() {
+            for (b, v) in row.iter() {
+                for ea in self.exp_ptr[a]..self.exp_ptr[a + 1] {
+                    let ra = self.free[self.exp_dof[ea] as usize];
+                    if ra == NONE {
+                        continue;
+                    }
+                    let wa = self.exp_w[ea] * v;
+                    for eb in self.exp_ptr[b]..self.exp_ptr[b + 1] {
+                        let db = self.exp_dof[eb] as usize;
+                        let w = wa * self.exp_w[eb];
+                        match (self.free[db], self.dirichlet_pos[db]) {
+                            (rb, _) if rb != NONE => m.push(ra, rb, w),
+                            (_, d) => fd.push(ra, d, w),
+                        }
+                    }
+                }
+            }
+        }
+        if saddle {
+            for (j, row) in self.rows.outer_iterator().enumerate() {
+                let rj = (self.nfree + j) as u32;
+                for (a, v) in row.iter() {
+                    match (self.free[a], self.dirichlet_pos[a]) {
+                        (f, _) if f != NONE => {
+                            m.push(rj, f, *v);
+                            m.push(f, rj, *v);
+                        }
+                        (_, d) => fd.push(rj, d, *v),
+                    }
+                }
+            }
+        }
+        (m.to_csr(size, size), fd.to_csr(size, self.dirichlet.len()))
+    }
+}
+
+/// The constraint rows after the treatment of Dirichlet slave nodes.
+struct Crossing {
+    rows: SparseMatrix,
+    origin: Vec<u32>,
+    own: Vec<u32>,
+    redistributed: usize,
+    dropped: usize,
+}
+
+/// The rows `D T_s - M T_m` over the global unknowns (slave body first), with the rows of
+/// Dirichlet slave nodes shared equally among the free slave nodes of their faces (see
+/// [`SlaveDirichlet::Redistribute`]).
+fn modified_rows(
+    tie: &Tie,
+    n_slave: usize,
+    dirichlet_pos: &[u32],
+    policy: SlaveDirichlet,
+) -> Result<Crossing, PhysicsError> {
+    let c = tie.coupling();
+    let ns = tie.slave_nodes().len();
+    let fixed: Vec<bool> = tie
+        .slave_nodes()
+        .iter()
+        .map(|&s| dirichlet_pos[s as usize] != NONE)
+        .collect();
+    let count = fixed.iter().filter(|f| **f).count();
+    if count > 0 && policy == SlaveDirichlet::Refuse {
+        let first = fixed.iter().position(|f| *f).expect("count > 0");
+        return Err(PhysicsError::DirichletOnSlave {
+            tag: c.slave_nodes[first],
+            count,
+        });
+    }
+    let mut new_of = vec![NONE; ns];
+    let (mut origin, mut own) = (Vec::new(), Vec::new());
+    for r in 0..ns {
+        if !fixed[r] {
+            new_of[r] = origin.len() as u32;
+            origin.push(r as u32);
+            own.push(tie.slave_nodes()[r]);
+        }
+    }
+    // The nearest free rows of each Dirichlet row in the graph of slave faces (rows joined
+    // when they share a face): its free face neighbours, or failing those (a face whose nodes
+    // are all Dirichlet nodes, at a corner of the interface) the free rows one face further.
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); ns];
+    if count > 0 {
+        let interface = tie.interface();
+        let slave = interface.slave();
+        let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); ns];
+        for f in 0..slave.face_count() {
+            let rows: Vec<u32> = slave
+                .face(f)
+                .nodes
+                .iter()
+                .filter_map(|&n| interface.slave_row(n))
+                .collect();
+            for &a in &rows {
+                adjacent[a as usize].extend(rows.iter().filter(|&&b| b != a));
+            }
+        }
+        for list in &mut adjacent {
+            list.sort_unstable();
+            list.dedup();
+        }
+        let mut seen = vec![false; ns];
+        for c in (0..ns).filter(|&r| fixed[r]) {
+            let mut front = vec![c as u32];
+            let mut visited = vec![c as u32];
+            seen[c] = true;
+            while !front.is_empty() && neighbours[c].is_empty() {
+                let mut next: Vec<u32> = front
+                    .iter()
+                    .flat_map(|&r| adjacent[r as usize].iter().copied())
+                    .filter(|&r| !seen[r as usize])
+                    .collect();
+                next.sort_unstable();
+                next.dedup();
+                for &r in &next {
+                    seen[r as usize] = true;
+                    visited.push(r);
+                }
+                neighbours[c] = next
+                    .iter()
+                    .copied()
+                    .filter(|&r| !fixed[r as usize])
+                    .collect();
+                front = next;
+            }
+            for r in visited {
+                seen[r as usize] = false;
+            }
+        }
+    }
+    let (mut redistributed, mut dropped) = (0usize, 0usize);
+    let mut t = Triplets::default();
+    for r in 0..ns {
+        let targets: Vec<(u32, f64)> = if fixed[r] {
+            let nb = &neighbours[r];
+            if nb.is_empty() {
+                dropped += 1;
+            } else {
+                redistributed += 1;
+            }
+            let w = 1.0 / nb.len().max(1) as f64;
+            nb.iter().map(|&k| (new_of[k as usize], w)).collect()
+        } else {
+            vec![(new_of[r], 1.0)]
+        };
+        for (row, w) in targets {
+            if let Some(d) = c.d.outer_view(r) {
+                for (k, v) in d.iter() {
+                    t.push(row, tie.slave_nodes()[k], w * v);
+                }
+            }
+            if let Some(m) = c.m.outer_view(r) {
+                for (l, v) in m.iter() {
+                    t.push(
+                        row,
+                        (n_slave + tie.master_nodes()[l] as usize) as u32,
+                        -w * v,
+                    );
+                }
+            }
+        }
+    }
+    let ndof = dirichlet_pos.len();
+    Ok(Crossing {
+        rows: t.to_csr(origin.len(), ndof),
+        origin,
+        own,
+        redistributed,
+        dropped,
+    })
+}
+
+/// Whether the rows can be condensed: each row's own entry positive, and its entries on other
+/// rows' own unknowns at most `tol` times it.
+fn check_diagonal(
+    crossing: &Crossing,
+    own_row: &[u32],
+    tol: f64,
+    tie: &Tie,
+) -> Result<(), TyingError> {
+    for (j, row) in crossing.rows.outer_iterator().enumerate() {
+        let s = crossing.own[j] as usize;
+        let d = row.get(s).copied().unwrap_or(0.0);
+        let origin = crossing.origin[j] as usize;
+        if d.is_nan() || d <= 0.0 {
+            return Err(TyingError::Uncovered {
+                row: origin,
+                tag: tie.coupling().slave_nodes[origin],
+                value: d,
+            });
+        }
+        for (k, v) in row.iter() {
+            if k != s && own_row[k] != NONE && v.abs() > tol * d {
+                let col = crossing.origin[own_row[k] as usize] as usize;
+                return Err(TyingError::NotDiagonal {
+                    row: origin,
+                    col,
+                    value: *v,
+                    diagonal: d,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Why the condensation is not available, for the report.
+fn why_not_diagonal(e: &TyingError, tol: f64) -> String {
+    match e {
+        TyingError::NotDiagonal {
+            row,
+            col,
+            value,
+            diagonal,
+        } => format!(
+            "D is not diagonal: D[{row},{col}] = {value:.3e} against D[{row},{row}] = \
+             {diagonal:.3e} (relative {:.1e}, tolerance {tol:.0e}): standard multipliers, a \
+             partly covered interface, or dual multipliers on warped faces; the condensation \
+             needs a diagonal D",
+            (value / diagonal).abs()
+        ),
+        TyingError::Uncovered { tag, value, .. } => format!(
+            "slave node {tag} is not covered by the master surface (D_jj = {value:.3e}); the \
+             condensation needs every slave node covered"
+        ),
+    }
+}
+
+/// `[[a, 0], [0, b]]` in CSR, by concatenating the arrays.
+fn block_diagonal(a: &SparseMatrix, b: &SparseMatrix) -> SparseMatrix {
+    let a = if a.is_csr() { a.clone() } else { a.to_csr() };
+    let b = if b.is_csr() { b.clone() } else { b.to_csr() };
+    let (na, nb) = (a.rows(), b.rows());
+    let (ca, cb) = (a.cols(), b.cols());
+    let mut indptr: Vec<usize> = a.proper_indptr().into_owned();
+    let base = a.nnz();
+    indptr.extend(b.proper_indptr().iter().skip(1).map(|p| p + base));
+    let mut indices: Vec<usize> = a.indices().to_vec();
+    indices.extend(b.indices().iter().map(|c| c + ca));
+    let mut data: Vec<f64> = a.data().to_vec();
+    data.extend_from_slice(b.data());
+    SparseMatrix::new((na + nb, ca + cb), indptr, indices, data)
+}

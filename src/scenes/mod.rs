@@ -1,0 +1,7 @@
+//! Ready-made problems of the seed, built in code: meshes, data and solver settings in one
+//! place, for the examples, the tests and the command line.
+//!
+//! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
+//!   non-conforming interface, with a manufactured solution.
+
+pub mod tied_heat;

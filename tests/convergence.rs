@@ -1,0 +1,13 @@
+//! Convergence and consistency tests of tied heat conduction (one binary, a folder of
+//! modules): measured convergence rates on straight and curved non-conforming interfaces in 2D
+//! and 3D, the patch test (a linear field reproduced to round-off), the two solution paths
+//! (saddle point and dual condensation) agreeing, backward Euler, and deterministic parallel
+//! assembly. Meshes are small so that the binary runs in seconds in the test profile.
+
+mod convergence {
+    mod determinism;
+    mod patch;
+    mod paths;
+    mod rates;
+    mod transient;
+}
