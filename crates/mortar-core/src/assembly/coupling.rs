@@ -415,8 +415,8 @@ fn chunk(
         // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
         // far fewer nodes, so this cuts the triplets about threefold.
         cols.clear();
-        for (mf, block) in &blocks.m {
-            let mnodes = master_mesh.face(*mf as usize).nodes;
+        for (mf, km, block) in blocks.m_blocks() {
+            let mnodes = master_mesh.face(mf as usize).nodes;
             for (l, &n) in mnodes.iter().enumerate() {
                 let c = interface
                     .master_col(n)
@@ -429,7 +429,7 @@ fn chunk(
                     }
                 };
                 for j in 0..rows.len() {
-                    cols[at].1[j] += block[j][l];
+                    cols[at].1[j] += block[j * km + l];
                 }
             }
         }

@@ -10,25 +10,39 @@ type Block = [[f64; MAX_FACE_NODES]; MAX_FACE_NODES];
 pub struct LocalBlocks {
     /// `d[j][k] = int Phi_j N_k^s` over the face's overlap.
     pub d: Block,
-    /// `(master face, m)` with `m[j][l] = int Phi_j N_l^m`.
-    pub m: Vec<(u32, Block)>,
+    /// `(master face, master node count, offset into vals)` per M block.
+    masters: Vec<(u32, usize, usize)>,
+    /// The M blocks, each `ks x km` row-major: `m[j][l] = int Phi_j N_l^m`.
+    vals: Vec<f64>,
+    ks: usize,
 }
 
 impl LocalBlocks {
-    fn clear(&mut self) {
+    fn clear(&mut self, ks: usize) {
         self.d = [[0.0; MAX_FACE_NODES]; MAX_FACE_NODES];
-        self.m.clear();
+        self.masters.clear();
+        self.vals.clear();
+        self.ks = ks;
     }
 
-    fn block_index(&mut self, master: u32) -> usize {
-        match self.m.iter().position(|(f, _)| *f == master) {
-            Some(i) => i,
+    /// The offset of the block of `master` (with `km` nodes), created zero if new.
+    fn block_offset(&mut self, master: u32, km: usize) -> usize {
+        match self.masters.iter().find(|(f, _, _)| *f == master) {
+            Some(&(_, _, off)) => off,
             None => {
-                self.m
-                    .push((master, [[0.0; MAX_FACE_NODES]; MAX_FACE_NODES]));
-                self.m.len() - 1
+                let off = self.vals.len();
+                self.vals.resize(off + self.ks * km, 0.0);
+                self.masters.push((master, km, off));
+                off
             }
         }
+    }
+
+    /// The M blocks: `(master face, its node count km, the ks x km block row-major)`.
+    pub fn m_blocks(&self) -> impl Iterator<Item = (u32, usize, &[f64])> + '_ {
+        self.masters
+            .iter()
+            .map(|&(f, km, off)| (f, km, &self.vals[off..off + self.ks * km]))
     }
 }
 
@@ -41,7 +55,7 @@ pub fn integrate_face_into(
     points: &[PairedPoint],
     out: &mut LocalBlocks,
 ) {
-    out.clear();
+    out.clear(slave.node_count());
     // Fixed-size kernels for the common node counts let the compiler unroll the products.
     match (slave.node_count(), common_master_nodes(interface, points)) {
         (3, Some(3)) => kernel::<3, 3>(interface, slave, basis, points, out),
@@ -105,11 +119,11 @@ fn kernel<const KS: usize, const KM: usize>(
             }
             i += 1;
         }
-        let bi = out.block_index(master);
-        let block = &mut out.m[bi].1;
+        let off = out.block_offset(master, KM);
+        let block = &mut out.vals[off..off + KS * KM];
         for j in 0..KS {
             for l in 0..KM {
-                block[j][l] += m[j][l];
+                block[j * KM + l] += m[j][l];
             }
         }
     }
@@ -137,25 +151,24 @@ fn general(
     for p in points {
         slave.element.shape_values_into(&p.xi_slave, &mut ns[..ks]);
         basis.eval_into(&ns, &mut phi);
-        let (bi, master_el) = match last {
-            Some((m, bi, el)) if m == p.master => (bi, el),
+        let (off, master_el) = match last {
+            Some((m, off, el)) if m == p.master => (off, el),
             _ => {
                 let el = master_mesh.face(p.master as usize).element;
-                let bi = out.block_index(p.master);
-                last = Some((p.master, bi, el));
-                (bi, el)
+                let off = out.block_offset(p.master, el.node_count());
+                last = Some((p.master, off, el));
+                (off, el)
             }
         };
         let km = master_el.node_count();
         master_el.shape_values_into(&p.xi_master, &mut nm[..km]);
-        let mb = &mut out.m[bi].1;
         for j in 0..ks {
             let wp = p.weight * phi[j];
             for k in 0..ks {
                 out.d[j][k] += wp * ns[k];
             }
             for l in 0..km {
-                mb[j][l] += wp * nm[l];
+                out.vals[off + j * km + l] += wp * nm[l];
             }
         }
     }

@@ -119,7 +119,9 @@ pub(super) fn segments_into(
         // Jacobian, so that on a planar face Phi_j N_k J stays a polynomial and D is exact on
         // a covered face.
         let in_reference = !el.is_affine();
-        if in_reference {
+        if deg == 2 && !in_reference {
+            // The fan is walked by `fan_midpoints` below.
+        } else if in_reference {
             let mut xi_poly = Polygon::default();
             for v in &clip.vertices {
                 let xi = slave_map
@@ -134,6 +136,33 @@ pub(super) fn segments_into(
             clip.for_each_triangle(|t| tris.push(t));
         }
         let mut any = false;
+        if deg == 2 && !in_reference {
+            // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
+            // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
+            // so an n-gon needs 2n points instead of 3n; still exact for degree 2.
+            let pushed = out.points.len();
+            fan_midpoints(&clip, |c, weight, cells| {
+                out.cells += cells;
+                if weight <= 0.0 {
+                    return Ok(());
+                }
+                let xi_s = slave_map
+                    .invert(&c, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
+                let xi_m = master_map
+                    .invert(&c, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, &c, Side::Master, view.tag))?;
+                out.points.push(PairedPoint {
+                    master: m,
+                    xi_slave: xi_s,
+                    xi_master: xi_m,
+                    weight,
+                });
+                Ok(())
+            })?;
+            any = out.points.len() > pushed;
+            tris.clear();
+        }
         for t in &tris {
             let e1 = t[1] - t[0];
             let e2 = t[2] - t[0];
@@ -171,6 +200,43 @@ pub(super) fn segments_into(
             out.pairs += 1;
             out.degrees |= 1 << deg;
         }
+    }
+    Ok(())
+}
+
+/// The degree-2 edge-midpoint rule on the triangulation of `poly` (itself if a triangle,
+/// else the fan from its vertex centroid), with the points on the spokes merged: calls `f`
+/// with each point, its weight (zero for a point of degenerate triangles only) and the number
+/// of cells (triangles of positive area) it completes.
+fn fan_midpoints(
+    poly: &Polygon,
+    mut f: impl FnMut(Vector2<f64>, f64, u32) -> Result<()>,
+) -> Result<()> {
+    let v = &poly.vertices;
+    let n = v.len();
+    let area = |a: &Vector2<f64>, b: &Vector2<f64>, c: &Vector2<f64>| {
+        let (e1, e2) = (b - a, c - a);
+        (0.5 * (e1.x * e2.y - e1.y * e2.x)).max(0.0)
+    };
+    if n == 3 {
+        let a = area(&v[0], &v[1], &v[2]);
+        let cells = u32::from(a > 0.0);
+        for i in 0..3 {
+            f(
+                0.5 * (v[i] + v[(i + 1) % 3]),
+                a / 3.0,
+                if i == 0 { cells } else { 0 },
+            )?;
+        }
+        return Ok(());
+    }
+    let c = poly.vertex_centroid();
+    let tri_area = |i: usize| area(&c, &v[i % n], &v[(i + 1) % n]);
+    for i in 0..n {
+        let (prev, this) = (tri_area(i + n - 1), tri_area(i));
+        // Spoke c - v_i, shared by triangles i - 1 and i; then the outer edge of triangle i.
+        f(0.5 * (c + v[i]), (prev + this) / 3.0, u32::from(this > 0.0))?;
+        f(0.5 * (v[i] + v[(i + 1) % n]), this / 3.0, 0)?;
     }
     Ok(())
 }
