@@ -50,8 +50,9 @@ pub struct CouplingStats {
     pub area: f64,
     /// Threads used.
     pub threads: usize,
-    /// The quadrature degrees actually used, ascending (with automatic degree, the degree
-    /// picked for each kind of face pair: 2 for Tri3-Tri3, 3 for Tri3-Quad4, 4 for Quad4-Quad4).
+    /// The quadrature degrees actually used (with automatic degree, those picked per face
+    /// pair: 2 for Tri3-Tri3, 3 for Tri3-Quad4, 4 for a parallelogram Quad4 slave, 5 for other
+    /// Quad4 slaves), as flags indexed by degree.
     pub degrees_used: [bool; 21],
     /// Timings.
     pub seconds: PhaseSeconds,

@@ -15,14 +15,24 @@ pub struct PlanarMap {
 }
 
 impl PlanarMap {
-    /// The map of `element` with projected nodes `nodes`.
+    /// The map of `element` with projected nodes `nodes`. The map counts as affine when the
+    /// element type is (Tri3), or when this face's Jacobian is the same at every node as at the
+    /// centre (a parallelogram Quad4): then its inverse is one 2x2 product.
     pub fn new(element: ElementRef, nodes: &[Vector2<f64>]) -> Self {
         let k = element.node_count();
         let mut all = [Vector2::zeros(); MAX_FACE_NODES];
         all[..k].copy_from_slice(&nodes[..k]);
-        let affine = if element.is_affine() {
-            let centre = element.domain().centre();
-            let (x, j) = planar_map_and_jacobian(element, &all[..k], &centre);
+        let centre = element.domain().centre();
+        let (x, j) = planar_map_and_jacobian(element, &all[..k], &centre);
+        let affine_shape = element.is_affine() || {
+            let scale = j.abs().max();
+            element.node_reference_coords().iter().all(|xi| {
+                let (_, jn) =
+                    planar_map_and_jacobian(element, &all[..k], &Vector2::new(xi[0], xi[1]));
+                (jn - j).abs().max() <= 1e-13 * scale
+            })
+        };
+        let affine = if affine_shape {
             j.try_inverse().map(|inv| (centre, x, inv))
         } else {
             None
@@ -32,6 +42,11 @@ impl PlanarMap {
             nodes: all,
             affine,
         }
+    }
+
+    /// Whether the map is affine (its inverse is exact in one step).
+    pub fn is_affine(&self) -> bool {
+        self.affine.is_some()
     }
 
     /// The in-plane point at reference coordinates `xi`, and the Jacobian determinant of the

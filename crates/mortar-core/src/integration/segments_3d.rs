@@ -100,7 +100,10 @@ pub(super) fn segments_into(
         {
             continue;
         }
-        let deg = degree.unwrap_or_else(|| default_degree(el, mel));
+        // A slave face whose Jacobian varies is integrated in its reference coordinates with
+        // the Jacobian as a factor: one degree more.
+        let in_reference = !slave_map.is_affine();
+        let deg = degree.unwrap_or_else(|| default_degree(el, mel) + u32::from(in_reference));
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
         let master_map = PlanarMap::new(mel, &mp[..km]);
         let fail =
@@ -118,7 +121,6 @@ pub(super) fn segments_into(
         // vertices are mapped back and triangulated there, and the weights carry the surface
         // Jacobian, so that on a planar face Phi_j N_k J stays a polynomial and D is exact on
         // a covered face.
-        let in_reference = !el.is_affine();
         if deg == 2 && !in_reference {
             // The fan is walked by `fan_midpoints` below.
         } else if in_reference {

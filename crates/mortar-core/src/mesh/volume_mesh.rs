@@ -298,23 +298,36 @@ impl VolumeMesh {
             k[..nodes.len()].sort_unstable();
             k
         };
-        let mut count: HashMap<Key, u32> = HashMap::with_capacity(4 * self.cell_count());
+        // Sort the faces by their node set (cheaper than hashing, and without a hash map's
+        // memory): equal keys are the cells sharing a face.
+        let mut keyed: Vec<(Key, u32)> = Vec::with_capacity(4 * self.cell_count());
         let mut local = ArrayVec::<u32, MAX_FACE_NODES>::new();
         for c in 0..self.cell_count() {
             let cell = self.cell(c);
             for f in cell.element.faces() {
                 local.clear();
                 local.extend(f.iter().map(|&i| cell.nodes[i]));
-                *count.entry(key(&local)).or_insert(0) += 1;
+                keyed.push((key(&local), keyed.len() as u32));
             }
         }
+        keyed.sort_unstable();
+        let mut count = vec![0u32; keyed.len()];
+        for group in keyed.chunk_by(|a, b| a.0 == b.0) {
+            for (_, id) in group {
+                count[*id as usize] = group.len() as u32;
+            }
+        }
+        drop(keyed);
         let mut out = Vec::new();
+        let mut id = 0usize;
         for c in 0..self.cell_count() {
             let cell = self.cell(c);
             for (lf, f) in cell.element.faces().iter().enumerate() {
+                let shared = count[id];
+                id += 1;
                 local.clear();
                 local.extend(f.iter().map(|&i| cell.nodes[i]));
-                match count[&key(&local)] {
+                match shared {
                     1 => {}
                     2 => continue,
                     n => {
