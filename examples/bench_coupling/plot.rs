@@ -122,7 +122,7 @@ fn panel(
         let line: Vec<(f64, f64)> = case
             .rows
             .iter()
-            .filter(|r| &r.series() == name)
+            .filter(|r| &r.series() == name && r.degree.is_some())
             .map(pts)
             .filter(|(t, e)| t.is_finite() && e.is_finite())
             .collect();
@@ -130,8 +130,21 @@ fn panel(
             .rows
             .iter()
             .filter(|r| &r.series() == name && pts(r).0.is_finite() && pts(r).1.is_finite())
-            .map(|r| r.degree)
+            .filter_map(|r| r.degree)
             .collect();
+        // The default (automatic degree) as a ring labelled "default".
+        let defaults: Vec<(f64, f64)> = case
+            .rows
+            .iter()
+            .filter(|r| &r.series() == name && r.degree.is_none())
+            .map(pts)
+            .filter(|(t, e)| t.is_finite() && e.is_finite())
+            .collect();
+        chart.draw_series(defaults.iter().map(|&p| {
+            EmptyElement::at(p)
+                + Circle::new((0, 0), 9, colour.stroke_width(2))
+                + Text::new("default", (10, 4), ("sans-serif", 12))
+        }))?;
         chart.draw_series(LineSeries::new(
             line.clone(),
             colour.mix(0.5).stroke_width(1),
