@@ -121,83 +121,71 @@ pub(super) fn segments_into(
         // vertices are mapped back and triangulated there, and the weights carry the surface
         // Jacobian, so that on a planar face Phi_j N_k J stays a polynomial and D is exact on
         // a covered face.
-        if deg == 2 && !in_reference {
-            // The fan is walked by `fan_midpoints` below.
-        } else if in_reference {
-            let mut xi_poly = Polygon::default();
-            for v in &clip.vertices {
-                let xi = slave_map
-                    .invert(v, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
-                xi_poly.vertices.push(xi);
-            }
-            tris.clear();
-            xi_poly.for_each_triangle(|t| tris.push(t));
-        } else {
-            tris.clear();
-            clip.for_each_triangle(|t| tris.push(t));
-        }
-        let mut any = false;
+        // One paired point at `c` (in-plane coordinates for an affine slave, the slave's
+        // reference coordinates otherwise) with quadrature weight `weight`.
+        let point_at = |c: Vector2<f64>, weight: f64| -> Result<PairedPoint> {
+            let (p, xi_s, jac) = if in_reference {
+                // The surface's own measure (not the plane's): the measure the dual basis
+                // is built with, so D stays diagonal on warped faces too.
+                let (p, _) = slave_map.eval(&c);
+                (p, c, el.jacobian_det(slave.node_coords(), &c))
+            } else {
+                let xi_s = slave_map
+                    .invert(&c, tol.newton, tol.newton_max_iterations)
+                    .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
+                (c, xi_s, 1.0)
+            };
+            let xi_m = master_map
+                .invert(&p, tol.newton, tol.newton_max_iterations)
+                .map_err(|f| fail(f, &p, Side::Master, view.tag))?;
+            Ok(PairedPoint {
+                master: m,
+                xi_slave: xi_s,
+                xi_master: xi_m,
+                weight: weight * jac,
+            })
+        };
+        let pushed = out.points.len();
         if deg == 2 && !in_reference {
             // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
             // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
             // so an n-gon needs 2n points instead of 3n; still exact for degree 2.
-            let pushed = out.points.len();
             fan_midpoints(&clip, |c, weight, cells| {
                 out.cells += cells;
-                if weight <= 0.0 {
-                    return Ok(());
+                if weight > 0.0 {
+                    out.points.push(point_at(c, weight)?);
                 }
-                let xi_s = slave_map
-                    .invert(&c, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
-                let xi_m = master_map
-                    .invert(&c, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, &c, Side::Master, view.tag))?;
-                out.points.push(PairedPoint {
-                    master: m,
-                    xi_slave: xi_s,
-                    xi_master: xi_m,
-                    weight,
-                });
                 Ok(())
             })?;
-            any = out.points.len() > pushed;
+        } else {
             tris.clear();
-        }
-        for t in &tris {
-            let e1 = t[1] - t[0];
-            let e2 = t[2] - t[0];
-            let twice_area = e1.x * e2.y - e1.y * e2.x;
-            if twice_area <= 0.0 {
-                continue;
+            if in_reference {
+                let mut xi_poly = Polygon::default();
+                for v in &clip.vertices {
+                    let xi = slave_map
+                        .invert(v, tol.newton, tol.newton_max_iterations)
+                        .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
+                    xi_poly.vertices.push(xi);
+                }
+                xi_poly.for_each_triangle(|t| tris.push(t));
+            } else {
+                clip.for_each_triangle(|t| tris.push(t));
             }
-            any = true;
-            out.cells += 1;
-            for (q, w) in rule.points().iter().zip(rule.weights()) {
-                let c = t[0] + e1 * q.x + e2 * q.y;
-                let (p, xi_s, jac) = if in_reference {
-                    // The surface's own measure (not the plane's): the measure the dual basis
-                    // is built with, so D stays diagonal on warped faces too.
-                    let (p, _) = slave_map.eval(&c);
-                    (p, c, el.jacobian_det(slave.node_coords(), &c))
-                } else {
-                    let xi_s = slave_map
-                        .invert(&c, tol.newton, tol.newton_max_iterations)
-                        .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
-                    (c, xi_s, 1.0)
-                };
-                let xi_m = master_map
-                    .invert(&p, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, &p, Side::Master, view.tag))?;
-                out.points.push(PairedPoint {
-                    master: m,
-                    xi_slave: xi_s,
-                    xi_master: xi_m,
-                    weight: w * twice_area * jac,
-                });
+            for t in &tris {
+                let e1 = t[1] - t[0];
+                let e2 = t[2] - t[0];
+                let twice_area = e1.x * e2.y - e1.y * e2.x;
+                if twice_area <= 0.0 {
+                    continue;
+                }
+                out.cells += 1;
+                for (q, w) in rule.points().iter().zip(rule.weights()) {
+                    out.points
+                        .push(point_at(t[0] + e1 * q.x + e2 * q.y, w * twice_area)?);
+                }
             }
         }
+        let any = out.points.len() > pushed;
         if any {
             out.pairs += 1;
             out.degrees |= 1 << deg;
