@@ -15,3 +15,9 @@ mod cli;
 
 #[path = "integration/cli_errors.rs"]
 mod cli_errors;
+
+#[path = "integration/scene.rs"]
+mod scene;
+
+#[path = "integration/scene_errors.rs"]
+mod scene_errors;

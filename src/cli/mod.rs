@@ -2,6 +2,7 @@
 
 mod couple;
 mod report;
+mod run;
 mod scene;
 
 use std::path::PathBuf;
@@ -38,6 +39,36 @@ enum Command {
         after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"
     )]
     Couple(CoupleArgs),
+
+    /// Solve a scene: a scene file (TOML) naming Gmsh meshes, physical groups, materials,
+    /// boundary conditions and the interface, or a built-in scene. Writes DIR/BODY.vtu
+    /// (temperature) per body and DIR/report.json (formulation and why, unknowns, seconds per
+    /// phase); a built-in scene also writes its scene file and meshes. Nothing is written
+    /// unless everything succeeds.
+    #[command(
+        after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"
+    )]
+    Run(RunArgs),
+}
+
+/// Arguments of `mortar run`.
+#[derive(Debug, Args)]
+struct RunArgs {
+    /// The scene file (TOML; `kind = "tied_heat"`).
+    #[arg(
+        value_name = "SCENE.toml",
+        required_unless_present = "scene",
+        conflicts_with = "scene"
+    )]
+    scene_file: Option<PathBuf>,
+
+    /// A built-in scene instead of a file (tied_heat).
+    #[arg(long, value_name = "NAME")]
+    scene: Option<String>,
+
+    /// Output directory (created if missing).
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
 }
 
 /// Arguments of `mortar couple`.
@@ -111,6 +142,7 @@ pub fn main() -> ExitCode {
     let result = match &cli.command {
         None => scene::run(cli.json),
         Some(Command::Couple(args)) => couple::run(args, cli.json),
+        Some(Command::Run(args)) => run::run(args, cli.json),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,6 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use mortar_core::mesh::VolumeMeshError;
 use mortar_core::MortarError;
 
 /// A place in an input file: a line number (text files) or a byte offset (binary files).
@@ -179,6 +180,55 @@ pub enum IoError {
         element: u64,
         /// The mesh's error.
         source: MortarError,
+    },
+    /// A physical group has the wrong dimension for its use (a body needs cells, a boundary
+    /// condition or an interface side needs faces of the body's boundary).
+    #[error("{}: physical group \"{group}\" has dimension {dim}, but {expected}", path.display())]
+    WrongGroupDimension {
+        /// The file.
+        path: PathBuf,
+        /// The group.
+        group: String,
+        /// Its dimension.
+        dim: i32,
+        /// What was expected, as a phrase (e.g. `a body needs a group of dimension 2 or 3`).
+        expected: String,
+    },
+    /// A body's physical group holds no cells.
+    #[error("{}: physical group \"{group}\" has no elements of dimension {dim}", path.display())]
+    NoCells {
+        /// The file.
+        path: PathBuf,
+        /// The group.
+        group: String,
+        /// The dimension of the group.
+        dim: i32,
+    },
+    /// A body's mesh refused a node or a cell.
+    #[error("{}, {at}: element {element}: {source}", path.display())]
+    Cell {
+        /// The file.
+        path: PathBuf,
+        /// Where the element (or node) is.
+        at: Location,
+        /// The element tag (the node tag for a refused node).
+        element: u64,
+        /// The mesh's error.
+        source: VolumeMeshError,
+    },
+    /// An element of a face group is not a boundary face of the body read from the file.
+    #[error("{}, {at}: element {element} of physical group \"{group}\" is not a boundary face of body \"{body}\"", path.display())]
+    NotOnBoundary {
+        /// The file.
+        path: PathBuf,
+        /// Where the element is.
+        at: Location,
+        /// The face group.
+        group: String,
+        /// The element tag.
+        element: u64,
+        /// The body's physical group.
+        body: String,
     },
     /// An interface argument such as `mesh.msh#contact` cannot be understood.
     #[error("invalid interface argument \"{arg}\": {reason}")]

@@ -3,8 +3,12 @@
 //! - [`read_surface`] / [`read_gmsh_surface`]: the faces of a Gmsh 4.1 file (ASCII or binary,
 //!   either byte order), whole or one physical group, as a [`SurfaceMesh`](crate::SurfaceMesh)
 //!   with the file's node and element tags.
+//! - [`read_volume`] / [`read_gmsh_volume`]: a body (the cells of a physical group of
+//!   dimension 2 or 3) as a [`VolumeMesh`](crate::VolumeMesh), with its boundary faces
+//!   selected by physical group ([`GmshVolume::boundary_faces_in`]).
 //! - [`parse_interface_arg`]: `mesh.msh#group` arguments.
-//! - [`write_msh41_ascii`], [`write_msh41_binary`], [`write_msh41`]: surface meshes as Gmsh 4.1.
+//! - [`write_msh41_ascii`], [`write_msh41_binary`], [`write_msh41`]: surface meshes as Gmsh 4.1;
+//!   [`write_msh41_volume`]: a body and groups of its boundary faces.
 //! - [`matrix_market`]: D and M as Matrix Market `coordinate real general`, values round-trip.
 //! - [`CouplingSummary`]: the JSON summary of a run.
 //! - [`vtu`]: volume meshes and nodal fields as ASCII VTU files for ParaView.
@@ -39,8 +43,10 @@ pub mod vtu;
 
 pub use error::{IoError, Location};
 pub use gmsh::{
-    msh41_bytes, parse_gmsh_surface, read_gmsh_surface, read_surface, write_msh41,
-    write_msh41_ascii, write_msh41_binary, Endianness, GmshSurface, MshFormat, PhysicalGroup,
+    msh41_bytes, msh41_volume_bytes, parse_gmsh_surface, parse_gmsh_volume, read_gmsh_surface,
+    read_gmsh_volume, read_surface, read_volume, write_msh41, write_msh41_ascii,
+    write_msh41_binary, write_msh41_volume, Endianness, GmshSurface, GmshVolume, MshFormat,
+    PhysicalGroup,
 };
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
 pub use output::{write_coupling, write_outputs};

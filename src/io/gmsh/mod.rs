@@ -1,5 +1,7 @@
 //! Gmsh MSH 4.1 meshes: read the faces of a surface (a whole file or one physical group),
-//! write surface meshes (ASCII or binary) for tests and examples.
+//! read a body (the cells of a physical group of dimension 2 or 3) and select its boundary
+//! faces by physical group ([`read_gmsh_volume`], [`GmshVolume::boundary_faces_in`]), write
+//! surface meshes and bodies (ASCII or binary) for tests and examples.
 //!
 //! Why our own reader rather than the `mshio` crate (0.4): `mshio` does parse MSH 4.1 ASCII
 //! and binary, but it skips `$PhysicalNames`, so a group cannot be selected by name; its errors
@@ -25,6 +27,7 @@
 mod cursor;
 mod element_types;
 mod parse;
+mod volume;
 mod write;
 
 use std::collections::{HashMap, HashSet};
@@ -33,8 +36,10 @@ use std::path::{Path, PathBuf};
 use mortar_core::SurfaceMesh;
 use mortar_elements::ElementRegistry;
 
+pub use volume::{parse_gmsh_volume, read_gmsh_volume, read_volume, GmshVolume};
 pub use write::{
-    msh41_bytes, write_msh41, write_msh41_ascii, write_msh41_binary, Endianness, MshFormat,
+    msh41_bytes, msh41_volume_bytes, write_msh41, write_msh41_ascii, write_msh41_binary,
+    write_msh41_volume, Endianness, MshFormat,
 };
 
 use self::cursor::{locations_of, Cursor, Encoding};
@@ -132,7 +137,14 @@ pub fn parse_gmsh_surface(
     registry: &ElementRegistry,
 ) -> Result<GmshSurface, IoError> {
     let mut cur = Cursor::new(bytes, path);
-    let data = parse::parse(&mut cur, registry)?;
+    let keep = |dim: i32, ty: i32| {
+        u32::try_from(ty)
+            .ok()
+            .and_then(|t| registry.by_gmsh_type(t))
+            .filter(|_| dim == 1 || dim == 2)
+            .map(|e| e.node_count())
+    };
+    let data = parse::parse(&mut cur, &keep)?;
     let encoding = cur.encoding();
     let (blocks, dimension, group) = select(&data, path, group)?;
     build(

@@ -7,8 +7,6 @@
 
 use std::collections::HashMap;
 
-use mortar_elements::ElementRegistry;
-
 use super::cursor::{parse_token, quote, Cursor, Encoding};
 use super::element_types;
 use crate::io::error::IoError;
@@ -29,8 +27,8 @@ pub(super) struct ElementBlock {
     pub element_type: i32,
     /// Elements in the block.
     pub count: usize,
-    /// Whether the registry knows the type: then tags, positions and nodes are kept (for
-    /// blocks of dimension 1 and 2).
+    /// Whether the caller keeps the block (see [`Keep`]): then tags, positions and nodes are
+    /// kept.
     pub kept: bool,
     /// Element tags (all of them if kept, else only the first).
     pub tags: Vec<u64>,
@@ -55,8 +53,12 @@ pub(super) struct MshData {
     pub blocks: Vec<ElementBlock>,
 }
 
+/// Which element blocks to keep: given a block's dimension and Gmsh element type, `Some(n)`
+/// (the type's node count) to keep its elements, `None` to skip them.
+pub(super) type Keep<'a> = &'a dyn Fn(i32, i32) -> Option<usize>;
+
 /// Parses the whole file.
-pub(super) fn parse(cur: &mut Cursor<'_>, registry: &ElementRegistry) -> Result<MshData, IoError> {
+pub(super) fn parse(cur: &mut Cursor<'_>, keep: Keep<'_>) -> Result<MshData, IoError> {
     parse_mesh_format(cur)?;
     let mut data = MshData::default();
     loop {
@@ -70,7 +72,7 @@ pub(super) fn parse(cur: &mut Cursor<'_>, registry: &ElementRegistry) -> Result<
             "$PhysicalNames" => parse_physical_names(cur, &mut data)?,
             "$Entities" => parse_entities(cur, &mut data)?,
             "$Nodes" => parse_nodes(cur, &mut data)?,
-            "$Elements" => parse_elements(cur, &mut data, registry)?,
+            "$Elements" => parse_elements(cur, &mut data, keep)?,
             "$MeshFormat" => {
                 return Err(cur.malformed(pos, "a second $MeshFormat section"));
             }
@@ -324,11 +326,7 @@ fn parse_nodes(cur: &mut Cursor<'_>, data: &mut MshData) -> Result<(), IoError> 
 }
 
 /// `$Elements`: per entity block the element type, then per element its tag and node tags.
-fn parse_elements(
-    cur: &mut Cursor<'_>,
-    data: &mut MshData,
-    registry: &ElementRegistry,
-) -> Result<(), IoError> {
+fn parse_elements(cur: &mut Cursor<'_>, data: &mut MshData, keep: Keep<'_>) -> Result<(), IoError> {
     cur.skip_whitespace_if_ascii();
     let header = cur.pos();
     let blocks = cur.count("the number of element blocks")?;
@@ -345,12 +343,9 @@ fn parse_elements(
         let count = cur.count(format_args!(
             "the number of elements of the block of entity {entity} (dimension {dim})"
         ))?;
-        let registered = u32::try_from(element_type)
-            .ok()
-            .and_then(|t| registry.by_gmsh_type(t));
-        let nodes_per_element =
-            element_types::node_count(element_type).or(registered.map(|e| e.node_count()));
-        let kept = registered.is_some() && (dim == 1 || dim == 2);
+        let registered = keep(dim, element_type);
+        let nodes_per_element = element_types::node_count(element_type).or(registered);
+        let kept = registered.is_some();
         let mut block = ElementBlock {
             dim,
             entity,

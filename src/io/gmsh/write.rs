@@ -1,9 +1,11 @@
-//! Writing surface meshes as Gmsh 4.1 files, ASCII or binary.
+//! Writing surface meshes, and bodies with groups of their boundary faces, as Gmsh 4.1
+//! files, ASCII or binary.
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use mortar_core::element::ReferenceDomain;
+use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::SurfaceMesh;
 
 use crate::io::error::IoError;
@@ -92,18 +94,8 @@ pub fn msh41_bytes(
     format: MshFormat,
 ) -> Result<Vec<u8>, IoError> {
     let unwritable = |reason: String| IoError::Unwritable { reason };
-    let mut dims = Vec::with_capacity(surfaces.len());
-    let mut node_owner: HashMap<u64, [f64; 3]> = HashMap::new();
-    let mut element_tags: HashMap<u64, usize> = HashMap::new();
-    // Per surface: its nodes written here (tag, coordinates) and its element blocks.
-    let mut own_nodes: Vec<Vec<(u64, [f64; 3])>> = Vec::with_capacity(surfaces.len());
-    let mut blocks: Vec<Vec<Block>> = Vec::with_capacity(surfaces.len());
-    for (s, (mesh, name)) in surfaces.iter().enumerate() {
-        if name.contains(['"', '\n', '\r']) {
-            return Err(unwritable(format!(
-                "physical name {name:?} contains a quote or a line break"
-            )));
-        }
+    let mut parts = Vec::with_capacity(surfaces.len());
+    for (mesh, name) in surfaces {
         let mut dim = None;
         let mut by_type: Vec<Block> = Vec::new();
         for f in 0..mesh.face_count() {
@@ -125,27 +117,178 @@ pub fn msh41_bytes(
                     face.element.name()
                 )));
             };
-            if let Some(other) = element_tags.insert(face.tag, s) {
-                return Err(unwritable(format!(
-                    "element tag {} is used by \"{}\" and \"{name}\"",
-                    face.tag, surfaces[other].1
-                )));
-            }
             let nodes = face
                 .nodes
                 .iter()
                 .map(|&n| mesh.node_tags()[n as usize])
                 .collect();
-            match by_type.iter_mut().find(|(ty, _)| *ty == t) {
-                Some((_, list)) => list.push((face.tag, nodes)),
-                None => by_type.push((t, vec![(face.tag, nodes)])),
+            push_element(&mut by_type, t, (face.tag, nodes));
+        }
+        let nodes = mesh
+            .node_tags()
+            .iter()
+            .zip(mesh.coords())
+            .map(|(&tag, x)| (tag, [x.x, x.y, x.z]))
+            .collect();
+        parts.push(Part {
+            dim: dim.unwrap_or(2),
+            name,
+            blocks: by_type,
+            nodes,
+        });
+    }
+    parts_bytes(&parts, format)
+}
+
+/// Writes a body and named sets of its boundary faces into one Gmsh 4.1 file; see
+/// [`msh41_volume_bytes`].
+///
+/// # Errors
+/// As [`msh41_volume_bytes`]; [`IoError::Write`] if the file cannot be written.
+pub fn write_msh41_volume(
+    body: (&VolumeMesh, &str),
+    face_groups: &[(&[BoundaryFace], &str)],
+    path: impl AsRef<Path>,
+    format: MshFormat,
+) -> Result<(), IoError> {
+    let bytes = msh41_volume_bytes(body, face_groups, format)?;
+    let path = path.as_ref();
+    std::fs::write(path, bytes).map_err(|source| IoError::Write {
+        path: path.to_path_buf(),
+        source,
+    })
+}
+
+/// The bytes of a Gmsh 4.1 file holding a body `(mesh, name)` (its cells: entity and
+/// physical group 1 of the body's dimension) and groups of its boundary faces (entity and physical
+/// group `i + 2` of one dimension less, each named as given), such as the Dirichlet and
+/// Neumann boundaries and the interface side of a scene. Node and cell tags are kept; face
+/// elements are numbered after the largest cell tag, in order.
+///
+/// # Errors
+/// [`IoError::Unwritable`] for a name with a quote or line break, a cell without a Gmsh
+/// type, or a face index beyond the mesh.
+pub fn msh41_volume_bytes(
+    body: (&VolumeMesh, &str),
+    face_groups: &[(&[BoundaryFace], &str)],
+    format: MshFormat,
+) -> Result<Vec<u8>, IoError> {
+    let (mesh, name) = body;
+    let unwritable = |reason: String| IoError::Unwritable { reason };
+    let dim = mesh.dim().unwrap_or(3) as i32;
+    let mut cells: Vec<Block> = Vec::new();
+    let mut next_tag = 1;
+    for c in 0..mesh.cell_count() {
+        let cell = mesh.cell(c);
+        let Some(t) = cell.element.gmsh_type() else {
+            return Err(unwritable(format!(
+                "cell {} of \"{name}\" is a {}, which has no Gmsh type",
+                cell.tag,
+                cell.element.name()
+            )));
+        };
+        let nodes = cell
+            .nodes
+            .iter()
+            .map(|&n| mesh.node_tags()[n as usize])
+            .collect();
+        push_element(&mut cells, t, (cell.tag, nodes));
+        next_tag = next_tag.max(cell.tag + 1);
+    }
+    let all_nodes: Vec<(u64, [f64; 3])> = mesh
+        .node_tags()
+        .iter()
+        .zip(mesh.coords())
+        .map(|(&tag, x)| (tag, [x.x, x.y, x.z]))
+        .collect();
+    let mut parts = vec![Part {
+        dim,
+        name,
+        blocks: cells,
+        nodes: all_nodes,
+    }];
+    for (faces, group) in face_groups {
+        let mut by_type: Vec<Block> = Vec::new();
+        for f in faces.iter() {
+            let Some(t) = f.element.gmsh_type() else {
+                return Err(unwritable(format!(
+                    "a face of \"{group}\" is a {}, which has no Gmsh type",
+                    f.element.name()
+                )));
+            };
+            let mut nodes = Vec::with_capacity(f.nodes.len());
+            for &n in &f.nodes {
+                match mesh.node_tags().get(n as usize) {
+                    Some(&tag) => nodes.push(tag),
+                    None => {
+                        return Err(unwritable(format!(
+                            "a face of \"{group}\" refers to node index {n}, beyond the mesh"
+                        )))
+                    }
+                }
+            }
+            push_element(&mut by_type, t, (next_tag, nodes));
+            next_tag += 1;
+        }
+        parts.push(Part {
+            dim: dim - 1,
+            name: group,
+            blocks: by_type,
+            nodes: Vec::new(),
+        });
+    }
+    parts_bytes(&parts, format)
+}
+
+fn push_element(blocks: &mut Vec<Block>, t: u32, element: Element) {
+    match blocks.iter_mut().find(|(ty, _)| *ty == t) {
+        Some((_, list)) => list.push(element),
+        None => blocks.push((t, vec![element])),
+    }
+}
+
+/// One entity and physical group of a written file.
+struct Part<'a> {
+    dim: i32,
+    name: &'a str,
+    blocks: Vec<Block>,
+    /// The nodes to write with this entity (nodes already written by an earlier part are
+    /// skipped).
+    nodes: Vec<(u64, [f64; 3])>,
+}
+
+/// Part `i` becomes entity `i + 1` of its dimension and physical group `i + 1`.
+fn parts_bytes(parts: &[Part<'_>], format: MshFormat) -> Result<Vec<u8>, IoError> {
+    let unwritable = |reason: String| IoError::Unwritable { reason };
+    let mut node_owner: HashMap<u64, [f64; 3]> = HashMap::new();
+    let mut element_tags: HashMap<u64, usize> = HashMap::new();
+    let mut own_nodes: Vec<Vec<(u64, [f64; 3])>> = Vec::with_capacity(parts.len());
+    let mut bboxes = Vec::with_capacity(parts.len());
+    for (s, part) in parts.iter().enumerate() {
+        let name = part.name;
+        if name.contains(['"', '\n', '\r']) {
+            return Err(unwritable(format!(
+                "physical name {name:?} contains a quote or a line break"
+            )));
+        }
+        for (_, list) in &part.blocks {
+            for (tag, _) in list {
+                if let Some(other) = element_tags.insert(*tag, s) {
+                    return Err(unwritable(format!(
+                        "element tag {tag} is used by \"{}\" and \"{name}\"",
+                        parts[other].name
+                    )));
+                }
             }
         }
-        dims.push(dim.unwrap_or(2));
-        blocks.push(by_type);
         let mut mine = Vec::new();
-        for (&tag, x) in mesh.node_tags().iter().zip(mesh.coords()) {
-            let x = [x.x, x.y, x.z];
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for &(tag, x) in &part.nodes {
+            for k in 0..3 {
+                lo[k] = lo[k].min(x[k]);
+                hi[k] = hi[k].max(x[k]);
+            }
             match node_owner.get(&tag) {
                 Some(y) if y == &x => {}
                 Some(_) => {
@@ -159,6 +302,10 @@ pub fn msh41_bytes(
                 }
             }
         }
+        if part.nodes.is_empty() {
+            (lo, hi) = ([0.0; 3], [0.0; 3]);
+        }
+        bboxes.push((lo, hi));
         own_nodes.push(mine);
     }
 
@@ -173,26 +320,23 @@ pub fn msh41_bytes(
         }
     }
     w.text("$EndMeshFormat\n$PhysicalNames\n");
-    w.text(&format!("{}\n", surfaces.len()));
-    for (s, (_, name)) in surfaces.iter().enumerate() {
-        w.text(&format!("{} {} \"{name}\"\n", dims[s], s + 1));
+    w.text(&format!("{}\n", parts.len()));
+    for (s, part) in parts.iter().enumerate() {
+        w.text(&format!("{} {} \"{}\"\n", part.dim, s + 1, part.name));
     }
     w.text("$EndPhysicalNames\n$Entities\n");
-    let curves = dims.iter().filter(|&&d| d == 1).count();
-    for n in [0, curves, surfaces.len() - curves, 0] {
+    let count = |d: i32| parts.iter().filter(|p| p.dim == d).count();
+    for n in [0, count(1), count(2), count(3)] {
         w.size(n as u64);
     }
     w.eol();
-    for want in [1, 2] {
-        for (s, (mesh, _)) in surfaces.iter().enumerate() {
-            if dims[s] != want {
+    for want in [1, 2, 3] {
+        for (s, part) in parts.iter().enumerate() {
+            if part.dim != want {
                 continue;
             }
             w.int((s + 1) as i32);
-            let (lo, hi) = mesh
-                .bounding_box()
-                .map(|(lo, hi)| ([lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]))
-                .unwrap_or_default();
+            let (lo, hi) = bboxes[s];
             for v in lo.iter().chain(&hi) {
                 w.float(*v);
             }
@@ -207,17 +351,12 @@ pub fn msh41_bytes(
     let total_nodes: usize = own_nodes.iter().map(Vec::len).sum();
     let (min_node, max_node) = min_max(own_nodes.iter().flatten().map(|n| n.0));
     w.text("$Nodes\n");
-    for v in [
-        surfaces.len() as u64,
-        total_nodes as u64,
-        min_node,
-        max_node,
-    ] {
+    for v in [parts.len() as u64, total_nodes as u64, min_node, max_node] {
         w.size(v);
     }
     w.eol();
     for (s, nodes) in own_nodes.iter().enumerate() {
-        w.int(dims[s]);
+        w.int(parts[s].dim);
         w.int((s + 1) as i32);
         w.int(0);
         w.size(nodes.len() as u64);
@@ -235,7 +374,7 @@ pub fn msh41_bytes(
     }
     w.end_section("Nodes");
 
-    let block_count: usize = blocks.iter().map(Vec::len).sum();
+    let block_count: usize = parts.iter().map(|p| p.blocks.len()).sum();
     let (min_el, max_el) = min_max(element_tags.keys().copied());
     w.text("$Elements\n");
     for v in [
@@ -247,9 +386,9 @@ pub fn msh41_bytes(
         w.size(v);
     }
     w.eol();
-    for (s, by_type) in blocks.iter().enumerate() {
-        for (t, list) in by_type {
-            w.int(dims[s]);
+    for (s, part) in parts.iter().enumerate() {
+        for (t, list) in &part.blocks {
+            w.int(part.dim);
             w.int((s + 1) as i32);
             w.int(*t as i32);
             w.size(list.len() as u64);

@@ -1,0 +1,119 @@
+//! Scene files: a problem described in TOML (meshes, physical groups, materials, boundary
+//! conditions, the interface, the solve), run by `mortar run SCENE.toml --out DIR`.
+//!
+//! Every scene file starts with `kind = "..."`, which picks the problem; this build knows
+//! [`tied_heat`] (`kind = "tied_heat"`). Unknown keys are errors naming the key and its line;
+//! mesh paths are relative to the scene file's folder.
+//!
+//! ```toml
+//! kind = "tied_heat"
+//!
+//! [bodies.left]
+//! mesh = "left.msh"          # Gmsh 4.1, ASCII or binary
+//! group = "left"             # physical group of the cells (dimension 2 or 3)
+//! conductivity = 1.0         # k, W/m/K
+//! dirichlet = [{ group = "left_end", value = 0.0 }]
+//!
+//! [bodies.right]
+//! mesh = "right.msh"
+//! group = "right"
+//! conductivity = 2.0
+//! neumann = [{ group = "right_end", flux = 1.3333333333333333 }]
+//!
+//! [interface]
+//! slave = { body = "right", group = "right_cut" }
+//! master = { body = "left", group = "left_cut" }
+//! multipliers = "dual"       # or "standard"
+//! integration = "segment"    # or "element"
+//!
+//! [solve]
+//! mode = "steady"            # or "transient", with dt and steps
+//! ```
+
+mod builtin;
+mod error;
+pub mod tied_heat;
+
+use std::path::{Path, PathBuf};
+
+pub use builtin::{builtin_scene, tied_block, tied_block_exact, BuiltinScene, BUILTIN_SCENES};
+pub use error::SceneError;
+
+use crate::io::IoError;
+
+/// Where a scene's mesh files come from: the file system, or files held in memory (a
+/// built-in scene, a test).
+pub trait SceneSource {
+    /// The bytes of the file at `path`.
+    ///
+    /// # Errors
+    /// [`IoError::Read`] naming the file.
+    fn read(&self, path: &Path) -> Result<Vec<u8>, IoError>;
+}
+
+/// Files read from the file system.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FileSystem;
+
+impl SceneSource for FileSystem {
+    fn read(&self, path: &Path) -> Result<Vec<u8>, IoError> {
+        std::fs::read(path).map_err(|source| IoError::Read {
+            path: path.to_path_buf(),
+            source,
+        })
+    }
+}
+
+/// Files held in memory, by path.
+#[derive(Debug, Clone, Default)]
+pub struct InMemory {
+    /// `(path, contents)`.
+    pub files: Vec<(PathBuf, Vec<u8>)>,
+}
+
+impl SceneSource for InMemory {
+    fn read(&self, path: &Path) -> Result<Vec<u8>, IoError> {
+        self.files
+            .iter()
+            .find(|(p, _)| p == path)
+            .map(|(_, b)| b.clone())
+            .ok_or_else(|| IoError::Read {
+                path: path.to_path_buf(),
+                source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
+            })
+    }
+}
+
+/// The output of a scene run: files to write into the output folder (all or none, see
+/// [`write_outputs`](crate::io::write_outputs)) and a readable summary.
+#[derive(Debug, Clone)]
+pub struct SceneOutput {
+    /// `(file name, contents)`.
+    pub files: Vec<(String, Vec<u8>)>,
+    /// A few lines for the terminal.
+    pub summary: String,
+}
+
+/// The `kind` of a scene file's text.
+///
+/// # Errors
+/// [`SceneError::Syntax`] for text that is not TOML, [`SceneError::Invalid`] without a
+/// string `kind` at the top level.
+pub fn scene_kind(text: &str, path: &Path) -> Result<String, SceneError> {
+    let table: toml::Table =
+        toml::from_str(text).map_err(|e| SceneError::from_toml(path, text, &e))?;
+    match table.get("kind") {
+        Some(toml::Value::String(kind)) => Ok(kind.clone()),
+        Some(other) => Err(SceneError::Invalid {
+            path: path.to_path_buf(),
+            key: "kind".into(),
+            what: format!("must be a string such as \"tied_heat\", found {other}"),
+        }),
+        None => Err(SceneError::Invalid {
+            path: path.to_path_buf(),
+            key: "kind".into(),
+            what: "missing: the scene file must start with kind = \"tied_heat\" (or another kind)"
+                .into(),
+        }),
+    }
+}

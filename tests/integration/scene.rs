@@ -1,0 +1,161 @@
+//! `mortar run`: scene files naming Gmsh bodies and groups, solved exactly on a patch test
+//! (piecewise linear temperature), in 2D and 3D, from ASCII and binary files.
+
+use std::path::Path;
+
+use mortar::io::{Endianness, MshFormat};
+use mortar::scenes::file::tied_heat::TiedHeatSpec;
+use mortar::scenes::file::{tied_block, tied_block_exact, FileSystem};
+use serde_json::Value;
+
+use crate::common::{mortar, TempDir};
+
+/// Writes the scene of `tied_block(dim, n, format)` into `dir`; returns the scene file.
+fn write_scene(dir: &TempDir, dim: usize, n: usize, format: MshFormat) -> String {
+    let scene = tied_block(dim, n, format).unwrap();
+    for (name, bytes) in &scene.meshes {
+        dir.file(name, bytes);
+    }
+    dir.file("scene.toml", &scene.toml)
+}
+
+/// Solves the scene file through the library; returns the nodal temperatures per body.
+fn solve(path: &str) -> [Vec<f64>; 2] {
+    let path = Path::new(path);
+    let text = std::fs::read_to_string(path).unwrap();
+    let spec = TiedHeatSpec::parse(&text, path).unwrap();
+    let solved = spec
+        .solve(path, path.parent().unwrap(), &FileSystem)
+        .unwrap();
+    for (b, body) in solved.problem.bodies().iter().enumerate() {
+        let err = body
+            .mesh
+            .coords()
+            .iter()
+            .zip(&solved.solution.temperatures[b])
+            .map(|(x, t)| (t - tied_block_exact(x.x)).abs())
+            .fold(0.0, f64::max);
+        assert!(err < 1e-10, "{path:?}: body {}: error {err:e}", body.name);
+    }
+    solved.solution.temperatures.clone()
+}
+
+#[test]
+fn patch_test_2d_and_3d_ascii_equals_binary() {
+    for (dim, n) in [(2, 8), (3, 4)] {
+        let ascii = TempDir::new(&format!("scene-ascii-{dim}"));
+        let binary = TempDir::new(&format!("scene-binary-{dim}"));
+        let a = solve(&write_scene(&ascii, dim, n, MshFormat::Ascii));
+        let b = solve(&write_scene(
+            &binary,
+            dim,
+            n,
+            MshFormat::Binary(Endianness::Little),
+        ));
+        assert_eq!(
+            a, b,
+            "{dim}D: ASCII and binary files give the same temperatures"
+        );
+    }
+}
+
+#[test]
+fn cli_writes_vtu_and_report() {
+    let dir = TempDir::new("scene-cli");
+    let scene = write_scene(&dir, 2, 8, MshFormat::Binary(Endianness::Big));
+    let out = dir.join("out");
+    let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["left.vtu", "right.vtu", "report.json"] {
+        assert!(out.join(f).is_file(), "{f} written");
+    }
+    let vtu = std::fs::read_to_string(out.join("right.vtu")).unwrap();
+    assert!(vtu.contains("Name=\"temperature\""));
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["kind"], "tied_heat");
+    assert_eq!(report["dimension"], 2);
+    assert_eq!(
+        report["formulation"]["name"],
+        "dual-condensed SPD, Cholesky"
+    );
+    assert!(report["formulation"]["reason"]
+        .as_str()
+        .unwrap()
+        .contains("D is diagonal"));
+    assert_eq!(report["dofs"], 136);
+    assert!(report["seconds"]["factorisation"].as_f64().unwrap() >= 0.0);
+    let hi = report["bodies"][0]["temperature_max"].as_f64().unwrap();
+    assert!((hi - 1.0).abs() < 1e-10, "right end at T = 1: {hi}");
+
+    // Standard multipliers: the saddle point, said so, same temperatures.
+    let text = std::fs::read_to_string(&scene)
+        .unwrap()
+        .replace("multipliers = \"dual\"", "multipliers = \"standard\"");
+    let standard = dir.file("standard.toml", text);
+    solve(&standard);
+    let out2 = dir.join("out2");
+    let o = mortar(&["--json", "run", &standard, "--out", out2.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(report["formulation"]["name"], "saddle point, LU");
+}
+
+#[test]
+fn transient_scene_steps() {
+    let dir = TempDir::new("scene-transient");
+    let scene = write_scene(&dir, 2, 4, MshFormat::Ascii);
+    let text = std::fs::read_to_string(&scene).unwrap().replace(
+        "mode = \"steady\"",
+        "mode = \"transient\"\ndt = 0.5\nsteps = 4",
+    );
+    let text = text.replace("conductivity = 1.0", "conductivity = 1.0\nrho_cp = 1.0");
+    let text = text.replace("conductivity = 2.0", "conductivity = 2.0\nrho_cp = 1.0");
+    let scene = dir.file("transient.toml", text);
+    let out = dir.join("out");
+    let o = mortar(&["--json", "run", &scene, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(report["steps"], 4);
+    assert_eq!(report["time"], 2.0);
+    let hi = report["bodies"][0]["temperature_max"].as_f64().unwrap();
+    assert!(
+        hi > 0.0 && hi < 1.0,
+        "heating up towards the steady state: {hi}"
+    );
+}
+
+#[test]
+fn builtin_scene_writes_its_scene_file() {
+    let dir = TempDir::new("scene-builtin");
+    let out = dir.join("out");
+    let o = mortar(&[
+        "run",
+        "--scene",
+        "tied_heat",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "scene.toml",
+        "left.msh",
+        "right.msh",
+        "left.vtu",
+        "right.vtu",
+        "report.json",
+    ] {
+        assert!(out.join(f).is_file(), "{f} written");
+    }
+    // The written scene file runs as is, with the same result.
+    solve(out.join("scene.toml").to_str().unwrap());
+}
+
+#[test]
+fn example_scene_runs() {
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/tied_square.toml"
+    );
+    solve(scene);
+}
