@@ -1,10 +1,13 @@
 //! Ready-made problems of the seed, built in code: meshes, data and solver settings in one
 //! place, for the examples, the tests and the command line.
 //!
+//! - [`pellet`]: the fuel pellet in its cladding, thermal only, helium gap conductance across
+//!   the open gap, nonlinear `k(T)`, Newton or JFNK, checked against the closed form.
 //! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
 //!   non-conforming interface, with a manufactured solution.
 //! - [`file`]: scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions
 //!   and the interface, as run by `mortar run SCENE.toml --out DIR`.
 
 pub mod file;
+pub mod pellet;
 pub mod tied_heat;

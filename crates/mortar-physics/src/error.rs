@@ -5,6 +5,8 @@ use mortar_core::linalg::SolverError;
 use mortar_core::mesh::VolumeMeshError;
 use mortar_core::{MortarError, Side};
 
+use crate::laws::LawError;
+use crate::nonlinear::NewtonFailure;
 use crate::tying::TyingError;
 
 /// Errors of the physics crate.
@@ -67,4 +69,10 @@ pub enum PhysicsError {
         /// The length given.
         got: usize,
     },
+    /// A constraint law refused its input or parameters.
+    #[error(transparent)]
+    Law(#[from] LawError),
+    /// Newton's method failed (its residual history is in the error).
+    #[error(transparent)]
+    Newton(#[from] NewtonFailure),
 }

@@ -9,7 +9,13 @@
 //!   is diagonal, with the choice reported.
 //! - [`heat`]: steady and transient (backward Euler) heat conduction on 2D and 3D volume
 //!   meshes (stiffness, capacity, loads; deterministic parallel assembly), error norms
-//!   against exact solutions, and the tied heat problem of two bodies.
+//!   against exact solutions, and the tied heat problem of two bodies; `k(T)` conduction and
+//!   two bodies exchanging heat through a constraint law ([`heat::GapHeat`]).
+//! - [`laws`]: pointwise constraint laws `C(g, lambda; T)` written once over a generic float,
+//!   tangents by automatic differentiation: tying, gap conductance, exponential pressure,
+//!   contact complementarity.
+//! - [`nonlinear`]: one Newton loop (line search, Eisenstat-Walker forcing) over a problem
+//!   that solves its own linearisation: assembled Newton or Jacobian-free Newton-Krylov.
 //!
 //! Sign conventions: the tying constraint is `D T_s - M T_m = 0`; the multiplier is the heat
 //! flux leaving the slave body (`lambda = -k dT/dn_s`, `n_s` the slave's outward normal);
@@ -28,6 +34,8 @@
 
 pub mod error;
 pub mod heat;
+pub mod laws;
+pub mod nonlinear;
 pub mod tied;
 pub mod tying;
 

@@ -11,6 +11,10 @@
 //!   system is a saddle point (LU) or, with dual multipliers on a fully covered interface,
 //!   condensed to an SPD system (Cholesky), as the [`FormulationReport`](crate::tied::FormulationReport)
 //!   of the solution says.
+//! - [`assemble_conduction`]: the heat flow of a temperature-dependent [`Conductivity`]
+//!   `k(T)` and its Newton or Picard linearisation; [`GapHeat`]: two bodies exchanging heat
+//!   through a pointwise [`ConstraintLaw`](crate::laws::ConstraintLaw) (gap conductance
+//!   across an open gap), steady or backward Euler, solved by Newton or JFNK ([`GapSolver`]).
 //! - [`error_norms`]: L2 and H1-seminorm errors against an exact solution, by quadrature.
 //!
 //! Weak form per body: `(rho c_p T_t, v) + (k grad T, grad v) + <lambda, v>_Gamma =
@@ -20,10 +24,14 @@
 
 mod assembly;
 mod body;
+mod gap;
+mod nonlinear;
 mod norms;
 mod tied;
 
 pub use assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
 pub use body::{DirichletCondition, Field, HeatBody, HeatMaterial, NeumannCondition};
+pub use gap::{GapHeat, GapSolver, GapSolverState, GapSolverStats};
+pub use nonlinear::{assemble_conduction, Conductivity, Linearization};
 pub use norms::{error_norms, ErrorNorms};
 pub use tied::{BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution};

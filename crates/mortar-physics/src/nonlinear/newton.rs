@@ -1,0 +1,288 @@
+use std::time::Instant;
+
+use crate::error::PhysicsError;
+
+/// A nonlinear problem `F(x) = 0` as Newton's method sees it: a residual, and a solver of the
+/// linearised problem. The problem owns its Jacobian (assembled, approximated, or none).
+pub trait NewtonProblem {
+    /// Writes `F(x)` into `r`.
+    ///
+    /// # Errors
+    /// A failure of the evaluation (a law refusing a NaN, say); Newton's line search treats
+    /// it as a rejected step.
+    fn residual(&self, x: &[f64], r: &mut [f64]) -> Result<(), PhysicsError>;
+
+    /// Solves `J(x) dx = r` (`r = F(x)`), to the relative residual `forcing` if the solver is
+    /// iterative (a direct solver ignores it). Returns the linear iterations spent (1 for a
+    /// direct solve).
+    ///
+    /// # Errors
+    /// A failure of the factorisation or of the iterative solver.
+    fn solve_linearized(
+        &mut self,
+        x: &[f64],
+        r: &[f64],
+        dx: &mut [f64],
+        forcing: f64,
+    ) -> Result<usize, PhysicsError>;
+}
+
+/// How tightly each Newton step's linear problem is solved (relative residual `eta`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Forcing {
+    /// A fixed `eta`.
+    Constant(f64),
+    /// Eisenstat and Walker's choice 2: `eta_k = gamma (|F_k| / |F_{k-1}|)^alpha`, safeguarded
+    /// by `gamma eta_{k-1}^alpha` when that exceeds 0.1, at most `max`, and never below
+    /// `0.5 tol / |F_k|` (no oversolving of the last step).
+    EisenstatWalker {
+        /// `eta_0`.
+        initial: f64,
+        /// `gamma` (0.9).
+        gamma: f64,
+        /// `alpha` (2).
+        alpha: f64,
+        /// The largest `eta` (0.9).
+        max: f64,
+    },
+}
+
+impl Forcing {
+    /// Eisenstat-Walker with `eta_0 = 0.1`, `gamma = 0.9`, `alpha = 2`, `eta_max = 0.9`.
+    pub fn eisenstat_walker() -> Self {
+        Self::EisenstatWalker {
+            initial: 0.1,
+            gamma: 0.9,
+            alpha: 2.0,
+            max: 0.9,
+        }
+    }
+}
+
+/// Settings of [`newton`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonOptions {
+    /// Converged when `|F| <= absolute_tolerance` ...
+    pub absolute_tolerance: f64,
+    /// ... or `|F| <= relative_tolerance |F(x_0)|` (Euclidean norms).
+    pub relative_tolerance: f64,
+    /// The most Newton steps.
+    pub max_iterations: usize,
+    /// The linear forcing terms.
+    pub forcing: Forcing,
+    /// The most step halvings of the backtracking line search (0: full steps only).
+    pub max_backtracks: usize,
+}
+
+impl Default for NewtonOptions {
+    /// Absolute tolerance 0, relative 1e-10, 30 steps, Eisenstat-Walker, 10 halvings.
+    fn default() -> Self {
+        Self {
+            absolute_tolerance: 0.0,
+            relative_tolerance: 1e-10,
+            max_iterations: 30,
+            forcing: Forcing::eisenstat_walker(),
+            max_backtracks: 10,
+        }
+    }
+}
+
+/// What a converged [`newton`] did.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct NewtonReport {
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// Linear iterations over all steps.
+    pub linear_iterations: usize,
+    /// Residual evaluations (line search trials included; JFNK's products not).
+    pub residual_evaluations: usize,
+    /// Step halvings of the line search over all steps.
+    pub backtracks: usize,
+    /// `|F|` after each step (the first entry at `x_0`).
+    pub residual_history: Vec<f64>,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// Why Newton's method failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NewtonFailureReason {
+    /// The iteration limit was reached.
+    MaxIterations,
+    /// No step length reduced the residual enough.
+    LineSearch,
+    /// The residual is not finite at the initial guess.
+    NonFiniteResidual,
+}
+
+/// A failed Newton solve, with its residual history.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("Newton's method failed ({reason:?}) after {iterations} step(s); residual norms: {residual_history:?}")]
+pub struct NewtonFailure {
+    /// Why.
+    pub reason: NewtonFailureReason,
+    /// Steps taken.
+    pub iterations: usize,
+    /// `|F|` at `x_0` and after each step.
+    pub residual_history: Vec<f64>,
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Solves `F(x) = 0` by Newton's method from the `x` given, with a backtracking line search
+/// (Armijo on `|F|`: accept the step length `a` when `|F(x - a dx)| <= (1 - 1e-4 a) |F(x)|`,
+/// halving `a` otherwise) and the forcing terms of `options` passed to the problem's linear
+/// solver. On success `x` holds the solution.
+///
+/// # Errors
+/// [`PhysicsError::Newton`] (with the residual history) when the iteration limit is reached,
+/// the line search fails or the initial residual is not finite; the errors of the problem's
+/// residual at `x_0` and of its linear solver.
+pub fn newton(
+    problem: &mut dyn NewtonProblem,
+    x: &mut [f64],
+    options: &NewtonOptions,
+) -> Result<NewtonReport, PhysicsError> {
+    let start = Instant::now();
+    let n = x.len();
+    let mut r = vec![0.0; n];
+    let mut dx = vec![0.0; n];
+    let mut trial = vec![0.0; n];
+    let mut r_trial = vec![0.0; n];
+    problem.residual(x, &mut r)?;
+    let mut norm_r = norm(&r);
+    let mut report = NewtonReport {
+        residual_evaluations: 1,
+        residual_history: vec![norm_r],
+        ..Default::default()
+    };
+    let fail = |reason, report: &NewtonReport| {
+        PhysicsError::Newton(NewtonFailure {
+            reason,
+            iterations: report.iterations,
+            residual_history: report.residual_history.clone(),
+        })
+    };
+    if !norm_r.is_finite() {
+        return Err(fail(NewtonFailureReason::NonFiniteResidual, &report));
+    }
+    let tol = options
+        .absolute_tolerance
+        .max(options.relative_tolerance * norm_r);
+    let mut eta = match options.forcing {
+        Forcing::Constant(e) => e,
+        Forcing::EisenstatWalker { initial, .. } => initial,
+    };
+    let mut norm_prev = norm_r;
+    loop {
+        if norm_r <= tol {
+            report.seconds = start.elapsed().as_secs_f64();
+            return Ok(report);
+        }
+        if report.iterations >= options.max_iterations {
+            return Err(fail(NewtonFailureReason::MaxIterations, &report));
+        }
+        if let Forcing::EisenstatWalker {
+            gamma, alpha, max, ..
+        } = options.forcing
+        {
+            if report.iterations > 0 {
+                let mut e = gamma * (norm_r / norm_prev).powf(alpha);
+                let safeguard = gamma * eta.powf(alpha);
+                if safeguard > 0.1 {
+                    e = e.max(safeguard);
+                }
+                eta = e.min(max);
+            }
+            eta = eta.max(0.5 * tol / norm_r).min(max);
+        }
+        dx.fill(0.0);
+        report.linear_iterations += problem.solve_linearized(x, &r, &mut dx, eta)?;
+        report.iterations += 1;
+        // Backtracking line search.
+        let mut a = 1.0;
+        let mut accepted = false;
+        for halving in 0..=options.max_backtracks {
+            for i in 0..n {
+                trial[i] = x[i] - a * dx[i];
+            }
+            report.residual_evaluations += 1;
+            let ok = problem.residual(&trial, &mut r_trial).is_ok();
+            let nt = norm(&r_trial);
+            if ok && nt.is_finite() && nt <= (1.0 - 1e-4 * a) * norm_r {
+                accepted = true;
+                report.backtracks += halving;
+                break;
+            }
+            a *= 0.5;
+        }
+        if !accepted {
+            return Err(fail(NewtonFailureReason::LineSearch, &report));
+        }
+        x.copy_from_slice(&trial);
+        std::mem::swap(&mut r, &mut r_trial);
+        norm_prev = norm_r;
+        norm_r = norm(&r);
+        report.residual_history.push(norm_r);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `F(x) = (x0^2 - 2, x1^3 - x0)`, solved with the exact 2x2 Jacobian.
+    struct Small {
+        fail: bool,
+    }
+
+    impl NewtonProblem for Small {
+        fn residual(&self, x: &[f64], r: &mut [f64]) -> Result<(), PhysicsError> {
+            r[0] = x[0] * x[0] - 2.0;
+            r[1] = x[1].powi(3) - x[0];
+            if self.fail {
+                r[0] = x[0] * x[0] + 1.0; // no root
+            }
+            Ok(())
+        }
+        fn solve_linearized(
+            &mut self,
+            x: &[f64],
+            r: &[f64],
+            dx: &mut [f64],
+            _forcing: f64,
+        ) -> Result<usize, PhysicsError> {
+            let (a, c, d) = (2.0 * x[0], -1.0, 3.0 * x[1] * x[1]);
+            dx[0] = r[0] / a;
+            dx[1] = (r[1] - c * dx[0]) / d;
+            Ok(1)
+        }
+    }
+
+    #[test]
+    fn converges_quadratically_and_fails_with_history() {
+        let mut x = [1.0, 1.0];
+        let tight = NewtonOptions {
+            relative_tolerance: 1e-14,
+            ..NewtonOptions::default()
+        };
+        let rep = newton(&mut Small { fail: false }, &mut x, &tight).unwrap();
+        assert!((x[0] - 2f64.sqrt()).abs() < 1e-12);
+        assert!((x[1] - 2f64.sqrt().cbrt()).abs() < 1e-12);
+        assert!(rep.iterations < 10, "{rep:?}");
+        let mut x = [1.0, 1.0];
+        match newton(&mut Small { fail: true }, &mut x, &NewtonOptions::default()) {
+            Err(PhysicsError::Newton(f)) => {
+                assert!(!f.residual_history.is_empty());
+                assert!(matches!(
+                    f.reason,
+                    NewtonFailureReason::LineSearch | NewtonFailureReason::MaxIterations
+                ));
+            }
+            other => panic!("expected a Newton failure, got {other:?}"),
+        }
+    }
+}

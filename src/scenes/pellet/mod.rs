@@ -1,0 +1,408 @@
+//! The pellet scene of the seed, thermal only: a fuel pellet (disc, `k = 1 / (A + B T)`)
+//! inside its cladding (annulus, constant `k`), helium in the open gap between them, a power
+//! ramp, and the cladding's outer temperature fixed (PHYSICS.md sections 2, 4 and 5). The gap
+//! is held open (no thermal expansion).
+//!
+//! The 2D cross-section is meshed by the toolkit: an O-grid disc for the pellet and a polar
+//! annulus for the cladding, at different resolutions and rotated by half a cell, so that the
+//! interface does not match. The heat crosses the gap through the Ross-Stoute
+//! [`GapConductance`] law on a dual mortar coupling projected across the gap (pellet surface
+//! the slave side). The heat equation is stepped by backward Euler through the ramp, then
+//! solved steady at full power; each solve is a Newton solve, on the assembled Jacobian or
+//! Jacobian-free (JFNK) as `[solver] method` says. The steady temperatures are compared with
+//! the closed form ([`closed_form`]).
+//!
+//! The scene file (TOML; every key optional, defaults from PHYSICS.md section 4):
+//!
+//! ```toml
+//! [pellet]
+//! radius = 4.1e-3            # m
+//! conductivity_a = 0.0375    # k = 1 / (a + b T): m K / W
+//! conductivity_b = 2.165e-4  # m / W
+//! heat_capacity = 3.3e6      # rho c_p, J/m^3/K
+//! [cladding]
+//! inner_radius = 4.18e-3
+//! outer_radius = 4.75e-3
+//! conductivity = 16.0
+//! outer_temperature = 580.0  # K
+//! heat_capacity = 2.0e6
+//! [gap]
+//! roughness_pellet = 2e-6
+//! roughness_cladding = 1e-6
+//! jump_distance = 10e-6      # g_f + g_c
+//! # gas_conductivity = 0.3   # W/m/K; when absent, helium: 2.531e-3 T^0.7146
+//! [power]
+//! linear_power = 20e3        # W/m
+//! ramp_time = 10.0           # s, from zero
+//! [time]
+//! step = 1.0                 # s, backward Euler
+//! end = 30.0                 # s; then a steady solve at full power
+//! snapshots = 4              # VTU files over the transient (plus the steady one)
+//! [solver]
+//! method = "newton"          # or "jfnk"
+//! relative_tolerance = 1e-10
+//! [mesh]
+//! refinement = 2
+//! ```
+//!
+//! ```no_run
+//! let report = mortar::scenes::pellet::run_builtin(std::path::Path::new("out"), false)?;
+//! println!("{}", report["center_temperature"]);
+//! # Ok::<(), mortar::scenes::pellet::PelletError>(())
+//! ```
+
+mod closed_form;
+mod mesh;
+mod run;
+
+pub use closed_form::{closed_form, ClosedForm};
+pub use mesh::{annulus_mesh, pellet_mesh};
+pub use run::{run, run_builtin, run_from_toml};
+
+use mortar_core::mesh::VolumeMeshError;
+use mortar_physics::laws::{GapConductance, GasConductivity, LawError};
+use mortar_physics::PhysicsError;
+use serde::{Deserialize, Serialize};
+
+/// Errors of the pellet scene.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PelletError {
+    /// The scene file is not valid TOML or has unknown keys or wrong types.
+    #[error("pellet scene file: {0}")]
+    Parse(String),
+    /// A value is out of range.
+    #[error("pellet scene: {0}")]
+    Invalid(String),
+    /// A mesh could not be built.
+    #[error(transparent)]
+    Mesh(#[from] VolumeMeshError),
+    /// The gap law refused its parameters.
+    #[error(transparent)]
+    Law(#[from] LawError),
+    /// The physics failed (a Newton solve that did not converge, say).
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+    /// The coupling could not be built.
+    #[error(transparent)]
+    Mortar(#[from] mortar_core::MortarError),
+    /// An output could not be written.
+    #[error(transparent)]
+    Io(#[from] crate::io::IoError),
+    /// An output file or directory could not be written.
+    #[error("cannot write {path}: {source}")]
+    Write {
+        /// The path.
+        path: std::path::PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+}
+
+/// The pellet: `[pellet]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PelletData {
+    /// Radius `a` (m).
+    pub radius: f64,
+    /// `A` of `k = 1 / (A + B T)` (m K/W).
+    pub conductivity_a: f64,
+    /// `B` of `k = 1 / (A + B T)` (m/W).
+    pub conductivity_b: f64,
+    /// `rho c_p` (J/m^3/K).
+    pub heat_capacity: f64,
+}
+
+impl Default for PelletData {
+    fn default() -> Self {
+        Self {
+            radius: 4.1e-3,
+            conductivity_a: 0.0375,
+            conductivity_b: 2.165e-4,
+            heat_capacity: 3.3e6,
+        }
+    }
+}
+
+/// The cladding: `[cladding]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CladdingData {
+    /// Inner radius `b` (m).
+    pub inner_radius: f64,
+    /// Outer radius `c` (m).
+    pub outer_radius: f64,
+    /// Conductivity (W/m/K).
+    pub conductivity: f64,
+    /// The fixed outer temperature `T_co` (K), also the initial temperature everywhere.
+    pub outer_temperature: f64,
+    /// `rho c_p` (J/m^3/K).
+    pub heat_capacity: f64,
+}
+
+impl Default for CladdingData {
+    fn default() -> Self {
+        Self {
+            inner_radius: 4.18e-3,
+            outer_radius: 4.75e-3,
+            conductivity: 16.0,
+            outer_temperature: 580.0,
+            heat_capacity: 2.0e6,
+        }
+    }
+}
+
+/// The gap: `[gap]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GapData {
+    /// Pellet (fuel) surface roughness `R_f` (m).
+    pub roughness_pellet: f64,
+    /// Cladding surface roughness `R_c` (m).
+    pub roughness_cladding: f64,
+    /// Temperature jump distances `g_f + g_c` (m).
+    pub jump_distance: f64,
+    /// A constant gas conductivity (W/m/K); `None`: helium, `2.531e-3 T^0.7146`.
+    pub gas_conductivity: Option<f64>,
+}
+
+impl Default for GapData {
+    fn default() -> Self {
+        Self {
+            roughness_pellet: 2e-6,
+            roughness_cladding: 1e-6,
+            jump_distance: 10e-6,
+            gas_conductivity: None,
+        }
+    }
+}
+
+/// The power history: `[power]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PowerData {
+    /// The linear power `q'` (W/m) reached at the end of the ramp.
+    pub linear_power: f64,
+    /// The duration of the linear ramp from zero (s); 0 for a step.
+    pub ramp_time: f64,
+}
+
+impl Default for PowerData {
+    fn default() -> Self {
+        Self {
+            linear_power: 20e3,
+            ramp_time: 10.0,
+        }
+    }
+}
+
+/// Time stepping: `[time]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TimeData {
+    /// The backward Euler step (s).
+    pub step: f64,
+    /// The end of the transient (s); a steady solve at full power follows.
+    pub end: f64,
+    /// How many VTU snapshots of the transient to write (the steady state is always written).
+    pub snapshots: usize,
+}
+
+impl Default for TimeData {
+    fn default() -> Self {
+        Self {
+            step: 1.0,
+            end: 30.0,
+            snapshots: 4,
+        }
+    }
+}
+
+/// The nonlinear solver: `"newton"` (assembled Jacobian, sparse LU) or `"jfnk"`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum SolverMethod {
+    /// Newton on the assembled Jacobian.
+    #[default]
+    Newton,
+    /// Jacobian-free Newton-Krylov, preconditioned by the assembled Picard matrix.
+    Jfnk,
+}
+
+/// The solver: `[solver]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SolverData {
+    /// The method.
+    pub method: SolverMethod,
+    /// Newton's relative residual tolerance (per solve).
+    pub relative_tolerance: f64,
+    /// The most Newton steps per solve.
+    pub max_iterations: usize,
+    /// GMRES restart length (JFNK).
+    pub gmres_restart: usize,
+}
+
+impl Default for SolverData {
+    fn default() -> Self {
+        Self {
+            method: SolverMethod::Newton,
+            relative_tolerance: 1e-10,
+            max_iterations: 30,
+            gmres_restart: 30,
+        }
+    }
+}
+
+/// The mesh: `[mesh]`.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MeshData {
+    /// The refinement level `r >= 1`: the pellet O-grid has `4 r` core cells per side and
+    /// `2 r` radial layers (`16 r` edges on its circle); the cladding `21 r + 1` cells around
+    /// and `2 r` radially.
+    pub refinement: usize,
+}
+
+impl Default for MeshData {
+    fn default() -> Self {
+        Self { refinement: 2 }
+    }
+}
+
+/// The pellet scene (the TOML file's tables). Every field has the default of PHYSICS.md.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PelletScene {
+    /// `scene = "pellet"`, optional (for a dispatching front end).
+    pub scene: Option<String>,
+    /// `[pellet]`.
+    pub pellet: PelletData,
+    /// `[cladding]`.
+    pub cladding: CladdingData,
+    /// `[gap]`.
+    pub gap: GapData,
+    /// `[power]`.
+    pub power: PowerData,
+    /// `[time]`.
+    pub time: TimeData,
+    /// `[solver]`.
+    pub solver: SolverData,
+    /// `[mesh]`.
+    pub mesh: MeshData,
+}
+
+impl PelletScene {
+    /// Parses a scene file.
+    ///
+    /// # Errors
+    /// [`PelletError::Parse`] for invalid TOML, an unknown key or a wrong type;
+    /// [`PelletError::Invalid`] for values out of range (see [`check`](Self::check)).
+    pub fn from_toml(text: &str) -> Result<Self, PelletError> {
+        let scene: Self = toml::from_str(text).map_err(|e| PelletError::Parse(e.to_string()))?;
+        scene.check()?;
+        Ok(scene)
+    }
+
+    /// Checks the values.
+    ///
+    /// # Errors
+    /// [`PelletError::Invalid`] naming the first value out of range.
+    pub fn check(&self) -> Result<(), PelletError> {
+        let bad = |what: String| Err(PelletError::Invalid(what));
+        if let Some(s) = &self.scene {
+            if s != "pellet" {
+                return bad(format!("scene = {s:?} is not \"pellet\""));
+            }
+        }
+        let (p, c) = (&self.pellet, &self.cladding);
+        let positive = [
+            ("pellet.radius", p.radius),
+            ("pellet.conductivity_a", p.conductivity_a),
+            ("cladding.conductivity", c.conductivity),
+            ("cladding.outer_temperature", c.outer_temperature),
+            ("time.step", self.time.step),
+            ("solver.relative_tolerance", self.solver.relative_tolerance),
+        ];
+        for (what, v) in positive {
+            if !(v > 0.0 && v.is_finite()) {
+                return bad(format!("{what} = {v} is not positive and finite"));
+            }
+        }
+        let non_negative = [
+            ("pellet.conductivity_b", p.conductivity_b),
+            ("pellet.heat_capacity", p.heat_capacity),
+            ("cladding.heat_capacity", c.heat_capacity),
+            ("power.linear_power", self.power.linear_power),
+            ("power.ramp_time", self.power.ramp_time),
+            ("time.end", self.time.end),
+        ];
+        for (what, v) in non_negative {
+            if !(v >= 0.0 && v.is_finite()) {
+                return bad(format!("{what} = {v} is not non-negative and finite"));
+            }
+        }
+        if !(p.radius < c.inner_radius
+            && c.inner_radius < c.outer_radius
+            && c.outer_radius.is_finite())
+        {
+            return bad(format!(
+                "radii must satisfy pellet.radius < cladding.inner_radius < cladding.outer_radius (got {}, {}, {})",
+                p.radius, c.inner_radius, c.outer_radius
+            ));
+        }
+        if self.mesh.refinement == 0 || self.mesh.refinement > 64 {
+            return bad(format!(
+                "mesh.refinement = {} is not in 1..=64",
+                self.mesh.refinement
+            ));
+        }
+        if self.solver.max_iterations == 0 || self.solver.gmres_restart == 0 {
+            return bad("solver.max_iterations and solver.gmres_restart must be positive".into());
+        }
+        if self.time.end / self.time.step > 1e6 {
+            return bad(format!(
+                "time.end / time.step = {} steps is too many",
+                self.time.end / self.time.step
+            ));
+        }
+        self.gap_law()?;
+        Ok(())
+    }
+
+    /// The Ross-Stoute gap law of this scene (gap `d_g = b - a`).
+    ///
+    /// # Errors
+    /// [`PelletError::Law`] for parameters out of range.
+    pub fn gap_law(&self) -> Result<GapConductance, PelletError> {
+        let gas = match self.gap.gas_conductivity {
+            Some(k) => GasConductivity::Constant(k),
+            None => GasConductivity::HELIUM,
+        };
+        Ok(GapConductance::ross_stoute(
+            self.cladding.inner_radius - self.pellet.radius,
+            self.gap.roughness_pellet,
+            self.gap.roughness_cladding,
+            self.gap.jump_distance,
+            gas,
+        )?)
+    }
+
+    /// The closed-form steady temperatures of this scene (PHYSICS.md section 5).
+    ///
+    /// # Errors
+    /// [`PelletError::Law`] for gap parameters out of range.
+    pub fn closed_form(&self) -> Result<ClosedForm, PelletError> {
+        let (p, c) = (&self.pellet, &self.cladding);
+        Ok(closed_form(
+            self.power.linear_power,
+            p.radius,
+            (p.conductivity_a, p.conductivity_b),
+            c.inner_radius,
+            c.outer_radius,
+            c.conductivity,
+            c.outer_temperature,
+            &self.gap_law()?,
+        ))
+    }
+}

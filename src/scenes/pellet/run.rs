@@ -1,0 +1,374 @@
+//! Running the pellet scene: meshes, problem, time loop, outputs.
+
+use std::io::IsTerminal;
+use std::path::Path;
+use std::time::Instant;
+
+use mortar_core::mesh::VolumeMesh;
+use mortar_core::{CouplingOptions, Tolerances};
+use mortar_physics::heat::{
+    Conductivity, GapHeat, GapSolver, GapSolverState, HeatBody, HeatMaterial,
+};
+use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
+use serde_json::{json, Value};
+
+use super::{annulus_mesh, pellet_mesh, PelletError, PelletScene, SolverMethod};
+use crate::io::vtu::{write_vtu, VtuPiece};
+
+/// Parses the scene file `text` (see the [module documentation](super)) and runs it,
+/// writing VTU snapshots and `report.json` into `out` (created if needed). Shows a progress
+/// bar on stderr when `progress` is true and stderr is a terminal.
+///
+/// Returns the report (what was written to `out/report.json`).
+///
+/// # Errors
+/// [`PelletError::Parse`] / [`PelletError::Invalid`] for a bad file, and the errors of
+/// [`run`].
+pub fn run_from_toml(text: &str, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    run(&PelletScene::from_toml(text)?, out, progress)
+}
+
+/// Runs the built-in scene (every default of PHYSICS.md section 4), as [`run_from_toml`].
+///
+/// # Errors
+/// As [`run`].
+pub fn run_builtin(out: &Path, progress: bool) -> Result<Value, PelletError> {
+    run(&PelletScene::default(), out, progress)
+}
+
+/// The area of a 2D mesh (shoelace formula per cell; Gmsh node order is cyclic for Tri3 and
+/// Quad4).
+fn mesh_area(mesh: &VolumeMesh) -> f64 {
+    (0..mesh.cell_count())
+        .map(|c| {
+            let nodes = mesh.cell(c).nodes;
+            let x = mesh.coords();
+            let mut a = 0.0;
+            for i in 0..nodes.len() {
+                let (p, q) = (
+                    x[nodes[i] as usize],
+                    x[nodes[(i + 1) % nodes.len()] as usize],
+                );
+                a += p.x * q.y - q.x * p.y;
+            }
+            0.5 * a
+        })
+        .sum()
+}
+
+fn write_dir(out: &Path) -> Result<(), PelletError> {
+    std::fs::create_dir_all(out).map_err(|source| PelletError::Write {
+        path: out.to_path_buf(),
+        source,
+    })
+}
+
+/// Runs `scene` (see [`run_from_toml`]).
+///
+/// The pellet's heat source is `Q = q'(t) / A_h`, with `A_h` the area of the pellet mesh
+/// (a polygon slightly smaller than the disc), so that the discrete linear power is exactly
+/// `q'(t) = q' min(t / ramp_time, 1)`.
+///
+/// # Errors
+/// [`PelletError::Invalid`] for values out of range, [`PelletError::Physics`] for a failed
+/// solve (a Newton failure carries its residual history), [`PelletError::Io`] /
+/// [`PelletError::Write`] for outputs that cannot be written.
+pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    let start = Instant::now();
+    scene.check()?;
+    write_dir(out)?;
+    let (p, c) = (&scene.pellet, &scene.cladding);
+    let r = scene.mesh.refinement;
+
+    // Meshes: the pellet's circle has 16 r edges, the cladding's 21 r + 1, rotated by half a
+    // cell: the interface does not match.
+    let pellet_mesh = pellet_mesh(p.radius, 4 * r, 2 * r)?;
+    let around = 21 * r + 1;
+    let cladding_mesh = annulus_mesh(
+        c.inner_radius,
+        c.outer_radius,
+        around,
+        2 * r,
+        std::f64::consts::PI / around as f64,
+    )?;
+    let area = mesh_area(&pellet_mesh);
+    let (q, ramp) = (scene.power.linear_power, scene.power.ramp_time);
+    let power = move |t: f64| {
+        if ramp > 0.0 {
+            q * (t / ramp).clamp(0.0, 1.0)
+        } else {
+            q
+        }
+    };
+    let k_pellet = Conductivity::InverseLinear {
+        a: p.conductivity_a,
+        b: p.conductivity_b,
+    };
+    let t_co = c.outer_temperature;
+    let pellet = HeatBody::new(
+        "pellet",
+        pellet_mesh,
+        HeatMaterial::new(k_pellet.at(t_co).0, p.heat_capacity),
+    )
+    .with_source(move |_x, t| power(t) / area);
+    let mid = 0.5 * (c.inner_radius + c.outer_radius);
+    let cladding = HeatBody::new(
+        "cladding",
+        cladding_mesh,
+        HeatMaterial::new(c.conductivity, c.heat_capacity),
+    )
+    .with_dirichlet_where(|f| f.centroid.norm() > mid, move |_x, _t| t_co)?;
+    let slave_surface = pellet.mesh.boundary_surface(|_| true)?;
+    let master_surface = cladding
+        .mesh
+        .boundary_surface(|f| f.centroid.norm() < mid)?;
+    let law = scene.gap_law()?;
+    let gap = c.inner_radius - p.radius;
+    let tolerances = Tolerances {
+        search_distance: 2.0 * gap,
+        ..Tolerances::default()
+    };
+    let problem = GapHeat::new(
+        (pellet, k_pellet),
+        (cladding, Conductivity::Constant(c.conductivity)),
+        slave_surface,
+        master_surface,
+        &CouplingOptions::default().dual(),
+        tolerances,
+        law,
+        &Default::default(),
+    )?
+    // Multipliers in kelvin-like units: lambda = mu / R_ref.
+    .with_multiplier_scale(1.0 / law.reference_resistance)?;
+    let setup_seconds = start.elapsed().as_secs_f64();
+
+    let method = match scene.solver.method {
+        SolverMethod::Newton => GapSolver::Newton,
+        SolverMethod::Jfnk => GapSolver::Jfnk(JfnkOptions {
+            restart: scene.solver.gmres_restart,
+            ..JfnkOptions::default()
+        }),
+    };
+    let mut solver = GapSolverState::new(method);
+    let newton = NewtonOptions {
+        relative_tolerance: scene.solver.relative_tolerance,
+        // The residual rows are heat flows (W/m): far below any physical one.
+        absolute_tolerance: 1e-12 * q.max(1.0),
+        max_iterations: scene.solver.max_iterations,
+        ..NewtonOptions::default()
+    };
+
+    let [pellet, cladding] = problem.bodies();
+    let centre = nearest_node(&pellet.mesh);
+    let t0 = vec![t_co; pellet.mesh.node_count()];
+    let t1 = vec![t_co; cladding.mesh.node_count()];
+    let mut x = problem.state([&t0, &t1]);
+
+    let steps = if scene.time.end > 0.0 {
+        (scene.time.end / scene.time.step).ceil() as usize
+    } else {
+        0
+    };
+    let bar = progress_bar(progress, steps as u64 + 1);
+    let snapshot_every = if scene.time.snapshots == 0 {
+        usize::MAX
+    } else {
+        steps.div_ceil(scene.time.snapshots).max(1)
+    };
+    let mut files = Vec::new();
+    let mut history = Vec::new();
+    let mut time = 0.0;
+    write_snapshot(out, &problem, &x, files.len(), time, &mut files)?;
+    for k in 1..=steps {
+        let dt = scene.time.step.min(scene.time.end - time);
+        let old = x.clone();
+        let rep = problem.solve(&mut x, time + dt, Some((&old, dt)), &mut solver, &newton)?;
+        time += dt;
+        let s = summary(&problem, &x, centre);
+        history.push(json!({
+            "time": time,
+            "linear_power": power(time),
+            "center_temperature": s[0],
+            "pellet_surface_temperature": s[1],
+            "cladding_inner_temperature": s[2],
+            "newton_iterations": rep.iterations,
+            "linear_iterations": rep.linear_iterations,
+        }));
+        if k % snapshot_every == 0 || k == steps {
+            write_snapshot(out, &problem, &x, files.len(), time, &mut files)?;
+        }
+        bar.set_message(format!("t = {time:.1} s, T0 = {:.1} K", s[0]));
+        bar.inc(1);
+    }
+    let transient = solver.stats;
+    // Steady state at full power.
+    let t_steady = time.max(ramp);
+    let rep = problem.solve(&mut x, t_steady, None, &mut solver, &newton)?;
+    bar.inc(1);
+    bar.finish_and_clear();
+    let steady_file_index = files.len();
+    write_snapshot(
+        out,
+        &problem,
+        &x,
+        steady_file_index,
+        f64::INFINITY,
+        &mut files,
+    )?;
+    write_pvd(out, &files)?;
+
+    let s = summary(&problem, &x, centre);
+    let cf = scene.closed_form()?;
+    let span = cf.center_temperature - t_co;
+    let stats = solver.stats;
+    let report = json!({
+        "scene": "pellet",
+        "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
+        "center_temperature": s[0],
+        "pellet_surface_temperature": s[1],
+        "cladding_inner_temperature": s[2],
+        "closed_form": cf,
+        "error": {
+            "center_temperature": s[0] - cf.center_temperature,
+            "pellet_surface_temperature": s[1] - cf.pellet_surface_temperature,
+            "cladding_inner_temperature": s[2] - cf.cladding_inner_temperature,
+            "center_relative_to_span": (s[0] - cf.center_temperature).abs() / span,
+            "span": span,
+        },
+        "steady": {
+            "time": t_steady,
+            "newton_iterations": rep.iterations,
+            "linear_iterations": rep.linear_iterations,
+            "residual_history": rep.residual_history,
+        },
+        "solver": {
+            "newton_iterations": stats.newton_iterations,
+            "linear_iterations": stats.linear_iterations,
+            "factorizations": stats.factorizations,
+            "symbolic_analyses": stats.symbolic_analyses,
+            "transient_newton_iterations": transient.newton_iterations,
+            "transient_linear_iterations": transient.linear_iterations,
+            "seconds": {
+                "newton_total": stats.total_seconds,
+                "jacobian_assembly": stats.assembly_seconds,
+                "linear": stats.linear_seconds,
+            },
+        },
+        "mesh": {
+            "refinement": r,
+            "pellet_nodes": pellet.mesh.node_count(),
+            "pellet_cells": pellet.mesh.cell_count(),
+            "cladding_nodes": cladding.mesh.node_count(),
+            "cladding_cells": cladding.mesh.cell_count(),
+            "pellet_interface_edges": 16 * r,
+            "cladding_interface_edges": around,
+            "unknowns": problem.dimension(),
+        },
+        "transient": history,
+        "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
+        "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
+        "scene_data": scene,
+    });
+    let path = out.join("report.json");
+    let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
+    std::fs::write(&path, text).map_err(|source| PelletError::Write { path, source })?;
+    Ok(report)
+}
+
+/// The progress bar: drawn on stderr only when asked and stderr is a terminal.
+fn progress_bar(progress: bool, len: u64) -> indicatif::ProgressBar {
+    if progress && std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(len);
+        if let Ok(style) =
+            indicatif::ProgressStyle::with_template("pellet {bar:40} {pos}/{len} steps  {msg}")
+        {
+            bar.set_style(style);
+        }
+        bar
+    } else {
+        indicatif::ProgressBar::hidden()
+    }
+}
+
+/// The node nearest to the origin.
+fn nearest_node(mesh: &VolumeMesh) -> usize {
+    let mut best = (f64::INFINITY, 0);
+    for (i, x) in mesh.coords().iter().enumerate() {
+        let d = x.norm();
+        if d < best.0 {
+            best = (d, i);
+        }
+    }
+    best.1
+}
+
+/// Centre temperature, mean pellet surface temperature, mean cladding inner temperature.
+fn summary<L: mortar_physics::laws::ConstraintLaw>(
+    problem: &GapHeat<L>,
+    x: &[f64],
+    centre: usize,
+) -> [f64; 3] {
+    let [ts, tm, _] = problem.split(x);
+    let mean = |nodes: &[u32], t: &[f64]| {
+        nodes.iter().map(|&n| t[n as usize]).sum::<f64>() / nodes.len() as f64
+    };
+    let tie = problem.tie();
+    [
+        ts[centre],
+        mean(tie.slave_nodes(), ts),
+        mean(tie.master_nodes(), tm),
+    ]
+}
+
+fn write_snapshot<L: mortar_physics::laws::ConstraintLaw>(
+    out: &Path,
+    problem: &GapHeat<L>,
+    x: &[f64],
+    index: usize,
+    time: f64,
+    files: &mut Vec<(String, f64)>,
+) -> Result<(), PelletError> {
+    let [ts, tm, _] = problem.split(x);
+    let [pellet, cladding] = problem.bodies();
+    let name = if time.is_finite() {
+        format!("pellet_{index:04}.vtu")
+    } else {
+        "pellet_steady.vtu".to_string()
+    };
+    write_vtu(
+        &out.join(&name),
+        &[
+            VtuPiece {
+                mesh: &pellet.mesh,
+                point_data: vec![("temperature", ts)],
+            },
+            VtuPiece {
+                mesh: &cladding.mesh,
+                point_data: vec![("temperature", tm)],
+            },
+        ],
+    )?;
+    files.push((name, time));
+    Ok(())
+}
+
+/// A ParaView collection of the transient snapshots (the steady one at the last time + 1).
+fn write_pvd(out: &Path, files: &[(String, f64)]) -> Result<(), PelletError> {
+    let last = files
+        .iter()
+        .map(|f| f.1)
+        .filter(|t| t.is_finite())
+        .fold(0.0, f64::max);
+    let mut s = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n",
+    );
+    for (name, t) in files {
+        let t = if t.is_finite() { *t } else { last + 1.0 };
+        s.push_str(&format!(
+            "    <DataSet timestep=\"{t}\" part=\"0\" file=\"{name}\"/>\n"
+        ));
+    }
+    s.push_str("  </Collection>\n</VTKFile>\n");
+    let path = out.join("pellet.pvd");
+    std::fs::write(&path, s).map_err(|source| PelletError::Write { path, source })
+}
