@@ -52,6 +52,44 @@ struct Slab {
     bounds: Box3,
     /// The slab's faces; leaf `l` holds `faces[LEAF_FACES * l..]` (up to `LEAF_FACES`).
     faces: Vec<u32>,
+    /// Their boxes, in the same order, in `f32` rounded outward (conservative, half the
+    /// memory): the per-face test of a hit leaf reads them instead of the mesh.
+    boxes: Vec<[f32; 6]>,
+}
+
+/// `b` in `f32`, rounded outward.
+fn box_f32(b: &Box3) -> [f32; 6] {
+    let down = |x: f64| {
+        let v = x as f32;
+        if v as f64 > x {
+            v.next_down()
+        } else {
+            v
+        }
+    };
+    let up = |x: f64| {
+        let v = x as f32;
+        if (v as f64) < x {
+            v.next_up()
+        } else {
+            v
+        }
+    };
+    [
+        down(b.0.x),
+        down(b.0.y),
+        down(b.0.z),
+        up(b.1.x),
+        up(b.1.y),
+        up(b.1.z),
+    ]
+}
+
+/// Whether `a` meets the `f32` box `b`.
+#[inline]
+fn overlaps_f32(a: &Box3, b: &[f32; 6], planar: bool) -> bool {
+    let dims = if planar { 2 } else { 3 };
+    (0..dims).all(|k| a.0[k] <= b[k + 3] as f64 && b[k] as f64 <= a.1[k])
 }
 
 /// Master faces per slab, on average.
@@ -83,6 +121,10 @@ impl MasterTree {
         let planar = interface.dim() == SpatialDim::Two;
         let master = interface.master();
         let n = master.face_count();
+        let boxes: Vec<Box3> = (0..n)
+            .into_par_iter()
+            .map(|f| face_box(master, f, tol))
+            .collect();
         // Bucket the faces into slabs of equal width along the longest axis (by box centre,
         // in index order within a slab): O(n), deterministic.
         let slab_count = n.div_ceil(SLAB_FACES).max(1);
@@ -90,13 +132,7 @@ impl MasterTree {
         if slab_count == 1 {
             buckets[0] = (0..n as u32).collect();
         } else {
-            let centres: Vec<Vector3<f64>> = (0..n)
-                .into_par_iter()
-                .map(|f| {
-                    let b = face_box(master, f, tol);
-                    0.5 * (b.0 + b.1)
-                })
-                .collect();
+            let centres: Vec<Vector3<f64>> = boxes.par_iter().map(|b| 0.5 * (b.0 + b.1)).collect();
             let (lo, hi) = centres
                 .iter()
                 .fold((EMPTY.0, EMPTY.1), |(lo, hi), c| (lo.inf(c), hi.sup(c)));
@@ -115,9 +151,9 @@ impl MasterTree {
                     .chunks(LEAF_FACES)
                     .enumerate()
                     .map(|(l, group)| {
-                        let b = group.iter().fold(EMPTY, |acc, &f| {
-                            union(&acc, &face_box(master, f as usize, tol))
-                        });
+                        let b = group
+                            .iter()
+                            .fold(EMPTY, |acc, &f| union(&acc, &boxes[f as usize]));
                         (l as u32, b)
                     })
                     .collect();
@@ -125,6 +161,7 @@ impl MasterTree {
                 Slab {
                     tree: BoxTree::build(&leaves, planar),
                     bounds,
+                    boxes: faces.iter().map(|&f| box_f32(&boxes[f as usize])).collect(),
                     faces,
                 }
             })
@@ -135,9 +172,7 @@ impl MasterTree {
     /// The candidate master faces of slave face `s`, ascending, written into `out` (cleared
     /// first).
     pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
-        let tol = interface.tolerances();
-        let master = interface.master();
-        let b = face_box(interface.slave(), s, tol);
+        let b = face_box(interface.slave(), s, interface.tolerances());
         out.clear();
         for slab in &self.slabs {
             if !overlaps(&b, &slab.bounds, self.planar) {
@@ -151,8 +186,8 @@ impl MasterTree {
             for i in start..end {
                 let first = out[i] as usize * LEAF_FACES;
                 let last = (first + LEAF_FACES).min(slab.faces.len());
-                for &f in &slab.faces[first..last] {
-                    if overlaps(&b, &face_box(master, f as usize, tol), self.planar) {
+                for (&f, fb) in slab.faces[first..last].iter().zip(&slab.boxes[first..last]) {
+                    if overlaps_f32(&b, fb, self.planar) {
                         out.push(f);
                     }
                 }
