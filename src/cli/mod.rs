@@ -11,10 +11,11 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use mortar::io::{CouplingSettings, Integration, Multipliers};
 
-/// Mortar coupling of non-conforming interfaces: the operators D and M.
+/// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
+/// conductance.
 ///
-/// With no command, couples a built-in pair of non-matching meshes of the unit square and
-/// prints the summary.
+/// With no command, runs the built-in pellet scene (a fuel pellet in its cladding, helium gap
+/// conductance, nonlinear heat conduction) into `out/pellet` with a progress bar.
 #[derive(Debug, Parser)]
 #[command(name = "mortar", version, about, long_about)]
 struct Cli {
@@ -49,12 +50,16 @@ enum Command {
         after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"
     )]
     Run(RunArgs),
+
+    /// Couple a built-in pair of non-matching meshes of the unit square (Tri3 24 x 24 against
+    /// Quad4 35 x 35) and print the summary.
+    Demo,
 }
 
 /// Arguments of `mortar run`.
 #[derive(Debug, Args)]
 struct RunArgs {
-    /// The scene file (TOML; `kind = "tied_heat"`).
+    /// The scene file (TOML; `kind = "tied_heat"` or `kind = "pellet"`).
     #[arg(
         value_name = "SCENE.toml",
         required_unless_present = "scene",
@@ -62,7 +67,7 @@ struct RunArgs {
     )]
     scene_file: Option<PathBuf>,
 
-    /// A built-in scene instead of a file (tied_heat).
+    /// A built-in scene instead of a file (tied_heat, pellet).
     #[arg(long, value_name = "NAME")]
     scene: Option<String>,
 
@@ -140,7 +145,8 @@ impl CoupleArgs {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        None => scene::run(cli.json),
+        None => run::default_job(std::path::Path::new("out/pellet"), cli.json),
+        Some(Command::Demo) => scene::run(cli.json),
         Some(Command::Couple(args)) => couple::run(args, cli.json),
         Some(Command::Run(args)) => run::run(args, cli.json),
     };

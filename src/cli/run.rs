@@ -10,10 +10,83 @@ use mortar::scenes::file::{
     SceneSource,
 };
 
+use mortar::scenes::pellet;
+use serde_json::Value;
+
 use super::RunArgs;
+
+/// Runs the built-in pellet scene into `out` with a progress bar (the default job).
+pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
+    if !json {
+        println!("mortar: default scene, a fuel pellet in its cladding (thermal, helium gap)");
+        println!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
+    }
+    let report = pellet::run_builtin(out, !json).map_err(|e| e.to_string())?;
+    print_pellet(&report, out, json);
+    Ok(())
+}
+
+/// Prints the pellet's report: JSON, or the steady temperatures against the closed form.
+fn print_pellet(report: &Value, out: &Path, json: bool) {
+    if json {
+        println!("{report}");
+        return;
+    }
+    let num = |v: &Value| v.as_f64().map_or("n/a".to_string(), |x| format!("{x:.3}"));
+    for key in [
+        "center_temperature",
+        "pellet_surface_temperature",
+        "cladding_inner_temperature",
+    ] {
+        let closed = report
+            .get("closed_form")
+            .and_then(|c| c.get(key))
+            .unwrap_or(&Value::Null);
+        println!(
+            "{key:<28} {} K   (closed form {} K)",
+            num(&report[key]),
+            num(closed)
+        );
+    }
+    let rel = &report["error"]["center_relative_to_span"];
+    if let Some(rel) = rel.as_f64() {
+        println!("{:<28} {:.2e} of (T_0 - T_co)", "centre error", rel);
+    }
+    let solver = &report["solver"];
+    println!(
+        "{:<28} {} Newton steps, {} linear iterations, {} factorisations",
+        format!("solver ({})", report["method"].as_str().unwrap_or("?")),
+        solver["newton_iterations"],
+        solver["linear_iterations"],
+        solver["factorizations"]
+    );
+    if let Some(t) = report["seconds"]["total"].as_f64() {
+        println!("{:<28} {t:.3} s", "time");
+    }
+    println!("output: {} (report.json, VTU over time)", out.display());
+}
 
 /// Runs the command; the error is the message for the user.
 pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
+    // The pellet writes its own outputs (VTU snapshots over time, report.json).
+    match (&args.scene_file, &args.scene) {
+        (Some(path), None) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
+            if scene_kind(&text, path).map_err(|e| e.to_string())? == "pellet" {
+                let report = pellet::run_from_toml(&text, &args.out, !json)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                print_pellet(&report, &args.out, json);
+                return Ok(());
+            }
+        }
+        (None, Some(name)) if name == "pellet" => {
+            let report = pellet::run_builtin(&args.out, !json).map_err(|e| e.to_string())?;
+            print_pellet(&report, &args.out, json);
+            return Ok(());
+        }
+        _ => {}
+    }
     let (output, extra) = match (&args.scene_file, &args.scene) {
         (Some(path), None) => {
             let text = std::fs::read_to_string(path)
@@ -77,13 +150,8 @@ fn run_kind(
             let spec = TiedHeatSpec::parse(text, path).map_err(|e| e.to_string())?;
             spec.run(path, base, source).map_err(|e| e.to_string())
         }
-        // Wired to `mortar::scenes::pellet` when that scene lands.
-        "pellet" => Err(format!(
-            "{}: scene kind 'pellet' is not available in this build",
-            path.display()
-        )),
         other => Err(format!(
-            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat)",
+            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, pellet)",
             path.display()
         )),
     }

@@ -220,8 +220,32 @@ fn couples_two_groups_of_one_file_with_element_based_integration() {
 }
 
 #[test]
-fn no_arguments_runs_the_default_scene() {
-    let run = mortar(&[]);
+fn no_arguments_runs_the_pellet_scene_into_out_pellet() {
+    let dir = TempDir::new("default-job");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_mortar"))
+        .current_dir(dir.join(""))
+        .output()
+        .expect("run the mortar binary");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let text = String::from_utf8_lossy(&run.stdout);
+    for needle in ["pellet", "center_temperature", "closed form", "out/pellet"] {
+        assert!(text.contains(needle), "no {needle:?} in\n{text}");
+    }
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out/pellet/report.json")).unwrap())
+            .unwrap();
+    let rel = report["error"]["center_relative_to_span"].as_f64().unwrap();
+    assert!(rel < 0.01, "centre temperature off by {rel} of the span");
+    assert!(dir.join("out/pellet/pellet_steady.vtu").exists());
+}
+
+#[test]
+fn demo_couples_the_built_in_pair() {
+    let run = mortar(&["demo"]);
     assert!(
         run.status.success(),
         "{}",
@@ -241,7 +265,7 @@ fn no_arguments_runs_the_default_scene() {
     ] {
         assert!(text.contains(needle), "no {needle:?} in\n{text}");
     }
-    let run = mortar(&["--json"]);
+    let run = mortar(&["--json", "demo"]);
     assert!(run.status.success());
     let summary: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert!((summary["area"].as_f64().unwrap() - 1.0).abs() < 1e-12);

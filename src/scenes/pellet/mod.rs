@@ -274,7 +274,8 @@ impl Default for MeshData {
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PelletScene {
-    /// `scene = "pellet"`, optional (for a dispatching front end).
+    /// `kind = "pellet"` (or `scene = "pellet"`), optional: what `mortar run` dispatches on.
+    #[serde(alias = "kind")]
     pub scene: Option<String>,
     /// `[pellet]`.
     pub pellet: PelletData,
