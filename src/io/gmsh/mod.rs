@@ -215,9 +215,9 @@ fn select<'d>(
     Ok((blocks, dim, Some(group)))
 }
 
-/// The group named `name`, or else the group whose physical tag is `name`. Of several, the
-/// one of dimension 2, then 1, then the highest.
-fn find_group(data: &MshData, path: &Path, name: &str) -> Result<PhysicalGroup, IoError> {
+/// The groups named `name`, or else (none named so) the groups whose physical tag is `name`,
+/// one per dimension that has it.
+fn matching_groups(data: &MshData, name: &str) -> Vec<PhysicalGroup> {
     let mut found: Vec<PhysicalGroup> = data
         .physical_names
         .iter()
@@ -254,6 +254,13 @@ fn find_group(data: &MshData, path: &Path, name: &str) -> Result<PhysicalGroup, 
                 .collect();
         }
     }
+    found
+}
+
+/// The group named `name`, or else the group whose physical tag is `name`. Of several, the
+/// one of dimension 2, then 1, then the highest.
+fn find_group(data: &MshData, path: &Path, name: &str) -> Result<PhysicalGroup, IoError> {
+    let mut found = matching_groups(data, name);
     let rank = |g: &PhysicalGroup| match g.dim {
         2 => 5,
         1 => 4,

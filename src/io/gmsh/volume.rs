@@ -11,7 +11,7 @@ use mortar_elements::volume::VolumeRegistry;
 
 use super::cursor::{location_of, Cursor, Encoding};
 use super::parse::{self, ElementBlock, MshData};
-use super::{element_types, PhysicalGroup};
+use super::{element_types, matching_groups, PhysicalGroup};
 use crate::io::error::{IoError, Location};
 
 /// A body read from a Gmsh file: the cells of one physical group of dimension 2 or 3, with
@@ -265,42 +265,7 @@ fn find_group_of_dim(
     dims: &[i32],
     expected: impl Fn() -> String,
 ) -> Result<PhysicalGroup, IoError> {
-    let mut found: Vec<PhysicalGroup> = data
-        .physical_names
-        .iter()
-        .filter(|p| p.name == name)
-        .map(|p| PhysicalGroup {
-            dim: p.dim,
-            tag: p.tag,
-            name: p.name.clone(),
-        })
-        .collect();
-    if found.is_empty() {
-        if let Ok(tag) = name.parse::<i32>() {
-            let mut ds: Vec<i32> = data
-                .entities
-                .iter()
-                .flatten()
-                .filter(|(_, phys)| phys.iter().any(|p| p.abs() == tag))
-                .map(|((dim, _), _)| *dim)
-                .collect();
-            ds.sort_unstable();
-            ds.dedup();
-            found = ds
-                .into_iter()
-                .map(|dim| PhysicalGroup {
-                    dim,
-                    tag,
-                    name: data
-                        .physical_names
-                        .iter()
-                        .find(|p| p.dim == dim && p.tag == tag)
-                        .map(|p| p.name.clone())
-                        .unwrap_or_default(),
-                })
-                .collect();
-        }
-    }
+    let found = matching_groups(data, name);
     for d in dims {
         if let Some(g) = found.iter().find(|g| g.dim == *d) {
             return Ok(g.clone());
