@@ -97,16 +97,7 @@ pub fn assemble_heat_matrices(
             let mut ce = [[0.0; MAX_CELL_NODES]; MAX_CELL_NODES];
             for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                 let cell = mesh.cell(c);
-                let degree = options.degree(cell.element.shape_degree());
-                let rule = cell_rule(body, cell.element.domain(), degree)?;
-                let nn = mesh.cell_coords_into(c, &mut x);
-                cv.reinit(cell.element, rule, &x[..nn]).map_err(|source| {
-                    PhysicsError::InvertedCell {
-                        body: body.name.clone(),
-                        cell: cell.tag,
-                        source,
-                    }
-                })?;
+                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
                 for a in 0..nn {
                     ke[a][..nn].fill(0.0);
                     ce[a][..nn].fill(0.0);
@@ -169,16 +160,7 @@ pub fn assemble_heat_load(
                 let mut fe = [0.0; MAX_CELL_NODES];
                 for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                     let cell = mesh.cell(c);
-                    let degree = options.degree(cell.element.shape_degree());
-                    let rule = cell_rule(body, cell.element.domain(), degree)?;
-                    let nn = mesh.cell_coords_into(c, &mut x);
-                    cv.reinit(cell.element, rule, &x[..nn]).map_err(|source| {
-                        PhysicsError::InvertedCell {
-                            body: body.name.clone(),
-                            cell: cell.tag,
-                            source,
-                        }
-                    })?;
+                    let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
                     fe[..nn].fill(0.0);
                     for q in 0..cv.len() {
                         let s = source(&cv.point(q), t) * cv.jxw(q);
@@ -222,6 +204,33 @@ pub fn assemble_heat_load(
 }
 
 /// The cached rule of a cell's domain, or an error naming the body.
+/// Sets `cv` up on cell `c` of the body (its quadrature rule, its node coordinates copied into
+/// `x`) and returns the node count.
+///
+/// # Errors
+/// [`PhysicsError::InvalidInput`] for a degree no rule reaches, [`PhysicsError::InvertedCell`]
+/// for a non-positive Jacobian determinant.
+pub(crate) fn reinit_cell(
+    body: &HeatBody,
+    options: &HeatOptions,
+    c: usize,
+    cv: &mut CellValues,
+    x: &mut [Vector3<f64>; MAX_CELL_NODES],
+) -> Result<usize, PhysicsError> {
+    let mesh = &body.mesh;
+    let cell = mesh.cell(c);
+    let degree = options.degree(cell.element.shape_degree());
+    let rule = cell_rule(body, cell.element.domain(), degree)?;
+    let nn = mesh.cell_coords_into(c, x);
+    cv.reinit(cell.element, rule, &x[..nn])
+        .map_err(|source| PhysicsError::InvertedCell {
+            body: body.name.clone(),
+            cell: cell.tag,
+            source,
+        })?;
+    Ok(nn)
+}
+
 pub(crate) fn cell_rule(
     body: &HeatBody,
     domain: mortar_core::element::volume::VolumeDomain,

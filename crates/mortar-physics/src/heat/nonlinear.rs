@@ -6,7 +6,7 @@ use mortar_core::linalg::{SparseMatrix, Triplets};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::assembly::{cell_rule, HeatOptions, CELL_CHUNK};
+use super::assembly::{reinit_cell, HeatOptions, CELL_CHUNK};
 use super::body::HeatBody;
 use crate::error::PhysicsError;
 
@@ -112,16 +112,7 @@ pub fn assemble_conduction(
             let mut ke = [[0.0; MAX_CELL_NODES]; MAX_CELL_NODES];
             for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                 let cell = mesh.cell(c);
-                let degree = options.degree(cell.element.shape_degree());
-                let rule = cell_rule(body, cell.element.domain(), degree)?;
-                let nn = mesh.cell_coords_into(c, &mut x);
-                cv.reinit(cell.element, rule, &x[..nn]).map_err(|source| {
-                    PhysicsError::InvertedCell {
-                        body: body.name.clone(),
-                        cell: cell.tag,
-                        source,
-                    }
-                })?;
+                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
                 fe[..nn].fill(0.0);
                 for row in ke.iter_mut().take(nn) {
                     row[..nn].fill(0.0);
