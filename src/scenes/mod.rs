@@ -5,7 +5,7 @@
 //!   the open gap, nonlinear `k(T)`, Newton or JFNK, checked against the closed form.
 //! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
 //!   non-conforming interface, with a manufactured solution.
-//! - [`file`]: scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions
+//! - [`file`](mod@file): scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions
 //!   and the interface, as run by `mortar run SCENE.toml --out DIR`.
 
 pub mod file;
