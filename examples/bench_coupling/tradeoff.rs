@@ -242,8 +242,7 @@ fn mark_pareto(rows: &mut [Row], metrics: usize) {
             let not_slower = |t2: f64| t2 <= t * (1.0 + TIME_NOISE);
             r.pareto[k] = eligible((t, e))
                 && !pts.iter().any(|&(t2, e2)| {
-                    eligible((t2, e2))
-                        && ((faster(t2) && e2 <= e) || (not_slower(t2) && e2 < e))
+                    eligible((t2, e2)) && ((faster(t2) && e2 <= e) || (not_slower(t2) && e2 < e))
                 });
         }
     }
