@@ -215,6 +215,35 @@ fn select<'d>(
     Ok((blocks, dim, Some(group)))
 }
 
+/// The node tags the elements of `blocks` use, ascending; an element naming a node the file
+/// does not define is an error at that element.
+fn used_nodes(
+    data: &MshData,
+    blocks: &[&ElementBlock],
+    path: &Path,
+    at: &dyn Fn(usize) -> Location,
+) -> Result<Vec<u64>, IoError> {
+    let mut used: Vec<u64> = Vec::new();
+    for b in blocks {
+        for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
+            for &node in nodes {
+                if !data.node_index.contains_key(&node) {
+                    return Err(IoError::UndefinedNode {
+                        path: path.to_path_buf(),
+                        at: at(b.positions[i]),
+                        element: b.tags[i],
+                        node,
+                    });
+                }
+            }
+            used.extend_from_slice(nodes);
+        }
+    }
+    used.sort_unstable();
+    used.dedup();
+    Ok(used)
+}
+
 /// The groups named `name`, or else (none named so) the groups whose physical tag is `name`,
 /// one per dimension that has it.
 fn matching_groups(data: &MshData, name: &str) -> Vec<PhysicalGroup> {
@@ -316,24 +345,7 @@ fn build(
             });
         }
     }
-    let mut used: Vec<u64> = Vec::new();
-    for b in blocks {
-        for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
-            for &node in nodes {
-                if !data.node_index.contains_key(&node) {
-                    return Err(IoError::UndefinedNode {
-                        path: path.to_path_buf(),
-                        at: at(b.positions[i]),
-                        element: b.tags[i],
-                        node,
-                    });
-                }
-            }
-            used.extend_from_slice(nodes);
-        }
-    }
-    used.sort_unstable();
-    used.dedup();
+    let used = used_nodes(data, blocks, path, &at)?;
 
     let faces: usize = blocks.iter().map(|b| b.tags.len()).sum();
     let mut mesh = SurfaceMesh::with_capacity(used.len(), faces);

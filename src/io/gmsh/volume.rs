@@ -11,7 +11,7 @@ use mortar_elements::volume::VolumeRegistry;
 
 use super::cursor::{location_of, Cursor, Encoding};
 use super::parse::{self, ElementBlock, MshData};
-use super::{element_types, matching_groups, PhysicalGroup};
+use super::{element_types, matching_groups, used_nodes, PhysicalGroup};
 use crate::io::error::{IoError, Location};
 
 /// A body read from a Gmsh file: the cells of one physical group of dimension 2 or 3, with
@@ -350,24 +350,7 @@ fn build_volume(
         };
         elements.push(element);
     }
-    let mut used: Vec<u64> = Vec::new();
-    for b in blocks {
-        for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
-            for &node in nodes {
-                if !data.node_index.contains_key(&node) {
-                    return Err(IoError::UndefinedNode {
-                        path: path.to_path_buf(),
-                        at: at(b.positions[i]),
-                        element: b.tags[i],
-                        node,
-                    });
-                }
-            }
-            used.extend_from_slice(nodes);
-        }
-    }
-    used.sort_unstable();
-    used.dedup();
+    let used = used_nodes(data, blocks, path, &at)?;
     let mut mesh = VolumeMesh::new();
     for &tag in &used {
         let index = data.node_index[&tag];
