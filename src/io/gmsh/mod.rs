@@ -215,14 +215,15 @@ fn select<'d>(
     Ok((blocks, dim, Some(group)))
 }
 
-/// The node tags the elements of `blocks` use, ascending; an element naming a node the file
-/// does not define is an error at that element.
+/// The nodes the elements of `blocks` use, ascending by tag, as `(tag, coordinates, position
+/// in the file)`. An element naming a node the file does not define is an error at that
+/// element, a non-finite coordinate an error at that node.
 fn used_nodes(
     data: &MshData,
     blocks: &[&ElementBlock],
     path: &Path,
     at: &dyn Fn(usize) -> Location,
-) -> Result<Vec<u64>, IoError> {
+) -> Result<Vec<(u64, [f64; 3], usize)>, IoError> {
     let mut used: Vec<u64> = Vec::new();
     for b in blocks {
         for (i, nodes) in b.nodes.chunks_exact(b.nodes_per_element.max(1)).enumerate() {
@@ -241,7 +242,21 @@ fn used_nodes(
     }
     used.sort_unstable();
     used.dedup();
-    Ok(used)
+    used.into_iter()
+        .map(|tag| {
+            let index = data.node_index[&tag];
+            let (x, pos) = (data.coords[index], data.node_positions[index]);
+            if x.iter().any(|c| !c.is_finite()) {
+                return Err(IoError::NonFiniteCoordinate {
+                    path: path.to_path_buf(),
+                    at: at(pos),
+                    node: tag,
+                    coords: x,
+                });
+            }
+            Ok((tag, x, pos))
+        })
+        .collect()
 }
 
 /// The groups named `name`, or else (none named so) the groups whose physical tag is `name`,
@@ -349,21 +364,11 @@ fn build(
 
     let faces: usize = blocks.iter().map(|b| b.tags.len()).sum();
     let mut mesh = SurfaceMesh::with_capacity(used.len(), faces);
-    for &tag in &used {
-        let index = data.node_index[&tag];
-        let x = data.coords[index];
-        if x.iter().any(|c| !c.is_finite()) {
-            return Err(IoError::NonFiniteCoordinate {
-                path: path.to_path_buf(),
-                at: at(data.node_positions[index]),
-                node: tag,
-                coords: x,
-            });
-        }
+    for &(tag, x, pos) in &used {
         // Tags are unique and coordinates finite here; any other refusal is reported as is.
         mesh.add_node(tag, x).map_err(|e| IoError::Malformed {
             path: path.to_path_buf(),
-            at: at(data.node_positions[index]),
+            at: at(pos),
             message: e.to_string(),
         })?;
     }

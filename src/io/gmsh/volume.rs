@@ -352,20 +352,10 @@ fn build_volume(
     }
     let used = used_nodes(data, blocks, path, &at)?;
     let mut mesh = VolumeMesh::new();
-    for &tag in &used {
-        let index = data.node_index[&tag];
-        let x = data.coords[index];
-        if x.iter().any(|c| !c.is_finite()) {
-            return Err(IoError::NonFiniteCoordinate {
-                path: path.to_path_buf(),
-                at: at(data.node_positions[index]),
-                node: tag,
-                coords: x,
-            });
-        }
+    for &(tag, x, pos) in &used {
         mesh.add_node(tag, x).map_err(|source| IoError::Cell {
             path: path.to_path_buf(),
-            at: at(data.node_positions[index]),
+            at: at(pos),
             element: tag,
             source,
         })?;
