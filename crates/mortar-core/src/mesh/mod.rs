@@ -2,6 +2,7 @@
 //! type) and volume meshes of bodies (cells with a volume element type), whose boundary faces
 //! come out as outward-oriented surface meshes.
 
+mod nodes;
 mod surface_mesh;
 mod volume_mesh;
 

@@ -1,7 +1,6 @@
-use std::collections::HashMap;
-
 use nalgebra::Vector3;
 
+use super::nodes::{NodeRefusal, NodeSet};
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result};
 
@@ -24,9 +23,7 @@ use crate::error::{FaceLocation, MortarError, Result};
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct SurfaceMesh {
-    coords: Vec<Vector3<f64>>,
-    node_tags: Vec<u64>,
-    tag_to_index: HashMap<u64, u32>,
+    nodes: NodeSet,
     face_offsets: Vec<u32>,
     face_nodes: Vec<u32>,
     /// The distinct element types, and each face's index into them (one byte a face).
@@ -58,9 +55,7 @@ impl SurfaceMesh {
     /// An empty mesh with room for `nodes` nodes and `faces` faces.
     pub fn with_capacity(nodes: usize, faces: usize) -> Self {
         let mut mesh = Self::new();
-        mesh.coords.reserve(nodes);
-        mesh.node_tags.reserve(nodes);
-        mesh.tag_to_index.reserve(nodes);
+        mesh.nodes.reserve(nodes);
         mesh.face_offsets.reserve(faces);
         mesh.face_types.reserve(faces);
         mesh.face_tags.reserve(faces);
@@ -73,16 +68,10 @@ impl SurfaceMesh {
     /// [`MortarError::NonFiniteCoordinate`] for NaN or infinite coordinates,
     /// [`MortarError::DuplicateNode`] if the tag is already used.
     pub fn add_node(&mut self, tag: u64, coords: [f64; 3]) -> Result<u32> {
-        if coords.iter().any(|c| !c.is_finite()) {
-            return Err(MortarError::NonFiniteCoordinate { tag, coords });
-        }
-        let index = self.coords.len() as u32;
-        if self.tag_to_index.insert(tag, index).is_some() {
-            return Err(MortarError::DuplicateNode { tag });
-        }
-        self.coords.push(Vector3::from(coords));
-        self.node_tags.push(tag);
-        Ok(index)
+        self.nodes.add(tag, coords).map_err(|r| match r {
+            NodeRefusal::NonFinite => MortarError::NonFiniteCoordinate { tag, coords },
+            NodeRefusal::Duplicate => MortarError::DuplicateNode { tag },
+        })
     }
 
     /// Adds a face given by node tags; its tag is its position plus one.
@@ -116,7 +105,7 @@ impl SurfaceMesh {
         }
         let start = self.face_nodes.len();
         for &t in node_tags {
-            match self.tag_to_index.get(&t) {
+            match self.nodes.index_of(t).as_ref() {
                 Some(&i) => self.face_nodes.push(i),
                 None => {
                     self.face_nodes.truncate(start);
@@ -153,7 +142,7 @@ impl SurfaceMesh {
 
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
-        self.coords.len()
+        self.nodes.coords.len()
     }
 
     /// Number of faces.
@@ -163,17 +152,17 @@ impl SurfaceMesh {
 
     /// All node coordinates.
     pub fn coords(&self) -> &[Vector3<f64>] {
-        &self.coords
+        &self.nodes.coords
     }
 
     /// All node tags.
     pub fn node_tags(&self) -> &[u64] {
-        &self.node_tags
+        &self.nodes.tags
     }
 
     /// The index of the node with tag `tag`.
     pub fn node_index(&self, tag: u64) -> Option<u32> {
-        self.tag_to_index.get(&tag).copied()
+        self.nodes.index_of(tag)
     }
 
     /// One face.
@@ -199,7 +188,7 @@ impl SurfaceMesh {
     pub fn face_coords_into(&self, face: usize, out: &mut [Vector3<f64>; MAX_FACE_NODES]) -> usize {
         let view = self.face(face);
         for (o, &n) in out.iter_mut().zip(view.nodes) {
-            *o = self.coords[n as usize];
+            *o = self.nodes.coords[n as usize];
         }
         view.nodes.len()
     }
@@ -210,14 +199,14 @@ impl SurfaceMesh {
     /// [`MortarError::NonFiniteCoordinate`] if `f` returns a non-finite point; the mesh is then
     /// left unchanged.
     pub fn transform(&mut self, f: impl Fn(Vector3<f64>) -> Vector3<f64>) -> Result<()> {
-        let moved: Vec<Vector3<f64>> = self.coords.iter().map(|&x| f(x)).collect();
+        let moved: Vec<Vector3<f64>> = self.nodes.coords.iter().map(|&x| f(x)).collect();
         if let Some(i) = moved.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
             return Err(MortarError::NonFiniteCoordinate {
-                tag: self.node_tags[i],
+                tag: self.nodes.tags[i],
                 coords: moved[i].into(),
             });
         }
-        self.coords = moved;
+        self.nodes.coords = moved;
         Ok(())
     }
 
@@ -225,9 +214,7 @@ impl SurfaceMesh {
     /// of the tag lookup table).
     pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
-        self.coords.capacity() * size_of::<Vector3<f64>>()
-            + self.node_tags.capacity() * size_of::<u64>()
-            + self.tag_to_index.capacity() * (size_of::<(u64, u32)>() + 1)
+        self.nodes.memory_bytes()
             + self.face_offsets.capacity() * size_of::<u32>()
             + self.face_nodes.capacity() * size_of::<u32>()
             + self.element_types.capacity() * size_of::<ElementRef>()
@@ -237,9 +224,10 @@ impl SurfaceMesh {
 
     /// The smallest axis-aligned box holding every node, as `(min, max)`; `None` if empty.
     pub fn bounding_box(&self) -> Option<(Vector3<f64>, Vector3<f64>)> {
-        let first = *self.coords.first()?;
+        let first = *self.nodes.coords.first()?;
         Some(
-            self.coords
+            self.nodes
+                .coords
                 .iter()
                 .fold((first, first), |(lo, hi), x| (lo.inf(x), hi.sup(x))),
         )

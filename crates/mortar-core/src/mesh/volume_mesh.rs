@@ -1,8 +1,7 @@
-use std::collections::HashMap;
-
 use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 
+use super::nodes::{NodeRefusal, NodeSet};
 use crate::element::volume::{VolumeElementRef, MAX_CELL_NODES};
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::MortarError;
@@ -96,9 +95,7 @@ pub enum VolumeMeshError {
 /// ```
 #[derive(Debug, Clone, Default)]
 pub struct VolumeMesh {
-    coords: Vec<Vector3<f64>>,
-    node_tags: Vec<u64>,
-    tag_to_index: HashMap<u64, u32>,
+    nodes: NodeSet,
     cell_offsets: Vec<u32>,
     cell_nodes: Vec<u32>,
     cell_elements: Vec<VolumeElementRef>,
@@ -145,16 +142,10 @@ impl VolumeMesh {
     /// # Errors
     /// [`VolumeMeshError::NonFiniteCoordinate`], [`VolumeMeshError::DuplicateNode`].
     pub fn add_node(&mut self, tag: u64, coords: [f64; 3]) -> Result<u32, VolumeMeshError> {
-        if coords.iter().any(|c| !c.is_finite()) {
-            return Err(VolumeMeshError::NonFiniteCoordinate { tag, coords });
-        }
-        let index = self.coords.len() as u32;
-        if self.tag_to_index.insert(tag, index).is_some() {
-            return Err(VolumeMeshError::DuplicateNode { tag });
-        }
-        self.coords.push(Vector3::from(coords));
-        self.node_tags.push(tag);
-        Ok(index)
+        self.nodes.add(tag, coords).map_err(|r| match r {
+            NodeRefusal::NonFinite => VolumeMeshError::NonFiniteCoordinate { tag, coords },
+            NodeRefusal::Duplicate => VolumeMeshError::DuplicateNode { tag },
+        })
     }
 
     /// Adds a cell given by node tags; its tag is its position plus one.
@@ -208,14 +199,14 @@ impl VolumeMesh {
             if node_tags[..i].contains(&t) {
                 return Err(bad(format!("node {t} appears twice")));
             }
-            let n = *self
-                .tag_to_index
-                .get(&t)
+            let n = self
+                .nodes
+                .index_of(t)
                 .ok_or(VolumeMeshError::UnknownNode { cell: tag, node: t })?;
-            if element.dim() == 2 && self.coords[n as usize].z != 0.0 {
+            if element.dim() == 2 && self.nodes.coords[n as usize].z != 0.0 {
                 return Err(VolumeMeshError::OffPlane {
                     tag: t,
-                    z: self.coords[n as usize].z,
+                    z: self.nodes.coords[n as usize].z,
                 });
             }
             idx.push(n);
@@ -234,7 +225,7 @@ impl VolumeMesh {
 
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
-        self.coords.len()
+        self.nodes.coords.len()
     }
 
     /// Number of cells.
@@ -244,17 +235,17 @@ impl VolumeMesh {
 
     /// All node coordinates.
     pub fn coords(&self) -> &[Vector3<f64>] {
-        &self.coords
+        &self.nodes.coords
     }
 
     /// All node tags.
     pub fn node_tags(&self) -> &[u64] {
-        &self.node_tags
+        &self.nodes.tags
     }
 
     /// The index of the node with tag `tag`.
     pub fn node_index(&self, tag: u64) -> Option<u32> {
-        self.tag_to_index.get(&tag).copied()
+        self.nodes.index_of(tag)
     }
 
     /// One cell.
@@ -280,7 +271,7 @@ impl VolumeMesh {
     pub fn cell_coords_into(&self, cell: usize, out: &mut [Vector3<f64>; MAX_CELL_NODES]) -> usize {
         let view = self.cell(cell);
         for (o, &n) in out.iter_mut().zip(view.nodes) {
-            *o = self.coords[n as usize];
+            *o = self.nodes.coords[n as usize];
         }
         view.nodes.len()
     }
@@ -332,14 +323,14 @@ impl VolumeMesh {
                     2 => continue,
                     n => {
                         return Err(VolumeMeshError::NonManifoldFace {
-                            nodes: local.iter().map(|&i| self.node_tags[i as usize]).collect(),
+                            nodes: local.iter().map(|&i| self.nodes.tags[i as usize]).collect(),
                             cells: n as usize,
                         })
                     }
                 }
                 let centroid = local
                     .iter()
-                    .fold(Vector3::zeros(), |s, &i| s + self.coords[i as usize])
+                    .fold(Vector3::zeros(), |s, &i| s + self.nodes.coords[i as usize])
                     / local.len() as f64;
                 out.push(BoundaryFace {
                     cell: c as u32,
@@ -423,12 +414,12 @@ impl VolumeMesh {
         let count = used.iter().filter(|u| **u).count();
         let mut mesh = SurfaceMesh::with_capacity(count, faces.len());
         for (i, _) in used.iter().enumerate().filter(|(_, u)| **u) {
-            mesh.add_node(self.node_tags[i], self.coords[i].into())?;
+            mesh.add_node(self.nodes.tags[i], self.nodes.coords[i].into())?;
         }
         let mut tags = ArrayVec::<u64, MAX_FACE_NODES>::new();
         for (k, f) in faces.iter().enumerate() {
             tags.clear();
-            tags.extend(f.nodes.iter().map(|&n| self.node_tags[n as usize]));
+            tags.extend(f.nodes.iter().map(|&n| self.nodes.tags[n as usize]));
             mesh.add_face_with_tag(k as u64 + 1, f.element, &tags)?;
         }
         Ok(mesh)
