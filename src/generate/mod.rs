@@ -14,10 +14,12 @@ mod cylinder;
 mod inclusion;
 mod line;
 mod plane;
+mod sphere;
 mod volume;
 
 pub use cylinder::cylinder_surface;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
+pub use sphere::sphere_surface;
 pub use volume::{box_mesh, rectangle_mesh, CellShape};

@@ -130,6 +130,11 @@ pub enum MortarError {
     /// An option is out of its range (a quadrature degree no rule reaches, a zero thread count).
     #[error("invalid option: {0}")]
     InvalidOption(String),
+    /// The coupling met what it would otherwise report as a warning (uncovered slave area,
+    /// skipped pairs), and full coverage was required
+    /// ([`CouplingOptions::require_full_coverage`](crate::CouplingOptions::require_full_coverage)).
+    #[error("{0} (full coverage was required)")]
+    IncompleteCoverage(Box<crate::assembly::CouplingWarning>),
     /// A multiplier space could not be built on a face (a singular local mass matrix).
     #[error("multiplier space {space} cannot be built on {face}: {reason}")]
     MultiplierSpace {

@@ -52,8 +52,8 @@ pub mod quadrature;
 pub mod search;
 pub mod tolerances;
 
-pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats};
+pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning};
 pub use error::{MortarError, Result, Side};
 pub use interface::{Interface, SpatialDim};
 pub use mesh::{SurfaceMesh, VolumeMesh};
-pub use tolerances::Tolerances;
+pub use tolerances::{SearchRadius, Tolerances};

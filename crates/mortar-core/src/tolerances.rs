@@ -24,8 +24,43 @@ pub struct Tolerances {
     pub reference_inside: f64,
     /// Bounding boxes are inflated by this fraction of the face diameter for the search.
     pub search_inflation: f64,
-    /// Absolute distance added to the search boxes, for contact problems with an open gap.
-    pub search_distance: f64,
+    /// How far from a slave face, along the slave's normal field and both ways, the search
+    /// looks for master faces: across an open gap, or into a penetration. Beyond it a master
+    /// face is not coupled, however it projects.
+    pub search_radius: SearchRadius,
+    /// A slave face counts as uncovered when the master covers less than `1 - coverage` of
+    /// its area (see [`CouplingWarning::UncoveredSlaveArea`](crate::CouplingWarning)).
+    pub coverage: f64,
+}
+
+/// The reach of the search along the slave's normal field (see
+/// [`Tolerances::search_radius`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SearchRadius {
+    /// This multiple of each slave face's diameter: follows the mesh, so a gap of the order of
+    /// the element size is crossed whatever the units. The default is `FaceSize(1.0)`.
+    FaceSize(f64),
+    /// A fixed distance, in the units of the coordinates.
+    Distance(f64),
+}
+
+impl SearchRadius {
+    /// The radius for a face of diameter `diameter`.
+    pub fn for_face(&self, diameter: f64) -> f64 {
+        match *self {
+            SearchRadius::FaceSize(k) => k * diameter,
+            SearchRadius::Distance(d) => d,
+        }
+    }
+
+    /// Whether the value is finite and non-negative.
+    pub fn is_valid(&self) -> bool {
+        let v = match *self {
+            SearchRadius::FaceSize(k) => k,
+            SearchRadius::Distance(d) => d,
+        };
+        v >= 0.0 && v.is_finite()
+    }
 }
 
 impl Default for Tolerances {
@@ -38,7 +73,8 @@ impl Default for Tolerances {
             newton_max_iterations: 30,
             reference_inside: 1e-9,
             search_inflation: 0.1,
-            search_distance: 0.0,
+            search_radius: SearchRadius::FaceSize(1.0),
+            coverage: 1e-9,
         }
     }
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use mortar_core::mesh::VolumeMesh;
-use mortar_core::{CouplingOptions, Tolerances};
+use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
 use mortar_physics::heat::{
     Conductivity, GapHeat, GapSolver, GapSolverState, HeatBody, HeatMaterial,
 };
@@ -124,8 +124,9 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
         .boundary_surface(|f| f.centroid.norm() < mid)?;
     let law = scene.gap_law()?;
     let gap = c.inner_radius - p.radius;
+    // Twice the gap, whatever the mesh size.
     let tolerances = Tolerances {
-        search_distance: 2.0 * gap,
+        search_radius: SearchRadius::Distance(2.0 * gap),
         ..Tolerances::default()
     };
     let problem = GapHeat::new(

@@ -1,17 +1,18 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
+use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::local::{integrate_face_into, LocalBlocks};
-use super::CouplingOptions;
+use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
-use crate::interface::Interface;
+use crate::interface::{Interface, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
-use crate::search::MasterTree;
+use crate::search::{spatial_order, MasterTree};
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
 /// and M) does not depend on the thread count.
@@ -46,6 +47,16 @@ pub struct CouplingStats {
     pub segments: usize,
     /// Candidate pairs skipped because the master face faces away from the slave.
     pub back_facing: usize,
+    /// Candidate pairs dropped because a point could not be mapped between the faces (see
+    /// [`CouplingWarning::SkippedPairs`]).
+    pub skipped_pairs: usize,
+    /// Slave area (length in 2D) with no master face within the search radius (see
+    /// [`CouplingWarning::UncoveredSlaveArea`]).
+    pub uncovered_area: f64,
+    /// Slave faces with no master face at all.
+    pub faces_without_partner: usize,
+    /// Slave faces covered in part.
+    pub faces_partly_covered: usize,
     /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D).
     pub area: f64,
     /// Threads used.
@@ -75,6 +86,8 @@ pub struct Coupling {
     pub formulation: String,
     /// Counts and timings.
     pub stats: CouplingStats,
+    /// What the coupling noticed without stopping: uncovered slave area, skipped pairs.
+    pub warnings: Vec<CouplingWarning>,
 }
 
 impl Coupling {
@@ -169,6 +182,10 @@ struct ChunkStats {
     pairs: usize,
     segments: usize,
     back_facing: usize,
+    skipped: usize,
+    uncovered_area: f64,
+    without_partner: usize,
+    partly_covered: usize,
     degrees: u32,
     seconds_search: f64,
     seconds_segments: f64,
@@ -181,6 +198,10 @@ impl ChunkStats {
         self.pairs += o.pairs;
         self.segments += o.segments;
         self.back_facing += o.back_facing;
+        self.skipped += o.skipped;
+        self.uncovered_area += o.uncovered_area;
+        self.without_partner += o.without_partner;
+        self.partly_covered += o.partly_covered;
         self.degrees |= o.degrees;
         self.seconds_search += o.seconds_search;
         self.seconds_segments += o.seconds_segments;
@@ -189,7 +210,8 @@ impl ChunkStats {
 }
 
 /// What one worker accumulates: its buffers, its compressed parts of D and M (keyed by chunk),
-/// its counts, and the first error it met (with its chunk).
+/// its counts, the first error it met (with its chunk), the first skipped pair (with its
+/// position in the processing order) and the smallest tags of uncovered slave faces.
 #[derive(Default)]
 struct Accumulator {
     ws: ChunkWorkspace,
@@ -197,6 +219,25 @@ struct Accumulator {
     m: PartList,
     stats: ChunkStats,
     error: Option<(usize, MortarError)>,
+    first_skipped: Option<(usize, MortarError)>,
+    uncovered: Vec<u64>,
+}
+
+impl Accumulator {
+    /// Keeps the earlier of two first-skipped records.
+    fn keep_first_skipped(&mut self, at: usize, e: MortarError) {
+        if self.first_skipped.as_ref().is_none_or(|(k, _)| at < *k) {
+            self.first_skipped = Some((at, e));
+        }
+    }
+
+    /// Adds uncovered face tags, keeping the smallest few.
+    fn add_uncovered(&mut self, tags: &[u64]) {
+        self.uncovered.extend_from_slice(tags);
+        self.uncovered.sort_unstable();
+        self.uncovered.dedup();
+        self.uncovered.truncate(CouplingWarning::EXAMPLES);
+    }
 }
 
 /// Computes D and M for an interface.
@@ -239,6 +280,19 @@ fn assemble_on_pool(
         projector: options.projector.as_ref(),
     };
     let faces = interface.slave().face_count();
+    // Slave faces are processed in the Morton order of their centres: the queries of a chunk
+    // then walk the same branches of the tree, whatever the file's numbering.
+    let slave = interface.slave();
+    let centres: Vec<Vector3<f64>> = (0..faces)
+        .into_par_iter()
+        .map(|f| {
+            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+            let k = slave.face_coords_into(f, &mut x);
+            x[..k].iter().sum::<Vector3<f64>>() / k as f64
+        })
+        .collect();
+    let order = spatial_order(&centres, interface.dim() == SpatialDim::Two);
+    drop(centres);
     // Each worker folds its chunks into one accumulator (its buffers and its part lists); the
     // first failing chunk in slave-face order decides the error, and chunks after a known
     // failure are skipped.
@@ -250,7 +304,9 @@ fn assemble_on_pool(
                 return acc;
             }
             let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
-            match chunk(interface, options, &ctx, &tree, range, c as u64, &mut acc) {
+            match chunk(
+                interface, options, &ctx, &tree, &order, range, c as u64, &mut acc,
+            ) {
                 Ok(()) => {}
                 Err(e) => {
                     first_error.fetch_min(c, Ordering::Relaxed);
@@ -272,6 +328,10 @@ fn assemble_on_pool(
                 total.error = Some((c, e));
             }
         }
+        if let Some((at, e)) = acc.first_skipped {
+            total.keep_first_skipped(at, e);
+        }
+        total.add_uncovered(&acc.uncovered);
         total.stats.add(&acc.stats);
         total.d.append(acc.d);
         total.m.append(acc.m);
@@ -280,6 +340,12 @@ fn assemble_on_pool(
         return Err(e);
     }
     let stats = total.stats;
+    let warnings = coupling_warnings(interface, &stats, total.first_skipped, total.uncovered);
+    if options.require_full_coverage {
+        if let Some(w) = warnings.first() {
+            return Err(MortarError::IncompleteCoverage(Box::new(w.clone())));
+        }
+    }
     if stats.pairs == 0 {
         return Err(MortarError::NoOverlap {
             slave_faces: faces,
@@ -322,6 +388,10 @@ fn assemble_on_pool(
             pairs: stats.pairs,
             segments: stats.segments,
             back_facing: stats.back_facing,
+            skipped_pairs: stats.skipped,
+            uncovered_area: stats.uncovered_area,
+            faces_without_partner: stats.without_partner,
+            faces_partly_covered: stats.partly_covered,
             area,
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
@@ -333,21 +403,56 @@ fn assemble_on_pool(
                 total: start.elapsed().as_secs_f64(),
             },
         },
+        warnings,
     })
+}
+
+/// The warnings of a run: uncovered slave area above the coverage tolerance (relative to the
+/// slave surface's area), and skipped pairs.
+fn coupling_warnings(
+    interface: &Interface,
+    stats: &ChunkStats,
+    first_skipped: Option<(usize, MortarError)>,
+    examples: Vec<u64>,
+) -> Vec<CouplingWarning> {
+    let mut out = Vec::new();
+    if stats.without_partner + stats.partly_covered > 0 {
+        let total: f64 = (0..interface.slave().face_count())
+            .into_par_iter()
+            .map(|f| interface.slave_face(f).measure())
+            .sum();
+        out.push(CouplingWarning::UncoveredSlaveArea {
+            area: stats.uncovered_area,
+            total,
+            faces_without_partner: stats.without_partner,
+            faces_partly_covered: stats.partly_covered,
+            examples,
+        });
+    }
+    if let Some((_, first)) = first_skipped {
+        out.push(CouplingWarning::SkippedPairs {
+            count: stats.skipped,
+            first: Box::new(first),
+        });
+    }
+    out
 }
 
 /// Segments, integrates and scatters one chunk of slave faces. The paired points of the whole
 /// chunk go into one flat vector, so the per-face work allocates nothing once the buffers
 /// have grown.
+#[allow(clippy::too_many_arguments)]
 fn chunk(
     interface: &Interface,
     options: &CouplingOptions,
     ctx: &SegmentContext<'_>,
     tree: &MasterTree,
-    faces: std::ops::Range<usize>,
+    order: &[u32],
+    positions: std::ops::Range<usize>,
     key: u64,
     acc: &mut Accumulator,
 ) -> Result<()> {
+    let faces = &order[positions.clone()];
     let mut out = ChunkStats::default();
     let tol = interface.tolerances();
     let t_search = Instant::now();
@@ -368,8 +473,8 @@ fn chunk(
     offsets.clear();
     offsets.push(0usize);
     all.clear();
-    for s in faces.clone() {
-        tree.candidates_into(interface, s, scratch);
+    for &s in faces {
+        tree.candidates_into(interface, s as usize, scratch);
         all.extend_from_slice(scratch);
         offsets.push(all.len());
     }
@@ -379,9 +484,21 @@ fn chunk(
     // Each face is segmented and integrated at once, while its points are in cache.
     let slave_mesh = interface.slave();
     let master_mesh = interface.master();
-    for (i, s) in faces.clone().enumerate() {
+    let coverage = tol.coverage;
+    let mut uncovered: ArrayVec<u64, { CouplingWarning::EXAMPLES }> = ArrayVec::new();
+    let mut note_uncovered = |tag: u64| {
+        if !uncovered.is_full() {
+            uncovered.push(tag);
+        }
+    };
+    for (i, &s) in faces.iter().enumerate() {
+        let s = s as usize;
         let cands = &all[offsets[i]..offsets[i + 1]];
         if cands.is_empty() {
+            out.without_partner += 1;
+            let face = interface.slave_face(s);
+            out.uncovered_area += face.measure();
+            note_uncovered(face.tag);
             continue;
         }
         let ta = Instant::now();
@@ -392,7 +509,33 @@ fn chunk(
         out.pairs += rule.pairs as usize;
         out.segments += rule.cells as usize;
         out.back_facing += rule.back_facing as usize;
+        out.skipped += rule.skipped as usize;
         out.degrees |= rule.degrees;
+        if let Some(e) = rule.first_skipped.take() {
+            acc.first_skipped = acc
+                .first_skipped
+                .take()
+                .filter(|(k, _)| *k < positions.start + i)
+                .or(Some((positions.start + i, e)));
+        }
+        // How much of the face the points cover: as the strategy measured it, or the sum of
+        // the weights against the face's measure.
+        let missing = match rule.covered {
+            Some(c) => 1.0 - c,
+            None => {
+                let w: f64 = rule.points.iter().map(|p| p.weight).sum();
+                1.0 - w / face.measure()
+            }
+        };
+        if rule.points.is_empty() {
+            out.without_partner += 1;
+            out.uncovered_area += face.measure();
+            note_uncovered(face.tag);
+        } else if missing > coverage {
+            out.partly_covered += 1;
+            out.uncovered_area += missing * face.measure();
+            note_uncovered(face.tag);
+        }
         let tb = Instant::now();
         out.seconds_segments += (tb - ta).as_secs_f64();
         if rule.points.is_empty() {
@@ -444,5 +587,6 @@ fn chunk(
     acc.m.push_compressed(key, m, sort);
     out.seconds_integration = t0.elapsed().as_secs_f64() - out.seconds_segments;
     acc.stats.add(&out);
+    acc.add_uncovered(&uncovered);
     Ok(())
 }

@@ -12,7 +12,9 @@
 mod coupling;
 mod local;
 mod options;
+mod warning;
 
 pub use coupling::{assemble_coupling, Coupling, CouplingStats, PhaseSeconds};
 pub use local::{integrate_face_into, LocalBlocks};
 pub use options::CouplingOptions;
+pub use warning::CouplingWarning;

@@ -19,6 +19,9 @@ pub struct CouplingOptions {
     pub projector: Arc<dyn Projector>,
     /// Worker threads; `None` uses rayon's default (the core count, or `RAYON_NUM_THREADS`).
     pub threads: Option<usize>,
+    /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area, skipped
+    /// pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).
+    pub require_full_coverage: bool,
 }
 
 impl Default for CouplingOptions {
@@ -28,6 +31,7 @@ impl Default for CouplingOptions {
             integration: Arc::new(SegmentBased::default()),
             projector: Arc::new(NodalNormalField),
             threads: None,
+            require_full_coverage: false,
         }
     }
 }
@@ -66,6 +70,13 @@ impl CouplingOptions {
     /// A fixed number of worker threads.
     pub fn threads(mut self, threads: usize) -> Self {
         self.threads = Some(threads);
+        self
+    }
+
+    /// Turns every coupling warning into an error (see
+    /// [`require_full_coverage`](Self::require_full_coverage)).
+    pub fn require_full_coverage(mut self, yes: bool) -> Self {
+        self.require_full_coverage = yes;
         self
     }
 

@@ -7,8 +7,10 @@ mod inverse_map;
 mod planar_map;
 mod plane;
 mod polygon;
+mod root;
 
 pub use inverse_map::{invert_line_map, invert_surface_map, InverseMapFailure};
 pub use planar_map::PlanarMap;
 pub use plane::AuxiliaryPlane;
 pub use polygon::{clip_convex, Polygon, MAX_POLYGON_VERTICES};
+pub use root::bracketed_root;

@@ -56,12 +56,15 @@ impl IntegrationStrategy for ElementBased {
         let rule = QuadratureRule::cached(el.domain(), deg)?;
         // Distinct master faces hit, for the pair count (a handful per slave face).
         let mut hit: Vec<u32> = Vec::new();
+        let (mut landed, mut all) = (0.0, 0.0);
         for (xi, w) in rule.points().iter().zip(rule.weights()) {
+            all += w;
             let x = slave.map(xi);
             let (d, _) = ctx.projector.direction(slave, xi);
             let Some((m, eta)) = find_master(ctx, &x, &d, candidates) else {
                 continue;
             };
+            landed += w;
             if !hit.contains(&m) {
                 hit.push(m);
             }
@@ -73,6 +76,7 @@ impl IntegrationStrategy for ElementBased {
             });
         }
         out.pairs = hit.len() as u32;
+        out.covered = Some(landed / all);
         out.cells = u32::from(!out.points.is_empty());
         if out.cells > 0 {
             out.degrees |= 1 << deg;

@@ -28,7 +28,7 @@ pub use degree::default_degree;
 pub use element_based::ElementBased;
 pub use segment_based::SegmentBased;
 
-use crate::error::Result;
+use crate::error::{MortarError, Result};
 use crate::interface::{FaceGeometry, Interface};
 use crate::projector::Projector;
 
@@ -61,6 +61,16 @@ pub struct PairedRule {
     /// does not oppose the projection direction): the far side of a thin body, or a master
     /// surface oriented the wrong way round.
     pub back_facing: u32,
+    /// Candidate pairs dropped because a point could not be mapped between the faces (a
+    /// failed projection); their area counts as uncovered.
+    pub skipped: u32,
+    /// The first such failure, naming the face and the point.
+    pub first_skipped: Option<MortarError>,
+    /// The fraction of the slave face that the points cover, measured exactly where the
+    /// strategy can (clip polygon areas against the face's projection, segment lengths in
+    /// reference coordinates, reference weights of the points that found a master face);
+    /// `None` lets the coupling compare the sum of the weights with the face's measure.
+    pub covered: Option<f64>,
 }
 
 impl PairedRule {
@@ -71,6 +81,17 @@ impl PairedRule {
         self.cells = 0;
         self.degrees = 0;
         self.back_facing = 0;
+        self.skipped = 0;
+        self.first_skipped = None;
+        self.covered = None;
+    }
+
+    /// Records a pair dropped because of `error` (its points already removed).
+    pub fn skip(&mut self, error: MortarError) {
+        self.skipped += 1;
+        if self.first_skipped.is_none() {
+            self.first_skipped = Some(error);
+        }
     }
 }
 
@@ -89,12 +110,12 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     fn name(&self) -> String;
 
     /// Writes the paired rule of `slave` against its `candidates` (master face indices,
-    /// ascending) into `out` (cleared first).
+    /// ascending) into `out` (cleared first). A pair whose points cannot be mapped between the
+    /// faces is dropped and recorded with [`PairedRule::skip`] (the coupling counts it and
+    /// warns), never dropped silently.
     ///
     /// # Errors
-    /// A typed error when a point cannot be mapped back to a face
-    /// ([`MortarError::ProjectionFailed`](crate::error::MortarError::ProjectionFailed)) or an
-    /// option is invalid.
+    /// A typed error for an invalid option, or a slave face that cannot be segmented at all.
     fn paired_rule_into(
         &self,
         ctx: &SegmentContext<'_>,

@@ -5,7 +5,7 @@ use nalgebra::{Vector2, Vector3};
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
-use crate::geometry::invert_line_map;
+use crate::geometry::{bracketed_root, invert_line_map};
 use crate::interface::FaceGeometry;
 use crate::quadrature::{Quadrature, QuadratureRule};
 
@@ -15,6 +15,14 @@ fn cross2(a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
+/// Bracketed root finding: relative tolerance and step limit (each step at least halves the
+/// bracket, so 200 steps reach round-off from any bracket).
+const ROOT_TOL: f64 = 4.0 * f64::EPSILON;
+const ROOT_STEPS: usize = 200;
+
+/// How far outside `[-1, 1]` a master coordinate is searched for (reference units).
+const MASTER_MARGIN: f64 = 0.5;
+
 pub(super) fn segments_into(
     ctx: &SegmentContext<'_>,
     slave: &FaceGeometry,
@@ -22,9 +30,13 @@ pub(super) fn segments_into(
     degree: Option<u32>,
     out: &mut PairedRule,
 ) -> Result<()> {
-    let tol = ctx.interface.tolerances();
     let centre = Vector2::zeros();
     let (n_s, _) = ctx.projector.direction(slave, &centre);
+    // The orientation of the projection: F(xi) = (y - x(xi)) x d(xi) grows with xi when
+    // `orientation` is positive.
+    let [t, _] = slave.element.tangents(slave.node_coords(), &centre);
+    let orientation = -cross2(&t, &n_s).signum();
+    let mut covered = 0.0;
     for &m in candidates {
         let master = ctx.interface.master_face(m as usize);
         let n_m = master.element.unit_normal(master.node_coords(), &centre);
@@ -34,104 +46,133 @@ pub(super) fn segments_into(
             out.back_facing += 1;
             continue;
         }
-        // The master's end nodes, projected onto the slave line along the direction field.
-        let Some(a) = project_onto_slave(ctx, slave, &master.nodes[0]) else {
-            continue;
-        };
-        let Some(b) = project_onto_slave(ctx, slave, &master.nodes[1]) else {
-            continue;
-        };
-        let lo = a.min(b).max(-1.0);
-        let hi = a.max(b).min(1.0);
-        if hi - lo <= tol.clip_area * 2.0 {
-            continue;
-        }
-        let deg = degree.unwrap_or_else(|| default_degree(slave.element, master.element));
-        let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
-        out.pairs += 1;
-        out.cells += 1;
-        out.degrees |= 1 << deg;
-        let half = 0.5 * (hi - lo);
-        let mut values = [0.0; MAX_FACE_NODES];
-        let km = master.node_count();
-        for (g, w) in rule.points().iter().zip(rule.weights()) {
-            let xi = Vector2::new(lo + half * (g.x + 1.0), 0.0);
-            let x = slave.map(&xi);
-            let (d, _) = ctx.projector.direction(slave, &xi);
-            for i in 0..km {
-                values[i] = cross2(&(master.nodes[i] - x), &d);
+        let pushed = out.points.len();
+        match pair_points(ctx, slave, &master, m, orientation, degree, out) {
+            Ok(Some(length)) => covered += length,
+            Ok(None) => continue,
+            Err(e) => {
+                out.points.truncate(pushed);
+                out.skip(e);
             }
-            let eta = invert_line_map(
-                master.element,
-                master.element.is_affine(),
-                &values[..km],
-                0.0,
-                tol.newton,
-                tol.newton_max_iterations,
-            )
-            .map_err(|f| MortarError::ProjectionFailed {
-                face: master.location(),
-                point: x.into(),
-                iterations: f.iterations,
-                residual: f.residual,
-            })?;
-            let weight = w * half * slave.element.jacobian_det(slave.node_coords(), &xi);
-            out.points.push(PairedPoint {
-                master: m,
-                xi_slave: xi,
-                xi_master: Vector2::new(eta.clamp(-1.0, 1.0), 0.0),
-                weight,
-            });
         }
     }
+    out.covered = Some(0.5 * covered);
     Ok(())
 }
 
-/// The slave coordinate `xi` with `y - x(xi)` parallel to the direction `d(xi)`: Newton on
-/// `F(xi) = (y - x(xi)) x d(xi)`. Falls back to the (linear) projection along the direction at
-/// the face centre if Newton fails; `None` if that is singular too (the line is parallel).
+/// The paired points of `slave` against master face `m`, and the length of their overlap in
+/// the slave's reference coordinates; `Ok(None)` when they do not overlap.
+fn pair_points(
+    ctx: &SegmentContext<'_>,
+    slave: &FaceGeometry,
+    master: &FaceGeometry,
+    m: u32,
+    orientation: f64,
+    degree: Option<u32>,
+    out: &mut PairedRule,
+) -> Result<Option<f64>> {
+    let tol = ctx.interface.tolerances();
+    // The master's end nodes, projected onto the slave line along the direction field.
+    let a = project_onto_slave(ctx, slave, &master.nodes[0], orientation)?;
+    let b = project_onto_slave(ctx, slave, &master.nodes[1], orientation)?;
+    let lo = a.min(b);
+    let hi = a.max(b);
+    if hi - lo <= tol.clip_area * 2.0 {
+        return Ok(None);
+    }
+    let deg = degree.unwrap_or_else(|| default_degree(slave.element, master.element));
+    let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
+    let half = 0.5 * (hi - lo);
+    let mut values = [0.0; MAX_FACE_NODES];
+    let km = master.node_count();
+    let mel = master.element;
+    for (g, w) in rule.points().iter().zip(rule.weights()) {
+        let xi = Vector2::new(lo + half * (g.x + 1.0), 0.0);
+        let x = slave.map(&xi);
+        let (d, _) = ctx.projector.direction(slave, &xi);
+        for i in 0..km {
+            values[i] = cross2(&(master.nodes[i] - x), &d);
+        }
+        let failed = |iterations, residual| MortarError::ProjectionFailed {
+            face: master.location(),
+            point: x.into(),
+            iterations,
+            residual,
+        };
+        let eta = if mel.is_affine() {
+            invert_line_map(mel, true, &values[..km], 0.0, tol.newton, 1)
+                .map_err(|f| failed(f.iterations, f.residual))?
+        } else {
+            let mut n = [0.0; MAX_FACE_NODES];
+            let mut dn = [[0.0; 2]; MAX_FACE_NODES];
+            let f = |eta: f64| {
+                let e = Vector2::new(eta, 0.0);
+                mel.shape_values_into(&e, &mut n[..km]);
+                mel.shape_gradients_into(&e, &mut dn[..km]);
+                (0..km).fold((0.0, 0.0), |(v, dv), i| {
+                    (v + n[i] * values[i], dv + dn[i][0] * values[i])
+                })
+            };
+            let (a, b) = (-1.0 - MASTER_MARGIN, 1.0 + MASTER_MARGIN);
+            bracketed_root(f, a, b, ROOT_TOL, ROOT_STEPS)
+                .ok_or_else(|| failed(ROOT_STEPS, f64::INFINITY))?
+        };
+        let weight = w * half * slave.element.jacobian_det(slave.node_coords(), &xi);
+        out.points.push(PairedPoint {
+            master: m,
+            xi_slave: xi,
+            xi_master: Vector2::new(eta.clamp(-1.0, 1.0), 0.0),
+            weight,
+        });
+    }
+    out.pairs += 1;
+    out.cells += 1;
+    out.degrees |= 1 << deg;
+    Ok(Some(hi - lo))
+}
+
+/// Where `y` projects onto the slave line along the direction field, clamped to `[-1, 1]`:
+/// the `xi` with `F(xi) = (y - x(xi)) x d(xi) = 0`. `F` is evaluated at both ends first: a
+/// root outside `[-1, 1]` gives the nearer end (nothing beyond the face is needed), a root
+/// inside is found by Newton safeguarded by bisection, which converges whatever the face's
+/// curvature (no extrapolation, no absolute tolerance).
+///
+/// # Errors
+/// [`MortarError::ProjectionFailed`] when `F` decreases across the face (the direction field
+/// turns faster than the face: the projection is not one-to-one there).
 fn project_onto_slave(
     ctx: &SegmentContext<'_>,
     slave: &FaceGeometry,
     y: &Vector3<f64>,
-) -> Option<f64> {
-    let tol = ctx.interface.tolerances();
+    orientation: f64,
+) -> Result<f64> {
     let el = slave.element;
-    let mut xi = Vector2::zeros();
-    for _ in 0..tol.newton_max_iterations {
+    let g = |xi: f64| {
+        let xi = Vector2::new(xi, 0.0);
         let x = slave.map(&xi);
         let [t, _] = el.tangents(slave.node_coords(), &xi);
         let (d, dd) = ctx.projector.direction(slave, &xi);
         let r = y - x;
         let f = cross2(&r, &d);
         let df = -cross2(&t, &d) + cross2(&r, &dd[0]);
-        if df == 0.0 || !df.is_finite() {
-            break;
-        }
-        let step = f / df;
-        xi.x -= step;
-        if step.abs() <= tol.newton {
-            return Some(xi.x);
-        }
-        if xi.x.abs() > 1e3 {
-            break;
-        }
+        (orientation * f, orientation * df)
+    };
+    let (ga, _) = g(-1.0);
+    let (gb, _) = g(1.0);
+    let failed = || MortarError::ProjectionFailed {
+        face: slave.location(),
+        point: (*y).into(),
+        iterations: 0,
+        residual: f64::INFINITY,
+    };
+    if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
+        return Err(failed());
     }
-    // Fallback: project along the constant direction at the centre.
-    let c = Vector2::zeros();
-    let (d, _) = ctx.projector.direction(slave, &c);
-    let mut values = [0.0; MAX_FACE_NODES];
-    let k = slave.node_count();
-    for i in 0..k {
-        values[i] = cross2(&(slave.nodes[i] - y), &d);
+    if ga >= 0.0 {
+        return Ok(-1.0);
     }
-    invert_line_map(
-        el,
-        el.is_affine(),
-        &values[..k],
-        0.0,
-        tol.newton,
-        tol.newton_max_iterations,
-    )
-    .ok()
+    if gb <= 0.0 {
+        return Ok(1.0);
+    }
+    bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS).ok_or_else(failed)
 }

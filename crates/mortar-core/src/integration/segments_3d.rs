@@ -45,6 +45,19 @@ pub(super) fn segments_into(
         });
     }
     let slave_map = PlanarMap::new(el, &sp[..ks]);
+    // A slave face is integrated in the plane only when both its map into space and its
+    // projection are affine (a triangle, a flat parallelogram): then the plane's area element
+    // differs from the face's by one constant factor, `measure`, the ratio of the face's
+    // Jacobian to its projection's (1 when the face lies in the plane; `1 / cos` of the tilt
+    // on a curved surface, where the plane follows the averaged nodal normals). Any other slave
+    // face is integrated in its reference coordinates with its own Jacobian.
+    let in_reference = !(slave_map.is_affine() && is_affine_in_space(slave));
+    let measure = if in_reference {
+        1.0
+    } else {
+        let (_, jac_plane) = slave_map.eval(&centre);
+        el.jacobian_det(slave.node_coords(), &centre) / jac_plane
+    };
     let (s_lo, s_hi) = spoly
         .vertices
         .iter()
@@ -60,6 +73,7 @@ pub(super) fn segments_into(
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
+    let mut covered = 0.0;
 
     for &m in candidates {
         let view = master_mesh.face(m as usize);
@@ -102,7 +116,6 @@ pub(super) fn segments_into(
         }
         // A slave face whose Jacobian varies is integrated in its reference coordinates with
         // the Jacobian as a factor: one degree more.
-        let in_reference = !slave_map.is_affine();
         let deg = degree.unwrap_or_else(|| default_degree(el, mel) + u32::from(in_reference));
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
         let master_map = PlanarMap::new(mel, &mp[..km]);
@@ -133,7 +146,7 @@ pub(super) fn segments_into(
                 let xi_s = slave_map
                     .invert(&c, tol.newton, tol.newton_max_iterations)
                     .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
-                (c, xi_s, 1.0)
+                (c, xi_s, measure)
             };
             let xi_m = master_map
                 .invert(&p, tol.newton, tol.newton_max_iterations)
@@ -146,51 +159,64 @@ pub(super) fn segments_into(
             })
         };
         let pushed = out.points.len();
-        if deg == 2 && !in_reference {
-            // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
-            // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
-            // so an n-gon needs 2n points instead of 3n; still exact for degree 2.
-            fan_midpoints(&clip, |c, weight, cells| {
-                out.cells += cells;
-                if weight > 0.0 {
-                    out.points.push(point_at(c, weight)?);
-                }
-                Ok(())
-            })?;
-        } else {
-            tris.clear();
-            if in_reference {
-                let mut xi_poly = Polygon::default();
-                for v in &clip.vertices {
-                    let xi = slave_map
-                        .invert(v, tol.newton, tol.newton_max_iterations)
-                        .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
-                    xi_poly.vertices.push(xi);
-                }
-                xi_poly.for_each_triangle(|t| tris.push(t));
+        let cells_before = out.cells;
+        // A point that cannot be mapped back drops the pair (counted, never silently).
+        let mut emit = || -> Result<()> {
+            if deg == 2 && !in_reference {
+                // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
+                // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
+                // so an n-gon needs 2n points instead of 3n; still exact for degree 2.
+                fan_midpoints(&clip, |c, weight, cells| {
+                    out.cells += cells;
+                    if weight > 0.0 {
+                        out.points.push(point_at(c, weight)?);
+                    }
+                    Ok(())
+                })?;
             } else {
-                clip.for_each_triangle(|t| tris.push(t));
-            }
-            for t in &tris {
-                let e1 = t[1] - t[0];
-                let e2 = t[2] - t[0];
-                let twice_area = e1.x * e2.y - e1.y * e2.x;
-                if twice_area <= 0.0 {
-                    continue;
+                tris.clear();
+                if in_reference {
+                    let mut xi_poly = Polygon::default();
+                    for v in &clip.vertices {
+                        let xi = slave_map
+                            .invert(v, tol.newton, tol.newton_max_iterations)
+                            .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
+                        xi_poly.vertices.push(xi);
+                    }
+                    xi_poly.for_each_triangle(|t| tris.push(t));
+                } else {
+                    clip.for_each_triangle(|t| tris.push(t));
                 }
-                out.cells += 1;
-                for (q, w) in rule.points().iter().zip(rule.weights()) {
-                    out.points
-                        .push(point_at(t[0] + e1 * q.x + e2 * q.y, w * twice_area)?);
+                for t in &tris {
+                    let e1 = t[1] - t[0];
+                    let e2 = t[2] - t[0];
+                    let twice_area = e1.x * e2.y - e1.y * e2.x;
+                    if twice_area <= 0.0 {
+                        continue;
+                    }
+                    out.cells += 1;
+                    for (q, w) in rule.points().iter().zip(rule.weights()) {
+                        out.points
+                            .push(point_at(t[0] + e1 * q.x + e2 * q.y, w * twice_area)?);
+                    }
                 }
             }
+            Ok(())
+        };
+        if let Err(e) = emit() {
+            out.points.truncate(pushed);
+            out.cells = cells_before;
+            out.skip(e);
+            continue;
         }
         let any = out.points.len() > pushed;
         if any {
             out.pairs += 1;
             out.degrees |= 1 << deg;
+            covered += clip.signed_area();
         }
     }
+    out.covered = Some(covered / area_s);
     Ok(())
 }
 
@@ -229,4 +255,21 @@ fn fan_midpoints(
         f(0.5 * (v[i] + v[(i + 1) % n]), this / 3.0, 0)?;
     }
     Ok(())
+}
+
+/// Whether the face's map into space is affine: always for an affine element type (Tri3), and
+/// for a face whose tangents are the same at every node as at the centre (a flat
+/// parallelogram Quad4), to round-off of its size.
+fn is_affine_in_space(face: &FaceGeometry) -> bool {
+    let el = face.element;
+    if el.is_affine() {
+        return true;
+    }
+    let x = face.node_coords();
+    let t0 = el.tangents(x, &el.domain().centre());
+    let scale = t0[0].norm().max(t0[1].norm());
+    el.node_reference_coords().iter().all(|xi| {
+        let t = el.tangents(x, &Vector2::new(xi[0], xi[1]));
+        (t[0] - t0[0]).amax().max((t[1] - t0[1]).amax()) <= 1e-13 * scale
+    })
 }

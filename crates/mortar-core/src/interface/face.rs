@@ -3,6 +3,7 @@ use nalgebra::{Vector2, Vector3};
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{FaceLocation, Side};
 use crate::mesh::SurfaceMesh;
+use crate::quadrature::{Quadrature, QuadratureRule};
 
 /// One face's geometry gathered on the stack: element, node coordinates and (on the slave side)
 /// the averaged nodal normals at its nodes. What the segmenter and the integrator work on.
@@ -77,6 +78,26 @@ impl FaceGeometry {
     /// The point at the centre of the reference domain.
     pub fn centre(&self) -> Vector3<f64> {
         self.map(&self.element.domain().centre())
+    }
+
+    /// The face's own measure (area; length for a line): exact for an affine face, by a
+    /// quadrature of the Jacobian of degree `2 p + 4` otherwise (`p` the shape degree).
+    pub fn measure(&self) -> f64 {
+        let el = self.element;
+        let domain = el.domain();
+        if el.is_affine() {
+            return el.jacobian_det(self.node_coords(), &domain.centre()) * domain.measure();
+        }
+        let degree = (2 * el.shape_degree() + 4).min(20);
+        match QuadratureRule::cached(domain, degree) {
+            Ok(rule) => rule
+                .points()
+                .iter()
+                .zip(rule.weights())
+                .map(|(xi, w)| w * el.jacobian_det(self.node_coords(), xi))
+                .sum(),
+            Err(_) => el.jacobian_det(self.node_coords(), &domain.centre()) * domain.measure(),
+        }
     }
 
     /// The largest distance between two corner nodes.

@@ -2,6 +2,7 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::bvh::{Box3, BoxTree};
+use super::morton::spatial_order;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{Interface, SpatialDim};
 use crate::mesh::SurfaceMesh;
@@ -37,10 +38,10 @@ impl Candidates {
 /// BVHs over the master faces' inflated bounding boxes, queried one slave face at a time.
 ///
 /// The master faces are cut into slabs of equal width along the longest axis of their
-/// bounding box (by box centre) and one tree is built per slab, in parallel. Each leaf holds
-/// up to four faces (`LEAF_FACES`) that follow each other in the slab (mesh numberings keep such
-/// faces close), which makes the trees several times cheaper to build; a hit leaf's faces are
-/// then tested one by one. A query visits the slabs whose bounds meet its box. The candidates
+/// bounding box (by box centre) and one tree is built per slab, in parallel. Within a slab the
+/// faces follow the Morton order of their centres (whatever the file's numbering), and each
+/// leaf holds up to four consecutive ones (`LEAF_FACES`), which makes the trees several times
+/// cheaper to build; a hit leaf's faces are then tested one by one. A query visits the slabs whose bounds meet its box. The candidates
 /// are sorted, so they depend neither on the slab layout nor on the thread count.
 pub struct MasterTree {
     slabs: Vec<Slab>,
@@ -125,22 +126,26 @@ impl MasterTree {
             .into_par_iter()
             .map(|f| face_box(master, f, tol))
             .collect();
+        let centres: Vec<Vector3<f64>> = boxes.par_iter().map(|b| 0.5 * (b.0 + b.1)).collect();
+        // Faces in the Morton order of their centres, so that a leaf's faces are neighbours
+        // whatever the file's numbering.
+        let order = spatial_order(&centres, planar);
         // Bucket the faces into slabs of equal width along the longest axis (by box centre,
-        // in index order within a slab): O(n), deterministic.
+        // in spatial order within a slab): O(n), deterministic.
         let slab_count = n.div_ceil(SLAB_FACES).max(1);
         let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); slab_count];
         if slab_count == 1 {
-            buckets[0] = (0..n as u32).collect();
+            buckets[0] = order;
         } else {
-            let centres: Vec<Vector3<f64>> = boxes.par_iter().map(|b| 0.5 * (b.0 + b.1)).collect();
             let (lo, hi) = centres
                 .iter()
                 .fold((EMPTY.0, EMPTY.1), |(lo, hi), c| (lo.inf(c), hi.sup(c)));
             let axis = (hi - lo).imax();
             let width = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
-            for (f, c) in centres.iter().enumerate() {
+            for f in order {
+                let c = &centres[f as usize];
                 let k = (((c[axis] - lo[axis]) / width) * slab_count as f64) as usize;
-                buckets[k.min(slab_count - 1)].push(f as u32);
+                buckets[k.min(slab_count - 1)].push(f);
             }
         }
         let slabs = buckets
@@ -172,7 +177,7 @@ impl MasterTree {
     /// The candidate master faces of slave face `s`, ascending, written into `out` (cleared
     /// first).
     pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
-        let b = face_box(interface.slave(), s, interface.tolerances());
+        let b = slave_search_box(interface, s);
         out.clear();
         for slab in &self.slabs {
             if !overlaps(&b, &slab.bounds, self.planar) {
@@ -227,6 +232,36 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
     Candidates { offsets, masters }
 }
 
+/// The region where slave face `s` looks for master faces: the box of its nodes moved along
+/// their nodal normals by the search radius, both ways (which holds every point
+/// `x(xi) + t n(xi)`, `|t| <= radius`, of a face whose normal field interpolates its nodal
+/// normals), inflated like every face box.
+fn slave_search_box(interface: &Interface, s: usize) -> Box3 {
+    let tol = interface.tolerances();
+    let mesh = interface.slave();
+    let normals = interface.slave_nodal_normals();
+    let nodes = mesh.face(s).nodes;
+    let coords = mesh.coords();
+    let (mut lo, mut hi) = (EMPTY.0, EMPTY.1);
+    for &n in nodes {
+        let x = coords[n as usize];
+        lo = lo.inf(&x);
+        hi = hi.sup(&x);
+    }
+    let diameter = (hi - lo).norm();
+    let radius = tol.search_radius.for_face(diameter);
+    for &n in nodes {
+        let x = coords[n as usize];
+        let d = normals[n as usize] * radius;
+        for p in [x + d, x - d] {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+    }
+    let pad = Vector3::repeat(tol.search_inflation * diameter);
+    (lo - pad, hi + pad)
+}
+
 /// The face's bounding box, inflated for the search.
 fn face_box(mesh: &SurfaceMesh, f: usize, tol: &Tolerances) -> Box3 {
     let mut x = [Vector3::zeros(); MAX_FACE_NODES];
@@ -236,7 +271,6 @@ fn face_box(mesh: &SurfaceMesh, f: usize, tol: &Tolerances) -> Box3 {
         lo = lo.inf(p);
         hi = hi.sup(p);
     }
-    let pad = tol.search_inflation * (hi - lo).norm() + tol.search_distance;
-    let pad = Vector3::repeat(pad);
+    let pad = Vector3::repeat(tol.search_inflation * (hi - lo).norm());
     (lo - pad, hi + pad)
 }

@@ -1,14 +1,19 @@
 //! The candidate search: which master faces may overlap each slave face.
 //!
-//! Bounding boxes of the faces, inflated by [`Tolerances::search_inflation`] times the face
-//! diameter plus [`Tolerances::search_distance`], go into parry's BVH (`parry2d-f64` for 2D
-//! interfaces, `parry3d-f64` for 3D); each slave face's box is then queried against the
-//! master tree. O(N log N); nothing is all-pairs. parry's API stays inside `bvh.rs`.
+//! Bounding boxes of the master faces, inflated by [`Tolerances::search_inflation`] times the
+//! face diameter, go into parry's BVH (`parry2d-f64` for 2D interfaces, `parry3d-f64` for 3D),
+//! its leaves grouping faces in the Morton order of their centres. Each slave face queries it
+//! with the box of its nodes swept along their nodal normals by the
+//! [`Tolerances::search_radius`] both ways (by default one face diameter: an open gap of the
+//! order of the element size is crossed). O(N log N); nothing is all-pairs. parry's API stays
+//! inside `bvh.rs`.
 //!
 //! [`Tolerances::search_inflation`]: crate::tolerances::Tolerances::search_inflation
-//! [`Tolerances::search_distance`]: crate::tolerances::Tolerances::search_distance
+//! [`Tolerances::search_radius`]: crate::tolerances::Tolerances::search_radius
 
 mod bvh;
 mod candidates;
+mod morton;
 
 pub use candidates::{find_candidates, Candidates, MasterTree};
+pub(crate) use morton::spatial_order;
