@@ -14,8 +14,13 @@
 //!   `n / 4` quads, master `floor(1.5 n) + 1` x `floor(1.5 n / 4) + 1` cells cut into triangles;
 //! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements.
 //!
-//! Each (case, n, threads) runs in a child process (this program re-executed with the hidden
-//! `--single CASE N THREADS`), so that its peak memory (`VmHWM`) is its own. The child assembles
+//! Each case also runs `shuffled`: the same meshes with the nodes and faces of slave and master
+//! stored in a seeded random order (`mortar::testing::shuffled`), the order a mesher that
+//! numbers faces far apart writes; `shuffled_vs_sorted` is its total time over the one of the
+//! generator's (spatially coherent) order at the same size and threads, from the same run.
+//!
+//! Each (case, n, threads, order) runs in a child process (this program re-executed with the
+//! hidden `--single CASE N THREADS ORDER`), so that its peak memory (`VmHWM`) is its own. The child assembles
 //! D and M (segment-based, standard multipliers) `--repeats` times (once for 1e6 slave faces and
 //! more) and prints one JSON line with the phases of the run of median total time. The parent
 //! writes the JSON array to `--json PATH` and prints a table. `bit_identical_to_1_thread`
@@ -36,6 +41,7 @@ use std::time::Instant;
 
 use clap::Parser;
 use mortar::generate::{cylinder_surface, line_mesh, square_triangles, Diagonal};
+use mortar::testing::shuffled;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
 use serde_json::{json, Value};
 
@@ -67,14 +73,14 @@ struct Args {
     #[arg(long, default_value = "docs")]
     out_dir: PathBuf,
     /// Internal: run one case in this process and print one JSON line.
-    #[arg(long, num_args = 3, value_names = ["CASE", "N", "THREADS"], hide = true)]
+    #[arg(long, num_args = 4, value_names = ["CASE", "N", "THREADS", "ORDER"], hide = true)]
     single: Option<Vec<String>>,
 }
 
 fn main() -> Res<()> {
     let args = Args::parse();
     if let Some(s) = &args.single {
-        let record = single(&s[0], s[1].parse()?, s[2].parse()?, args.repeats)?;
+        let record = single(&s[0], s[1].parse()?, s[2].parse()?, &s[3], args.repeats)?;
         println!("{record}");
         return Ok(());
     }
@@ -89,8 +95,12 @@ fn master_n(n: usize) -> usize {
     n * 3 / 2 + 1
 }
 
-/// The interface of `case` at size `n`.
-fn build(case: &str, n: usize) -> Res<Interface> {
+/// The seed of the shuffled order (fixed: the same copy in every run).
+const SHUFFLE_SEED: u64 = 0x5eed;
+
+/// The interface of `case` at size `n`, in the generator's order (`sorted`) or with the nodes
+/// and faces of both sides in a seeded random order (`shuffled`).
+fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
     let (slave, master) = match case {
         "plane3d" => (
             square_triangles(n, Diagonal::Main, 0.0, false, 1)?,
@@ -106,7 +116,16 @@ fn build(case: &str, n: usize) -> Res<Interface> {
         "line2d" => (line_mesh(n, false, 1)?, line_mesh(master_n(n), true, 1)?),
         _ => return Err(format!("unknown case {case:?}").into()),
     };
-    Ok(Interface::new(slave, master)?)
+    match order {
+        "sorted" => Ok(Interface::new(slave, master)?),
+        "shuffled" => Ok(Interface::new(
+            shuffled(&slave, SHUFFLE_SEED)?,
+            shuffled(&master, SHUFFLE_SEED + 1)?,
+        )?),
+        "shuffled-slave" => Ok(Interface::new(shuffled(&slave, SHUFFLE_SEED)?, master)?),
+        "shuffled-master" => Ok(Interface::new(slave, shuffled(&master, SHUFFLE_SEED + 1)?)?),
+        _ => Err(format!("unknown order {order:?}").into()),
+    }
 }
 
 /// The peak resident set size of this process (`VmHWM`), in bytes.
@@ -174,11 +193,11 @@ fn repeats_for(case: &str, n: usize, repeats: usize) -> usize {
 }
 
 /// One (case, n, threads), in this process.
-fn single(case: &str, n: usize, threads: usize, repeats: usize) -> Res<Value> {
+fn single(case: &str, n: usize, threads: usize, order: &str, repeats: usize) -> Res<Value> {
     let baseline = peak_memory();
     let load = load_average();
     let t = Instant::now();
-    let interface = build(case, n)?;
+    let interface = build(case, n, order)?;
     let mesh_seconds = t.elapsed().as_secs_f64();
     let options = CouplingOptions::default().threads(threads);
     let mut runs = Vec::new();
@@ -193,21 +212,23 @@ fn single(case: &str, n: usize, threads: usize, repeats: usize) -> Res<Value> {
     }
     let c = last.ok_or("no run")?;
     let peak = peak_memory();
-    let mut order: Vec<usize> = (0..runs.len()).collect();
-    order.sort_by(|&a, &b| runs[a].seconds.total.total_cmp(&runs[b].seconds.total));
-    let med = runs[order[order.len() / 2]];
+    let mut by_total: Vec<usize> = (0..runs.len()).collect();
+    by_total.sort_by(|&a, &b| runs[a].seconds.total.total_cmp(&runs[b].seconds.total));
+    let med = runs[by_total[by_total.len() / 2]];
     let s = med.seconds;
     let (mesh, out) = (mesh_bytes(&interface), output_bytes(&c));
     Ok(json!({
-        "case": case, "n": n, "threads": threads,
+        "case": case, "n": n, "threads": threads, "order": order,
         "slave_faces": interface.slave().face_count(),
         "master_faces": interface.master().face_count(),
         "slave_nodes": c.slave_nodes.len(), "master_nodes": c.master_nodes.len(),
         "candidates": med.candidates, "pairs": med.pairs, "segments": med.segments,
         "area": med.area,
-        "seconds": {"search": s.search, "segments": s.segments, "integration": s.integration,
-                    "assembly": s.assembly, "total": s.total},
-        "seconds_note": "segments and integration are summed over threads",
+        "seconds": {"tree": s.tree, "faces": s.faces, "assembly": s.assembly, "total": s.total},
+        "thread_seconds": {"search": s.thread.search, "segments": s.thread.segments,
+                           "integration": s.thread.integration},
+        "seconds_note": "wall time by phase; thread_seconds: the per-face work by kind, summed \
+                         over threads",
         "repeats": runs.len(),
         "totals_all_repeats": runs.iter().map(|r| r.seconds.total).collect::<Vec<_>>(),
         "pairs_per_second_per_thread": med.pairs as f64 / s.total / threads as f64,
@@ -250,51 +271,63 @@ fn bench(args: &Args) -> Res<()> {
     let mut records: Vec<Value> = Vec::new();
     for (case, ns) in &sizes {
         for &n in ns {
-            let mut one_thread_digest = None;
-            for threads in [1usize, 2] {
-                eprint!("{case} n={n} threads={threads} ... ");
-                let out = Command::new(&exe)
-                    .args(["--single", case, &n.to_string(), &threads.to_string()])
-                    .args(["--repeats", &repeats.to_string()])
-                    .output()?;
-                let line = String::from_utf8_lossy(&out.stdout);
-                let Some(Ok(mut r)) = line
-                    .lines()
-                    .last()
-                    .map(serde_json::from_str::<Value>)
-                    .filter(|_| out.status.success())
-                else {
-                    eprintln!(
-                        "failed ({}): {}",
-                        out.status,
-                        String::from_utf8_lossy(&out.stderr).trim()
-                    );
-                    continue;
-                };
-                let dig = r["dm_digest"].as_str().map(str::to_owned);
-                if threads == 1 {
-                    one_thread_digest = dig.clone();
-                }
-                r["bit_identical_to_1_thread"] = match &one_thread_digest {
-                    Some(d) => json!(Some(d) == dig.as_ref()),
-                    None => Value::Null,
-                };
-                if threads > 1 {
-                    let t1 = records
-                        .iter()
-                        .rev()
-                        .find(|p| p["case"] == r["case"] && p["n"] == r["n"] && p["threads"] == 1);
-                    if let Some(t1) = t1 {
-                        let speedup = t1["seconds"]["total"].as_f64().unwrap_or(f64::NAN)
-                            / r["seconds"]["total"].as_f64().unwrap_or(f64::NAN);
-                        r["speedup_vs_1_thread"] = json!(speedup);
+            for order in ["sorted", "shuffled"] {
+                let mut one_thread_digest = None;
+                for threads in [1usize, 2] {
+                    eprint!("{case} n={n} threads={threads} {order} ... ");
+                    let out = Command::new(&exe)
+                        .args([
+                            "--single",
+                            case,
+                            &n.to_string(),
+                            &threads.to_string(),
+                            order,
+                        ])
+                        .args(["--repeats", &repeats.to_string()])
+                        .output()?;
+                    let line = String::from_utf8_lossy(&out.stdout);
+                    let Some(Ok(mut r)) = line
+                        .lines()
+                        .last()
+                        .map(serde_json::from_str::<Value>)
+                        .filter(|_| out.status.success())
+                    else {
+                        eprintln!(
+                            "failed ({}): {}",
+                            out.status,
+                            String::from_utf8_lossy(&out.stderr).trim()
+                        );
+                        continue;
+                    };
+                    let dig = r["dm_digest"].as_str().map(str::to_owned);
+                    if threads == 1 {
+                        one_thread_digest = dig.clone();
                     }
+                    r["bit_identical_to_1_thread"] = match &one_thread_digest {
+                        Some(d) => json!(Some(d) == dig.as_ref()),
+                        None => Value::Null,
+                    };
+                    let total = |p: &Value| p["seconds"]["total"].as_f64().unwrap_or(f64::NAN);
+                    let (rc, rn) = (r["case"].clone(), r["n"].clone());
+                    let same = |p: &&Value, threads: usize, order: &str| {
+                        p["case"] == rc
+                            && p["n"] == rn
+                            && p["threads"] == threads
+                            && p["order"] == order
+                    };
+                    if threads > 1 {
+                        if let Some(t1) = records.iter().rev().find(|p| same(p, 1, order)) {
+                            r["speedup_vs_1_thread"] = json!(total(t1) / total(&r));
+                        }
+                    }
+                    if order == "shuffled" {
+                        if let Some(s) = records.iter().rev().find(|p| same(p, threads, "sorted")) {
+                            r["shuffled_vs_sorted"] = json!(total(&r) / total(s));
+                        }
+                    }
+                    eprintln!("{:.3} s", total(&r));
+                    records.push(r);
                 }
-                eprintln!(
-                    "{:.3} s",
-                    r["seconds"]["total"].as_f64().unwrap_or(f64::NAN)
-                );
-                records.push(r);
             }
         }
     }
@@ -318,11 +351,13 @@ fn bench(args: &Args) -> Res<()> {
 fn print_table(records: &[Value]) {
     let f = |r: &Value, k: &str| r[k].as_f64().unwrap_or(f64::NAN);
     let s = |r: &Value, k: &str| r["seconds"][k].as_f64().unwrap_or(f64::NAN);
+    let ts = |r: &Value, k: &str| r["thread_seconds"][k].as_f64().unwrap_or(f64::NAN);
     let u = |r: &Value, k: &str| r[k].as_u64().unwrap_or(0);
     println!(
-        "{:<8} {:>7} {:>3} {:>9} {:>9} {:>9} {:>7} {:>8} {:>8} {:>7} {:>8} {:>10} {:>7} {:>8} {:>5} {:>5} {:>6} {:>5}",
-        "case", "n", "thr", "slave_f", "master_f", "pairs", "search", "segm*", "integr*",
-        "assem", "total", "pairs/s/t", "ns/pair", "peak MB", "mem", "rep", "speed", "bits"
+        "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>8} {:>10} {:>7} {:>8} {:>5} {:>5} {:>6} {:>6} {:>5}",
+        "case", "n", "thr", "order", "slave_f", "master_f", "pairs", "tree", "search*", "segm*",
+        "integr*", "assem", "total", "pairs/s/t", "ns/pair", "peak MB", "mem", "rep", "speed",
+        "shuf", "bits"
     );
     for r in records {
         let ratio = f(r, "memory_ratio");
@@ -331,21 +366,28 @@ fn print_table(records: &[Value]) {
             Some(false) => "DIFF",
             None => "?",
         };
-        let speed = r
-            .get("speedup_vs_1_thread")
-            .and_then(Value::as_f64)
-            .map_or(String::from("-"), |v| format!("{v:.2}x"));
+        let ratio_of = |k: &str| {
+            r.get(k)
+                .and_then(Value::as_f64)
+                .map_or(String::from("-"), |v| format!("{v:.2}x"))
+        };
+        let (speed, shuf) = (
+            ratio_of("speedup_vs_1_thread"),
+            ratio_of("shuffled_vs_sorted"),
+        );
         println!(
-            "{:<8} {:>7} {:>3} {:>9} {:>9} {:>9} {:>7.3} {:>8.3} {:>8.3} {:>7.3} {:>8.3} {:>10.3e} {:>7.0} {:>8.1} {:>5.2} {:>5} {:>6} {:>5}",
+            "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6.3} {:>7.3} {:>8.3} {:>8.3} {:>7.3} {:>8.3} {:>10.3e} {:>7.0} {:>8.1} {:>5.2} {:>5} {:>6} {:>6} {:>5}",
             r["case"].as_str().unwrap_or("?"),
             u(r, "n"),
             u(r, "threads"),
+            if r["order"] == "shuffled" { "shuf" } else { "sort" },
             u(r, "slave_faces"),
             u(r, "master_faces"),
             u(r, "pairs"),
-            s(r, "search"),
-            s(r, "segments"),
-            s(r, "integration"),
+            s(r, "tree"),
+            ts(r, "search"),
+            ts(r, "segments"),
+            ts(r, "integration"),
             s(r, "assembly"),
             s(r, "total"),
             f(r, "pairs_per_second_per_thread"),
@@ -354,12 +396,13 @@ fn print_table(records: &[Value]) {
             ratio,
             u(r, "repeats"),
             speed,
+            shuf,
             bits,
         );
     }
     println!(
-        "times in seconds (median total of `rep` runs); * segm and integr are summed over \
-         threads; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
+        "times in seconds (median total of `rep` runs); * search, segm and integr are \
+         thread-seconds (summed over threads); shuf = total of the shuffled order / sorted; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
          to the 1-thread run"
     );
 }

@@ -15,7 +15,9 @@
 //!   rotations, translations up to `1e6`) and uniform scale factors, log-uniform in
 //!   `[1e-6, 1e6]`, for invariance tests;
 //! - [`relabelled`]: a copy of a mesh with new node tags, nodes and faces stored in another
-//!   order and each face's corner list rotated, with the map from old to new tags.
+//!   order and each face's corner list rotated, with the map from old to new tags;
+//!   [`shuffled`]: a copy with nodes and faces in a seeded random order (the benchmark's
+//!   worst-case file order).
 //!
 //! ```
 //! use mortar::testing::{covered_pair_3d, rigid_motion_3d};
@@ -57,4 +59,4 @@ pub use motion::{
 pub use pair::{
     covered_pair, covered_pair_2d, covered_pair_3d, covered_pair_3d_with, MeshPair, PairConfig,
 };
-pub use relabel::{relabelled, relabelling, Relabelled, Relabelling};
+pub use relabel::{relabelled, relabelling, shuffled, Relabelled, Relabelling};

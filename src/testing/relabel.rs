@@ -112,3 +112,34 @@ pub fn relabelled(mesh: SurfaceMesh) -> impl Strategy<Value = Relabelled> {
         tag_map: r.tag_map(&mesh),
     })
 }
+
+/// `mesh` with its nodes and faces stored in a random order drawn from `seed` (tags, face
+/// tags and node lists kept): the worst case of a file's element order, as a mesher that
+/// numbers faces far apart would write it. The same seed gives the same copy.
+///
+/// # Errors
+/// The mesh-building errors of [`SurfaceMesh`] (none for a valid `mesh`).
+pub fn shuffled(mesh: &SurfaceMesh, seed: u64) -> Result<SurfaceMesh> {
+    use proptest::strategy::ValueTree;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let mut bytes = [0u8; 32];
+    bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let rng = TestRng::from_seed(RngAlgorithm::ChaCha, &bytes);
+    let mut runner = TestRunner::new_with_rng(Config::default(), rng);
+    let mut order = |n: usize| {
+        Just((0..n).collect::<Vec<usize>>())
+            .prop_shuffle()
+            .new_tree(&mut runner)
+            .map(|t| t.current())
+            .unwrap_or_else(|_| (0..n).collect())
+    };
+    let node_order = order(mesh.node_count());
+    let face_order = order(mesh.face_count());
+    Relabelling {
+        tags: mesh.node_tags().to_vec(),
+        node_order,
+        face_order,
+        rotations: vec![0; mesh.face_count()],
+    }
+    .apply(mesh)
+}

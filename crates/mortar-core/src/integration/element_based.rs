@@ -102,7 +102,7 @@ fn find_master(
     let mut p = [Vector2::zeros(); MAX_FACE_NODES];
     let mut s = [0.0; MAX_FACE_NODES];
     for &m in candidates {
-        let master = ctx.interface.master_face(m as usize);
+        let master = ctx.master_face(m);
         let el = master.element;
         let k = master.node_count();
         let eta = match &plane {

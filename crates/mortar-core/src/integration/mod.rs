@@ -29,13 +29,14 @@ pub use element_based::ElementBased;
 pub use segment_based::SegmentBased;
 
 use crate::error::{MortarError, Result};
-use crate::interface::{FaceGeometry, Interface};
+use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::projector::Projector;
 
 /// One point of a paired quadrature rule.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PairedPoint {
-    /// The master face (index in the master mesh).
+    /// The master face, by its slot in [`SegmentContext::masters`] (its index in the master
+    /// mesh is `masters.face_index(slot)`).
     pub master: u32,
     /// Reference coordinates on the slave face.
     pub xi_slave: Vector2<f64>,
@@ -102,6 +103,27 @@ pub struct SegmentContext<'a> {
     pub interface: &'a Interface,
     /// The projection direction field.
     pub projector: &'a dyn Projector,
+    /// The master faces stored in the spatial order of the search tree, addressed by slot
+    /// (read these rather than the mesh: the candidates of one slave face then lie together
+    /// in memory).
+    pub masters: &'a MasterFaces,
+}
+
+impl SegmentContext<'_> {
+    /// The geometry of the master face in slot `slot` (gathered from the mesh, with its
+    /// nodal normals).
+    pub fn master_face(&self, slot: u32) -> FaceGeometry {
+        self.interface
+            .master_face(self.masters.face_index(slot as usize))
+    }
+
+    /// The tag of the master face in slot `slot`.
+    pub fn master_tag(&self, slot: u32) -> u64 {
+        self.interface
+            .master()
+            .face(self.masters.face_index(slot as usize))
+            .tag
+    }
 }
 
 /// An integration strategy: the user's speed-for-accuracy dial.
@@ -109,8 +131,9 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     /// A description, such as `"segment-based, degree auto"`.
     fn name(&self) -> String;
 
-    /// Writes the paired rule of `slave` against its `candidates` (master face indices,
-    /// ascending) into `out` (cleared first). A pair whose points cannot be mapped between the
+    /// Writes the paired rule of `slave` against its `candidates` (master faces as slots of
+    /// [`SegmentContext::masters`], ascending: see [`SegmentContext::master_face`]) into `out`
+    /// (cleared first). A pair whose points cannot be mapped between the
     /// faces is dropped and recorded with [`PairedRule::skip`] (the coupling counts it and
     /// warns), never dropped silently.
     ///

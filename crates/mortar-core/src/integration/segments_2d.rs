@@ -38,7 +38,7 @@ pub(super) fn segments_into(
     let orientation = -cross2(&t, &n_s).signum();
     let mut covered = 0.0;
     for &m in candidates {
-        let master = ctx.interface.master_face(m as usize);
+        let master = ctx.master_face(m);
         let n_m = master.element.unit_normal(master.node_coords(), &centre);
         if n_m.dot(&n_s) >= 0.0 {
             // The master line does not face the slave (far side of a thin body, or oriented

@@ -68,19 +68,17 @@ pub(super) fn segments_into(
     let merge = (tol.merge * spoly.diameter()).max(rounding);
     // The area the rounding of the coordinates alone can give a zero-measure overlap.
     let area_noise = rounding * spoly.diameter();
-    let master_mesh = ctx.interface.master();
-    let coords = master_mesh.coords();
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
     let mut covered = 0.0;
 
     for &m in candidates {
-        let view = master_mesh.face(m as usize);
-        let mel = view.element;
-        let km = view.nodes.len();
-        for (p, &n) in mp.iter_mut().zip(view.nodes) {
-            *p = plane.project(&coords[n as usize]);
+        let face = ctx.masters.get(m as usize);
+        let (mel, xm) = (face.element, face.coords);
+        let km = xm.len();
+        for (p, x) in mp.iter_mut().zip(xm) {
+            *p = plane.project(x);
         }
         // Quick rejection by in-plane bounding boxes before clipping.
         let corners = &mp[..mel.corner_count()];
@@ -150,7 +148,7 @@ pub(super) fn segments_into(
             };
             let xi_m = master_map
                 .invert(&p, tol.newton, tol.newton_max_iterations)
-                .map_err(|f| fail(f, &p, Side::Master, view.tag))?;
+                .map_err(|f| fail(f, &p, Side::Master, ctx.master_tag(m)))?;
             Ok(PairedPoint {
                 master: m,
                 xi_slave: xi_s,

@@ -4,7 +4,9 @@
 mod face;
 #[allow(clippy::module_inception)]
 mod interface;
+mod master_faces;
 mod validate;
 
 pub use face::FaceGeometry;
 pub use interface::{Interface, SpatialDim};
+pub use master_faces::{MasterFace, MasterFaces};

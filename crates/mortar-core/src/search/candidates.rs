@@ -51,6 +51,8 @@ pub struct MasterTree {
 struct Slab {
     tree: BoxTree,
     bounds: Box3,
+    /// The slot of the slab's first face: the slabs' faces concatenated are the slots.
+    first_slot: u32,
     /// The slab's faces; leaf `l` holds `faces[LEAF_FACES * l..]` (up to `LEAF_FACES`).
     faces: Vec<u32>,
     /// Their boxes, in the same order, in `f32` rounded outward (conservative, half the
@@ -148,10 +150,19 @@ impl MasterTree {
                 buckets[k.min(slab_count - 1)].push(f);
             }
         }
+        buckets.retain(|b| !b.is_empty());
+        let first_slots: Vec<u32> = buckets
+            .iter()
+            .scan(0u32, |acc, b| {
+                let first = *acc;
+                *acc += b.len() as u32;
+                Some(first)
+            })
+            .collect();
         let slabs = buckets
             .into_par_iter()
-            .filter(|b| !b.is_empty())
-            .map(|faces| {
+            .zip(first_slots)
+            .map(|(faces, first_slot)| {
                 let leaves: Vec<(u32, Box3)> = faces
                     .chunks(LEAF_FACES)
                     .enumerate()
@@ -166,6 +177,7 @@ impl MasterTree {
                 Slab {
                     tree: BoxTree::build(&leaves, planar),
                     bounds,
+                    first_slot,
                     boxes: faces.iter().map(|&f| box_f32(&boxes[f as usize])).collect(),
                     faces,
                 }
@@ -174,8 +186,15 @@ impl MasterTree {
         Self { slabs, planar }
     }
 
-    /// The candidate master faces of slave face `s`, ascending, written into `out` (cleared
-    /// first).
+    /// The master faces in the order the tree stores them (slab by slab, Morton order within
+    /// a slab): a spatial order. The position of a face in it is its *slot*.
+    pub fn face_order(&self) -> impl Iterator<Item = u32> + '_ {
+        self.slabs.iter().flat_map(|s| s.faces.iter().copied())
+    }
+
+    /// The candidate master faces of slave face `s`, as slots (positions in
+    /// [`face_order`](Self::face_order)), ascending, written into `out` (cleared first).
+    /// Slots near each other are faces near each other in space.
     pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
         let b = slave_search_box(interface, s);
         out.clear();
@@ -191,9 +210,9 @@ impl MasterTree {
             for i in start..end {
                 let first = out[i] as usize * LEAF_FACES;
                 let last = (first + LEAF_FACES).min(slab.faces.len());
-                for (&f, fb) in slab.faces[first..last].iter().zip(&slab.boxes[first..last]) {
+                for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
                     if overlaps_f32(&b, fb, self.planar) {
-                        out.push(f);
+                        out.push(slab.first_slot + k as u32);
                     }
                 }
             }
@@ -215,11 +234,14 @@ fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
 /// storing every candidate.)
 pub fn find_candidates(interface: &Interface) -> Candidates {
     let tree = MasterTree::build(interface);
+    let face_of: Vec<u32> = tree.face_order().collect();
     let lists: Vec<Vec<u32>> = (0..interface.slave().face_count())
         .into_par_iter()
         .map_init(Vec::new, |scratch, s| {
             tree.candidates_into(interface, s, scratch);
-            scratch.clone()
+            let mut faces: Vec<u32> = scratch.iter().map(|&k| face_of[k as usize]).collect();
+            faces.sort_unstable();
+            faces
         })
         .collect();
     let mut offsets = Vec::with_capacity(lists.len() + 1);
