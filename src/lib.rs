@@ -28,8 +28,8 @@ pub mod scenes;
 pub mod testing;
 
 pub use mortar_core::{
-    self as core, assemble_coupling, Coupling, CouplingOptions, CouplingStats, Interface,
-    MortarError, Side, SpatialDim, SurfaceMesh, Tolerances, VolumeMesh,
+    self as core, assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning,
+    Interface, MortarError, Side, SpatialDim, SurfaceMesh, Tolerances, VolumeMesh,
 };
 pub use mortar_elements as elements;
 pub use mortar_physics as physics;

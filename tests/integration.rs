@@ -21,3 +21,6 @@ mod scene;
 
 #[path = "integration/scene_errors.rs"]
 mod scene_errors;
+
+#[path = "integration/gmsh_meshes.rs"]
+mod gmsh_meshes;

@@ -72,7 +72,7 @@ struct RunArgs {
     scene: Option<String>,
 
     /// Output directory (created if missing).
-    #[arg(long, value_name = "DIR")]
+    #[arg(short, long, value_name = "DIR")]
     out: PathBuf,
 }
 
@@ -88,7 +88,7 @@ struct CoupleArgs {
     master: String,
 
     /// Output directory (created if missing).
-    #[arg(long, value_name = "DIR")]
+    #[arg(short, long, value_name = "DIR")]
     out: PathBuf,
 
     /// Lagrange-multiplier space.
@@ -106,6 +106,23 @@ struct CoupleArgs {
     /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
+
+    /// How far along the slave normals (both ways) to look for master faces, in the mesh's
+    /// units (default: one slave face size, so a gap of the order of the element size is
+    /// crossed). Master faces beyond it are not coupled.
+    #[arg(long, value_name = "DISTANCE")]
+    search_radius: Option<f64>,
+
+    /// Fail (and write nothing) if part of the slave surface finds no master face or a pair
+    /// is skipped, instead of warning.
+    #[arg(long)]
+    require_full_coverage: bool,
+
+    /// Trust the node order of the files: do not orient the surfaces. By default each surface
+    /// is oriented outward from the cells of its file when the file has them, otherwise made
+    /// consistent piece by piece and turned so that the slave faces the master.
+    #[arg(long)]
+    keep_orientation: bool,
 }
 
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -137,6 +154,8 @@ impl CoupleArgs {
             },
             degree: self.degree,
             threads: self.threads,
+            search_radius: self.search_radius,
+            require_full_coverage: self.require_full_coverage,
         }
     }
 }

@@ -16,6 +16,7 @@ pub(super) fn core_error(
         | MortarError::InvertedFace { face, .. }
         | MortarError::MultiplierSpace { face, .. }
         | MortarError::ProjectionFailed { face, .. }
+        | MortarError::Topology { face, .. }
         | MortarError::WrongNodeCount { face, .. }
         | MortarError::UnknownNode { face, .. } => Some(*face),
         _ => None,
@@ -33,6 +34,13 @@ pub(super) fn core_error(
             }
         }
         None => format!("slave {} and master {}: {e}", slave.label(), master.label()),
+    }
+}
+
+/// Prints each coupling warning on one line of stderr: `mortar: warning: NAME: ...`.
+pub(super) fn print_warnings(warnings: &[mortar::CouplingWarning]) {
+    for w in warnings {
+        eprintln!("mortar: warning: {w}");
     }
 }
 

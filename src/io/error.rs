@@ -105,11 +105,18 @@ pub enum IoError {
         /// Its dimension.
         dim: i32,
     },
-    /// The whole file was asked for, but it holds volume elements.
-    #[error("{}: the file has volume elements, so name the interface's physical group: {}#GROUP", path.display(), path.display())]
+    /// The whole file was asked for, but it holds the cells of bodies (volume elements, or
+    /// a 2D mesh: surface elements in the plane z = 0 beside lines), so which of its
+    /// elements make the interface is not clear.
+    #[error("{}: the file has {what}, so name the interface's physical group: {}#GROUP{}", path.display(), path.display(), if available.is_empty() { String::new() } else { format!(" (the file has: {})", available.join(", ")) })]
     GroupRequired {
         /// The file.
         path: PathBuf,
+        /// What the file holds: "volume elements" or "a 2D mesh (surface elements in the
+        /// plane z = 0, and lines)".
+        what: &'static str,
+        /// The physical groups of the file, described.
+        available: Vec<String>,
     },
     /// Nothing to couple: no line or surface elements (in the group).
     #[error("{}: {} has no line or surface elements", path.display(), match group { Some(g) => format!("physical group \"{g}\""), None => "the file".to_string() })]

@@ -36,6 +36,7 @@
 mod error;
 pub mod gmsh;
 mod interface_arg;
+pub mod json;
 pub mod matrix_market;
 mod output;
 mod summary;
@@ -50,4 +51,7 @@ pub use gmsh::{
 };
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
 pub use output::{write_coupling, write_outputs};
-pub use summary::{CouplingSettings, CouplingSummary, Integration, Multipliers, PhaseSummary};
+pub use summary::{
+    CouplingSettings, CouplingSummary, Integration, Multipliers, OrientationMethod,
+    OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary, WarningSummary,
+};

@@ -2,7 +2,9 @@
 
 use std::fmt;
 
-use mortar_core::{Coupling, CouplingOptions, Interface, MortarError, SpatialDim};
+use mortar_core::{
+    Coupling, CouplingOptions, Interface, MortarError, SearchRadius, SpatialDim, Tolerances,
+};
 use serde::{Deserialize, Serialize};
 
 /// The Lagrange-multiplier space.
@@ -28,7 +30,7 @@ pub enum Integration {
 }
 
 /// The choices of a coupling run, as a user states them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct CouplingSettings {
     /// The multiplier space.
     pub multipliers: Multipliers,
@@ -38,6 +40,12 @@ pub struct CouplingSettings {
     pub degree: Option<u32>,
     /// Worker threads (`None`: rayon's default).
     pub threads: Option<usize>,
+    /// How far along the slave normals to look for master faces, in the coordinates' units
+    /// (`None`: one slave face size).
+    pub search_radius: Option<f64>,
+    /// Make uncovered slave area and skipped pairs errors instead of warnings.
+    #[serde(default)]
+    pub require_full_coverage: bool,
 }
 
 impl CouplingSettings {
@@ -63,23 +71,108 @@ impl CouplingSettings {
         if let Some(t) = self.threads {
             o = o.threads(t);
         }
-        Ok(o)
+        Ok(o.require_full_coverage(self.require_full_coverage))
+    }
+
+    /// The tolerances for these settings (the search radius).
+    ///
+    /// # Errors
+    /// [`MortarError::InvalidOption`] for a negative or non-finite search radius.
+    pub fn tolerances(&self) -> Result<Tolerances, MortarError> {
+        let mut t = Tolerances::default();
+        if let Some(r) = self.search_radius {
+            t.search_radius = SearchRadius::Distance(r);
+            if !t.search_radius.is_valid() {
+                return Err(MortarError::InvalidOption(format!(
+                    "search radius {r} is not a non-negative finite distance"
+                )));
+            }
+        }
+        Ok(t)
     }
 }
 
-/// Seconds per phase (see [`mortar_core::assembly::PhaseSeconds`]).
+/// Seconds per phase (see [`mortar_core::assembly::PhaseSeconds`]): wall-clock, with the
+/// per-face work split by kind in thread-seconds.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct PhaseSummary {
-    /// Bounding-box search.
-    pub search: f64,
-    /// Segmentation, summed over threads.
-    pub segments: f64,
-    /// Integration, summed over threads.
-    pub integration: f64,
-    /// Sparse assembly.
+    /// Wall-clock: the search tree and the spatial order of the slave faces.
+    pub tree: f64,
+    /// Wall-clock: the per-face work (search queries, segmentation, integration).
+    pub faces: f64,
+    /// Wall-clock: sparse assembly.
     pub assembly: f64,
-    /// Everything, wall-clock.
+    /// Wall-clock: everything.
     pub total: f64,
+    /// The per-face work by kind, in seconds summed over the threads.
+    pub thread_seconds: ThreadSecondsSummary,
+}
+
+/// The per-face work by kind, in seconds summed over the threads.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct ThreadSecondsSummary {
+    /// Search queries.
+    pub search: f64,
+    /// Segmentation.
+    pub segments: f64,
+    /// Integration.
+    pub integration: f64,
+}
+
+/// How the sense of a surface's faces was decided.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OrientationMethod {
+    /// Outward from the cells of its file (every face bounds one cell).
+    Cells,
+    /// Each connected piece made consistent, then turned to face the other surface.
+    Facing,
+    /// Each connected piece made consistent, its sense kept as given: the surfaces touch, so
+    /// no gap tells the sides apart.
+    Consistent,
+}
+
+impl OrientationMethod {
+    /// A phrase for a person.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Cells => "outward from the cells of its file",
+            Self::Facing => "made consistent, turned to face the other side",
+            Self::Consistent => {
+                "made consistent, sense kept as given (the surfaces touch: no gap tells the \
+                 sides apart)"
+            }
+        }
+    }
+}
+
+/// How one surface was oriented before coupling.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SideOrientation {
+    /// How the sense was decided.
+    pub method: OrientationMethod,
+    /// Connected pieces of the surface (`null` when not looked at).
+    pub components: Option<usize>,
+    /// Faces whose node order was reversed.
+    pub flipped: usize,
+}
+
+/// How both surfaces were oriented.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct OrientationSummary {
+    /// The slave surface.
+    pub slave: SideOrientation,
+    /// The master surface.
+    pub master: SideOrientation,
+}
+
+/// A warning of the coupling, by name and in words.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct WarningSummary {
+    /// `"uncovered slave area"` or `"skipped pairs"`.
+    pub name: String,
+    /// What and where.
+    pub message: String,
 }
 
 /// What `summary.json` holds.
@@ -93,14 +186,20 @@ pub struct CouplingSummary {
     pub multipliers: Multipliers,
     /// `"segment"` or `"element"`.
     pub integration: Integration,
-    /// The quadrature degree, `null` for automatic.
+    /// The quadrature degree asked for, `null` for automatic.
     pub degree: Option<u32>,
+    /// The quadrature degrees actually used, ascending.
+    pub degrees_used: Vec<u32>,
+    /// How far along the slave normals the search looked: `"1 x face size"` or a distance.
+    pub search_radius: String,
     /// Worker threads used.
     pub threads: usize,
     /// The slave surface (`file#group`), if read from a file.
     pub slave: Option<String>,
     /// The master surface (`file#group`), if read from a file.
     pub master: Option<String>,
+    /// How the surfaces were oriented, if the program oriented them.
+    pub orientation: Option<OrientationSummary>,
     /// Slave faces.
     pub slave_faces: usize,
     /// Master faces.
@@ -113,14 +212,30 @@ pub struct CouplingSummary {
     pub d_nonzeros: usize,
     /// Stored entries of M.
     pub m_nonzeros: usize,
+    /// Off-diagonal entries of a dual D below round-off of their diagonal (at most 1e-12 of
+    /// it), added to the diagonal and not written.
+    pub d_roundoff_dropped: usize,
+    /// The largest of them, relative to its diagonal entry.
+    pub d_roundoff_largest: f64,
     /// Candidate pairs from the search.
     pub candidates: usize,
     /// Slave-master pairs with an overlap.
     pub pairs: usize,
     /// Integration cells.
     pub segments: usize,
-    /// The sum of the entries of D: the area (3D) or length (2D) of the slave side coupled.
+    /// Pairs dropped because a point could not be mapped between the faces.
+    pub skipped_pairs: usize,
+    /// Slave area (length in 2D) without a master face within the search radius.
+    pub uncovered_area: f64,
+    /// Slave faces with no master face at all.
+    pub faces_without_partner: usize,
+    /// Slave faces covered in part.
+    pub faces_partly_covered: usize,
+    /// The sum of the entries of D as written: the area (3D) or length (2D) of the slave side
+    /// coupled.
     pub area: f64,
+    /// The warnings, also printed on standard error.
+    pub warnings: Vec<WarningSummary>,
     /// Total seconds of the coupling (wall-clock).
     pub seconds: f64,
     /// Seconds per phase.
@@ -141,34 +256,61 @@ impl CouplingSummary {
             multipliers: settings.multipliers,
             integration: settings.integration,
             degree: settings.degree,
+            degrees_used: coupling.degrees_used(),
+            search_radius: match interface.tolerances().search_radius {
+                SearchRadius::FaceSize(k) => format!("{k} x face size"),
+                SearchRadius::Distance(d) => format!("{d}"),
+            },
             threads: s.threads,
             slave: None,
             master: None,
+            orientation: None,
             slave_faces: interface.slave().face_count(),
             master_faces: interface.master().face_count(),
             slave_nodes: coupling.slave_nodes.clone(),
             master_nodes: coupling.master_nodes.clone(),
             d_nonzeros: coupling.d.nnz(),
             m_nonzeros: coupling.m.nnz(),
+            d_roundoff_dropped: s.d_roundoff_dropped,
+            d_roundoff_largest: s.d_roundoff_largest,
             candidates: s.candidates,
             pairs: s.pairs,
             segments: s.segments,
+            skipped_pairs: s.skipped_pairs,
+            uncovered_area: s.uncovered_area,
+            faces_without_partner: s.faces_without_partner,
+            faces_partly_covered: s.faces_partly_covered,
             area: s.area,
+            warnings: coupling
+                .warnings
+                .iter()
+                .map(|w| WarningSummary {
+                    name: w.name().to_string(),
+                    message: w.to_string(),
+                })
+                .collect(),
             seconds: p.total,
             seconds_by_phase: PhaseSummary {
-                search: p.search,
-                segments: p.segments,
-                integration: p.integration,
+                tree: p.tree,
+                faces: p.faces,
                 assembly: p.assembly,
                 total: p.total,
+                thread_seconds: ThreadSecondsSummary {
+                    search: p.thread.search,
+                    segments: p.thread.segments,
+                    integration: p.thread.integration,
+                },
             },
         }
     }
 
-    /// Pretty-printed JSON.
+    /// JSON, indented, with arrays of numbers (the node tags) on one line each.
     pub fn to_json(&self) -> String {
         // Serialising plain numbers, strings and vectors cannot fail; NaN becomes `null`.
-        serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+        match serde_json::to_value(self) {
+            Ok(v) => super::json::compact_pretty(&v),
+            Err(e) => format!("{{\"error\": \"{e}\"}}"),
+        }
     }
 }
 
@@ -176,36 +318,101 @@ impl CouplingSummary {
 impl fmt::Display for CouplingSummary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let p = &self.seconds_by_phase;
-        let side = |label: &Option<String>, faces: usize, nodes: usize| match label {
-            Some(l) => format!("{faces} faces, {nodes} nodes ({l})"),
-            None => format!("{faces} faces, {nodes} nodes"),
+        let side = |label: &Option<String>, faces: usize, nodes: usize| {
+            let counts = format!("{}, {}", plural(faces, "face"), plural(nodes, "node"));
+            match label {
+                Some(l) => format!("{counts} ({l})"),
+                None => counts,
+            }
         };
         let (ns, nm) = (self.slave_nodes.len(), self.master_nodes.len());
-        let lines = [
+        let mut lines = vec![
             ("slave", side(&self.slave, self.slave_faces, ns)),
             ("master", side(&self.master, self.master_faces, nm)),
-            ("problem", format!("{}D, {}", self.dimension, self.formulation)),
-            ("D", format!("{ns} x {ns}, {} nonzeros", self.d_nonzeros)),
-            ("M", format!("{ns} x {nm}, {} nonzeros", self.m_nonzeros)),
-            (
-                "pairs",
-                format!(
-                    "{} of {} candidates, {} segments",
-                    self.pairs, self.candidates, self.segments
-                ),
-            ),
-            (
-                if self.dimension == 2 { "length" } else { "area" },
-                format!("{:.15} (sum of D)", self.area),
-            ),
-            (
-                "time",
-                format!(
-                    "{:.4} s on {} threads (search {:.4}, segments {:.4}, integration {:.4}, assembly {:.4})",
-                    self.seconds, self.threads, p.search, p.segments, p.integration, p.assembly
-                ),
-            ),
         ];
+        if let Some(o) = &self.orientation {
+            let one = |s: &SideOrientation| match s.components {
+                Some(c) => format!(
+                    "{} ({}, {} reversed)",
+                    s.method.describe(),
+                    plural(c, "piece"),
+                    plural(s.flipped, "face")
+                ),
+                None => format!(
+                    "{} ({} reversed)",
+                    s.method.describe(),
+                    plural(s.flipped, "face")
+                ),
+            };
+            lines.push((
+                "oriented",
+                format!("slave {}; master {}", one(&o.slave), one(&o.master)),
+            ));
+        }
+        let degrees: Vec<String> = self.degrees_used.iter().map(u32::to_string).collect();
+        lines.push((
+            "problem",
+            format!(
+                "{}D, {}; quadrature degree {} used; search radius {}",
+                self.dimension,
+                self.formulation,
+                degrees.join(", "),
+                self.search_radius
+            ),
+        ));
+        let mut d = format!("{ns} x {ns}, {}", plural(self.d_nonzeros, "nonzero"));
+        if self.d_roundoff_dropped > 0 {
+            d.push_str(&format!(
+                " ({} below round-off of the diagonal, at most {:.1e} of it, lumped into it)",
+                plural(self.d_roundoff_dropped, "off-diagonal entry"),
+                self.d_roundoff_largest
+            ));
+        }
+        lines.push(("D", d));
+        lines.push((
+            "M",
+            format!("{ns} x {nm}, {}", plural(self.m_nonzeros, "nonzero")),
+        ));
+        lines.push((
+            "pairs",
+            format!(
+                "{} of {} candidates, {}{}",
+                self.pairs,
+                self.candidates,
+                plural(self.segments, "segment"),
+                if self.skipped_pairs > 0 {
+                    format!(", {} skipped", plural(self.skipped_pairs, "pair"))
+                } else {
+                    String::new()
+                }
+            ),
+        ));
+        lines.push((
+            if self.dimension == 2 {
+                "length"
+            } else {
+                "area"
+            },
+            format!(
+                "{:.15} (sum of D); uncovered {:.3e}",
+                self.area, self.uncovered_area
+            ),
+        ));
+        lines.push((
+            "time",
+            format!(
+                "{:.4} s on {} (tree {:.4}, faces {:.4}, assembly {:.4}; per-face work in \
+                 thread-seconds: search {:.4}, segments {:.4}, integration {:.4})",
+                self.seconds,
+                plural(self.threads, "thread"),
+                p.tree,
+                p.faces,
+                p.assembly,
+                p.thread_seconds.search,
+                p.thread_seconds.segments,
+                p.thread_seconds.integration
+            ),
+        ));
         for (i, (key, value)) in lines.iter().enumerate() {
             if i > 0 {
                 writeln!(f)?;
@@ -213,5 +420,16 @@ impl fmt::Display for CouplingSummary {
             write!(f, "{key:<9}{value}")?;
         }
         Ok(())
+    }
+}
+
+/// `"1 face"`, `"2 faces"`; a noun ending in "y" after a consonant takes "ies".
+pub(crate) fn plural(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else if let Some(stem) = noun.strip_suffix("ry") {
+        format!("{n} {stem}ries")
+    } else {
+        format!("{n} {noun}s")
     }
 }

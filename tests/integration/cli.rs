@@ -72,7 +72,11 @@ fn couple_and_check(
         assert!(summary[key].as_u64().unwrap() > 0, "{key}");
     }
     assert!(summary["seconds"].as_f64().unwrap() >= 0.0);
-    assert!(summary["seconds_by_phase"]["search"].as_f64().is_some());
+    let phases = &summary["seconds_by_phase"];
+    for key in ["tree", "faces", "assembly", "total"] {
+        assert!(phases[key].as_f64().is_some(), "seconds_by_phase.{key}");
+    }
+    assert!(phases["thread_seconds"]["search"].as_f64().is_some());
     let mut names: Vec<String> = std::fs::read_dir(out)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

@@ -28,16 +28,18 @@ fn slave_text() -> String {
 /// Runs `mortar couple` and checks the failure: exit code, one stderr line holding every
 /// needle, nothing written.
 fn assert_fails(dir: &TempDir, slave: &str, master: &str, needles: &[&str]) {
+    assert_fails_with(dir, slave, master, &[], needles);
+}
+
+/// [`assert_fails`] with `extra` options.
+fn assert_fails_with(dir: &TempDir, slave: &str, master: &str, extra: &[&str], needles: &[&str]) {
     let out = dir.join("out");
-    let run = mortar(&[
-        "couple",
-        "--slave",
-        slave,
-        "--master",
-        master,
-        "--out",
-        &out.to_string_lossy(),
-    ]);
+    let out_arg = out.to_string_lossy();
+    let mut args = vec![
+        "couple", "--slave", slave, "--master", master, "--out", &out_arg,
+    ];
+    args.extend_from_slice(extra);
+    let run = mortar(&args);
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(!run.status.success(), "should fail: {slave} {master}");
     assert_eq!(run.status.code(), Some(1), "{stderr}");
@@ -251,13 +253,14 @@ fn degenerate_inverted_and_non_overlapping_interfaces() {
         &["inverted.msh", &line, "face 14", "inverted"],
     );
 
-    // A face oriented against its neighbours.
+    // A face oriented against its neighbours: refused when the files are trusted as given...
     let text = ascii_text(&mesh_with_face(None, Some([2, 3, 6, 5])), "top");
     let s = dir.file("flipped.msh", &text);
-    assert_fails(
+    assert_fails_with(
         &dir,
         &s,
         &m,
+        &["--keep-orientation"],
         &[
             "flipped.msh",
             "line",
@@ -265,6 +268,29 @@ fn degenerate_inverted_and_non_overlapping_interfaces() {
             "oriented against its neighbours",
         ],
     );
+    // ... and turned to agree with its neighbours (and said so) by default.
+    let out = dir.join("flipped-out");
+    let run = mortar(&[
+        "couple",
+        "--slave",
+        &s,
+        "--master",
+        &m,
+        "--out",
+        &out.to_string_lossy(),
+    ]);
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["orientation"]["slave"]["flipped"], 1, "{stdout}");
+    assert_eq!(summary["orientation"]["master"]["flipped"], 0, "{stdout}");
+    let area = summary["area"].as_f64().unwrap();
+    assert!((area - 1.0).abs() < 1e-12, "area {area}");
 
     // The master moved far away.
     let mut far = square_quads(3, 0.0, true, 1000).unwrap();

@@ -7,7 +7,7 @@ use mortar::elements::ElementRegistry;
 use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::io::{
     parse_gmsh_surface, parse_interface_arg, read_gmsh_surface, read_surface, write_msh41,
-    write_msh41_ascii, write_msh41_binary, Endianness, MshFormat,
+    write_msh41_ascii, write_msh41_binary, Endianness, IoError, MshFormat,
 };
 use mortar::SurfaceMesh;
 
@@ -156,11 +156,22 @@ fn a_file_in_gmsh_style_reads_groups_points_and_parametric_nodes() {
     let by_tag = parse_gmsh_surface(text.as_bytes(), path, Some("20"), &registry).unwrap();
     assert_eq!(by_tag.mesh.face_count(), 2);
 
-    // Without the volume, the whole file is its faces of dimension 2 (lines and points left).
+    // Without the volume, a flat file of faces and lines is ambiguous (a 3D surface, or a 2D
+    // body whose lines are the interface): a group is required, and the error names them.
     let flat = gmsh_style_file(false, 2);
-    let whole = parse_gmsh_surface(flat.as_bytes(), path, None, &registry).unwrap();
-    assert_eq!(whole.mesh.face_count(), 2);
-    assert_eq!(whole.dimension, 2);
+    match parse_gmsh_surface(flat.as_bytes(), path, None, &registry) {
+        Err(IoError::GroupRequired { available, .. }) => {
+            let all = available.join(" ");
+            assert!(
+                all.contains("\"edge\"") && all.contains("\"face\""),
+                "{all}"
+            );
+        }
+        other => panic!("expected GroupRequired, got {other:?}"),
+    }
+    let face = parse_gmsh_surface(flat.as_bytes(), path, Some("face"), &registry).unwrap();
+    assert_eq!(face.mesh.face_count(), 2);
+    assert_eq!(face.dimension, 2);
 }
 
 #[test]

@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use mortar::generate::{cylinder_surface, sphere_surface};
 use mortar::testing::{log_uniform, MeshPair};
-use mortar::{assemble_coupling, CouplingOptions, SurfaceMesh};
+use mortar::{assemble_coupling, SurfaceMesh};
 use nalgebra::{Unit, UnitQuaternion, Vector3};
 use proptest::prelude::*;
 

@@ -92,6 +92,15 @@ pub enum MortarError {
         /// What makes it inverted.
         reason: String,
     },
+    /// The faces of a surface do not make a surface that can be oriented: an edge shared by
+    /// more than two faces (three lines at a node in 2D), or a one-sided piece.
+    #[error("{face}: {reason}")]
+    Topology {
+        /// A face involved.
+        face: FaceLocation,
+        /// What is wrong, naming the faces and nodes.
+        reason: String,
+    },
     /// Faces of different reference dimension (lines and triangles) in one interface, or a
     /// 2D interface with a node off the xy-plane.
     #[error("dimension mismatch: {0}")]

@@ -42,6 +42,8 @@ pub use write::{
     write_msh41_volume, Endianness, MshFormat,
 };
 
+use nalgebra::Vector3;
+
 use self::cursor::{locations_of, Cursor, Encoding};
 use self::parse::{ElementBlock, MshData};
 use crate::io::error::{IoError, Location};
@@ -71,12 +73,46 @@ pub struct GmshSurface {
     /// Whether the file is binary.
     pub binary: bool,
     face_locations: HashMap<u64, Location>,
+    /// For each face (in mesh order), the centre of the one cell of the file (of the next
+    /// dimension) that has it on its boundary, when there is exactly one.
+    cell_centres: Vec<Option<Vector3<f64>>>,
 }
 
 impl GmshSurface {
     /// Where in the file the face (element) with tag `tag` is.
     pub fn face_location(&self, tag: u64) -> Option<Location> {
         self.face_locations.get(&tag).copied()
+    }
+
+    /// Orients every face outward from the one cell of the file it bounds (a surface of a
+    /// body meshed in the same file, as Gmsh writes a mesh with its physical groups), and
+    /// returns the number of faces reversed; `None`, leaving the faces as they are, when some
+    /// face bounds no cell of the file, or two (an interior surface).
+    ///
+    /// # Errors
+    /// [`MortarError::InvalidOption`](mortar_core::MortarError::InvalidOption) if a face's
+    /// element cannot reverse its node order.
+    pub fn orient_outward(&mut self) -> Result<Option<usize>, mortar_core::MortarError> {
+        if self.cell_centres.is_empty() || self.cell_centres.iter().any(Option::is_none) {
+            return Ok(None);
+        }
+        let mut flipped = 0;
+        for f in 0..self.mesh.face_count() {
+            let Some(cell) = self.cell_centres[f] else {
+                continue;
+            };
+            let view = self.mesh.face(f);
+            let el = view.element;
+            let mut x = [Vector3::zeros(); mortar_core::element::MAX_FACE_NODES];
+            let k = self.mesh.face_coords_into(f, &mut x);
+            let c = el.domain().centre();
+            let normal = el.scaled_normal(&x[..k], &c);
+            if normal.dot(&(el.map(&x[..k], &c) - cell)) < 0.0 {
+                self.mesh.reverse_face(f)?;
+                flipped += 1;
+            }
+        }
+        Ok(Some(flipped))
     }
 
     /// `path` or `path#group`, for messages.
@@ -137,12 +173,19 @@ pub fn parse_gmsh_surface(
     registry: &ElementRegistry,
 ) -> Result<GmshSurface, IoError> {
     let mut cur = Cursor::new(bytes, path);
+    // Faces of the registry, and cells of any known type: a face's cell tells which way is
+    // out of its body.
     let keep = |dim: i32, ty: i32| {
-        u32::try_from(ty)
+        let face = u32::try_from(ty)
             .ok()
             .and_then(|t| registry.by_gmsh_type(t))
             .filter(|_| dim == 1 || dim == 2)
-            .map(|e| e.node_count())
+            .map(|e| e.node_count());
+        face.or_else(|| {
+            (dim == 2 || dim == 3)
+                .then(|| element_types::node_count(ty))
+                .flatten()
+        })
     };
     let data = parse::parse(&mut cur, &keep)?;
     let encoding = cur.encoding();
@@ -160,10 +203,31 @@ fn select<'d>(
 ) -> Result<(Vec<&'d ElementBlock>, i32, Option<PhysicalGroup>), IoError> {
     let has = |dim: i32| data.blocks.iter().any(|b| b.dim == dim && b.count > 0);
     let Some(name) = group else {
+        let required = |what| IoError::GroupRequired {
+            path: path.to_path_buf(),
+            what,
+            available: describe_groups(data),
+        };
         if has(3) {
-            return Err(IoError::GroupRequired {
-                path: path.to_path_buf(),
-            });
+            return Err(required("volume elements"));
+        }
+        // Surface elements in the plane z = 0 beside lines: a 2D mesh, its cells and their
+        // boundary lines.
+        let planar = || {
+            data.blocks
+                .iter()
+                .filter(|b| b.dim == 2 && b.kept)
+                .flat_map(|b| b.nodes.iter())
+                .all(|n| {
+                    data.node_index
+                        .get(n)
+                        .is_some_and(|&i| data.coords[i][2] == 0.0)
+                })
+        };
+        if has(2) && has(1) && planar() {
+            return Err(required(
+                "a 2D mesh (surface elements in the plane z = 0, and lines)",
+            ));
         }
         let dim = if has(2) { 2 } else { 1 };
         let blocks: Vec<_> = data
@@ -317,12 +381,16 @@ fn find_group(data: &MshData, path: &Path, name: &str) -> Result<PhysicalGroup, 
         .ok_or_else(|| IoError::GroupNotFound {
             path: path.to_path_buf(),
             group: name.to_string(),
-            available: data
-                .physical_names
-                .iter()
-                .map(|p| format!("\"{}\" (dimension {}, tag {})", p.name, p.dim, p.tag))
-                .collect(),
+            available: describe_groups(data),
         })
+}
+
+/// The physical groups of a file, described for messages.
+fn describe_groups(data: &MshData) -> Vec<String> {
+    data.physical_names
+        .iter()
+        .map(|p| format!("\"{}\" (dimension {}, tag {})", p.name, p.dim, p.tag))
+        .collect()
 }
 
 /// The surface mesh of the selected blocks.
@@ -340,7 +408,11 @@ fn build(
     let at = |pos: usize| cursor::location_of(bytes, pos, encoding);
     // Element types, then node references, then coordinates.
     for b in blocks {
-        if !b.kept {
+        let registered = u32::try_from(b.element_type)
+            .ok()
+            .and_then(|t| registry.by_gmsh_type(t))
+            .is_some();
+        if !b.kept || !registered {
             let (tag, pos) = (
                 b.tags.first().copied().unwrap_or(0),
                 b.positions.first().copied().unwrap_or(0),
@@ -405,6 +477,7 @@ fn build(
         .map(|(&i, loc)| (tags[i], loc))
         .collect();
 
+    let cell_centres = adjacent_cell_centres(data, &mesh, dimension + 1);
     Ok(GmshSurface {
         mesh,
         dimension: if dimension == 1 { 1 } else { 2 },
@@ -412,5 +485,59 @@ fn build(
         group,
         binary: encoding != Encoding::Ascii,
         face_locations,
+        cell_centres,
     })
+}
+
+/// For each face of `mesh`, the centre (mean of the nodes) of the one cell of dimension
+/// `cell_dim` in the file whose nodes include all the face's nodes; `None` for a face with
+/// none or several. Only the cells touching the surface are looked at.
+fn adjacent_cell_centres(
+    data: &MshData,
+    mesh: &SurfaceMesh,
+    cell_dim: i32,
+) -> Vec<Option<Vector3<f64>>> {
+    let tags = mesh.node_tags();
+    let on_surface: HashSet<u64> = tags.iter().copied().collect();
+    // Cells touching the surface: their sorted node tags and centre; and by surface node.
+    let mut cells: Vec<(Vec<u64>, Vector3<f64>)> = Vec::new();
+    let mut by_node: HashMap<u64, Vec<u32>> = HashMap::new();
+    for b in data.blocks.iter().filter(|b| b.dim == cell_dim && b.kept) {
+        for nodes in b.nodes.chunks_exact(b.nodes_per_element.max(1)) {
+            if !nodes.iter().any(|n| on_surface.contains(n)) {
+                continue;
+            }
+            let mut centre = Vector3::zeros();
+            for n in nodes {
+                let Some(&i) = data.node_index.get(n) else {
+                    return vec![None; mesh.face_count()];
+                };
+                centre += Vector3::from(data.coords[i]);
+            }
+            centre /= nodes.len() as f64;
+            let id = cells.len() as u32;
+            for n in nodes.iter().filter(|n| on_surface.contains(n)) {
+                by_node.entry(*n).or_default().push(id);
+            }
+            let mut sorted = nodes.to_vec();
+            sorted.sort_unstable();
+            cells.push((sorted, centre));
+        }
+    }
+    (0..mesh.face_count())
+        .map(|f| {
+            let face: Vec<u64> = mesh
+                .face(f)
+                .nodes
+                .iter()
+                .map(|&n| tags[n as usize])
+                .collect();
+            let mut found = by_node.get(&face[0])?.iter().filter(|&&c| {
+                face.iter()
+                    .all(|n| cells[c as usize].0.binary_search(n).is_ok())
+            });
+            let first = *found.next()?;
+            found.next().is_none().then(|| cells[first as usize].1)
+        })
+        .collect()
 }

@@ -505,7 +505,7 @@ impl TiedHeatSpec {
             multipliers: self.interface.multipliers,
             integration: self.interface.integration,
             degree: self.interface.degree,
-            threads: None,
+            ..Default::default()
         };
         let coupling = settings.options().map_err(|e| SceneError::Invalid {
             path: path.to_path_buf(),

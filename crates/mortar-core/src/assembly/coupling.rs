@@ -10,7 +10,7 @@ use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
-use crate::interface::{Interface, SpatialDim};
+use crate::interface::{Interface, MasterFaces, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::{spatial_order, MasterTree};
 
@@ -18,22 +18,32 @@ use crate::search::{spatial_order, MasterTree};
 /// and M) does not depend on the thread count.
 const CHUNK: usize = 256;
 
-/// Seconds per phase. The per-face phases (the queries of `search`, `segments`,
-/// `integration`) are summed over all threads, so with several threads they may exceed
-/// `total`; `search` adds the tree build, `assembly` is the merge of the chunks' triplets into
-/// the sparse matrices, `total` is wall-clock.
+/// Seconds per phase. The phases `tree`, `faces`, `assembly` and `total` are wall-clock
+/// time; [`ThreadSeconds`] splits the per-face work by kind, summed over the threads (with
+/// several threads their sum exceeds `faces`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PhaseSeconds {
-    /// Bounding-box search.
-    pub search: f64,
-    /// Segmentation (clipping, triangulation, point pairing), summed over threads.
-    pub segments: f64,
-    /// Integration of the local blocks, summed over threads.
-    pub integration: f64,
+    /// The search tree over the master faces and the spatial order of the slave faces.
+    pub tree: f64,
+    /// The per-face work on all threads: search queries, segmentation, integration.
+    pub faces: f64,
     /// Assembly of the sparse matrices.
     pub assembly: f64,
-    /// Everything, wall-clock.
+    /// Everything.
     pub total: f64,
+    /// The per-face work by kind, in thread-seconds.
+    pub thread: ThreadSeconds,
+}
+
+/// The per-face work of a coupling run by kind, in seconds summed over the threads.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ThreadSeconds {
+    /// Search queries.
+    pub search: f64,
+    /// Segmentation (clipping, triangulation, point pairing).
+    pub segments: f64,
+    /// Integration of the local blocks.
+    pub integration: f64,
 }
 
 /// Counts and timings of a coupling run.
@@ -57,6 +67,12 @@ pub struct CouplingStats {
     pub faces_without_partner: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
+    /// Off-diagonal entries of a dual D at most [`ROUNDOFF`] times their row's diagonal entry,
+    /// added to the diagonal (so that `D 1` is kept) and dropped: the round-off of the
+    /// biorthogonal basis, which would otherwise make a diagonal D look full.
+    pub d_roundoff_dropped: usize,
+    /// The largest of them, relative to its diagonal entry.
+    pub d_roundoff_largest: f64,
     /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D).
     pub area: f64,
     /// Threads used.
@@ -240,6 +256,49 @@ impl Accumulator {
     }
 }
 
+/// With dual multipliers, off-diagonal entries of D at most this times their row's diagonal
+/// entry are round-off of the biorthogonal basis (1e-16 to 1e-14 in practice): they are
+/// added to the diagonal and dropped. Larger ones (a partly covered face, a warped quad)
+/// are kept.
+pub const ROUNDOFF: f64 = 1e-12;
+
+/// What [`drop_roundoff`] did.
+#[derive(Debug, Clone, Copy, Default)]
+struct RoundoffDropped {
+    count: usize,
+    largest: f64,
+}
+
+/// `d` with the off-diagonal entries at most `tol` times their row's diagonal entry added to
+/// the diagonal and removed.
+fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) {
+    let mut out = RoundoffDropped::default();
+    let (mut indptr, mut indices, mut data) = (vec![0usize], Vec::new(), Vec::new());
+    for (r, row) in d.outer_iterator().enumerate() {
+        let diag = row.get(r).copied().unwrap_or(0.0);
+        let mut lumped = 0.0;
+        let mut diag_at = None;
+        for (c, &v) in row.iter() {
+            if c != r && v.abs() <= tol * diag.abs() {
+                lumped += v;
+                out.count += 1;
+                out.largest = out.largest.max(v.abs() / diag.abs());
+                continue;
+            }
+            if c == r {
+                diag_at = Some(data.len());
+            }
+            indices.push(c);
+            data.push(v);
+        }
+        if let Some(at) = diag_at {
+            data[at] += lumped;
+        }
+        indptr.push(data.len());
+    }
+    (SparseMatrix::new(d.shape(), indptr, indices, data), out)
+}
+
 /// Computes D and M for an interface.
 ///
 /// # Errors
@@ -273,11 +332,12 @@ fn assemble_on_pool(
 ) -> Result<Coupling> {
     let start = Instant::now();
     let tree = MasterTree::build(interface);
-    let tree_seconds = start.elapsed().as_secs_f64();
+    let masters = MasterFaces::new(interface, tree.face_order());
 
     let ctx = SegmentContext {
         interface,
         projector: options.projector.as_ref(),
+        masters: &masters,
     };
     let faces = interface.slave().face_count();
     // Slave faces are processed in the Morton order of their centres: the queries of a chunk
@@ -293,6 +353,7 @@ fn assemble_on_pool(
         .collect();
     let order = spatial_order(&centres, interface.dim() == SpatialDim::Two);
     drop(centres);
+    let tree_seconds = start.elapsed().as_secs_f64();
     // Each worker folds its chunks into one accumulator (its buffers and its part lists); the
     // first failing chunk in slave-face order decides the error, and chunks after a known
     // failure are skipped.
@@ -321,6 +382,7 @@ fn assemble_on_pool(
 
     drop(tree);
     let t_asm = Instant::now();
+    let faces_seconds = (t_asm - start).as_secs_f64() - tree_seconds;
     let mut total = Accumulator::default();
     for acc in accs {
         if let Some((c, e)) = acc.error {
@@ -356,8 +418,12 @@ fn assemble_on_pool(
     }
     let ns = interface.slave_nodes().len();
     let nm = interface.master_nodes().len();
-    let d = total.d.to_csr(ns, ns);
+    let mut d = total.d.to_csr(ns, ns);
     let m = total.m.to_csr(ns, nm);
+    let mut roundoff = RoundoffDropped::default();
+    if options.multipliers.diagonal_d() {
+        (d, roundoff) = drop_roundoff(&d, ROUNDOFF);
+    }
     let assembly = t_asm.elapsed().as_secs_f64();
 
     let slave_tags = interface.slave().node_tags();
@@ -389,6 +455,8 @@ fn assemble_on_pool(
             segments: stats.segments,
             back_facing: stats.back_facing,
             skipped_pairs: stats.skipped,
+            d_roundoff_dropped: roundoff.count,
+            d_roundoff_largest: roundoff.largest,
             uncovered_area: stats.uncovered_area,
             faces_without_partner: stats.without_partner,
             faces_partly_covered: stats.partly_covered,
@@ -396,11 +464,15 @@ fn assemble_on_pool(
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
             seconds: PhaseSeconds {
-                search: tree_seconds + stats.seconds_search,
-                segments: stats.seconds_segments,
-                integration: stats.seconds_integration,
+                tree: tree_seconds,
+                faces: faces_seconds,
                 assembly,
                 total: start.elapsed().as_secs_f64(),
+                thread: ThreadSeconds {
+                    search: stats.seconds_search,
+                    segments: stats.seconds_segments,
+                    integration: stats.seconds_integration,
+                },
             },
         },
         warnings,
@@ -483,7 +555,6 @@ fn chunk(
     out.seconds_search = (t0 - t_search).as_secs_f64();
     // Each face is segmented and integrated at once, while its points are in cache.
     let slave_mesh = interface.slave();
-    let master_mesh = interface.master();
     let coverage = tol.coverage;
     let mut uncovered: ArrayVec<u64, { CouplingWarning::EXAMPLES }> = ArrayVec::new();
     let mut note_uncovered = |tag: u64| {
@@ -542,7 +613,7 @@ fn chunk(
             continue;
         }
         let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(interface, &face, &basis, &rule.points, blocks);
+        integrate_face_into(ctx.masters, &face, &basis, &rule.points, blocks);
         let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
         for (r, &n) in rows.iter_mut().zip(snodes) {
@@ -560,11 +631,7 @@ fn chunk(
         // far fewer nodes, so this cuts the triplets about threefold.
         cols.clear();
         for (mf, km, block) in blocks.m_blocks() {
-            let mnodes = master_mesh.face(mf as usize).nodes;
-            for (l, &n) in mnodes.iter().enumerate() {
-                let c = interface
-                    .master_col(n)
-                    .expect("face nodes are on the interface");
+            for (l, &c) in ctx.masters.get(mf as usize).columns.iter().enumerate() {
                 let at = match cols.iter().position(|(cc, _)| *cc == c) {
                     Some(at) => at,
                     None => {

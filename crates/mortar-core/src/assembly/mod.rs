@@ -14,7 +14,7 @@ mod local;
 mod options;
 mod warning;
 
-pub use coupling::{assemble_coupling, Coupling, CouplingStats, PhaseSeconds};
+pub use coupling::{assemble_coupling, Coupling, CouplingStats, PhaseSeconds, ThreadSeconds};
 pub use local::{integrate_face_into, LocalBlocks};
 pub use options::CouplingOptions;
 pub use warning::CouplingWarning;

@@ -28,6 +28,23 @@ pub trait SurfaceElement: ReferenceElement {
         None
     }
 
+    /// Reverses the orientation of a face given by its node list (in element order), in
+    /// place: a line's ends are swapped, a face's corners traversed the other way round from
+    /// the first. Returns `false`, leaving `nodes` as they are, for an element whose order
+    /// cannot be reversed this way (one with nodes besides its corners must override this).
+    fn reverse_nodes(&self, nodes: &mut [u32]) -> bool {
+        let k = self.node_count();
+        if nodes.len() != k || k != self.corner_count() || k < 2 {
+            return false;
+        }
+        if self.domain() == ReferenceDomain::Line {
+            nodes.swap(0, 1);
+        } else {
+            nodes[1..].reverse();
+        }
+        true
+    }
+
     /// The point `x(xi)` for the node coordinates `nodes`.
     fn map(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> Vector3<f64> {
         let mut n = [0.0; MAX_FACE_NODES];

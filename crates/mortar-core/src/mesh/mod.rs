@@ -3,6 +3,7 @@
 //! come out as outward-oriented surface meshes.
 
 mod nodes;
+pub mod orient;
 mod surface_mesh;
 mod volume_mesh;
 

@@ -193,6 +193,31 @@ impl SurfaceMesh {
         view.nodes.len()
     }
 
+    /// Reverses the orientation of face `face` (its normal), by
+    /// [`SurfaceElement::reverse_nodes`](crate::element::SurfaceElement::reverse_nodes).
+    ///
+    /// # Errors
+    /// [`MortarError::InvalidOption`] if the element cannot reverse its node order.
+    ///
+    /// # Panics
+    /// If `face >= face_count()`.
+    pub fn reverse_face(&mut self, face: usize) -> Result<()> {
+        let (a, b) = (
+            self.face_offsets[face] as usize,
+            self.face_offsets[face + 1] as usize,
+        );
+        let element = self.element_types[self.face_types[face] as usize];
+        if element.reverse_nodes(&mut self.face_nodes[a..b]) {
+            Ok(())
+        } else {
+            Err(MortarError::InvalidOption(format!(
+                "face {} ({}) cannot be reversed: the element does not say how",
+                self.face_tags[face],
+                element.name()
+            )))
+        }
+    }
+
     /// Moves every node by `f` (rigid motions, scaling, or a deformed configuration).
     ///
     /// # Errors

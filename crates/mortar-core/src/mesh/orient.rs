@@ -1,0 +1,327 @@
+//! Orientation of surfaces: consistent within each connected piece, then turned so that the
+//! slave and the master face each other.
+//!
+//! Mesh generators do not promise outward normals on a surface given alone (Gmsh orients the
+//! curves of an OpenCASCADE disc and of the hole of an annulus the same way round). When the
+//! bodies are known, orient from them (the facade's readers do); otherwise:
+//!
+//! 1. [`orient_consistently`]: in each connected piece of a surface (faces joined across
+//!    shared edges, lines across shared nodes), every face is turned to agree with the piece's
+//!    first face. A non-manifold edge (three faces on it) or a non-orientable piece (a Moebius
+//!    strip) is an error naming the faces.
+//! 2. [`face_each_other`]: each slave piece is turned so that its normals point to the master
+//!    across an open gap (kept as given where the surfaces touch: nothing tells the sides
+//!    apart there), then each master piece so that its normals oppose the slave's.
+
+use nalgebra::Vector3;
+
+use super::SurfaceMesh;
+use crate::element::{ReferenceDomain, MAX_FACE_NODES};
+use crate::error::{FaceLocation, MortarError, Result, Side};
+
+/// What orienting a surface did.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct OrientationReport {
+    /// Connected pieces of the surface.
+    pub components: usize,
+    /// Faces whose node order was reversed.
+    pub flipped: usize,
+    /// Pieces whose sense could not be decided (they touch the other surface without a gap)
+    /// and were kept as given (after being made consistent).
+    pub kept_as_given: usize,
+}
+
+/// The unit normal and the centre of each face, and its measure.
+fn face_frames(mesh: &SurfaceMesh) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+    (0..mesh.face_count())
+        .map(|f| {
+            let view = mesh.face(f);
+            let el = view.element;
+            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+            let k = mesh.face_coords_into(f, &mut x);
+            let c = el.domain().centre();
+            let n = el.scaled_normal(&x[..k], &c);
+            let centre = el.map(&x[..k], &c);
+            (
+                n.try_normalize(0.0).unwrap_or_default(),
+                centre,
+                n.norm() * el.domain().measure(),
+            )
+        })
+        .collect()
+}
+
+/// The directed "edges" of face `f`: consecutive corners for a face, the nodes of a line
+/// (its start counts as `(node, out)`, its end as `(node, in)`).
+fn directed_edges(mesh: &SurfaceMesh, f: usize, out: &mut Vec<(u32, u32)>) {
+    out.clear();
+    let view = mesh.face(f);
+    let el = view.element;
+    let c = el.corner_count();
+    if el.domain() == ReferenceDomain::Line {
+        // A line is an edge from its start to its end; neighbours meet at nodes.
+        out.push((view.nodes[0], u32::MAX));
+        out.push((u32::MAX, view.nodes[1]));
+    } else {
+        for i in 0..c {
+            out.push((view.nodes[i], view.nodes[(i + 1) % c]));
+        }
+    }
+}
+
+/// Makes every connected piece of `mesh` consistently oriented (each face agreeing with the
+/// first face of its piece, in face order) and returns each face's piece (numbered in order of
+/// first face) and whether it was reversed.
+///
+/// # Errors
+/// [`MortarError::Topology`] for an edge shared by more than two faces (three lines at a
+/// node in 2D), or a piece that cannot be oriented (a Moebius strip); the error of
+/// [`SurfaceMesh::reverse_face`] for an element that cannot be reversed.
+pub fn orient_consistently(
+    mesh: &mut SurfaceMesh,
+    side: Option<Side>,
+) -> Result<(Vec<u32>, Vec<bool>)> {
+    let n = mesh.face_count();
+    // Undirected edge key -> (face, direction) incidences; a line's "edge" is a node.
+    let mut incidences: Vec<((u32, u32), u32, bool)> = Vec::new();
+    let mut edges = Vec::new();
+    for f in 0..n {
+        directed_edges(mesh, f, &mut edges);
+        for &(a, b) in &edges {
+            let (key, forward) = if a == u32::MAX {
+                ((b, b), false)
+            } else if b == u32::MAX {
+                ((a, a), true)
+            } else if a < b {
+                ((a, b), true)
+            } else {
+                ((b, a), false)
+            };
+            incidences.push((key, f as u32, forward));
+        }
+    }
+    incidences.sort_unstable();
+    let tags = mesh.node_tags().to_vec();
+    let face_tag = |f: u32| mesh.face(f as usize).tag;
+    // Neighbours across each edge: (face, other face, same direction?).
+    let mut adjacency: Vec<Vec<(u32, bool)>> = vec![Vec::new(); n];
+    for group in incidences.chunk_by(|a, b| a.0 == b.0) {
+        match group {
+            [_] => {}
+            [(_, f, df), (_, g, dg)] => {
+                if f != g {
+                    adjacency[*f as usize].push((*g, df == dg));
+                    adjacency[*g as usize].push((*f, df == dg));
+                }
+            }
+            _ => {
+                let (a, b) = group[0].0;
+                let faces: Vec<String> = group
+                    .iter()
+                    .map(|(_, f, _)| face_tag(*f).to_string())
+                    .collect();
+                let what = if a == b {
+                    format!(
+                        "node {} is shared by {} lines ({}): a T junction",
+                        tags[a as usize],
+                        group.len(),
+                        faces.join(", ")
+                    )
+                } else {
+                    format!(
+                        "the edge between nodes {} and {} is shared by {} faces ({}): the surface is not a manifold",
+                        tags[a as usize], tags[b as usize], group.len(), faces.join(", ")
+                    )
+                };
+                return Err(MortarError::Topology {
+                    face: FaceLocation {
+                        side,
+                        tag: face_tag(group[0].1),
+                    },
+                    reason: what,
+                });
+            }
+        }
+    }
+    // Breadth-first over each piece: a neighbour across an edge traversed the same way must
+    // be turned relative to its parent.
+    const UNSEEN: u32 = u32::MAX;
+    let mut component = vec![UNSEEN; n];
+    let mut flip = vec![false; n];
+    let mut pieces = 0u32;
+    let mut queue = std::collections::VecDeque::new();
+    for start in 0..n {
+        if component[start] != UNSEEN {
+            continue;
+        }
+        component[start] = pieces;
+        queue.push_back(start as u32);
+        while let Some(f) = queue.pop_front() {
+            for &(g, same) in &adjacency[f as usize] {
+                let want = flip[f as usize] ^ same;
+                if component[g as usize] == UNSEEN {
+                    component[g as usize] = pieces;
+                    flip[g as usize] = want;
+                    queue.push_back(g);
+                } else if flip[g as usize] != want {
+                    return Err(MortarError::Topology {
+                        face: FaceLocation { side, tag: face_tag(g) },
+                        reason: format!(
+                            "the connected surface through faces {} and {} cannot be oriented (it is one-sided, like a Moebius strip)",
+                            face_tag(f),
+                            face_tag(g)
+                        ),
+                    });
+                }
+            }
+        }
+        pieces += 1;
+    }
+    for f in 0..n {
+        if flip[f] {
+            mesh.reverse_face(f)?;
+        }
+    }
+    Ok((component, flip))
+}
+
+/// Orients the slave and the master surface to face each other (see the module
+/// documentation): each made consistent piece by piece, each slave piece turned to point at
+/// the master across the gap, each master piece turned against the slave. Pairs of faces are
+/// those whose centres lie within `reach` times the slave face's size of each other along the
+/// slave normal and within its size across it. `keep_slave` and `keep_master` keep the sense
+/// of a side already oriented (from its bodies, say): it is made consistent but not turned.
+///
+/// # Errors
+/// The errors of [`orient_consistently`].
+pub fn face_each_other(
+    slave: &mut SurfaceMesh,
+    master: &mut SurfaceMesh,
+    reach: f64,
+    keep_slave: bool,
+    keep_master: bool,
+) -> Result<[OrientationReport; 2]> {
+    let (slave_pieces, slave_flips) = orient_consistently(slave, Some(Side::Slave))?;
+    let (master_pieces, master_flips) = orient_consistently(master, Some(Side::Master))?;
+    let ns = slave_pieces
+        .iter()
+        .map(|&c| c as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let nm = master_pieces
+        .iter()
+        .map(|&c| c as usize + 1)
+        .max()
+        .unwrap_or(0);
+    let fs = face_frames(slave);
+    let fm = face_frames(master);
+    let sizes: Vec<f64> = (0..slave.face_count())
+        .map(|f| {
+            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+            let k = slave.face_coords_into(f, &mut x);
+            (0..k)
+                .flat_map(|i| (i + 1..k).map(move |j| (i, j)))
+                .map(|(i, j)| (x[i] - x[j]).norm())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    // Nearby pairs by a grid of master centres (cells of the largest slave size).
+    let cell = sizes.iter().copied().fold(0.0, f64::max) * (1.0 + reach);
+    let key = |x: &Vector3<f64>| {
+        (
+            (x.x / cell).floor() as i64,
+            (x.y / cell).floor() as i64,
+            (x.z / cell).floor() as i64,
+        )
+    };
+    let mut grid: std::collections::HashMap<(i64, i64, i64), Vec<u32>> = Default::default();
+    if cell > 0.0 && cell.is_finite() {
+        for (m, (_, c, _)) in fm.iter().enumerate() {
+            grid.entry(key(c)).or_default().push(m as u32);
+        }
+    }
+    // Nearby pairs (slave face, master face, distance along the slave normal).
+    let mut near: Vec<(u32, u32, f64)> = Vec::new();
+    for (s, (n, c, _)) in fs.iter().enumerate() {
+        let (i, j, k) = key(c);
+        for di in -1..=1 {
+            for dj in -1..=1 {
+                for dk in -1..=1 {
+                    for &m in grid.get(&(i + di, j + dj, k + dk)).into_iter().flatten() {
+                        let d = fm[m as usize].1 - c;
+                        let along = n.dot(&d);
+                        let across = (d - n * along).norm();
+                        if across <= sizes[s] && along.abs() <= reach * sizes[s] {
+                            near.push((s as u32, m, along));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    // Slave pieces: the master on the normal's side (a positive gap) or the other.
+    let mut votes = vec![(0.0f64, 0.0f64); ns];
+    for &(s, _, along) in &near {
+        let s = s as usize;
+        let tol = 1e-3 * sizes[s];
+        let piece = slave_pieces[s] as usize;
+        if along > tol {
+            votes[piece].0 += fs[s].2;
+        } else if along < -tol {
+            votes[piece].1 += fs[s].2;
+        }
+    }
+    let mut slave_report = OrientationReport {
+        components: ns,
+        ..Default::default()
+    };
+    let mut turn_slave = vec![false; ns];
+    for (p, &(ahead, behind)) in votes.iter().enumerate() {
+        if keep_slave {
+            continue;
+        }
+        if behind > 2.0 * ahead {
+            turn_slave[p] = true;
+        } else if ahead <= 2.0 * behind {
+            slave_report.kept_as_given += 1;
+        }
+    }
+    let mut fs = fs;
+    for (f, frame) in fs.iter_mut().enumerate() {
+        let p = slave_pieces[f] as usize;
+        if turn_slave[p] {
+            slave.reverse_face(f)?;
+            frame.0 = -frame.0;
+        }
+    }
+    // Master pieces: normals against the slave's.
+    let mut agree = vec![0.0f64; nm];
+    for &(s, m, _) in &near {
+        let (s, m) = (s as usize, m as usize);
+        agree[master_pieces[m] as usize] += fs[s].0.dot(&fm[m].0) * fs[s].2;
+    }
+    let turn_master: Vec<bool> = agree.iter().map(|&a| a > 0.0 && !keep_master).collect();
+    for f in 0..master.face_count() {
+        if turn_master[master_pieces[f] as usize] {
+            master.reverse_face(f)?;
+        }
+    }
+    slave_report.flipped = net_flips(&slave_flips, &slave_pieces, &turn_slave);
+    Ok([
+        slave_report,
+        OrientationReport {
+            components: nm,
+            flipped: net_flips(&master_flips, &master_pieces, &turn_master),
+            kept_as_given: agree.iter().filter(|&&a| a == 0.0).count(),
+        },
+    ])
+}
+
+/// The faces reversed overall: for consistency, or with their piece, not both.
+fn net_flips(consistency: &[bool], pieces: &[u32], turned: &[bool]) -> usize {
+    consistency
+        .iter()
+        .zip(pieces)
+        .filter(|(&c, &p)| c != turned[p as usize])
+        .count()
+}
