@@ -24,3 +24,6 @@ mod scene_errors;
 
 #[path = "integration/gmsh_meshes.rs"]
 mod gmsh_meshes;
+
+#[path = "integration/orient.rs"]
+mod orient;

@@ -161,3 +161,30 @@ fn cylinder_triangle_slaves_measure_the_faces() {
             .unwrap();
     }
 }
+
+/// Issue 8, item 6: the dual D is written without its round-off off-diagonal entries (they
+/// are lumped into the diagonal, counted, and the largest is reported), so the file a user
+/// reads is diagonal, and its row sums are unchanged.
+#[test]
+fn dual_d_is_written_diagonal_and_says_what_it_dropped() {
+    let slave = cylinder_surface(1.0, 24, 6, true, false, 1).unwrap();
+    let master = cylinder_surface(1.0, 35, 9, false, true, 1).unwrap();
+    let pair = MeshPair { slave, master };
+    let interface = pair.interface().unwrap();
+    let coupling = assemble_coupling(&interface, &segment_options(true)).unwrap();
+    let n = coupling.d.rows();
+    assert_eq!(coupling.d.nnz(), n, "one entry per row of the dual D");
+    assert!(coupling.d.iter().all(|(_, (r, c))| r == c));
+    let stats = coupling.stats;
+    assert!(stats.d_roundoff_dropped > 0, "{stats:?}");
+    assert!(
+        stats.d_roundoff_largest > 0.0 && stats.d_roundoff_largest <= 1e-12,
+        "{stats:?}"
+    );
+    let areas = nodal_areas(&pair.slave);
+    let scale = max_abs(&row_sums(&coupling.d));
+    for (v, (r, _)) in coupling.d.iter() {
+        let area = areas[&coupling.slave_nodes[r]];
+        assert!((v - area).abs() <= 1e-13 * scale, "row {r}: {v} vs {area}");
+    }
+}
