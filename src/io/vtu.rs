@@ -1,5 +1,5 @@
 //! VTU output for ParaView: ASCII XML `UnstructuredGrid` files of volume meshes with nodal
-//! fields (point data), one `<Piece>` per body.
+//! fields (point data), every body in one `<Piece>` (told apart by the cell field `piece`).
 //!
 //! A small writer of our own rather than the `vtkio` crate, whose last stable release dates
 //! from 2021 (its 0.7 has stayed a release candidate) and which brings XML and compression
@@ -57,7 +57,10 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// The VTU document of `pieces` (each piece also gets a cell field `piece`: its index).
+/// The VTU document of `pieces`, written as one VTK piece holding every body (readers such
+/// as meshio keep only the first of several pieces): nodes and cells of the bodies one after
+/// the other, a cell field `piece` (the body's index) to tell them apart, and each nodal field
+/// over all bodies (`NaN` on the nodes of a body that does not have it).
 ///
 /// # Errors
 /// [`IoError::Write`] (kind `InvalidInput`) naming the cell or field: an element without a
@@ -67,59 +70,83 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
     };
+    // Field names in order of first appearance.
+    let mut names: Vec<&str> = Vec::new();
+    for (p, piece) in pieces.iter().enumerate() {
+        for (name, values) in &piece.point_data {
+            if values.len() != piece.mesh.node_count() {
+                return Err(invalid(format!(
+                    "piece {p}: field {name:?} has {} values for {} nodes",
+                    values.len(),
+                    piece.mesh.node_count()
+                )));
+            }
+            if !names.contains(name) {
+                names.push(name);
+            }
+        }
+    }
+    let nn: usize = pieces.iter().map(|p| p.mesh.node_count()).sum();
+    let nc: usize = pieces.iter().map(|p| p.mesh.cell_count()).sum();
     let mut s = String::new();
     s.push_str("<?xml version=\"1.0\"?>\n");
     s.push_str(
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
          header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
     );
-    for (p, piece) in pieces.iter().enumerate() {
-        let mesh = piece.mesh;
-        let (nn, nc) = (mesh.node_count(), mesh.cell_count());
+    let _ = writeln!(
+        s,
+        "    <Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{nc}\">"
+    );
+    match names.first() {
+        Some(name) => {
+            let _ = writeln!(s, "      <PointData Scalars=\"{}\">", escape(name));
+        }
+        None => s.push_str("      <PointData>\n"),
+    }
+    for name in &names {
         let _ = writeln!(
             s,
-            "    <Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{nc}\">"
+            "        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">",
+            escape(name)
         );
-        let first = piece.point_data.first().map(|(n, _)| escape(n));
-        match &first {
-            Some(name) => {
-                let _ = writeln!(s, "      <PointData Scalars=\"{name}\">");
-            }
-            None => s.push_str("      <PointData>\n"),
-        }
-        for (name, values) in &piece.point_data {
-            if values.len() != nn {
-                return Err(invalid(format!(
-                    "piece {p}: field {name:?} has {} values for {nn} nodes",
-                    values.len()
-                )));
-            }
-            let _ = writeln!(
-                s,
-                "        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">",
-                escape(name)
-            );
-            write_values(&mut s, values.iter().map(|v| format!("{v:e}")));
-            s.push_str("        </DataArray>\n");
-        }
-        s.push_str("      </PointData>\n      <CellData Scalars=\"piece\">\n");
-        s.push_str("        <DataArray type=\"Int32\" Name=\"piece\" format=\"ascii\">\n");
-        write_values(&mut s, (0..nc).map(|_| p.to_string()));
-        s.push_str("        </DataArray>\n      </CellData>\n      <Points>\n");
-        s.push_str(
-            "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
-        );
-        write_values(
-            &mut s,
-            mesh.coords()
+        let values = pieces.iter().flat_map(|piece| {
+            let field = piece.point_data.iter().find(|(n, _)| n == name);
+            (0..piece.mesh.node_count())
+                .map(move |i| field.map_or(f64::NAN, |(_, v)| v[i]))
+        });
+        write_values(&mut s, values.map(|v| format!("{v:e}")));
+        s.push_str("        </DataArray>\n");
+    }
+    s.push_str("      </PointData>\n      <CellData Scalars=\"piece\">\n");
+    s.push_str("        <DataArray type=\"Int32\" Name=\"piece\" format=\"ascii\">\n");
+    write_values(
+        &mut s,
+        pieces
+            .iter()
+            .enumerate()
+            .flat_map(|(p, piece)| (0..piece.mesh.cell_count()).map(move |_| p.to_string())),
+    );
+    s.push_str("        </DataArray>\n      </CellData>\n      <Points>\n");
+    s.push_str("        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    write_values(
+        &mut s,
+        pieces.iter().flat_map(|piece| {
+            piece
+                .mesh
+                .coords()
                 .iter()
-                .map(|x| format!("{:e} {:e} {:e}", x.x, x.y, x.z)),
-        );
-        s.push_str("        </DataArray>\n      </Points>\n      <Cells>\n");
-        let mut types = Vec::with_capacity(nc);
-        let mut offsets = Vec::with_capacity(nc);
-        let mut conn = Vec::new();
-        for c in 0..nc {
+                .map(|x| format!("{:e} {:e} {:e}", x.x, x.y, x.z))
+        }),
+    );
+    s.push_str("        </DataArray>\n      </Points>\n      <Cells>\n");
+    let mut types = Vec::with_capacity(nc);
+    let mut offsets = Vec::with_capacity(nc);
+    let mut conn = Vec::new();
+    let mut first_node = 0usize;
+    for (p, piece) in pieces.iter().enumerate() {
+        let mesh = piece.mesh;
+        for c in 0..mesh.cell_count() {
             let cell = mesh.cell(c);
             let t = vtk_type(cell.element.name()).ok_or_else(|| {
                 invalid(format!(
@@ -129,19 +156,20 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
                 ))
             })?;
             types.push(t);
-            conn.extend(cell.nodes.iter().map(|n| n.to_string()));
+            conn.extend(cell.nodes.iter().map(|&n| (first_node + n as usize).to_string()));
             offsets.push(conn.len());
         }
-        s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-        write_values(&mut s, conn.into_iter());
-        s.push_str("        </DataArray>\n");
-        s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-        write_values(&mut s, offsets.iter().map(|o| o.to_string()));
-        s.push_str("        </DataArray>\n");
-        s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-        write_values(&mut s, types.iter().map(|t| t.to_string()));
-        s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
+        first_node += mesh.node_count();
     }
+    s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    write_values(&mut s, conn.into_iter());
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    write_values(&mut s, offsets.iter().map(|o| o.to_string()));
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    write_values(&mut s, types.iter().map(|t| t.to_string()));
+    s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
     s.push_str("  </UnstructuredGrid>\n</VTKFile>\n");
     Ok(s)
 }
@@ -181,7 +209,10 @@ mod tests {
     use crate::generate::{box_mesh, CellShape};
 
     #[test]
-    fn pieces_counts_and_errors() {
+    /// Issue 8, item 6: two bodies were written as two `<Piece>`s and meshio 5.3 read only the
+    /// first (the pellet's VTU lost the pellet). Now one piece holds both, node indices of the
+    /// second body shifted past the first's, and a field one body lacks is NaN there.
+    fn bodies_in_one_piece_counts_and_errors() {
         let a = box_mesh([0.0; 3], [1.0; 3], [1, 1, 2], CellShape::Tensor, 1).unwrap();
         let b = box_mesh(
             [1.0, 0.0, 0.0],
@@ -208,9 +239,35 @@ mod tests {
             ],
         )
         .unwrap();
-        assert_eq!(s.matches("<Piece ").count(), 2);
-        assert!(s.contains("NumberOfPoints=\"12\" NumberOfCells=\"2\""));
-        assert!(s.contains("NumberOfPoints=\"8\" NumberOfCells=\"6\""));
+        assert_eq!(s.matches("<Piece ").count(), 1);
+        assert!(s.contains("NumberOfPoints=\"20\" NumberOfCells=\"8\""));
+        // The piece field: 2 cells of body 0, 6 of body 1.
+        assert!(s.contains("          0 0 1 1 1 1\n          1 1\n"), "{s}");
+        // The last tetrahedron's nodes are those of the second body: indices 12 to 19.
+        let conn = s
+            .split("Name=\"connectivity\" format=\"ascii\">\n")
+            .nth(1)
+            .and_then(|r| r.split("</DataArray>").next())
+            .unwrap();
+        let ids: Vec<usize> = conn.split_whitespace().map(|v| v.parse().unwrap()).collect();
+        assert_eq!(ids.len(), 2 * 8 + 6 * 4);
+        assert!(ids[..16].iter().all(|&i| i < 12));
+        assert!(ids[16..].iter().all(|&i| (12..20).contains(&i)));
+        let two_fields = vtu_string(
+            path,
+            &[
+                VtuPiece {
+                    mesh: &a,
+                    point_data: vec![("T", &ta)],
+                },
+                VtuPiece {
+                    mesh: &b,
+                    point_data: vec![],
+                },
+            ],
+        )
+        .unwrap();
+        assert_eq!(two_fields.matches("NaN").count(), 8, "the second body has no T");
         assert!(s.contains("Name=\"T &lt;&quot;x&quot;&gt;\""));
         assert!(s.contains(" 12 12\n") || s.contains(" 12 12 "), "hexahedra");
         let short = vec![0.0; 3];
