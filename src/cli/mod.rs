@@ -17,11 +17,15 @@ use mortar::io::{CouplingSettings, Integration, Multipliers};
 /// With no command, runs the built-in pellet scene (a fuel pellet in its cladding, helium gap
 /// conductance, nonlinear heat conduction) into `out/pellet` with a progress bar.
 #[derive(Debug, Parser)]
-#[command(name = "mortar", version, about, long_about)]
+#[command(name = "mortar", version, about, long_about, disable_help_flag = true)]
 struct Cli {
     /// Print the summary as JSON instead of text.
     #[arg(long, global = true)]
     json: bool,
+
+    /// Print help (`-h` and `--help` print the same).
+    #[arg(short = 'h', long = "help", global = true, action = clap::ArgAction::HelpLong, display_order = 1000)]
+    help: Option<bool>,
 
     #[command(subcommand)]
     command: Option<Command>,
@@ -33,10 +37,15 @@ enum Command {
     ///
     /// FILE#GROUP selects the elements of a physical group (by name, or by physical tag);
     /// FILE alone takes all elements of dimension 2 of the file, or of dimension 1 if it has
-    /// none (a 2D problem with lines in the plane z = 0). Rows of D and M are the slave nodes,
-    /// columns the slave (D) or master (M) nodes, each by ascending node tag. Nothing is
-    /// written unless everything succeeds.
+    /// none (a 2D problem with lines in the plane z = 0); a flat file of both needs a group.
+    /// Each surface is oriented first (outward from the cells of its file when it bounds
+    /// them, else made consistent and turned to face the other surface; --keep-orientation
+    /// trusts the files). Slave area no master face covers is a warning (an error with
+    /// --require-full-coverage). Rows of D and M are the slave nodes, columns the slave (D)
+    /// or master (M) nodes, each by ascending node tag. Nothing is written unless everything
+    /// succeeds.
     #[command(
+        disable_help_flag = true,
         after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"
     )]
     Couple(CoupleArgs),
@@ -47,12 +56,14 @@ enum Command {
     /// phase); a built-in scene also writes its scene file and meshes. Nothing is written
     /// unless everything succeeds.
     #[command(
+        disable_help_flag = true,
         after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"
     )]
     Run(RunArgs),
 
     /// Couple a built-in pair of non-matching meshes of the unit square (Tri3 24 x 24 against
     /// Quad4 35 x 35) and print the summary.
+    #[command(disable_help_flag = true)]
     Demo,
 }
 

@@ -112,8 +112,7 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
         );
         let values = pieces.iter().flat_map(|piece| {
             let field = piece.point_data.iter().find(|(n, _)| n == name);
-            (0..piece.mesh.node_count())
-                .map(move |i| field.map_or(f64::NAN, |(_, v)| v[i]))
+            (0..piece.mesh.node_count()).map(move |i| field.map_or(f64::NAN, |(_, v)| v[i]))
         });
         write_values(&mut s, values.map(|v| format!("{v:e}")));
         s.push_str("        </DataArray>\n");
@@ -156,7 +155,11 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
                 ))
             })?;
             types.push(t);
-            conn.extend(cell.nodes.iter().map(|&n| (first_node + n as usize).to_string()));
+            conn.extend(
+                cell.nodes
+                    .iter()
+                    .map(|&n| (first_node + n as usize).to_string()),
+            );
             offsets.push(conn.len());
         }
         first_node += mesh.node_count();
@@ -249,7 +252,10 @@ mod tests {
             .nth(1)
             .and_then(|r| r.split("</DataArray>").next())
             .unwrap();
-        let ids: Vec<usize> = conn.split_whitespace().map(|v| v.parse().unwrap()).collect();
+        let ids: Vec<usize> = conn
+            .split_whitespace()
+            .map(|v| v.parse().unwrap())
+            .collect();
         assert_eq!(ids.len(), 2 * 8 + 6 * 4);
         assert!(ids[..16].iter().all(|&i| i < 12));
         assert!(ids[16..].iter().all(|&i| (12..20).contains(&i)));
@@ -267,7 +273,11 @@ mod tests {
             ],
         )
         .unwrap();
-        assert_eq!(two_fields.matches("NaN").count(), 8, "the second body has no T");
+        assert_eq!(
+            two_fields.matches("NaN").count(),
+            8,
+            "the second body has no T"
+        );
         assert!(s.contains("Name=\"T &lt;&quot;x&quot;&gt;\""));
         assert!(s.contains(" 12 12\n") || s.contains(" 12 12 "), "hexahedra");
         let short = vec![0.0; 3];

@@ -193,6 +193,8 @@ fn group_errors_name_the_group() {
         _ => panic!("{e:?}"),
     }
     assert!(e.to_string().contains("6-node triangle"), "{e}");
+    // Until quadratic elements land, the message says how to mesh at order one.
+    assert!(e.to_string().contains("gmsh -order 1"), "{e}");
 }
 
 #[test]

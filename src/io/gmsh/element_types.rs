@@ -147,3 +147,45 @@ pub(super) fn type_name(element_type: i32) -> String {
         None => "unknown type".to_string(),
     }
 }
+
+/// Whether a Gmsh element type is of order two or more: more nodes than its corners.
+pub(super) fn is_higher_order(element_type: i32) -> bool {
+    let corners = |shape: &str| match shape {
+        "line" => 2,
+        "triangle" => 3,
+        "quadrangle" | "tetrahedron" => 4,
+        "pyramid" => 5,
+        "prism" => 6,
+        "hexahedron" => 8,
+        _ => usize::MAX,
+    };
+    entry(element_type).is_some_and(|(_, shape, n)| *n > corners(shape))
+}
+
+/// Advice for an unsupported element type: for a second-order one, how to mesh at order one.
+pub(super) fn unsupported_hint(element_type: i32) -> String {
+    if is_higher_order(element_type) {
+        "; quadratic (second-order) elements are not supported yet: mesh at order one \
+         (`gmsh -order 1`, or Mesh.ElementOrder = 1)"
+            .to_string()
+    } else {
+        String::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn second_order_types_get_the_order_one_hint() {
+        for t in [8, 9, 10, 11, 16, 17] {
+            assert!(is_higher_order(t), "type {t}");
+            assert!(unsupported_hint(t).contains("gmsh -order 1"));
+        }
+        for t in [1, 2, 3, 4, 5, 15] {
+            assert!(!is_higher_order(t), "type {t}");
+            assert!(unsupported_hint(t).is_empty());
+        }
+    }
+}

@@ -423,6 +423,7 @@ fn build(
                 element: tag,
                 element_type: b.element_type,
                 type_name: element_types::type_name(b.element_type),
+                hint: element_types::unsupported_hint(b.element_type),
                 supported: registry
                     .elements()
                     .iter()

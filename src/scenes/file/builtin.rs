@@ -13,8 +13,9 @@ use super::SceneError;
 use crate::generate::{box_mesh, rectangle_mesh, CellShape};
 use crate::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 
-/// The names of the built-in scenes.
-pub const BUILTIN_SCENES: &[&str] = &["tied_heat"];
+/// The names of the built-in scenes (`mortar run --scene NAME`): `tied_heat` (this module)
+/// and `pellet` (`crate::scenes::pellet`, run by its own driver).
+pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet"];
 
 /// A built-in scene: its scene file and the mesh files it names.
 #[derive(Debug, Clone)]
@@ -30,10 +31,16 @@ pub struct BuiltinScene {
 /// The built-in scene `name`: `tied_heat` is [`tied_block`] in 2D with `n = 8`, ASCII meshes.
 ///
 /// # Errors
-/// [`SceneError::Other`] for an unknown name (listing the known ones).
+/// [`SceneError::Other`] for an unknown name (listing the known ones), and for `pellet`,
+/// which is not a tied-heat scene (its driver is `crate::scenes::pellet`).
 pub fn builtin_scene(name: &str) -> Result<BuiltinScene, SceneError> {
     match name {
         "tied_heat" => tied_block(2, 8, MshFormat::Ascii),
+        "pellet" => Err(SceneError::Other(
+            "the built-in scene \"pellet\" is not a tied-heat scene: run it with \
+             `mortar run --scene pellet` (or mortar::scenes::pellet)"
+                .into(),
+        )),
         _ => Err(SceneError::Other(format!(
             "no built-in scene named \"{name}\" (built-in scenes: {})",
             BUILTIN_SCENES.join(", ")

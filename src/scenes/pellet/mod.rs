@@ -1,6 +1,6 @@
 //! The pellet scene of the seed, thermal only: a fuel pellet (disc, `k = 1 / (A + B T)`)
 //! inside its cladding (annulus, constant `k`), helium in the open gap between them, a power
-//! ramp, and the cladding's outer temperature fixed (PHYSICS.md sections 2, 4 and 5). The gap
+//! ramp, and the cladding's outer temperature fixed (docs/physics.md (section 3)). The gap
 //! is held open (no thermal expansion).
 //!
 //! The 2D cross-section is meshed by the toolkit: an O-grid disc for the pellet and a polar
@@ -12,7 +12,7 @@
 //! Jacobian-free (JFNK) as `[solver] method` says. The steady temperatures are compared with
 //! the closed form ([`closed_form`]).
 //!
-//! The scene file (TOML; every key optional, defaults from PHYSICS.md section 4):
+//! The scene file (TOML; every key optional, defaults from docs/physics.md, section 3):
 //!
 //! ```toml
 //! [pellet]
@@ -270,7 +270,7 @@ impl Default for MeshData {
     }
 }
 
-/// The pellet scene (the TOML file's tables). Every field has the default of PHYSICS.md.
+/// The pellet scene (the TOML file's tables). Every field has the default of docs/physics.md (section 3).
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PelletScene {
@@ -389,7 +389,7 @@ impl PelletScene {
         )?)
     }
 
-    /// The closed-form steady temperatures of this scene (PHYSICS.md section 5).
+    /// The closed-form steady temperatures of this scene (docs/physics.md, section 3).
     ///
     /// # Errors
     /// [`PelletError::Law`] for gap parameters out of range.

@@ -613,7 +613,7 @@ fn chunk(
             continue;
         }
         let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(ctx.masters, &face, &basis, &rule.points, blocks);
+        integrate_face_into(interface, ctx.masters, &face, &basis, &rule.points, blocks);
         let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
         for (r, &n) in rows.iter_mut().zip(snodes) {
@@ -631,7 +631,8 @@ fn chunk(
         // far fewer nodes, so this cuts the triplets about threefold.
         cols.clear();
         for (mf, km, block) in blocks.m_blocks() {
-            for (l, &c) in ctx.masters.get(mf as usize).columns.iter().enumerate() {
+            let face = ctx.masters.get(interface, mf as usize);
+            for (l, &c) in face.columns().iter().enumerate() {
                 let at = match cols.iter().position(|(cc, _)| *cc == c) {
                     Some(at) => at,
                     None => {

@@ -1,6 +1,6 @@
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::integration::PairedPoint;
-use crate::interface::{FaceGeometry, MasterFaces};
+use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::multiplier::LmBasis;
 
 type Block = [[f64; MAX_FACE_NODES]; MAX_FACE_NODES];
@@ -46,10 +46,12 @@ impl LocalBlocks {
     }
 }
 
-/// Integrates one slave face's paired points (against the faces of `masters`) into local
+/// Integrates one slave face's paired points (against the faces of `masters`, built for
+/// `interface`) into local
 /// blocks (cleared first):
 /// `D += w Phi_j(xi_s) N_k(xi_s)`, `M += w Phi_j(xi_s) N_l^m(xi_m)`.
 pub fn integrate_face_into(
+    interface: &Interface,
     masters: &MasterFaces,
     slave: &FaceGeometry,
     basis: &LmBasis,
@@ -58,24 +60,31 @@ pub fn integrate_face_into(
 ) {
     out.clear(slave.node_count());
     // Fixed-size kernels for the common node counts let the compiler unroll the products.
-    match (slave.node_count(), common_master_nodes(masters, points)) {
-        (3, Some(3)) => kernel::<3, 3>(masters, slave, basis, points, out),
-        (3, Some(4)) => kernel::<3, 4>(masters, slave, basis, points, out),
-        (4, Some(3)) => kernel::<4, 3>(masters, slave, basis, points, out),
-        (4, Some(4)) => kernel::<4, 4>(masters, slave, basis, points, out),
-        (2, Some(2)) => kernel::<2, 2>(masters, slave, basis, points, out),
-        _ => general(masters, slave, basis, points, out),
+    match (
+        slave.node_count(),
+        common_master_nodes(interface, masters, points),
+    ) {
+        (3, Some(3)) => kernel::<3, 3>(interface, masters, slave, basis, points, out),
+        (3, Some(4)) => kernel::<3, 4>(interface, masters, slave, basis, points, out),
+        (4, Some(3)) => kernel::<4, 3>(interface, masters, slave, basis, points, out),
+        (4, Some(4)) => kernel::<4, 4>(interface, masters, slave, basis, points, out),
+        (2, Some(2)) => kernel::<2, 2>(interface, masters, slave, basis, points, out),
+        _ => general(interface, masters, slave, basis, points, out),
     }
 }
 
 /// The node count shared by every master face of `points`, if they all have the same.
-fn common_master_nodes(masters: &MasterFaces, points: &[PairedPoint]) -> Option<usize> {
+fn common_master_nodes(
+    interface: &Interface,
+    masters: &MasterFaces,
+    points: &[PairedPoint],
+) -> Option<usize> {
     let mut count = None;
     let mut last = u32::MAX;
     for p in points {
         if p.master != last {
             last = p.master;
-            let k = masters.get(p.master as usize).element.node_count();
+            let k = masters.element(interface, p.master as usize).node_count();
             if count.is_some_and(|c| c != k) {
                 return None;
             }
@@ -86,6 +95,7 @@ fn common_master_nodes(masters: &MasterFaces, points: &[PairedPoint]) -> Option<
 }
 
 fn kernel<const KS: usize, const KM: usize>(
+    interface: &Interface,
     masters: &MasterFaces,
     slave: &FaceGeometry,
     basis: &LmBasis,
@@ -100,7 +110,7 @@ fn kernel<const KS: usize, const KM: usize>(
     while i < points.len() {
         // One run of points on the same master face.
         let master = points[i].master;
-        let mel = masters.get(master as usize).element;
+        let mel = masters.element(interface, master as usize);
         let mut m = [[0.0; KM]; KS];
         while i < points.len() && points[i].master == master {
             let p = &points[i];
@@ -134,6 +144,7 @@ fn kernel<const KS: usize, const KM: usize>(
 }
 
 fn general(
+    interface: &Interface,
     masters: &MasterFaces,
     slave: &FaceGeometry,
     basis: &LmBasis,
@@ -152,7 +163,7 @@ fn general(
         let (off, master_el) = match last {
             Some((m, off, el)) if m == p.master => (off, el),
             _ => {
-                let el = masters.get(p.master as usize).element;
+                let el = masters.element(interface, p.master as usize);
                 let off = out.block_offset(p.master, el.node_count());
                 last = Some((p.master, off, el));
                 (off, el)

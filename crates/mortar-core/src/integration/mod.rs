@@ -22,13 +22,14 @@ mod segment_based;
 mod segments_2d;
 mod segments_3d;
 
-use nalgebra::Vector2;
+use nalgebra::{Vector2, Vector3};
 
 pub use degree::default_degree;
 pub use element_based::ElementBased;
 pub use segment_based::SegmentBased;
 
-use crate::error::{MortarError, Result};
+use crate::element::MAX_FACE_NODES;
+use crate::error::{MortarError, Result, Side};
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::projector::Projector;
 
@@ -110,19 +111,25 @@ pub struct SegmentContext<'a> {
 }
 
 impl SegmentContext<'_> {
-    /// The geometry of the master face in slot `slot` (gathered from the mesh, with its
-    /// nodal normals).
+    /// The geometry of the master face in slot `slot` (from the packed copy; no nodal
+    /// normals, as [`Interface::master_face`]).
     pub fn master_face(&self, slot: u32) -> FaceGeometry {
-        self.interface
-            .master_face(self.masters.face_index(slot as usize))
+        let f = self.masters.get(self.interface, slot as usize);
+        let mut nodes = [Vector3::zeros(); MAX_FACE_NODES];
+        nodes[..f.coords().len()].copy_from_slice(f.coords());
+        FaceGeometry {
+            index: f.index,
+            tag: f.tag,
+            side: Side::Master,
+            element: f.element,
+            nodes,
+            normals: [Vector3::zeros(); MAX_FACE_NODES],
+        }
     }
 
     /// The tag of the master face in slot `slot`.
     pub fn master_tag(&self, slot: u32) -> u64 {
-        self.interface
-            .master()
-            .face(self.masters.face_index(slot as usize))
-            .tag
+        self.masters.get(self.interface, slot as usize).tag
     }
 }
 

@@ -74,8 +74,8 @@ pub(super) fn segments_into(
     let mut covered = 0.0;
 
     for &m in candidates {
-        let face = ctx.masters.get(m as usize);
-        let (mel, xm) = (face.element, face.coords);
+        let face = ctx.masters.get(ctx.interface, m as usize);
+        let (mel, xm) = (face.element, face.coords());
         let km = xm.len();
         for (p, x) in mp.iter_mut().zip(xm) {
             *p = plane.project(x);

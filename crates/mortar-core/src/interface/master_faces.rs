@@ -1,44 +1,77 @@
-//! The master faces of an interface, copied in a spatial order.
+//! The master faces of an interface, addressed in a spatial order.
 
 use nalgebra::Vector3;
+use rayon::prelude::*;
 
 use super::Interface;
-use crate::element::ElementRef;
+use crate::element::{ElementRef, MAX_FACE_NODES};
 
-/// The master faces of an [`Interface`] copied face after face in a given order (the Morton
-/// order of the search tree): element type, column of each node in M, node coordinates. A
-/// face is addressed by its *slot*, its position in that order. Faces near in space are then
-/// near in memory whatever the file's numbering, so the master faces a slave face meets are
-/// read from a few cache lines instead of from all over the mesh (a randomly numbered master
-/// otherwise costs about 1.5x in the per-face work).
+/// The master faces of an [`Interface`] addressed by *slot*: their position in a given order
+/// (the Morton order of the search tree), so that the master faces a slave face meets have
+/// neighbouring slots.
+///
+/// When the file's face numbering is already spatially coherent (most consecutive faces are
+/// near each other in the order), a face is read from the mesh itself. When it is not (a
+/// mesher that numbers faces far apart, or a shuffled file), reading the mesh would jump all
+/// over memory (1.4x to 2x the per-face work): the faces are then copied face after face in
+/// slot order (element, tag, column of each node in M, node coordinates), at a cost of about
+/// 120 bytes per Tri3 face. [`MasterFaces::is_packed`] says which.
 #[derive(Debug, Clone, Default)]
 pub struct MasterFaces {
     /// Per slot, the face's index in the master mesh.
     face: Vec<u32>,
+    /// The packed copy, when the numbering is not spatially coherent.
+    packed: Option<Packed>,
+}
+
+#[derive(Debug, Clone, Default)]
+struct Packed {
     /// Per slot, where its nodes start in `columns` and `coords` (one more than the faces).
     start: Vec<u32>,
     /// Per slot, the element type.
     element: Vec<ElementRef>,
+    /// Per slot, the face tag.
+    tag: Vec<u64>,
     /// Per packed node, its column in M.
     columns: Vec<u32>,
     /// Per packed node, its coordinates.
     coords: Vec<Vector3<f64>>,
 }
 
-/// One master face of [`MasterFaces`].
+/// One master face of [`MasterFaces`] (a copy).
 #[derive(Debug, Clone, Copy)]
-pub struct MasterFace<'a> {
+pub struct MasterFace {
+    /// The face's index in the master mesh.
+    pub index: u32,
+    /// The face tag.
+    pub tag: u64,
     /// The element type.
     pub element: ElementRef,
-    /// The column in M of each node, in element order.
-    pub columns: &'a [u32],
-    /// The coordinates of each node, in element order.
-    pub coords: &'a [Vector3<f64>],
+    columns: [u32; MAX_FACE_NODES],
+    coords: [Vector3<f64>; MAX_FACE_NODES],
 }
 
+impl MasterFace {
+    /// The column in M of each node, in element order.
+    #[inline]
+    pub fn columns(&self) -> &[u32] {
+        &self.columns[..self.element.node_count()]
+    }
+
+    /// The coordinates of each node, in element order.
+    #[inline]
+    pub fn coords(&self) -> &[Vector3<f64>] {
+        &self.coords[..self.element.node_count()]
+    }
+}
+
+/// Slot distance beyond which two faces consecutive in the file count as far apart.
+const NEAR_SLOTS: u32 = 256;
+
 impl MasterFaces {
-    /// The master faces of `interface`, stored in `order` (a permutation of the master face
-    /// indices).
+    /// The master faces of `interface` in `order` (a permutation of the master face indices),
+    /// copied in that order if the mesh's own numbering is not spatially coherent (more than
+    /// a tenth of the faces far, in slots, from the face numbered after them).
     ///
     /// # Panics
     /// If `order` is not a permutation of the master face indices, or the master faces have
@@ -46,47 +79,103 @@ impl MasterFaces {
     pub fn new(interface: &Interface, order: impl IntoIterator<Item = u32>) -> Self {
         let mesh = interface.master();
         let n = mesh.face_count();
-        let mut seen = vec![false; n];
-        let mut out = Self {
-            face: Vec::with_capacity(n),
-            start: Vec::with_capacity(n + 1),
-            element: Vec::with_capacity(n),
-            columns: Vec::new(),
-            coords: Vec::new(),
-        };
-        let xyz = mesh.coords();
-        out.start.push(0);
-        for f in order {
-            let face = mesh.face(f as usize);
-            assert!(
-                !std::mem::replace(&mut seen[f as usize], true),
-                "face {f} given twice"
+        let face: Vec<u32> = order.into_iter().collect();
+        assert_eq!(face.len(), n, "every master face given");
+        let mut slot = vec![u32::MAX; n];
+        for (s, &f) in face.iter().enumerate() {
+            assert_eq!(slot[f as usize], u32::MAX, "face {f} given twice");
+            slot[f as usize] = s as u32;
+        }
+        let far = slot
+            .windows(2)
+            .filter(|w| w[0].abs_diff(w[1]) > NEAR_SLOTS)
+            .count();
+        drop(slot);
+        if far * 10 <= n {
+            return Self { face, packed: None };
+        }
+        // The gathers read the mesh in random order: run them on the current rayon pool (the
+        // collected order is the given one).
+        let (element, tag): (Vec<ElementRef>, Vec<u64>) = face
+            .par_iter()
+            .map(|&f| {
+                let view = mesh.face(f as usize);
+                (view.element, view.tag)
+            })
+            .unzip();
+        let mut start = Vec::with_capacity(n + 1);
+        start.push(0u32);
+        for e in &element {
+            let last = *start.last().unwrap_or(&0) as usize;
+            start.push(
+                u32::try_from(last + e.node_count()).expect("fewer than 2^32 master face nodes"),
             );
-            out.face.push(f);
-            out.element.push(face.element);
-            for &i in face.nodes {
-                out.columns.push(
+        }
+        let xyz = mesh.coords();
+        let columns: Vec<u32> = face
+            .par_iter()
+            .flat_map_iter(|&f| {
+                mesh.face(f as usize).nodes.iter().map(|&i| {
                     interface
                         .master_col(i)
-                        .expect("the nodes of a master face are on the interface"),
-                );
-                out.coords.push(xyz[i as usize]);
-            }
-            out.start
-                .push(u32::try_from(out.coords.len()).expect("fewer than 2^32 master face nodes"));
+                        .expect("the nodes of a master face are on the interface")
+                })
+            })
+            .collect();
+        let coords: Vec<Vector3<f64>> = face
+            .par_iter()
+            .flat_map_iter(|&f| mesh.face(f as usize).nodes.iter().map(|&i| xyz[i as usize]))
+            .collect();
+        Self {
+            face,
+            packed: Some(Packed {
+                start,
+                element,
+                tag,
+                columns,
+                coords,
+            }),
         }
-        assert_eq!(out.element.len(), n, "every master face given");
+    }
+
+    /// The master face in slot `s` of `interface` (the interface these were built for).
+    #[inline]
+    pub fn get(&self, interface: &Interface, s: usize) -> MasterFace {
+        let mut out = MasterFace {
+            index: self.face[s],
+            tag: 0,
+            element: self.element(interface, s),
+            columns: [0; MAX_FACE_NODES],
+            coords: [Vector3::zeros(); MAX_FACE_NODES],
+        };
+        match &self.packed {
+            Some(p) => {
+                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
+                out.tag = p.tag[s];
+                out.columns[..b - a].copy_from_slice(&p.columns[a..b]);
+                out.coords[..b - a].copy_from_slice(&p.coords[a..b]);
+            }
+            None => {
+                let mesh = interface.master();
+                let view = mesh.face(self.face[s] as usize);
+                out.tag = view.tag;
+                for (k, &i) in view.nodes.iter().enumerate() {
+                    out.columns[k] = interface
+                        .master_col(i)
+                        .expect("the nodes of a master face are on the interface");
+                    out.coords[k] = mesh.coords()[i as usize];
+                }
+            }
+        }
         out
     }
 
-    /// The master face in slot `s`.
+    /// The element type of the master face in slot `s`.
     #[inline]
-    pub fn get(&self, s: usize) -> MasterFace<'_> {
-        let (a, b) = (self.start[s] as usize, self.start[s + 1] as usize);
-        MasterFace {
-            element: self.element[s],
-            columns: &self.columns[a..b],
-            coords: &self.coords[a..b],
+    pub fn element(&self, interface: &Interface, s: usize) -> ElementRef {
+        match &self.packed {
+            Some(p) => p.element[s],
+            None => interface.master().face(self.face[s] as usize).element,
         }
     }
 
@@ -94,6 +183,12 @@ impl MasterFaces {
     #[inline]
     pub fn face_index(&self, s: usize) -> usize {
         self.face[s] as usize
+    }
+
+    /// Whether the faces were copied in slot order (the mesh's numbering is not spatially
+    /// coherent).
+    pub fn is_packed(&self) -> bool {
+        self.packed.is_some()
     }
 
     /// The number of faces.
@@ -109,9 +204,12 @@ impl MasterFaces {
     /// Bytes held.
     pub fn memory_bytes(&self) -> usize {
         self.face.len() * 4
-            + self.start.len() * 4
-            + self.element.len() * std::mem::size_of::<ElementRef>()
-            + self.columns.len() * 4
-            + self.coords.len() * 24
+            + self.packed.as_ref().map_or(0, |p| {
+                p.start.len() * 4
+                    + p.element.len() * std::mem::size_of::<ElementRef>()
+                    + p.tag.len() * 8
+                    + p.columns.len() * 4
+                    + p.coords.len() * 24
+            })
     }
 }

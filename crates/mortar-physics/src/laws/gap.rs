@@ -17,7 +17,7 @@ pub enum GasConductivity {
 }
 
 impl GasConductivity {
-    /// Helium: `k_g(T) = 2.531e-3 T^0.7146` W/m/K (PHYSICS.md section 2).
+    /// Helium: `k_g(T) = 2.531e-3 T^0.7146` W/m/K (docs/physics.md, section 3).
     pub const HELIUM: Self = Self::PowerLaw {
         coefficient: 2.531e-3,
         exponent: 0.7146,
