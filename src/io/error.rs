@@ -127,7 +127,7 @@ pub enum IoError {
         group: Option<String>,
     },
     /// A selected element has a type the element registry does not know.
-    #[error("{}, {at}: element {element} is of Gmsh element type {element_type} ({type_name}), which is not supported (supported types: {supported}){hint}", path.display())]
+    #[error("{}, {at}: element {element} is of Gmsh element type {element_type} ({type_name}), which is not supported (supported types: {supported}){}", path.display(), super::gmsh::unsupported_hint(*element_type))]
     UnsupportedElement {
         /// The file.
         path: PathBuf,
@@ -141,9 +141,6 @@ pub enum IoError {
         type_name: String,
         /// The supported types, as `1 (Line2), 2 (Tri3)`.
         supported: String,
-        /// Advice appended to the message (empty, or how to mesh a second-order file at
-        /// order one).
-        hint: String,
     },
     /// An element refers to a node the file does not define.
     #[error("{}, {at}: element {element} refers to node {node}, which the file does not define", path.display())]

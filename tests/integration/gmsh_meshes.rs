@@ -28,7 +28,7 @@ fn json(path: &Path) -> serde_json::Value {
 
 /// The measure of a slave group: the sum of its faces' lengths (2D) or areas (3D).
 fn measure(name: &str, group: &str) -> f64 {
-    let s = read_gmsh_surface(&mesh(name), Some(group), &ElementRegistry::new()).unwrap();
+    let s = read_gmsh_surface(mesh(name), Some(group), &ElementRegistry::new()).unwrap();
     let m = &s.mesh;
     (0..m.face_count())
         .map(|f| {

@@ -163,7 +163,7 @@ pub(super) fn is_higher_order(element_type: i32) -> bool {
 }
 
 /// Advice for an unsupported element type: for a second-order one, how to mesh at order one.
-pub(super) fn unsupported_hint(element_type: i32) -> String {
+pub(crate) fn unsupported_hint(element_type: i32) -> String {
     if is_higher_order(element_type) {
         "; quadratic (second-order) elements are not supported yet: mesh at order one \
          (`gmsh -order 1`, or Mesh.ElementOrder = 1)"

@@ -26,6 +26,8 @@
 
 mod cursor;
 mod element_types;
+
+pub(crate) use element_types::unsupported_hint;
 mod parse;
 mod volume;
 mod write;
@@ -423,7 +425,6 @@ fn build(
                 element: tag,
                 element_type: b.element_type,
                 type_name: element_types::type_name(b.element_type),
-                hint: element_types::unsupported_hint(b.element_type),
                 supported: registry
                     .elements()
                     .iter()

@@ -339,7 +339,6 @@ fn build_volume(
                 element: b.tags.first().copied().unwrap_or(0),
                 element_type: b.element_type,
                 type_name: element_types::type_name(b.element_type),
-                hint: element_types::unsupported_hint(b.element_type),
                 supported: registry
                     .elements()
                     .iter()

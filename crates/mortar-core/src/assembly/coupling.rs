@@ -67,7 +67,7 @@ pub struct CouplingStats {
     pub faces_without_partner: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
-    /// Off-diagonal entries of a dual D at most [`ROUNDOFF`] times their row's diagonal entry,
+    /// Off-diagonal entries of a dual D at most 1e-12 times their row's diagonal entry,
     /// added to the diagonal (so that `D 1` is kept) and dropped: the round-off of the
     /// biorthogonal basis, which would otherwise make a diagonal D look full.
     pub d_roundoff_dropped: usize,
