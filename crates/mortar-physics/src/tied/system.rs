@@ -19,9 +19,10 @@ const NONE: u32 = u32::MAX;
 pub struct TiedFields {
     /// The slave body's and the master body's nodal values (by mesh node index).
     pub fields: [Vec<f64>; 2],
-    /// The multiplier of each row of D (slave interface node, coupling row order): for heat
-    /// conduction the heat flux leaving the slave body. `NaN` for a Dirichlet slave node,
-    /// whose multiplier was removed.
+    /// The multiplier of each row of the tie's D (slave interface node and component, in
+    /// coupling row order): for heat conduction the heat flux leaving the slave body, for
+    /// elasticity the traction on it. `NaN` for a Dirichlet slave unknown, whose multiplier
+    /// was removed.
     pub multipliers: Vec<f64>,
     /// Seconds spent in this solve (right-hand side, triangular solves, recovery).
     pub seconds: f64,
@@ -48,9 +49,11 @@ enum Factor {
 /// the time step), the tying constraint `D T_s - M T_m = 0`, and Dirichlet conditions,
 /// factorised once and solved for any right-hand side and Dirichlet values.
 ///
-/// Unknowns are numbered per body (the slave body's nodes, then the master body's), one per
-/// node. Rows of the constraint are the slave interface nodes, after the treatment of
-/// Dirichlet slave nodes of [`SlaveDirichlet`].
+/// Unknowns are numbered per body (the slave body's, then the master body's), as the tie
+/// numbers them: one per node for a scalar field, `node * c + k` for a field of `c`
+/// components (see [`Tie::with_components`]). Rows of the constraint are the rows of the
+/// tie's `D (x) I_c` (a slave interface node and a component), after the treatment of
+/// Dirichlet slave unknowns of [`SlaveDirichlet`].
 ///
 /// - [`Formulation::SaddlePoint`]: `[[A_ff, B_f^T], [B_f, 0]] [T_f; lambda] =
 ///   [b_f - A_fd g; -B_d g]` (f free, d Dirichlet), by sparse LU.
@@ -101,7 +104,7 @@ struct Layout {
 
 impl TiedSystem {
     /// Builds and factorises the tied system of `matrices = [A_slave, A_master]` (each square,
-    /// of its body's node count), with Dirichlet conditions on the node indices
+    /// of its body's unknown count), with Dirichlet conditions on the unknowns
     /// `dirichlet = [slave list, master list]` (each without repeats).
     ///
     /// # Errors
@@ -150,7 +153,7 @@ impl TiedSystem {
                 dlist.push(g as u32);
             }
         }
-        for (r, &s) in tie.slave_nodes().iter().enumerate() {
+        for (r, &s) in tie.slave_dofs().iter().enumerate() {
             if s as usize >= n[0] {
                 return Err(PhysicsError::WrongLength {
                     what: format!("slave body matrix (interface row {r} is node {s})"),
@@ -159,7 +162,7 @@ impl TiedSystem {
                 });
             }
         }
-        if let Some(&m) = tie.master_nodes().iter().max() {
+        if let Some(&m) = tie.master_dofs().iter().max() {
             if m as usize >= n[1] {
                 return Err(PhysicsError::WrongLength {
                     what: "master body matrix".into(),
@@ -247,7 +250,7 @@ impl TiedSystem {
             rows: crossing.rows,
             row_origin: crossing.origin,
             row_own: crossing.own,
-            coupling_rows: tie.slave_nodes().len(),
+            coupling_rows: tie.slave_dofs().len(),
             free,
             nfree,
             exp_ptr,
@@ -493,10 +496,10 @@ fn modified_rows(
     dirichlet_pos: &[u32],
     policy: SlaveDirichlet,
 ) -> Result<Crossing, PhysicsError> {
-    let c = tie.coupling();
-    let ns = tie.slave_nodes().len();
+    let ns = tie.slave_dofs().len();
+    let comps = tie.components();
     let fixed: Vec<bool> = tie
-        .slave_nodes()
+        .slave_dofs()
         .iter()
         .map(|&s| dirichlet_pos[s as usize] != NONE)
         .collect();
@@ -504,7 +507,7 @@ fn modified_rows(
     if count > 0 && policy == SlaveDirichlet::Refuse {
         let first = fixed.iter().position(|f| *f).expect("count > 0");
         return Err(PhysicsError::DirichletOnSlave {
-            tag: c.slave_nodes[first],
+            tag: tie.row_tag(first),
             count,
         });
     }
@@ -514,12 +517,13 @@ fn modified_rows(
         if !fixed[r] {
             new_of[r] = origin.len() as u32;
             origin.push(r as u32);
-            own.push(tie.slave_nodes()[r]);
+            own.push(tie.slave_dofs()[r]);
         }
     }
-    // The nearest free rows of each Dirichlet row in the graph of slave faces (rows joined
-    // when they share a face): its free face neighbours, or failing those (a face whose nodes
-    // are all Dirichlet nodes, at a corner of the interface) the free rows one face further.
+    // The nearest free rows of each Dirichlet row in the graph of slave faces (rows of the
+    // same component joined when their nodes share a face): its free face neighbours, or
+    // failing those (a face whose nodes are all Dirichlet nodes, at a corner of the
+    // interface) the free rows one face further.
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); ns];
     if count > 0 {
         let interface = tie.interface();
@@ -532,8 +536,15 @@ fn modified_rows(
                 .iter()
                 .filter_map(|&n| interface.slave_row(n))
                 .collect();
-            for &a in &rows {
-                adjacent[a as usize].extend(rows.iter().filter(|&&b| b != a));
+            for k in 0..comps as u32 {
+                for &a in &rows {
+                    let a = (a * comps as u32 + k) as usize;
+                    adjacent[a].extend(
+                        rows.iter()
+                            .map(|&b| b * comps as u32 + k)
+                            .filter(|&b| b as usize != a),
+                    );
+                }
             }
         }
         for list in &mut adjacent {
@@ -585,16 +596,16 @@ fn modified_rows(
             vec![(new_of[r], 1.0)]
         };
         for (row, w) in targets {
-            if let Some(d) = c.d.outer_view(r) {
+            if let Some(d) = tie.d().outer_view(r) {
                 for (k, v) in d.iter() {
-                    t.push(row, tie.slave_nodes()[k], w * v);
+                    t.push(row, tie.slave_dofs()[k], w * v);
                 }
             }
-            if let Some(m) = c.m.outer_view(r) {
+            if let Some(m) = tie.m().outer_view(r) {
                 for (l, v) in m.iter() {
                     t.push(
                         row,
-                        (n_slave + tie.master_nodes()[l] as usize) as u32,
+                        (n_slave + tie.master_dofs()[l] as usize) as u32,
                         -w * v,
                     );
                 }
@@ -626,7 +637,7 @@ fn check_diagonal(
         if d.is_nan() || d <= 0.0 {
             return Err(TyingError::Uncovered {
                 row: origin,
-                tag: tie.coupling().slave_nodes[origin],
+                tag: tie.row_tag(origin),
                 value: d,
             });
         }

@@ -1,3 +1,4 @@
+use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::mesh::{SurfaceMesh, VolumeMesh};
 use mortar_core::{assemble_coupling, Coupling, CouplingOptions, Interface, Side};
 
@@ -6,12 +7,45 @@ use crate::error::PhysicsError;
 /// Two bodies' interface and its mortar coupling, with the map from the coupling's rows
 /// (slave interface nodes) and columns (master interface nodes) to the node indices of the two
 /// bodies' volume meshes.
+///
+/// A tie serves fields of any number of components per node (one for a temperature, the
+/// dimension for a displacement; see [`with_components`](Self::with_components)): unknowns
+/// are numbered node by node, the components of a node together (`node * c + k`), and the
+/// constraint of component `k` at coupling row `r` is row `r * c + k` of `D (x) I_c` and
+/// `M (x) I_c`: each component is tied on its own.
 #[derive(Debug, Clone)]
 pub struct Tie {
     interface: Interface,
     coupling: Coupling,
     slave_nodes: Vec<u32>,
     master_nodes: Vec<u32>,
+    components: usize,
+    /// `D (x) I_c` and `M (x) I_c`, when `c > 1`.
+    expanded: Option<(SparseMatrix, SparseMatrix)>,
+    slave_dofs: Vec<u32>,
+    master_dofs: Vec<u32>,
+}
+
+/// `a (x) I_c`: each entry `a_ij` becomes the diagonal block `a_ij I_c` (rows and columns
+/// `i * c + k`, the numbering of a field of `c` components).
+pub fn kron_identity(a: &SparseMatrix, c: usize) -> SparseMatrix {
+    let mut t = Triplets::default();
+    for (i, row) in a.outer_iterator().enumerate() {
+        for k in 0..c {
+            for (j, v) in row.iter() {
+                t.push((i * c + k) as u32, (j * c + k) as u32, *v);
+            }
+        }
+    }
+    t.to_csr(a.rows() * c, a.cols() * c)
+}
+
+/// Node indices to unknowns of `c` components: `node * c + k`.
+fn expand(nodes: &[u32], c: usize) -> Vec<u32> {
+    nodes
+        .iter()
+        .flat_map(|&n| (0..c as u32).map(move |k| n * c as u32 + k))
+        .collect()
 }
 
 impl Tie {
@@ -57,9 +91,67 @@ impl Tie {
         Ok(Self {
             interface,
             coupling,
+            slave_dofs: slave_nodes.clone(),
+            master_dofs: master_nodes.clone(),
             slave_nodes,
             master_nodes,
+            components: 1,
+            expanded: None,
         })
+    }
+
+    /// The same tie for a field of `components` unknowns per node (at least one): `D (x) I_c`
+    /// and `M (x) I_c` over the unknowns `node * c + k`.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for zero components.
+    pub fn with_components(mut self, components: usize) -> Result<Self, PhysicsError> {
+        if components == 0 {
+            return Err(PhysicsError::InvalidInput {
+                body: "tie".into(),
+                what: "a field needs at least one component per node".into(),
+            });
+        }
+        self.components = components;
+        self.slave_dofs = expand(&self.slave_nodes, components);
+        self.master_dofs = expand(&self.master_nodes, components);
+        self.expanded = (components > 1).then(|| {
+            (
+                kron_identity(&self.coupling.d, components),
+                kron_identity(&self.coupling.m, components),
+            )
+        });
+        Ok(self)
+    }
+
+    /// Unknowns per node of the tied field.
+    pub fn components(&self) -> usize {
+        self.components
+    }
+
+    /// The constraint's slave operator over the field's unknowns: D, or `D (x) I_c`.
+    pub fn d(&self) -> &SparseMatrix {
+        self.expanded.as_ref().map_or(&self.coupling.d, |(d, _)| d)
+    }
+
+    /// The constraint's master operator over the field's unknowns: M, or `M (x) I_c`.
+    pub fn m(&self) -> &SparseMatrix {
+        self.expanded.as_ref().map_or(&self.coupling.m, |(_, m)| m)
+    }
+
+    /// For each row of [`d`](Self::d), the slave body's unknown (`node * c + k`).
+    pub fn slave_dofs(&self) -> &[u32] {
+        &self.slave_dofs
+    }
+
+    /// For each column of [`m`](Self::m), the master body's unknown (`node * c + k`).
+    pub fn master_dofs(&self) -> &[u32] {
+        &self.master_dofs
+    }
+
+    /// The slave node tag of constraint row `row` (of [`d`](Self::d)).
+    pub fn row_tag(&self, row: usize) -> u64 {
+        self.coupling.slave_nodes[row / self.components]
     }
 
     /// The interface (slave and master surfaces).
