@@ -7,10 +7,16 @@
 //! - [`tied`]: two bodies tied by mortar, the tied linear system, solved as a saddle point
 //!   (sparse LU) or condensed to a symmetric positive definite system (sparse Cholesky) when D
 //!   is diagonal, with the choice reported.
+//! - [`field`]: what scalar and vector fields share: the numbering of unknowns
+//!   (`node * components + component`) and the components a condition applies to.
 //! - [`heat`]: steady and transient (backward Euler) heat conduction on 2D and 3D volume
 //!   meshes (stiffness, capacity, loads; deterministic parallel assembly), error norms
 //!   against exact solutions, and the tied heat problem of two bodies; `k(T)` conduction and
 //!   two bodies exchanging heat through a constraint law ([`heat::GapHeat`]).
+//! - [`contact`]: frictionless normal contact of two bodies on the mortar weighted gap, any
+//!   [`laws::ConstraintLaw`] (the exact complementarity by semi-smooth Newton, or a
+//!   regularised pressure law), in load steps.
+//! - [`elastic`]: small-strain linear elasticity (2D plane strain, 3D), thermal strain, stresses.
 //! - [`laws`]: pointwise constraint laws `C(g, lambda; T)` written once over a generic float,
 //!   tangents by automatic differentiation: tying, gap conductance, exponential pressure,
 //!   contact complementarity.
@@ -32,7 +38,10 @@
 //! println!("{}", solution.formulation); // dual-condensed SPD, Cholesky (...): D is diagonal ...
 //! ```
 
+pub mod contact;
+pub mod elastic;
 pub mod error;
+pub mod field;
 pub mod heat;
 pub mod laws;
 pub mod nonlinear;

@@ -1,18 +1,15 @@
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::element::MAX_FACE_NODES;
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_core::quadrature::{
-    max_volume_degree, Quadrature, QuadratureRule, VolumeQuadratureRule,
-};
+use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use nalgebra::{Vector2, Vector3};
 use rayon::prelude::*;
 
 use super::body::HeatBody;
 use crate::error::PhysicsError;
+use crate::field::cells;
 
-/// Cells per work chunk. Fixed, so that the summation order (and every bit of the result)
-/// does not depend on the thread count.
-pub(crate) const CELL_CHUNK: usize = 512;
+pub(crate) use crate::field::cells::CELL_CHUNK;
 
 /// Assembly settings.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -203,13 +200,7 @@ pub fn assemble_heat_load(
     Ok(f)
 }
 
-/// The cached rule of a cell's domain, or an error naming the body.
-/// Sets `cv` up on cell `c` of the body (its quadrature rule, its node coordinates copied into
-/// `x`) and returns the node count.
-///
-/// # Errors
-/// [`PhysicsError::InvalidInput`] for a degree no rule reaches, [`PhysicsError::InvertedCell`]
-/// for a non-positive Jacobian determinant.
+/// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).
 pub(crate) fn reinit_cell(
     body: &HeatBody,
     options: &HeatOptions,
@@ -217,29 +208,5 @@ pub(crate) fn reinit_cell(
     cv: &mut CellValues,
     x: &mut [Vector3<f64>; MAX_CELL_NODES],
 ) -> Result<usize, PhysicsError> {
-    let mesh = &body.mesh;
-    let cell = mesh.cell(c);
-    let degree = options.degree(cell.element.shape_degree());
-    let rule = cell_rule(body, cell.element.domain(), degree)?;
-    let nn = mesh.cell_coords_into(c, x);
-    cv.reinit(cell.element, rule, &x[..nn])
-        .map_err(|source| PhysicsError::InvertedCell {
-            body: body.name.clone(),
-            cell: cell.tag,
-            source,
-        })?;
-    Ok(nn)
-}
-
-pub(crate) fn cell_rule(
-    body: &HeatBody,
-    domain: mortar_core::element::volume::VolumeDomain,
-    degree: u32,
-) -> Result<&'static VolumeQuadratureRule, PhysicsError> {
-    VolumeQuadratureRule::cached(domain, degree).map_err(|_| {
-        body.invalid(format!(
-            "no {domain:?} quadrature of degree {degree} (at most {})",
-            max_volume_degree(domain)
-        ))
-    })
+    cells::reinit_cell(&body.name, &body.mesh, |p| options.degree(p), c, cv, x)
 }

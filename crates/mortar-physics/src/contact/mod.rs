@@ -1,0 +1,37 @@
+//! Frictionless normal contact of two bodies across a mortar interface, small deformation.
+//!
+//! The weighted normal gap of slave interface node `j` is
+//! `g~_j = -n_j . (D x_s - M x_m)_j` with `x = X + u` and `n_j` the averaged unit normal of
+//! the slave (positive open), linear in the displacements: `g~ = g~_0 - N u`. Its nodal value
+//! `g_j = g~_j / w_j` (`w_j` the row sum of D, the node's share of the slave area) is the
+//! gap (m) a [`ConstraintLaw`](crate::laws::ConstraintLaw) sees, with the contact pressure
+//! `p_j` (Pa, positive in compression) as its multiplier:
+//!
+//! ```text
+//! K u - f + N^T p = 0          (equilibrium: -p n on the slave, +p n on the master)
+//! C(g_j(u), p_j) = 0           (the law at every slave node)
+//! ```
+//!
+//! solved by one Newton iteration for every law ([`solve_contact`]): with the exact law,
+//! [`ContactComplementarity`](crate::laws::ContactComplementarity) `C = p - max(0, p - c g)`,
+//! the generalised derivative makes it the semi-smooth Newton of the primal-dual active set
+//! method (active: `g = 0`; inactive: `p = 0`), which, the problem being linear otherwise,
+//! ends when the active set stops changing; with a regularised law such as the seed's
+//! [`ExponentialPressure`](crate::laws::ExponentialPressure) it is Newton's method on the
+//! pressure law, its tangent from the law's dual numbers. `c` is chosen from the stiffness
+//! and the nodal areas when not given ([`automatic_complementarity`]).
+//!
+//! Small deformation: D, M and the normals are those of the reference configuration, so the
+//! surfaces may not slide far (a fraction of an element) for the gap to stay exact.
+//!
+//! The pressure is solved for with the displacements (a saddle-point system of the
+//! displacement and slave-node unknowns, sparse LU); condensing it with dual multipliers
+//! (a system the size of the displacements) is left for later.
+
+mod normal;
+mod solver;
+
+pub use normal::NormalGap;
+pub use solver::{
+    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
+};

@@ -1,0 +1,116 @@
+//! The linearised weighted normal gap `g~ = g~_0 - N u` of a tie.
+
+use mortar_core::linalg::{SparseMatrix, Triplets};
+
+use crate::error::PhysicsError;
+use crate::tied::Tie;
+
+/// The weighted normal gap of a tie, linear in the displacements: `g~ = g~_0 - N u`, with
+/// `u` the slave body's displacements followed by the master body's (`node * dim + k`).
+#[derive(Debug, Clone)]
+pub struct NormalGap {
+    /// `N`: a row per slave interface node (coupling row), a column per displacement unknown
+    /// of both bodies.
+    pub matrix: SparseMatrix,
+    /// `g~_0`, the weighted gap of the reference configuration.
+    pub initial: Vec<f64>,
+    /// `w_j`, the row sums of D: the nodal gap is `g~_j / w_j`.
+    pub weights: Vec<f64>,
+    /// The round-off of a nodal gap: 8 ulps of the largest interface coordinate. Nodal gaps
+    /// within it of zero are zero (surfaces that touch in the reference configuration are
+    /// closed, not open by the rounding of their coordinates).
+    pub roundoff: f64,
+}
+
+impl NormalGap {
+    /// The gap of `tie` (a tie of scalar node numbering: [`Tie::components`] must be 1; the
+    /// displacement has `dim` components per node) between bodies of `slave_nodes` and
+    /// `master_nodes` nodes.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for a tie of more than one component, a dimension not
+    /// 2 or 3, or a slave row with a non-positive weight (a slave node the master does not
+    /// cover at all).
+    pub fn new(
+        tie: &Tie,
+        dim: usize,
+        slave_nodes: usize,
+        master_nodes: usize,
+    ) -> Result<Self, PhysicsError> {
+        let invalid = |what: String| PhysicsError::InvalidInput {
+            body: "contact".into(),
+            what,
+        };
+        if tie.components() != 1 {
+            return Err(invalid(
+                "the normal gap is built from a tie of one component per node".into(),
+            ));
+        }
+        if !(dim == 2 || dim == 3) {
+            return Err(invalid(format!("dimension {dim} is not 2 or 3")));
+        }
+        let c = tie.coupling();
+        let interface = tie.interface();
+        let x_s = c.slave_positions(interface);
+        let x_m = c.master_positions(interface);
+        let initial = c.normal_gaps(&x_s, &x_m);
+        let roundoff =
+            8.0 * f64::EPSILON * x_s.iter().chain(&x_m).fold(0.0f64, |a, x| a.max(x.amax()));
+        let rows = c.d.rows();
+        let mut weights = vec![0.0; rows];
+        let mut t = Triplets::default();
+        let offset = slave_nodes * dim;
+        for (j, w) in weights.iter_mut().enumerate() {
+            let n = c.slave_normals[j];
+            if let Some(d) = c.d.outer_view(j) {
+                for (k, v) in d.iter() {
+                    *w += v;
+                    let node = tie.slave_nodes()[k] as usize;
+                    for a in 0..dim {
+                        t.push(j as u32, (node * dim + a) as u32, v * n[a]);
+                    }
+                }
+            }
+            if let Some(m) = c.m.outer_view(j) {
+                for (l, v) in m.iter() {
+                    let node = tie.master_nodes()[l] as usize;
+                    for a in 0..dim {
+                        t.push(j as u32, (offset + node * dim + a) as u32, -v * n[a]);
+                    }
+                }
+            }
+            if w.is_nan() || *w <= 0.0 {
+                return Err(invalid(format!(
+                    "slave node {} has no contact area (row sum of D {w:e}): the master \
+                     surface does not cover it",
+                    c.slave_nodes[j]
+                )));
+            }
+        }
+        let cols = (slave_nodes + master_nodes) * dim;
+        Ok(Self {
+            matrix: t.to_csr(rows, cols),
+            initial,
+            weights,
+            roundoff,
+        })
+    }
+
+    /// The nodal gaps `g_j = (g~_0 - N u)_j / w_j` for displacements `u` (both bodies),
+    /// those within [`roundoff`](Self::roundoff) of zero set to zero.
+    pub fn nodal(&self, u: &[f64]) -> Vec<f64> {
+        self.matrix
+            .outer_iterator()
+            .enumerate()
+            .map(|(j, row)| {
+                let nu: f64 = row.iter().map(|(k, v)| v * u[k]).sum();
+                let g = (self.initial[j] - nu) / self.weights[j];
+                if g.abs() <= self.roundoff {
+                    0.0
+                } else {
+                    g
+                }
+            })
+            .collect()
+    }
+}

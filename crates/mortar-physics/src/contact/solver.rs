@@ -1,0 +1,347 @@
+//! The Newton (semi-smooth for the exact law) iteration of frictionless contact.
+
+use mortar_core::linalg::{LuFactorization, SparseMatrix, Triplets};
+
+use super::normal::NormalGap;
+use crate::error::PhysicsError;
+use crate::laws::{evaluate, ConstraintLaw, LawPoint};
+use crate::tied::Tie;
+
+/// Settings of [`solve_contact`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactOptions {
+    /// Load steps: the loads and Dirichlet values are applied in this many equal increments.
+    pub load_steps: usize,
+    /// Newton steps allowed per load step.
+    pub max_newton_steps: usize,
+    /// Convergence: the equilibrium residual relative to the applied and contact forces, and
+    /// the law's residual relative to the largest pressure, both below this.
+    pub tolerance: f64,
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
+        Self {
+            load_steps: 1,
+            max_newton_steps: 30,
+            tolerance: 1e-10,
+        }
+    }
+}
+
+/// One load step of [`solve_contact`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactStep {
+    /// The fraction of the load applied.
+    pub load_factor: f64,
+    /// Newton steps taken.
+    pub newton_steps: usize,
+    /// The Newton step after which the branch of the law at every node (for the exact law,
+    /// the active set) stopped changing; `None` if it changed at the last step.
+    pub settled_at: Option<usize>,
+    /// The relative equilibrium residual before each step and at the end.
+    pub residuals: Vec<f64>,
+    /// Slave nodes in contact (pressure positive) at the end of the step.
+    pub active: usize,
+}
+
+/// The solution of [`solve_contact`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSolution {
+    /// Displacements of the slave body and of the master body (`node * dim + k`).
+    pub displacements: [Vec<f64>; 2],
+    /// The contact pressure at each slave interface node (coupling row order), Pa.
+    pub pressure: Vec<f64>,
+    /// The nodal normal gap at each slave interface node, m (positive open).
+    pub gap: Vec<f64>,
+    /// The total normal contact force, `sum_j w_j p_j` (N, or N/m in 2D).
+    pub force: f64,
+    /// The load steps.
+    pub steps: Vec<ContactStep>,
+}
+
+/// The complementarity parameter `c` (Pa/m) of the order of the slave body's stiffness over
+/// its element size: the median over slave interface nodes of the mean diagonal stiffness of
+/// the node's displacement unknowns over its area `w_j`. Any positive `c` gives the same
+/// solution; this one makes the active and inactive rows of the Newton system of comparable
+/// size, so that the user never tunes it.
+pub fn automatic_complementarity(
+    slave_stiffness: &SparseMatrix,
+    tie: &Tie,
+    gap: &NormalGap,
+    dim: usize,
+) -> f64 {
+    let mut ratios: Vec<f64> = tie
+        .slave_nodes()
+        .iter()
+        .zip(&gap.weights)
+        .map(|(&node, &w)| {
+            let k: f64 = (0..dim)
+                .map(|a| {
+                    let i = node as usize * dim + a;
+                    slave_stiffness
+                        .outer_view(i)
+                        .and_then(|r| r.get(i).copied())
+                        .unwrap_or(0.0)
+                })
+                .sum();
+            k / dim as f64 / w
+        })
+        .filter(|r| r.is_finite() && *r > 0.0)
+        .collect();
+    if ratios.is_empty() {
+        return 1.0;
+    }
+    ratios.sort_by(f64::total_cmp);
+    ratios[ratios.len() / 2]
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Solves frictionless contact between two bodies of stiffness `stiffness = [K_s, K_m]`
+/// (displacement unknowns `node * dim + k` each), loads `load`, Dirichlet unknowns and values
+/// `dirichlet = [(dofs, values); 2]`, through the weighted gap `gap` and the law `law` (see
+/// the [module](super) documentation), in `options.load_steps` increments.
+///
+/// # Errors
+/// [`PhysicsError::WrongLength`] for mismatched sizes; [`PhysicsError::InvalidInput`] for a
+/// body without any Dirichlet unknown (held against rigid motion only by contact, which a
+/// linear solve cannot do before contact is established) or a Dirichlet unknown out of range;
+/// [`PhysicsError::Law`] if the law fails at a node; [`PhysicsError::Solver`] for a singular
+/// Newton system (a body held in some direction by nothing); [`PhysicsError::Newton`] when a
+/// load step does not converge.
+pub fn solve_contact<L: ConstraintLaw>(
+    stiffness: [&SparseMatrix; 2],
+    load: [&[f64]; 2],
+    dirichlet: [(&[u32], &[f64]); 2],
+    gap: &NormalGap,
+    law: &L,
+    options: &ContactOptions,
+) -> Result<ContactSolution, PhysicsError> {
+    let n = [stiffness[0].rows(), stiffness[1].rows()];
+    let ndof = n[0] + n[1];
+    let wrong = |what: &str, expected: usize, got: usize| PhysicsError::WrongLength {
+        what: what.into(),
+        expected,
+        got,
+    };
+    for b in 0..2 {
+        if stiffness[b].cols() != n[b] {
+            return Err(wrong("stiffness columns", n[b], stiffness[b].cols()));
+        }
+        if load[b].len() != n[b] {
+            return Err(wrong("load", n[b], load[b].len()));
+        }
+        if dirichlet[b].0.len() != dirichlet[b].1.len() {
+            return Err(wrong(
+                "Dirichlet values",
+                dirichlet[b].0.len(),
+                dirichlet[b].1.len(),
+            ));
+        }
+        if dirichlet[b].0.is_empty() {
+            return Err(PhysicsError::InvalidInput {
+                body: ["slave", "master"][b].into(),
+                what: "the body has no Dirichlet condition: held against rigid motion only by \
+                       contact, it cannot be solved for before contact is established (fix \
+                       it in the loaded direction, or load it by a prescribed displacement)"
+                    .into(),
+            });
+        }
+    }
+    if gap.matrix.cols() != ndof {
+        return Err(wrong("normal gap columns", ndof, gap.matrix.cols()));
+    }
+    // Unknown numbering: free displacements, then the pressures.
+    const NONE: u32 = u32::MAX;
+    let mut fixed = vec![NONE; ndof];
+    let mut fixed_value = vec![0.0; ndof];
+    for b in 0..2 {
+        let offset = if b == 0 { 0 } else { n[0] };
+        for (&d, &v) in dirichlet[b].0.iter().zip(dirichlet[b].1) {
+            if d as usize >= n[b] {
+                return Err(PhysicsError::InvalidInput {
+                    body: ["slave", "master"][b].into(),
+                    what: format!("Dirichlet unknown {d} out of range ({})", n[b]),
+                });
+            }
+            fixed[offset + d as usize] = 0;
+            fixed_value[offset + d as usize] = v;
+        }
+    }
+    let mut free = vec![NONE; ndof];
+    let mut nfree = 0usize;
+    for g in 0..ndof {
+        if fixed[g] == NONE {
+            free[g] = nfree as u32;
+            nfree += 1;
+        }
+    }
+    let rows = gap.weights.len();
+    let size = nfree + rows;
+    let f: Vec<f64> = load[0].iter().chain(load[1]).copied().collect();
+    // The global stiffness, block diagonal.
+    let entry = |g: usize| -> (usize, usize) {
+        if g < n[0] {
+            (0, g)
+        } else {
+            (1, g - n[0])
+        }
+    };
+    let k_times = |u: &[f64]| -> Vec<f64> {
+        let mut out = vec![0.0; ndof];
+        for (g, o) in out.iter_mut().enumerate() {
+            let (b, i) = entry(g);
+            let off = if b == 0 { 0 } else { n[0] };
+            if let Some(row) = stiffness[b].outer_view(i) {
+                *o = row.iter().map(|(j, v)| v * u[off + j]).sum();
+            }
+        }
+        out
+    };
+    let gap_t_times = |p: &[f64]| -> Vec<f64> {
+        let mut out = vec![0.0; ndof];
+        for (j, row) in gap.matrix.outer_iterator().enumerate() {
+            for (k, v) in row.iter() {
+                out[k] += v * p[j];
+            }
+        }
+        out
+    };
+
+    let mut u = vec![0.0; ndof];
+    let mut p = vec![0.0; rows];
+    let mut steps = Vec::with_capacity(options.load_steps.max(1));
+    let load_steps = options.load_steps.max(1);
+    for s in 1..=load_steps {
+        let factor = s as f64 / load_steps as f64;
+        for g in 0..ndof {
+            if fixed[g] != NONE {
+                u[g] = factor * fixed_value[g];
+            }
+        }
+        let mut residuals = Vec::new();
+        let mut branch_prev: Option<Vec<bool>> = None;
+        let mut settled_at = None;
+        let mut converged = false;
+        let mut taken = 0usize;
+        for it in 0..=options.max_newton_steps {
+            let gaps = gap.nodal(&u);
+            let mut c = vec![0.0; rows];
+            let mut c_g = vec![0.0; rows];
+            let mut c_p = vec![0.0; rows];
+            for j in 0..rows {
+                let t = evaluate(law, LawPoint::new(gaps[j], p[j], 0.0))?;
+                c[j] = t.value;
+                c_g[j] = t.d_gap;
+                c_p[j] = t.d_multiplier;
+            }
+            let branch: Vec<bool> = c_p.iter().map(|&d| d == 0.0).collect();
+            let ku = k_times(&u);
+            let ntp = gap_t_times(&p);
+            let mut r_u = vec![0.0; nfree];
+            for g in 0..ndof {
+                if free[g] != NONE {
+                    r_u[free[g] as usize] = ku[g] - factor * f[g] + ntp[g];
+                }
+            }
+            let scale_u = (factor * norm(&f)).max(norm(&ntp)).max(f64::MIN_POSITIVE);
+            let res_u = norm(&r_u) / scale_u;
+            let p_max = p.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            let res_p = c.iter().fold(0.0f64, |a, b| a.max(b.abs())) / p_max.max(f64::MIN_POSITIVE);
+            residuals.push(res_u);
+            let same_branch = branch_prev.as_ref() == Some(&branch);
+            if it > 0
+                && same_branch
+                && res_u <= options.tolerance
+                && (res_p <= options.tolerance || c.iter().all(|v| *v == 0.0))
+            {
+                converged = true;
+                break;
+            }
+            if it == options.max_newton_steps {
+                break;
+            }
+            if !same_branch {
+                settled_at = Some(it);
+            }
+            branch_prev = Some(branch);
+            // The Newton system [[K_ff, N_f^T], [-C_g/w N_f, diag(C_p)]].
+            let mut t = Triplets::default();
+            for g in 0..ndof {
+                let rf = free[g];
+                if rf == NONE {
+                    continue;
+                }
+                let (b, i) = entry(g);
+                let off = if b == 0 { 0 } else { n[0] };
+                if let Some(row) = stiffness[b].outer_view(i) {
+                    for (j, v) in row.iter() {
+                        let cf = free[off + j];
+                        if cf != NONE {
+                            t.push(rf, cf, *v);
+                        }
+                    }
+                }
+            }
+            let mut rhs = vec![0.0; size];
+            for (i, r) in r_u.iter().enumerate() {
+                rhs[i] = -r;
+            }
+            for (j, row) in gap.matrix.outer_iterator().enumerate() {
+                let pj = (nfree + j) as u32;
+                let a = -c_g[j] / gap.weights[j];
+                for (k, v) in row.iter() {
+                    let cf = free[k];
+                    if cf != NONE {
+                        t.push(cf, pj, *v);
+                        if a != 0.0 {
+                            t.push(pj, cf, a * v);
+                        }
+                    }
+                }
+                // Keep the diagonal in the pattern (zero on active rows).
+                t.push(pj, pj, c_p[j]);
+                rhs[nfree + j] = -c[j];
+            }
+            let jac = t.to_csr(size, size);
+            let lu = LuFactorization::try_new(&jac)?;
+            lu.solve_in_place(&mut rhs)?;
+            for g in 0..ndof {
+                if free[g] != NONE {
+                    u[g] += rhs[free[g] as usize];
+                }
+            }
+            for j in 0..rows {
+                p[j] += rhs[nfree + j];
+            }
+            taken = it + 1;
+        }
+        if !converged {
+            return Err(PhysicsError::Newton(crate::nonlinear::NewtonFailure {
+                reason: crate::nonlinear::NewtonFailureReason::MaxIterations,
+                iterations: taken,
+                residual_history: residuals,
+            }));
+        }
+        steps.push(ContactStep {
+            load_factor: factor,
+            newton_steps: taken,
+            settled_at,
+            residuals,
+            active: p.iter().filter(|&&v| v > 0.0).count(),
+        });
+    }
+    let gaps = gap.nodal(&u);
+    let force = p.iter().zip(&gap.weights).map(|(p, w)| p * w).sum();
+    let master = u.split_off(n[0]);
+    Ok(ContactSolution {
+        displacements: [u, master],
+        pressure: p,
+        gap: gaps,
+        force,
+        steps,
+    })
+}

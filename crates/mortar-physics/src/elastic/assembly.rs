@@ -1,0 +1,241 @@
+use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
+use mortar_core::element::MAX_FACE_NODES;
+use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::quadrature::{Quadrature, QuadratureRule};
+use nalgebra::{Vector2, Vector3};
+use rayon::prelude::*;
+
+use super::body::ElasticBody;
+use crate::error::PhysicsError;
+use crate::field::cells;
+
+pub(crate) use crate::field::cells::CELL_CHUNK;
+
+/// The largest number of unknowns of one cell (a 27-node cell in 3D).
+const MAX_CELL_DOFS: usize = 3 * MAX_CELL_NODES;
+
+/// Assembly settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ElasticOptions {
+    /// The quadrature degree on the cells and traction faces; `None` uses `2 p` for each
+    /// cell's (face's) shape functions of degree `p`: exact for the stiffness of affine cells
+    /// (Tri3, Tet4, parallelogram Quad4, parallelepiped Hex8) and, for Quad4 and Hex8, more
+    /// than the usual full (2 x 2, 2 x 2 x 2) Gauss integration.
+    pub quadrature_degree: Option<u32>,
+}
+
+impl ElasticOptions {
+    /// The degree for shape functions of degree `p`.
+    pub(crate) fn degree(&self, p: u32) -> u32 {
+        self.quadrature_degree.unwrap_or(2 * p)
+    }
+}
+
+/// Assembles the stiffness matrix `K = int B^T C B` of a body (symmetric, bit for bit), with
+/// `C` the isotropic elasticity matrix of the material: in index form
+/// `K[(a,i),(b,j)] = int lambda dN_a/dx_i dN_b/dx_j + mu (dN_a/dx_j dN_b/dx_i
+/// + delta_ij grad N_a . grad N_b)`. Rows and columns are numbered by the body's
+/// [`layout`](ElasticBody::layout), `node * dim + component`. In 2D this is plane strain
+/// (the out-of-plane strains are zero; `sigma_zz` is not an unknown).
+///
+/// Parallel over fixed chunks of cells merged in order: the matrix is the same bit for bit
+/// whatever the thread count.
+///
+/// Fully integrated bilinear and trilinear cells (Quad4, Hex8, no reduced integration or
+/// incompatible modes) represent linear displacement fields exactly (they pass the patch
+/// test) but lock in bending (parasitic shear): a coarse mesh of them is much too stiff for a
+/// slender part loaded in bending. The constant-strain Tri3 and Tet4 are stiffer still, and
+/// every cell here locks volumetrically as nu approaches 0.5. Refine through the thickness.
+///
+/// # Errors
+/// [`PhysicsError::InvalidInput`] for bad material data or a quadrature degree out of range,
+/// [`PhysicsError::InvertedCell`] for a cell with a non-positive Jacobian determinant (the
+/// first in cell order); see also [`ElasticBody::check`].
+pub fn assemble_elastic_stiffness(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+) -> Result<SparseMatrix, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let layout = body.layout();
+    let dim = layout.components;
+    let (lambda, mu) = body.material.lame();
+    let cells = mesh.cell_count();
+    let chunks: Vec<Result<Triplets, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+        .into_par_iter()
+        .map(|ch| {
+            let mut out = Triplets::default();
+            let mut cv = CellValues::new();
+            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+            let mut ke = vec![0.0; MAX_CELL_DOFS * MAX_CELL_DOFS];
+            for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                let cell = mesh.cell(c);
+                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
+                let m = nn * dim;
+                ke[..m * m].fill(0.0);
+                for q in 0..cv.len() {
+                    let (g, w) = (cv.gradients(q), cv.jxw(q));
+                    for a in 0..nn {
+                        for b in 0..nn {
+                            // Each product is formed symmetrically in (a, i) <-> (b, j), so
+                            // that the element matrix is symmetric bit for bit.
+                            let gab = mu * g[a].dot(&g[b]);
+                            for i in 0..dim {
+                                let row = (a * dim + i) * m + b * dim;
+                                for j in 0..dim {
+                                    let mut v =
+                                        lambda * (g[a][i] * g[b][j]) + mu * (g[a][j] * g[b][i]);
+                                    if i == j {
+                                        v += gab;
+                                    }
+                                    ke[row + j] += v * w;
+                                }
+                            }
+                        }
+                    }
+                }
+                for (a, &na) in cell.nodes.iter().enumerate() {
+                    for i in 0..dim {
+                        let row = (a * dim + i) * m;
+                        let r = layout.dof(na, i);
+                        for (b, &nb) in cell.nodes.iter().enumerate() {
+                            for j in 0..dim {
+                                out.push(r, layout.dof(nb, j), ke[row + b * dim + j]);
+                            }
+                        }
+                    }
+                }
+            }
+            Ok(out)
+        })
+        .collect();
+    let mut parts = Vec::with_capacity(chunks.len());
+    for ch in chunks {
+        parts.push(ch?);
+    }
+    let n = layout.len();
+    Ok(Triplets::to_csr_from_parts(parts, n, n))
+}
+
+/// Assembles the load vector of a body (numbered by its [`layout`](ElasticBody::layout)):
+///
+/// - the body force, `f[(a,i)] += int b_i N_a`;
+/// - the thermal strain `eps_th = alpha (T - T_ref) I` of the body's temperature field,
+///   `f[(a,i)] += int (C eps_th) : (e_i grad N_a) = int 3 K alpha (T - T_ref) dN_a/dx_i`
+///   (`3 K = E / (1 - 2 nu)`; in plane strain the constrained `eps_zz` makes the in-plane
+///   free expansion `(1 + nu) alpha dT`);
+/// - the tractions, `f[(a,i)] += int_faces t_i N_a` (per unit length in 2D).
+///
+/// The cell terms are computed in parallel over fixed chunks of cells and summed in order
+/// (bit-for-bit the same for any thread count).
+///
+/// # Errors
+/// As [`assemble_elastic_stiffness`].
+pub fn assemble_elastic_load(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+) -> Result<Vec<f64>, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let layout = body.layout();
+    let dim = layout.components;
+    let mut f = vec![0.0; layout.len()];
+    let beta = body.material.thermal_stress_coefficient();
+    let t_ref = body.material.reference_temperature;
+    let thermal = body.temperature.as_deref().filter(|_| beta != 0.0);
+    if body.body_force.is_some() || thermal.is_some() {
+        let cells = mesh.cell_count();
+        let chunks: Vec<Result<Vec<(u32, f64)>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+            .into_par_iter()
+            .map(|ch| {
+                let mut out = Vec::new();
+                let mut cv = CellValues::new();
+                let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+                let mut fe = [0.0; MAX_CELL_DOFS];
+                let mut dt = [0.0; MAX_CELL_NODES];
+                for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                    let cell = mesh.cell(c);
+                    let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
+                    fe[..nn * dim].fill(0.0);
+                    if let Some(t) = thermal {
+                        for (d, &n) in dt.iter_mut().zip(cell.nodes) {
+                            *d = t[n as usize] - t_ref;
+                        }
+                    }
+                    for q in 0..cv.len() {
+                        let (n, w) = (cv.shape(q), cv.jxw(q));
+                        if let Some(force) = &body.body_force {
+                            let b = force(&cv.point(q)) * w;
+                            for a in 0..nn {
+                                for i in 0..dim {
+                                    fe[a * dim + i] += b[i] * n[a];
+                                }
+                            }
+                        }
+                        if thermal.is_some() {
+                            let s = beta * cv.value(q, &dt[..nn]) * w;
+                            let g = cv.gradients(q);
+                            for a in 0..nn {
+                                for i in 0..dim {
+                                    fe[a * dim + i] += s * g[a][i];
+                                }
+                            }
+                        }
+                    }
+                    for (a, &na) in cell.nodes.iter().enumerate() {
+                        for i in 0..dim {
+                            out.push((layout.dof(na, i), fe[a * dim + i]));
+                        }
+                    }
+                }
+                Ok(out)
+            })
+            .collect();
+        for ch in chunks {
+            for (d, v) in ch? {
+                f[d as usize] += v;
+            }
+        }
+    }
+    let mut nvals = [0.0; MAX_FACE_NODES];
+    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+    for cond in &body.tractions {
+        for face in &cond.faces {
+            let el = face.element;
+            let degree = options.degree(el.shape_degree());
+            let rule = QuadratureRule::cached(el.domain(), degree).map_err(|e| {
+                body.invalid(format!(
+                    "no {:?} face quadrature of degree {degree}: {e}",
+                    el.domain()
+                ))
+            })?;
+            let k = face.nodes.len();
+            for (xi, &n) in x.iter_mut().zip(&face.nodes) {
+                *xi = mesh.coords()[n as usize];
+            }
+            for (p, w) in rule.points().iter().zip(rule.weights()) {
+                let p: &Vector2<f64> = p;
+                el.shape_values_into(p, &mut nvals[..k]);
+                let xp = el.map(&x[..k], p);
+                let t = (cond.traction)(&xp) * (w * el.jacobian_det(&x[..k], p));
+                for (&n, na) in face.nodes.iter().zip(&nvals[..k]) {
+                    for i in 0..dim {
+                        f[layout.dof(n, i) as usize] += t[i] * na;
+                    }
+                }
+            }
+        }
+    }
+    Ok(f)
+}
+
+/// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).
+pub(crate) fn reinit_cell(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+    c: usize,
+    cv: &mut CellValues,
+    x: &mut [Vector3<f64>; MAX_CELL_NODES],
+) -> Result<usize, PhysicsError> {
+    cells::reinit_cell(&body.name, &body.mesh, |p| options.degree(p), c, cv, x)
+}

@@ -1,0 +1,152 @@
+use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
+use nalgebra::Vector3;
+use rayon::prelude::*;
+
+use super::assembly::{reinit_cell, ElasticOptions, CELL_CHUNK};
+use super::body::ElasticBody;
+use super::material::von_mises;
+use crate::error::PhysicsError;
+
+/// A cell's mean stress and its volume.
+type CellMean = ([f64; 6], f64);
+
+/// Recovered Cauchy stresses, in Voigt order `[xx, yy, zz, yz, xz, xy]` (tensor components,
+/// Pa).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StressField {
+    /// Per mesh node: the average of the mean stresses of the cells around it, weighted by
+    /// the cells' volumes (areas in 2D). NaN at a node of no cell.
+    pub nodal: Vec<[f64; 6]>,
+    /// Per mesh node: the von Mises stress of the averaged nodal stress (not an average of
+    /// von Mises stresses).
+    pub von_mises: Vec<f64>,
+    /// Per cell: its mean stress, `int sigma / |cell|` by the cell's quadrature rule.
+    pub cells: Vec<[f64; 6]>,
+}
+
+/// Recovers the stress of the displacement `displacement` (numbered by the body's
+/// [`layout`](ElasticBody::layout)):
+/// `sigma = lambda tr(eps) I + 2 mu eps - 3 K alpha (T - T_ref) I` at every quadrature point
+/// of every cell, with `eps = sym(grad u)` and `T` the body's temperature field
+/// interpolated (no thermal term without one). In 2D (plane strain) `eps_zz = 0`, so
+/// `sigma_zz = lambda (eps_xx + eps_yy) - 3 K alpha (T - T_ref)` and
+/// `sigma_xz = sigma_yz = 0`.
+///
+/// The cell mean is the quadrature-weighted mean over the cell (`int sigma / |cell|`); the
+/// nodal value is the mean of the cell means of the cells around the node weighted by the
+/// cell volumes, `sum_c |c| sigma_c / sum_c |c|` (exact for a constant stress; for a
+/// varying one a first-order smoothing, not a superconvergent recovery). The cells are
+/// processed in parallel over fixed chunks and the nodal sums taken in cell order (bit-for-bit
+/// the same for any thread count).
+///
+/// # Errors
+/// [`PhysicsError::WrongLength`] if `displacement` does not have `nodes * dim` values; as
+/// [`assemble_elastic_stiffness`](super::assemble_elastic_stiffness) otherwise.
+pub fn recover_stress(
+    body: &ElasticBody,
+    displacement: &[f64],
+    options: &ElasticOptions,
+) -> Result<StressField, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let layout = body.layout();
+    let dim = layout.components;
+    if displacement.len() != layout.len() {
+        return Err(PhysicsError::WrongLength {
+            what: format!("body {:?}: displacement", body.name),
+            expected: layout.len(),
+            got: displacement.len(),
+        });
+    }
+    let material = body.material;
+    let t_ref = material.reference_temperature;
+    let cells = mesh.cell_count();
+    let chunks: Vec<Result<Vec<CellMean>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+        .into_par_iter()
+        .map(|ch| {
+            let mut out = Vec::with_capacity(CELL_CHUNK);
+            let mut cv = CellValues::new();
+            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+            let mut ue = [Vector3::zeros(); MAX_CELL_NODES];
+            let mut dt = [0.0; MAX_CELL_NODES];
+            for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                let cell = mesh.cell(c);
+                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
+                for (u, &n) in ue.iter_mut().zip(cell.nodes) {
+                    *u = Vector3::zeros();
+                    for i in 0..dim {
+                        u[i] = displacement[layout.dof(n, i) as usize];
+                    }
+                }
+                if let Some(t) = &body.temperature {
+                    for (d, &n) in dt.iter_mut().zip(cell.nodes) {
+                        *d = t[n as usize] - t_ref;
+                    }
+                } else {
+                    dt[..nn].fill(0.0);
+                }
+                let mut sum = [0.0; 6];
+                let mut volume = 0.0;
+                for q in 0..cv.len() {
+                    let (g, w) = (cv.gradients(q), cv.jxw(q));
+                    // The displacement gradient h[i][j] = du_i/dx_j (zero third row and
+                    // column in 2D).
+                    let mut h = [[0.0; 3]; 3];
+                    for (u, ga) in ue[..nn].iter().zip(g) {
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                h[i][j] += u[i] * ga[j];
+                            }
+                        }
+                    }
+                    let strain = [
+                        h[0][0],
+                        h[1][1],
+                        h[2][2],
+                        h[1][2] + h[2][1],
+                        h[0][2] + h[2][0],
+                        h[0][1] + h[1][0],
+                    ];
+                    let s = material.stress(&strain, cv.value(q, &dt[..nn]));
+                    for (acc, v) in sum.iter_mut().zip(s) {
+                        *acc += v * w;
+                    }
+                    volume += w;
+                }
+                out.push((sum.map(|v| v / volume), volume));
+            }
+            Ok(out)
+        })
+        .collect();
+    let n = mesh.node_count();
+    let mut nodal = vec![[0.0; 6]; n];
+    let mut weight = vec![0.0; n];
+    let mut cell_stress = Vec::with_capacity(cells);
+    let mut c = 0;
+    for ch in chunks {
+        for (s, volume) in ch? {
+            for &node in mesh.cell(c).nodes {
+                let acc = &mut nodal[node as usize];
+                for (a, v) in acc.iter_mut().zip(s) {
+                    *a += volume * v;
+                }
+                weight[node as usize] += volume;
+            }
+            cell_stress.push(s);
+            c += 1;
+        }
+    }
+    for (s, w) in nodal.iter_mut().zip(&weight) {
+        *s = if *w > 0.0 {
+            s.map(|v| v / w)
+        } else {
+            [f64::NAN; 6]
+        };
+    }
+    let von_mises = nodal.iter().map(von_mises).collect();
+    Ok(StressField {
+        nodal,
+        von_mises,
+        cells: cell_stress,
+    })
+}
