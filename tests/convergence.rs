@@ -6,6 +6,7 @@
 
 mod convergence {
     mod components;
+    mod contact;
     mod determinism;
     mod patch;
     mod paths;
