@@ -14,10 +14,12 @@
 //!   `n / 4` quads, master `floor(1.5 n) + 1` x `floor(1.5 n / 4) + 1` cells cut into triangles;
 //! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements.
 //!
-//! Each case also runs `shuffled`: the same meshes with the nodes and faces of slave and master
-//! stored in a seeded random order (`mortar::testing::shuffled`), the order a mesher that
-//! numbers faces far apart writes; `shuffled_vs_sorted` is its total time over the one of the
-//! generator's (spatially coherent) order at the same size and threads, from the same run.
+//! Each case also runs `faces-shuffled`: the same meshes with the faces of slave and master
+//! stored in a seeded random order (`mortar::testing::shuffled_faces`), the order a mesher that
+//! numbers faces far apart writes, and `shuffled`: nodes and faces in random order
+//! (`mortar::testing::shuffled`), the worst case; `shuffled_vs_sorted` is the total time over
+//! the one of the generator's (spatially coherent) order at the same size and threads, from the
+//! same run.
 //!
 //! Each (case, n, threads, order) runs in a child process (this program re-executed with the
 //! hidden `--single CASE N THREADS ORDER`), so that its peak memory (`VmHWM`) is its own. The child assembles
@@ -41,7 +43,7 @@ use std::time::Instant;
 
 use clap::Parser;
 use mortar::generate::{cylinder_surface, line_mesh, square_triangles, Diagonal};
-use mortar::testing::shuffled;
+use mortar::testing::{shuffled, shuffled_faces};
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
 use serde_json::{json, Value};
 
@@ -121,6 +123,10 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
         "shuffled" => Ok(Interface::new(
             shuffled(&slave, SHUFFLE_SEED)?,
             shuffled(&master, SHUFFLE_SEED + 1)?,
+        )?),
+        "faces-shuffled" => Ok(Interface::new(
+            shuffled_faces(&slave, SHUFFLE_SEED)?,
+            shuffled_faces(&master, SHUFFLE_SEED + 1)?,
         )?),
         "shuffled-slave" => Ok(Interface::new(shuffled(&slave, SHUFFLE_SEED)?, master)?),
         "shuffled-master" => Ok(Interface::new(slave, shuffled(&master, SHUFFLE_SEED + 1)?)?),
@@ -271,7 +277,7 @@ fn bench(args: &Args) -> Res<()> {
     let mut records: Vec<Value> = Vec::new();
     for (case, ns) in &sizes {
         for &n in ns {
-            for order in ["sorted", "shuffled"] {
+            for order in ["sorted", "faces-shuffled", "shuffled"] {
                 let mut one_thread_digest = None;
                 for threads in [1usize, 2] {
                     eprint!("{case} n={n} threads={threads} {order} ... ");
@@ -320,7 +326,7 @@ fn bench(args: &Args) -> Res<()> {
                             r["speedup_vs_1_thread"] = json!(total(t1) / total(&r));
                         }
                     }
-                    if order == "shuffled" {
+                    if order != "sorted" {
                         if let Some(s) = records.iter().rev().find(|p| same(p, threads, "sorted")) {
                             r["shuffled_vs_sorted"] = json!(total(&r) / total(s));
                         }
@@ -380,7 +386,11 @@ fn print_table(records: &[Value]) {
             r["case"].as_str().unwrap_or("?"),
             u(r, "n"),
             u(r, "threads"),
-            if r["order"] == "shuffled" { "shuf" } else { "sort" },
+            match r["order"].as_str() {
+                Some("shuffled") => "shuf",
+                Some("faces-shuffled") => "face",
+                _ => "sort",
+            },
             u(r, "slave_faces"),
             u(r, "master_faces"),
             u(r, "pairs"),
@@ -402,7 +412,7 @@ fn print_table(records: &[Value]) {
     }
     println!(
         "times in seconds (median total of `rep` runs); * search, segm and integr are \
-         thread-seconds (summed over threads); shuf = total of the shuffled order / sorted; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
+         thread-seconds (summed over threads); shuf = total of this order (face: faces shuffled; shuf: nodes and faces) / sorted; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
          to the 1-thread run"
     );
 }

@@ -59,4 +59,4 @@ pub use motion::{
 pub use pair::{
     covered_pair, covered_pair_2d, covered_pair_3d, covered_pair_3d_with, MeshPair, PairConfig,
 };
-pub use relabel::{relabelled, relabelling, shuffled, Relabelled, Relabelling};
+pub use relabel::{relabelled, relabelling, shuffled, shuffled_faces, Relabelled, Relabelling};

@@ -114,12 +114,26 @@ pub fn relabelled(mesh: SurfaceMesh) -> impl Strategy<Value = Relabelled> {
 }
 
 /// `mesh` with its nodes and faces stored in a random order drawn from `seed` (tags, face
-/// tags and node lists kept): the worst case of a file's element order, as a mesher that
-/// numbers faces far apart would write it. The same seed gives the same copy.
+/// tags and node lists kept): the worst case of a file's numbering, faces and nodes far
+/// apart. The same seed gives the same copy.
 ///
 /// # Errors
 /// The mesh-building errors of [`SurfaceMesh`] (none for a valid `mesh`).
 pub fn shuffled(mesh: &SurfaceMesh, seed: u64) -> Result<SurfaceMesh> {
+    shuffle(mesh, seed, true)
+}
+
+/// `mesh` with its faces (not its nodes) stored in a random order drawn from `seed`: a file
+/// whose element order jumps around while its nodes stay in a coherent order, as Gmsh writes
+/// a Frontal-Delaunay mesh. The same seed gives the same copy.
+///
+/// # Errors
+/// The mesh-building errors of [`SurfaceMesh`] (none for a valid `mesh`).
+pub fn shuffled_faces(mesh: &SurfaceMesh, seed: u64) -> Result<SurfaceMesh> {
+    shuffle(mesh, seed, false)
+}
+
+fn shuffle(mesh: &SurfaceMesh, seed: u64, nodes: bool) -> Result<SurfaceMesh> {
     use proptest::strategy::ValueTree;
     use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
     let mut bytes = [0u8; 32];
@@ -133,7 +147,11 @@ pub fn shuffled(mesh: &SurfaceMesh, seed: u64) -> Result<SurfaceMesh> {
             .map(|t| t.current())
             .unwrap_or_else(|_| (0..n).collect())
     };
-    let node_order = order(mesh.node_count());
+    let node_order = if nodes {
+        order(mesh.node_count())
+    } else {
+        (0..mesh.node_count()).collect()
+    };
     let face_order = order(mesh.face_count());
     Relabelling {
         tags: mesh.node_tags().to_vec(),

@@ -10,7 +10,7 @@ use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
-use crate::interface::{Interface, MasterFaces, SpatialDim};
+use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::{spatial_order, MasterTree};
 
@@ -180,6 +180,7 @@ impl Coupling {
 /// Buffers a worker reuses from chunk to chunk, so that only the compressed results grow.
 #[derive(Default)]
 struct ChunkWorkspace {
+    geometry: Vec<FaceGeometry>,
     offsets: Vec<usize>,
     all: Vec<u32>,
     scratch: Vec<u32>,
@@ -529,6 +530,7 @@ fn chunk(
     let tol = interface.tolerances();
     let t_search = Instant::now();
     let ChunkWorkspace {
+        geometry,
         offsets,
         all,
         scratch,
@@ -545,8 +547,13 @@ fn chunk(
     offsets.clear();
     offsets.push(0usize);
     all.clear();
-    for &s in faces {
-        tree.candidates_into(interface, s as usize, scratch);
+    // The chunk's slave faces are gathered first, in a loop of independent reads (a file
+    // whose nodes are numbered far apart then costs its cache misses in parallel rather than
+    // one after the other between tree queries), and kept for the per-face work.
+    geometry.clear();
+    geometry.extend(faces.iter().map(|&s| interface.slave_face(s as usize)));
+    for face in geometry.iter() {
+        tree.candidates_of(interface, face, scratch);
         all.extend_from_slice(scratch);
         offsets.push(all.len());
     }
@@ -565,18 +572,17 @@ fn chunk(
     for (i, &s) in faces.iter().enumerate() {
         let s = s as usize;
         let cands = &all[offsets[i]..offsets[i + 1]];
+        let face = &geometry[i];
         if cands.is_empty() {
             out.without_partner += 1;
-            let face = interface.slave_face(s);
             out.uncovered_area += face.measure();
             note_uncovered(face.tag);
             continue;
         }
         let ta = Instant::now();
-        let face = interface.slave_face(s);
         options
             .integration
-            .paired_rule_into(ctx, &face, cands, rule)?;
+            .paired_rule_into(ctx, face, cands, rule)?;
         out.pairs += rule.pairs as usize;
         out.segments += rule.cells as usize;
         out.back_facing += rule.back_facing as usize;
@@ -612,8 +618,8 @@ fn chunk(
         if rule.points.is_empty() {
             continue;
         }
-        let basis = options.multipliers.basis(&face, tol)?;
-        integrate_face_into(interface, ctx.masters, &face, &basis, &rule.points, blocks);
+        let basis = options.multipliers.basis(face, tol)?;
+        integrate_face_into(interface, ctx.masters, face, &basis, &rule.points, blocks);
         let mut rows = [0u32; MAX_FACE_NODES];
         let snodes = slave_mesh.face(s).nodes;
         for (r, &n) in rows.iter_mut().zip(snodes) {

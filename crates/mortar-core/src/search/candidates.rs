@@ -4,7 +4,7 @@ use rayon::prelude::*;
 use super::bvh::{Box3, BoxTree};
 use super::morton::spatial_order;
 use crate::element::MAX_FACE_NODES;
-use crate::interface::{Interface, SpatialDim};
+use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::mesh::SurfaceMesh;
 use crate::tolerances::Tolerances;
 
@@ -196,7 +196,13 @@ impl MasterTree {
     /// [`face_order`](Self::face_order)), ascending, written into `out` (cleared first).
     /// Slots near each other are faces near each other in space.
     pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
-        let b = slave_search_box(interface, s);
+        self.candidates_of(interface, &interface.slave_face(s), out);
+    }
+
+    /// The candidates of a slave face already gathered (with its nodal normals), as
+    /// [`candidates_into`](Self::candidates_into).
+    pub fn candidates_of(&self, interface: &Interface, face: &FaceGeometry, out: &mut Vec<u32>) {
+        let b = slave_search_box(interface, face);
         out.clear();
         for slab in &self.slabs {
             if !overlaps(&b, &slab.bounds, self.planar) {
@@ -258,23 +264,19 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
 /// their nodal normals by the search radius, both ways (which holds every point
 /// `x(xi) + t n(xi)`, `|t| <= radius`, of a face whose normal field interpolates its nodal
 /// normals), inflated like every face box.
-fn slave_search_box(interface: &Interface, s: usize) -> Box3 {
+fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
     let tol = interface.tolerances();
-    let mesh = interface.slave();
-    let normals = interface.slave_nodal_normals();
-    let nodes = mesh.face(s).nodes;
-    let coords = mesh.coords();
+    let k = face.node_count();
+    let (nodes, normals) = (&face.nodes[..k], &face.normals[..k]);
     let (mut lo, mut hi) = (EMPTY.0, EMPTY.1);
-    for &n in nodes {
-        let x = coords[n as usize];
-        lo = lo.inf(&x);
-        hi = hi.sup(&x);
+    for x in nodes {
+        lo = lo.inf(x);
+        hi = hi.sup(x);
     }
     let diameter = (hi - lo).norm();
     let radius = tol.search_radius.for_face(diameter);
-    for &n in nodes {
-        let x = coords[n as usize];
-        let d = normals[n as usize] * radius;
+    for (x, n) in nodes.iter().zip(normals) {
+        let d = n * radius;
         for p in [x + d, x - d] {
             lo = lo.inf(&p);
             hi = hi.sup(&p);
