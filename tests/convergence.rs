@@ -5,8 +5,10 @@
 //! assembly. Meshes are small so that the binary runs in seconds in the test profile.
 
 mod convergence {
+    mod blocks;
     mod components;
     mod contact;
+    mod contact_laws;
     mod determinism;
     mod patch;
     mod paths;

@@ -1,6 +1,6 @@
 //! The Newton (semi-smooth for the exact law) iteration of frictionless contact.
 
-use mortar_core::linalg::{LuFactorization, SparseMatrix, Triplets};
+use mortar_core::linalg::{LuFactorization, SolverError, SparseMatrix, Triplets};
 
 use super::normal::NormalGap;
 use crate::error::PhysicsError;
@@ -109,9 +109,10 @@ fn norm(v: &[f64]) -> f64 {
 /// [`PhysicsError::WrongLength`] for mismatched sizes; [`PhysicsError::InvalidInput`] for a
 /// body without any Dirichlet unknown (held against rigid motion only by contact, which a
 /// linear solve cannot do before contact is established) or a Dirichlet unknown out of range;
-/// [`PhysicsError::Law`] if the law fails at a node; [`PhysicsError::Solver`] for a singular
-/// Newton system (a body held in some direction by nothing); [`PhysicsError::Newton`] when a
-/// load step does not converge.
+/// [`PhysicsError::Law`] if the law fails at a node; [`PhysicsError::InvalidInput`] naming the
+/// load and Newton step for a singular Newton system (a body held in some direction by
+/// nothing but contact that has not closed), [`PhysicsError::Solver`] for another solver
+/// failure; [`PhysicsError::Newton`] when a load step does not converge.
 pub fn solve_contact<L: ConstraintLaw>(
     stiffness: [&SparseMatrix; 2],
     load: [&[f64]; 2],
@@ -307,8 +308,24 @@ pub fn solve_contact<L: ConstraintLaw>(
                 rhs[nfree + j] = -c[j];
             }
             let jac = t.to_csr(size, size);
-            let lu = LuFactorization::try_new(&jac)?;
-            lu.solve_in_place(&mut rhs)?;
+            let singular = |e: SolverError| match e {
+                SolverError::Singular { .. } => PhysicsError::InvalidInput {
+                    body: "contact".into(),
+                    what: format!(
+                        "the Newton system is singular at load step {s}, Newton step {it} ({} of \
+                         {rows} slave nodes in contact): a body is not held against rigid motion \
+                         in some direction but by contact, and contact does not hold it there \
+                         (yet); fix it with a Dirichlet condition in that direction, or load it \
+                         by a prescribed displacement ({e})",
+                        branch_prev
+                            .as_ref()
+                            .map_or(0, |b| b.iter().filter(|&&a| a).count())
+                    ),
+                },
+                e => e.into(),
+            };
+            let lu = LuFactorization::try_new(&jac).map_err(singular)?;
+            lu.solve_in_place(&mut rhs).map_err(singular)?;
             for g in 0..ndof {
                 if free[g] != NONE {
                     u[g] += rhs[free[g] as usize];
