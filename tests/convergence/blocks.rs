@@ -31,6 +31,16 @@ pub struct Blocks {
 /// The blocks in `dim` dimensions, the upper one lifted by `lift`, pressed by `pressure` on
 /// its top (negative: pulled).
 pub fn stacked_blocks(dim: usize, lift: f64, pressure: f64) -> Blocks {
+    stacked_blocks_with(dim, lift, pressure, &CouplingOptions::default().dual())
+}
+
+/// [`stacked_blocks`] with the coupling options `coupling` (dual multipliers by default).
+pub fn stacked_blocks_with(
+    dim: usize,
+    lift: f64,
+    pressure: f64,
+    coupling: &CouplingOptions,
+) -> Blocks {
     let material = ElasticMaterial::new(E, NU);
     let (top, bottom) = (1.0 + lift, 2.0 + lift);
     let (lower, upper) = if dim == 2 {
@@ -85,7 +95,7 @@ pub fn stacked_blocks(dim: usize, lift: f64, pressure: f64) -> Blocks {
             .mesh
             .boundary_surface(|f| near(f.centroid.y, 1.0))
             .unwrap(),
-        &CouplingOptions::default().dual(),
+        coupling,
     )
     .unwrap();
     let options = ElasticOptions::default();

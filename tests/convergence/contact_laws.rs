@@ -4,7 +4,9 @@ use mortar::physics::contact::{solve_contact, ContactOptions};
 use mortar::physics::laws::{ContactComplementarity, ExponentialPressure};
 use mortar::physics::PhysicsError;
 
-use super::blocks::{stacked_blocks, Blocks, SIGMA};
+use mortar::CouplingOptions;
+
+use super::blocks::{stacked_blocks, stacked_blocks_with, Blocks, SIGMA};
 
 fn solve<L: mortar::physics::laws::ConstraintLaw>(
     b: &Blocks,
@@ -93,5 +95,47 @@ fn a_body_held_only_by_contact_falls_into_it_or_is_refused() {
             | PhysicsError::Solver(_)),
         ) => eprintln!("pulled off: {}", e),
         other => panic!("expected a typed refusal, got {other:?}"),
+    }
+}
+
+/// With dual multipliers (D diagonal) the pressures are condensed out of every Newton system
+/// (a symmetric system of the displacements, Cholesky); with standard multipliers they stay
+/// (the saddle point, LU). Both give the closed-form patch solution (pressure `sigma`), and
+/// the report says which was used and why.
+#[test]
+fn dual_multipliers_condense_the_pressure_and_standard_ones_keep_the_saddle_point() {
+    let law = ContactComplementarity::try_new(1e12).unwrap();
+    for dim in [2, 3] {
+        let dual = solve(
+            &stacked_blocks(dim, 0.0, SIGMA),
+            &law,
+            &ContactOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            dual.formulation
+                .starts_with("pressures condensed out (D is diagonal"),
+            "{}",
+            dual.formulation
+        );
+        let standard = stacked_blocks_with(dim, 0.0, SIGMA, &CouplingOptions::default());
+        let std_sol = solve(&standard, &law, &ContactOptions::default()).unwrap();
+        assert!(
+            std_sol.formulation.starts_with("saddle point"),
+            "{}",
+            std_sol.formulation
+        );
+        for sol in [&dual, &std_sol] {
+            let worst = sol
+                .pressure
+                .iter()
+                .map(|p| (p - SIGMA).abs() / SIGMA)
+                .fold(0.0f64, f64::max);
+            assert!(
+                worst < 1e-8,
+                "{dim}D {}: pressure off by {worst:e}",
+                sol.formulation
+            );
+        }
     }
 }

@@ -24,9 +24,13 @@
 //! Small deformation: D, M and the normals are those of the reference configuration, so the
 //! surfaces may not slide far (a fraction of an element) for the gap to stay exact.
 //!
-//! The pressure is solved for with the displacements (a saddle-point system of the
-//! displacement and slave-node unknowns, sparse LU); condensing it with dual multipliers
-//! (a system the size of the displacements) is left for later.
+//! With dual multipliers (D diagonal) the pressures are condensed out of every Newton system:
+//! an inactive node's pressure follows from its law, an active node's normal displacement
+//! from its gap (solved for its free component most along the normal), and the rest is a
+//! symmetric system of the displacements less one unknown per node in contact (sparse
+//! Cholesky); the active pressures are recovered from the equilibrium rows. Otherwise
+//! (standard multipliers) the displacements and pressures are solved together (sparse LU).
+//! [`ContactSolution::formulation`] says which.
 
 mod normal;
 mod solver;

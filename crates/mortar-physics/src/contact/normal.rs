@@ -20,6 +20,14 @@ pub struct NormalGap {
     /// within it of zero are zero (surfaces that touch in the reference configuration are
     /// closed, not open by the rounding of their coordinates).
     pub roundoff: f64,
+    /// Per row, the slave body's node of the row.
+    pub slave_node: Vec<u32>,
+    /// Displacement components per node (2 or 3).
+    pub dim: usize,
+    /// Whether D is diagonal (dual multipliers on a covered interface, off-diagonal entries
+    /// at most 1e-10 of the diagonal): each row's slave part then holds its own node only,
+    /// and the pressure can be condensed out of the Newton system.
+    pub diagonal: bool,
 }
 
 impl NormalGap {
@@ -58,12 +66,17 @@ impl NormalGap {
             8.0 * f64::EPSILON * x_s.iter().chain(&x_m).fold(0.0f64, |a, x| a.max(x.amax()));
         let rows = c.d.rows();
         let mut weights = vec![0.0; rows];
+        let mut diagonal = true;
         let mut t = Triplets::default();
         let offset = slave_nodes * dim;
         for (j, w) in weights.iter_mut().enumerate() {
             let n = c.slave_normals[j];
             if let Some(d) = c.d.outer_view(j) {
+                let djj = d.get(j).copied().unwrap_or(0.0);
                 for (k, v) in d.iter() {
+                    if k != j && v.abs() > 1e-10 * djj.abs() {
+                        diagonal = false;
+                    }
                     *w += v;
                     let node = tie.slave_nodes()[k] as usize;
                     for a in 0..dim {
@@ -93,6 +106,9 @@ impl NormalGap {
             initial,
             weights,
             roundoff,
+            slave_node: tie.slave_nodes().to_vec(),
+            dim,
+            diagonal,
         })
     }
 

@@ -1,6 +1,8 @@
 //! The Newton (semi-smooth for the exact law) iteration of frictionless contact.
 
-use mortar_core::linalg::{LuFactorization, SolverError, SparseMatrix, Triplets};
+use mortar_core::linalg::{
+    CholeskyFactorization, LuFactorization, SolverError, SparseMatrix, Triplets,
+};
 
 use super::normal::NormalGap;
 use crate::error::PhysicsError;
@@ -58,6 +60,8 @@ pub struct ContactSolution {
     pub force: f64,
     /// The load steps.
     pub steps: Vec<ContactStep>,
+    /// How the Newton systems were solved, and why.
+    pub formulation: String,
 }
 
 /// The complementarity parameter `c` (Pa/m) of the order of the slave body's stiffness over
@@ -181,7 +185,26 @@ pub fn solve_contact<L: ConstraintLaw>(
         }
     }
     let rows = gap.weights.len();
-    let size = nfree + rows;
+    let dim = gap.dim;
+    if rows > 0
+        && gap
+            .slave_node
+            .iter()
+            .any(|&v| (v as usize + 1) * dim > n[0])
+    {
+        return Err(wrong(
+            "slave stiffness (interface nodes beyond it)",
+            ndof,
+            n[0],
+        ));
+    }
+    // Per row, the free indices of its slave node's displacement components.
+    let free_of_slave: Vec<Vec<u32>> = gap
+        .slave_node
+        .iter()
+        .map(|&node| (0..dim).map(|k| free[node as usize * dim + k]).collect())
+        .collect();
+    let mut condensed_steps = 0usize;
     let f: Vec<f64> = load[0].iter().chain(load[1]).copied().collect();
     // The global stiffness, block diagonal.
     let entry = |g: usize| -> (usize, usize) {
@@ -269,8 +292,8 @@ pub fn solve_contact<L: ConstraintLaw>(
                 settled_at = Some(it);
             }
             branch_prev = Some(branch);
-            // The Newton system [[K_ff, N_f^T], [-C_g/w N_f, diag(C_p)]].
-            let mut t = Triplets::default();
+            // K_ff, the stiffness on the free displacements.
+            let mut kff = Triplets::default();
             for g in 0..ndof {
                 let rf = free[g];
                 if rf == NONE {
@@ -282,57 +305,68 @@ pub fn solve_contact<L: ConstraintLaw>(
                     for (j, v) in row.iter() {
                         let cf = free[off + j];
                         if cf != NONE {
-                            t.push(rf, cf, *v);
+                            kff.push(rf, cf, *v);
                         }
                     }
                 }
             }
-            let mut rhs = vec![0.0; size];
-            for (i, r) in r_u.iter().enumerate() {
-                rhs[i] = -r;
-            }
-            for (j, row) in gap.matrix.outer_iterator().enumerate() {
-                let pj = (nfree + j) as u32;
-                let a = -c_g[j] / gap.weights[j];
-                for (k, v) in row.iter() {
-                    let cf = free[k];
-                    if cf != NONE {
-                        t.push(cf, pj, *v);
-                        if a != 0.0 {
-                            t.push(pj, cf, a * v);
-                        }
-                    }
-                }
-                // Keep the diagonal in the pattern (zero on active rows).
-                t.push(pj, pj, c_p[j]);
-                rhs[nfree + j] = -c[j];
-            }
-            let jac = t.to_csr(size, size);
+            // Each row of N on the free displacements.
+            let n_free: Vec<Vec<(u32, f64)>> = gap
+                .matrix
+                .outer_iterator()
+                .map(|row| {
+                    row.iter()
+                        .filter(|(k, _)| free[*k] != NONE)
+                        .map(|(k, v)| (free[k], *v))
+                        .collect()
+                })
+                .collect();
+            let a: Vec<f64> = (0..rows).map(|j| -c_g[j] / gap.weights[j]).collect();
+            let lin = Linearised {
+                nfree,
+                r_u: &r_u,
+                n_free: &n_free,
+                a: &a,
+                c: &c,
+                c_p: &c_p,
+            };
             let singular = |e: SolverError| match e {
-                SolverError::Singular { .. } => PhysicsError::InvalidInput {
-                    body: "contact".into(),
-                    what: format!(
-                        "the Newton system is singular at load step {s}, Newton step {it} ({} of \
-                         {rows} slave nodes in contact): a body is not held against rigid motion \
-                         in some direction but by contact, and contact does not hold it there \
-                         (yet); fix it with a Dirichlet condition in that direction, or load it \
-                         by a prescribed displacement ({e})",
-                        branch_prev
-                            .as_ref()
-                            .map_or(0, |b| b.iter().filter(|&&a| a).count())
-                    ),
-                },
+                SolverError::Singular { .. } | SolverError::NotPositiveDefinite { .. } => {
+                    PhysicsError::InvalidInput {
+                        body: "contact".into(),
+                        what: format!(
+                            "the Newton system is singular at load step {s}, Newton step {it} \
+                             ({} of {rows} slave nodes in contact): a body is not held against \
+                             rigid motion in some direction but by contact, and contact does \
+                             not hold it there (yet); fix it with a Dirichlet condition in that \
+                             direction, or load it by a prescribed displacement ({e})",
+                            branch_prev
+                                .as_ref()
+                                .map_or(0, |b| b.iter().filter(|&&a| a).count())
+                        ),
+                    }
+                }
                 e => e.into(),
             };
-            let lu = LuFactorization::try_new(&jac).map_err(singular)?;
-            lu.solve_in_place(&mut rhs).map_err(singular)?;
+            let condensed = if gap.diagonal {
+                condensed_step(&lin, kff.clone(), &free_of_slave)
+            } else {
+                None
+            };
+            let (du, dp) = match condensed {
+                Some(step) => {
+                    condensed_steps += 1;
+                    step.map_err(singular)?
+                }
+                None => saddle_step(&lin, kff).map_err(singular)?,
+            };
             for g in 0..ndof {
                 if free[g] != NONE {
-                    u[g] += rhs[free[g] as usize];
+                    u[g] += du[free[g] as usize];
                 }
             }
             for j in 0..rows {
-                p[j] += rhs[nfree + j];
+                p[j] += dp[j];
             }
             taken = it + 1;
         }
@@ -353,12 +387,221 @@ pub fn solve_contact<L: ConstraintLaw>(
     }
     let gaps = gap.nodal(&u);
     let force = p.iter().zip(&gap.weights).map(|(p, w)| p * w).sum();
+    let total_steps: usize = steps.iter().map(|s| s.newton_steps).sum();
+    let formulation = if !gap.diagonal {
+        "saddle point of displacements and pressures, sparse LU: D is not diagonal (standard \
+         multipliers, or a partly covered interface), so the pressures cannot be condensed"
+            .to_string()
+    } else if condensed_steps == total_steps {
+        "pressures condensed out (D is diagonal: dual multipliers), symmetric system of the \
+         displacements less one unknown per slave node in contact, sparse Cholesky"
+            .to_string()
+    } else {
+        format!(
+            "pressures condensed out in {condensed_steps} of {total_steps} Newton steps (D is \
+             diagonal); the saddle point (LU) where a node in contact had no free displacement \
+             along its normal"
+        )
+    };
     let master = u.split_off(n[0]);
     Ok(ContactSolution {
+        formulation,
         displacements: [u, master],
         pressure: p,
         gap: gaps,
         force,
         steps,
     })
+}
+
+/// A Newton step: the change of the free displacements and of the pressures.
+type Step = (Vec<f64>, Vec<f64>);
+
+/// The Newton system of one step, on the free displacements and the slave-node pressures:
+/// `[[K_ff, N_f^T], [A N_f, diag(C_p)]] [du; dp] = [-R_u; -C]`, `A = diag(-C_g / w)`.
+struct Linearised<'a> {
+    nfree: usize,
+    r_u: &'a [f64],
+    n_free: &'a [Vec<(u32, f64)>],
+    a: &'a [f64],
+    c: &'a [f64],
+    c_p: &'a [f64],
+}
+
+/// The step by sparse LU of the whole system (any D).
+fn saddle_step(lin: &Linearised<'_>, mut t: Triplets) -> Result<Step, SolverError> {
+    let (nfree, rows) = (lin.nfree, lin.c.len());
+    let size = nfree + rows;
+    let mut rhs = vec![0.0; size];
+    for (i, r) in lin.r_u.iter().enumerate() {
+        rhs[i] = -r;
+    }
+    for (j, row) in lin.n_free.iter().enumerate() {
+        let pj = (nfree + j) as u32;
+        for &(cf, v) in row {
+            t.push(cf, pj, v);
+            if lin.a[j] != 0.0 {
+                t.push(pj, cf, lin.a[j] * v);
+            }
+        }
+        // Keep the diagonal in the pattern (zero on active rows).
+        t.push(pj, pj, lin.c_p[j]);
+        rhs[nfree + j] = -lin.c[j];
+    }
+    let jac = t.to_csr(size, size);
+    LuFactorization::try_new(&jac)?.solve_in_place(&mut rhs)?;
+    let dp = rhs.split_off(nfree);
+    Ok((rhs, dp))
+}
+
+/// The step with the pressures condensed out, when D is diagonal (each row's slave part on
+/// its own node only). Rows whose law has `C_p != 0` (inactive, or a regularised law) give
+/// `dp_j = (-C_j - a_j N_j du) / C_p,j`, which adds `N_j^T (-a_j / C_p,j) N_j` to the
+/// stiffness; each row with `C_p = 0` (active) fixes `N_j du = -C_j / a_j`, solved for the
+/// free component of its slave node with the largest normal component (the pivot), an affine
+/// function of the other unknowns, as the tied condensation does. The remaining system, the
+/// size of the displacements less one per active node, is symmetric: Cholesky, or LU if it
+/// is not positive definite. The active pressures follow from the pivots' equilibrium rows.
+/// `None` when a row cannot be condensed (no free slave component along its normal).
+fn condensed_step(
+    lin: &Linearised<'_>,
+    kff: Triplets,
+    free_of_slave: &[Vec<u32>],
+) -> Option<Result<Step, SolverError>> {
+    const NONE: u32 = u32::MAX;
+    let (nfree, rows) = (lin.nfree, lin.c.len());
+    // K' = K_ff + sum over C_p != 0 rows of N_j^T (-a_j / C_p,j) N_j; rhs' likewise.
+    let mut kt = kff;
+    let mut rhs: Vec<f64> = lin.r_u.iter().map(|r| -r).collect();
+    // Pivot of each active row: (free index, N_j at it).
+    let mut pivot: Vec<Option<(u32, f64)>> = vec![None; rows];
+    let mut pivot_row = vec![NONE; nfree];
+    for j in 0..rows {
+        let row = &lin.n_free[j];
+        if lin.c_p[j] != 0.0 {
+            let s = -lin.a[j] / lin.c_p[j];
+            if s != 0.0 {
+                for &(i, vi) in row {
+                    for &(k, vk) in row {
+                        kt.push(i, k, s * vi * vk);
+                    }
+                }
+            }
+            let f = lin.c[j] / lin.c_p[j];
+            for &(i, vi) in row {
+                rhs[i as usize] += vi * f;
+            }
+        } else {
+            if lin.a[j] == 0.0 {
+                return None;
+            }
+            let own = &free_of_slave[j];
+            let best = row
+                .iter()
+                .filter(|(i, _)| own.contains(i))
+                .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+                .copied()?;
+            let scale = row.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+            if best.1.abs() <= 1e-8 * scale || pivot_row[best.0 as usize] != NONE {
+                return None;
+            }
+            pivot[j] = Some(best);
+            pivot_row[best.0 as usize] = j as u32;
+        }
+    }
+    // A pivot must appear in its own row only (D diagonal to round-off is not enough when an
+    // off-diagonal entry lands on another row's pivot): otherwise keep the saddle point.
+    for (j, row) in lin.n_free.iter().enumerate() {
+        if row
+            .iter()
+            .any(|&(m, _)| pivot_row[m as usize] != NONE && pivot_row[m as usize] != j as u32)
+        {
+            return None;
+        }
+    }
+    let kp = kt.to_csr(nfree, nfree);
+    // Reduced unknowns: the free displacements but the pivots.
+    let mut reduced = vec![NONE; nfree];
+    let mut nr = 0usize;
+    for (i, r) in reduced.iter_mut().enumerate() {
+        if pivot_row[i] == NONE {
+            *r = nr as u32;
+            nr += 1;
+        }
+    }
+    // du = Q dv + q: a pivot is (r_j - sum_{m != pivot} N_jm du_m) / N_j,pivot.
+    let mut q = vec![0.0; nfree];
+    let expansion = |i: usize, out: &mut Vec<(u32, f64)>| {
+        out.clear();
+        match pivot_row[i] {
+            NONE => out.push((reduced[i], 1.0)),
+            j => {
+                let (pv, nv) = pivot[j as usize].expect("an active row has a pivot");
+                for &(m, v) in &lin.n_free[j as usize] {
+                    if m != pv {
+                        // Master unknowns and the other components of the slave node: none
+                        // of them is a pivot (pivots are slave unknowns of their own rows).
+                        out.push((reduced[m as usize], -v / nv));
+                    }
+                }
+            }
+        }
+    };
+    for j in 0..rows {
+        if let Some((pv, nv)) = pivot[j] {
+            q[pv as usize] = -lin.c[j] / lin.a[j] / nv;
+        }
+    }
+    // S = Q^T K' Q, b = Q^T (rhs' - K' q).
+    let kq: Vec<f64> = kp
+        .outer_iterator()
+        .map(|row| row.iter().map(|(k, v)| v * q[k]).sum())
+        .collect();
+    let mut t = Triplets::default();
+    let mut b = vec![0.0; nr];
+    let (mut ei, mut ek) = (Vec::new(), Vec::new());
+    for (i, row) in kp.outer_iterator().enumerate() {
+        expansion(i, &mut ei);
+        for &(ri, wi) in &ei {
+            b[ri as usize] += wi * (rhs[i] - kq[i]);
+        }
+        for (k, v) in row.iter() {
+            expansion(k, &mut ek);
+            for &(ri, wi) in &ei {
+                for &(rk, wk) in &ek {
+                    t.push(ri, rk, wi * v * wk);
+                }
+            }
+        }
+    }
+    let s = t.to_csr(nr, nr);
+    let solved = match CholeskyFactorization::try_new(&s) {
+        Ok(f) => f.solve_in_place(&mut b),
+        Err(_) => LuFactorization::try_new(&s).and_then(|f| f.solve_in_place(&mut b)),
+    };
+    if let Err(e) = solved {
+        return Some(Err(e));
+    }
+    let mut du = vec![0.0; nfree];
+    let mut e = Vec::new();
+    for (i, d) in du.iter_mut().enumerate() {
+        expansion(i, &mut e);
+        *d = q[i] + e.iter().map(|&(r, w)| w * b[r as usize]).sum::<f64>();
+    }
+    // Pressures: inactive rows from their law, active ones from their pivot's equilibrium.
+    let kdu: Vec<f64> = kp
+        .outer_iterator()
+        .map(|row| row.iter().map(|(k, v)| v * du[k]).sum())
+        .collect();
+    let mut dp = vec![0.0; rows];
+    for j in 0..rows {
+        dp[j] = match pivot[j] {
+            Some((pv, nv)) => (rhs[pv as usize] - kdu[pv as usize]) / nv,
+            None => {
+                let ndu: f64 = lin.n_free[j].iter().map(|&(i, v)| v * du[i as usize]).sum();
+                (-lin.c[j] - lin.a[j] * ndu) / lin.c_p[j]
+            }
+        };
+    }
+    Some(Ok((du, dp)))
 }
