@@ -97,6 +97,15 @@ impl<'a> CscView<'a> {
     }
 }
 
+/// `a` in column-major (CSC) storage: borrowed if it is, copied if it is CSR.
+fn column_major(a: &SparseMatrix) -> std::borrow::Cow<'_, SparseMatrix> {
+    if a.is_csr() {
+        std::borrow::Cow::Owned(a.to_csc())
+    } else {
+        std::borrow::Cow::Borrowed(a)
+    }
+}
+
 /// The sparsity pattern a factorisation was analysed for (CSR/CSC arrays and storage).
 #[derive(Debug, Clone, PartialEq)]
 struct Pattern {
@@ -202,7 +211,11 @@ impl LuFactorization {
     /// [`SolverError::DimensionMismatch`] for a non-square matrix, [`SolverError::Singular`]
     /// for a structurally singular one, [`SolverError::Backend`] otherwise.
     pub fn try_new(a: &SparseMatrix) -> Result<Self, SolverError> {
-        let view = CscView::of(a)?;
+        // A CSR matrix is factorised as itself (copied to CSC), not as the transpose its
+        // arrays describe in CSC: partial pivoting then chooses among the rows of A, which
+        // keeps a badly row-scaled system (a contact Newton matrix) accurate.
+        let csc = column_major(a);
+        let view = CscView::of(&csc)?;
         let symbolic = SymbolicLu::try_new(view.symbolic())
             .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
         let numeric =
@@ -221,7 +234,8 @@ impl LuFactorization {
     /// error the previous factors are kept.
     pub fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
         self.pattern.check(a)?;
-        let view = CscView::of(a)?;
+        let csc = column_major(a);
+        let view = CscView::of(&csc)?;
         self.numeric =
             Lu::try_new_with_symbolic(self.symbolic.clone(), view.matrix()).map_err(lu_error)?;
         Ok(())
@@ -241,12 +255,7 @@ impl LuFactorization {
         check_rhs(self.pattern.n, x.len())?;
         let n = x.len();
         let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
-        if self.pattern.csr {
-            self.numeric
-                .solve_transpose_in_place_with_conj(Conj::No, rhs);
-        } else {
-            self.numeric.solve_in_place_with_conj(Conj::No, rhs);
-        }
+        self.numeric.solve_in_place_with_conj(Conj::No, rhs);
         check_finite(x)
     }
 
