@@ -6,11 +6,14 @@
 //! `flip` reverses it, as the master side of a tied interface usually wants.
 //!
 //! Volume generators ([`rectangle_mesh`], [`box_mesh`], and the O-grids [`ball_mesh`] and
-//! [`box_with_hole_mesh`] of a curved inclusion) number nodes from `first_node_tag` and cells
+//! [`box_with_hole_mesh`] of a curved inclusion, [`grid_rectangle_mesh`] on given (e.g.
+//! [`graded_points`]) coordinates, and [`quarter_disc_mesh`], a quarter disc refined towards
+//! a point of its rim for a cylinder in contact) number nodes from `first_node_tag` and cells
 //! from 1, all cells positively oriented; their boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
 
 mod cylinder;
+mod disc;
 mod inclusion;
 mod line;
 mod plane;
@@ -18,8 +21,9 @@ mod sphere;
 mod volume;
 
 pub use cylinder::cylinder_surface;
+pub use disc::quarter_disc_mesh;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
 pub use sphere::sphere_surface;
-pub use volume::{box_mesh, rectangle_mesh, CellShape};
+pub use volume::{box_mesh, graded_points, grid_rectangle_mesh, rectangle_mesh, CellShape};

@@ -5,9 +5,12 @@
 //!   the open gap, nonlinear `k(T)`, Newton or JFNK, checked against the closed form.
 //! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
 //!   non-conforming interface, with a manufactured solution.
+//! - [`hertz`]: the 2D Hertz contact of a cylinder pressed onto a block (plane strain,
+//!   frictionless mortar contact), checked against the closed form.
 //! - [`file`](mod@file): scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions
 //!   and the interface, as run by `mortar run SCENE.toml --out DIR`.
 
 pub mod file;
+pub mod hertz;
 pub mod pellet;
 pub mod tied_heat;

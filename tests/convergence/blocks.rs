@@ -20,8 +20,10 @@ pub const E: f64 = 210e9;
 pub const NU: f64 = 0.3;
 pub const SIGMA: f64 = 50e6;
 
-/// The blocks' stiffness, loads, Dirichlet data and normal gap.
+/// The blocks (slave, master), their tie, stiffness, loads, Dirichlet data and normal gap.
 pub struct Blocks {
+    pub bodies: [ElasticBody; 2],
+    pub tie: Tie,
     pub stiffness: [SparseMatrix; 2],
     pub load: [Vec<f64>; 2],
     pub dirichlet: [(Vec<u32>, Vec<f64>); 2],
@@ -110,6 +112,8 @@ pub fn stacked_blocks_with(
     let dirichlet = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
     let gap = NormalGap::new(&tie, dim, slave.mesh.node_count(), master.mesh.node_count()).unwrap();
     Blocks {
+        bodies: [slave, master],
+        tie,
         stiffness,
         load,
         dirichlet,

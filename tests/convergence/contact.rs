@@ -1,6 +1,6 @@
-//! Frictionless contact: the contact patch test.
+//! Frictionless contact: the contact patch test, Hertz (2D), and the Newton solve.
 //!
-//! Source of the reference (closed form): two stacked blocks of the same material, the lower
+//! The patch test. Source of the reference (closed form): two stacked blocks of the same material, the lower
 //! held by symmetry conditions (`u_y = 0` at its bottom, `u_x = 0` on `x = 0`; in 3D also
 //! `u_z = 0` on `z = 0` for both), the upper held laterally only (`u_x = 0` on `x = 0`), with a
 //! uniform pressure `sigma` on top. The stress is uniaxial, `sigma_yy = -sigma`, everywhere, so
@@ -9,22 +9,11 @@
 //! The contact pressure is `sigma` at every slave node. The contact faces do not match (the
 //! slave and master meshes have other sizes and cell kinds).
 
-use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
-use mortar::physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, NormalGap,
-};
-use mortar::physics::elastic::{
-    assemble_elastic_load, assemble_elastic_stiffness, ComponentSet, ElasticBody, ElasticMaterial,
-    ElasticOptions,
-};
+use mortar::physics::contact::{automatic_complementarity, solve_contact, ContactOptions};
 use mortar::physics::laws::ContactComplementarity;
-use mortar::physics::tied::Tie;
-use mortar::CouplingOptions;
 use nalgebra::Vector3;
 
-const E: f64 = 210e9;
-const NU: f64 = 0.3;
-const SIGMA: f64 = 50e6;
+use super::blocks::{stacked_blocks, E, NU, SIGMA};
 
 fn exact(x: &Vector3<f64>, dim: usize) -> Vector3<f64> {
     if dim == 2 {
@@ -39,75 +28,17 @@ fn exact(x: &Vector3<f64>, dim: usize) -> Vector3<f64> {
 }
 
 fn patch(dim: usize) {
-    let material = ElasticMaterial::new(E, NU);
-    let (lower, upper) = if dim == 2 {
-        (
-            rectangle_mesh([0.0, 0.0], [1.0, 1.0], [4, 4], CellShape::Tensor, 1).unwrap(),
-            rectangle_mesh([0.0, 1.0], [1.0, 2.0], [5, 5], CellShape::Simplex, 1000).unwrap(),
-        )
-    } else {
-        (
-            box_mesh([0.0; 3], [1.0; 3], [3, 3, 3], CellShape::Tensor, 1).unwrap(),
-            box_mesh(
-                [0.0, 1.0, 0.0],
-                [1.0, 2.0, 1.0],
-                [4, 4, 4],
-                CellShape::Simplex,
-                1000,
-            )
-            .unwrap(),
-        )
-    };
-    let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
-    let zero = |_: &Vector3<f64>| Vector3::zeros();
-    let mut master = ElasticBody::new("lower", lower, material)
-        .with_dirichlet_where(|f| near(f.centroid.y, 0.0), ComponentSet::One(1), zero)
-        .unwrap()
-        .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)
-        .unwrap();
-    let mut slave = ElasticBody::new("upper", upper, material)
-        .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)
-        .unwrap()
-        .with_traction_where(
-            |f| near(f.centroid.y, 2.0),
-            |_| Vector3::new(0.0, -SIGMA, 0.0),
-        )
-        .unwrap();
-    if dim == 3 {
-        master = master
-            .with_dirichlet_where(|f| near(f.centroid.z, 0.0), ComponentSet::One(2), zero)
-            .unwrap();
-        slave = slave
-            .with_dirichlet_where(|f| near(f.centroid.z, 0.0), ComponentSet::One(2), zero)
-            .unwrap();
-    }
-    let on_interface = |f: &mortar::core::mesh::BoundaryFace| near(f.centroid.y, 1.0);
-    let tie = Tie::new(
-        &slave.mesh,
-        &master.mesh,
-        slave.mesh.boundary_surface(on_interface).unwrap(),
-        master.mesh.boundary_surface(on_interface).unwrap(),
-        &CouplingOptions::default().dual(),
-    )
-    .unwrap();
-    let options = ElasticOptions::default();
-    let k = [
-        assemble_elastic_stiffness(&slave, &options).unwrap(),
-        assemble_elastic_stiffness(&master, &options).unwrap(),
-    ];
-    let f = [
-        assemble_elastic_load(&slave, &options).unwrap(),
-        assemble_elastic_load(&master, &options).unwrap(),
-    ];
-    let dir = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
-    let gap = NormalGap::new(&tie, dim, slave.mesh.node_count(), master.mesh.node_count()).unwrap();
-    let c = automatic_complementarity(&k[0], &tie, &gap, dim);
+    let b = stacked_blocks(dim, 0.0, SIGMA);
+    let c = automatic_complementarity(&b.stiffness[0], &b.tie, &b.gap, dim);
     let law = ContactComplementarity::try_new(c).unwrap();
     let sol = solve_contact(
-        [&k[0], &k[1]],
-        [&f[0], &f[1]],
-        [(&dir[0].0, &dir[0].1), (&dir[1].0, &dir[1].1)],
-        &gap,
+        [&b.stiffness[0], &b.stiffness[1]],
+        [&b.load[0], &b.load[1]],
+        [
+            (&b.dirichlet[0].0, &b.dirichlet[0].1),
+            (&b.dirichlet[1].0, &b.dirichlet[1].1),
+        ],
+        &b.gap,
         &law,
         &ContactOptions::default(),
     )
@@ -123,11 +54,11 @@ fn patch(dim: usize) {
     );
     let scale = exact(&Vector3::new(1.0, 2.0, 1.0), dim).amax();
     let mut worst_u = 0.0f64;
-    for (b, body) in [&slave, &master].iter().enumerate() {
+    for (k, body) in b.bodies.iter().enumerate() {
         for (node, x) in body.mesh.coords().iter().enumerate() {
             let e = exact(x, dim);
             for a in 0..dim {
-                let u = sol.displacements[b][node * dim + a];
+                let u = sol.displacements[k][node * dim + a];
                 worst_u = worst_u.max((u - e[a]).abs() / scale);
             }
         }
@@ -161,4 +92,110 @@ fn contact_patch_test_2d() {
 #[test]
 fn contact_patch_test_3d() {
     patch(3);
+}
+
+/// The 2D Hertz contact (plane strain) at the default coarse mesh of
+/// [`mortar::scenes::hertz`]: a quarter cylinder of radius `R = 1` (slave) pressed onto the
+/// block `[0, 8R] x [-8R, 0]` (master) by moving its top down, both of steel-like
+/// `E = 200 GPa`, `nu = 0.3`, frictionless, dual multipliers, segment-based integration, the
+/// exact complementarity law with automatic `c`.
+///
+/// Source of the reference (closed form): K. L. Johnson, *Contact Mechanics*, Cambridge
+/// University Press, 1985, sec. 4.3 (two cylinders in line contact, the pressure
+/// `p(x) = p0 sqrt(1 - x^2 / a^2)`) and sec. 5.6: with `1 / E* = (1 - nu1^2) / E1 +
+/// (1 - nu2^2) / E2` and the load `P` per unit length, `a = sqrt(4 P R / (pi E*))` and
+/// `p0 = 2 P / (pi a)`. Compared at the computed `P` (twice the half model's vertical contact
+/// force): the peak pressure within 2 %, the half-width within one slave element (the one at
+/// the contact point), and equilibrium: the vertical contact force equals the reaction at the
+/// block's bottom and the force on the cylinder's top to 1e-8.
+#[test]
+fn hertz_cylinder_on_block_2d() {
+    use mortar::scenes::hertz::HertzScene;
+
+    let run = HertzScene::default().run().unwrap();
+    let a = run.a_exact;
+    eprintln!(
+        "Hertz 2D: P = {:.4e} N/m, a = {a:.5} (a_h = {:.5}, bracket [{:.5}, {:.5}], element \
+         {:.5}), p0 = {:.4e} (p0_h off by {:+.2e}), {} of {} slave nodes in contact, \
+         Newton steps {:?}, equilibrium {:.1e}, {:.2} s",
+        run.load,
+        run.half_width.estimate,
+        run.half_width.last_in_contact,
+        run.half_width.first_open,
+        run.contact_cell,
+        run.p0_exact,
+        run.peak_error(),
+        run.active,
+        run.slave_nodes,
+        run.steps.iter().map(|s| s.newton_steps).collect::<Vec<_>>(),
+        run.equilibrium_error(),
+        run.seconds
+    );
+    // The scene is the one intended: a about 0.1 R, a few elements across it.
+    assert!((a - 0.1).abs() < 0.005, "a = {a}");
+    assert!(
+        run.active >= 4 && run.half_width.contiguous,
+        "{:?}",
+        run.half_width
+    );
+    assert!(
+        run.peak_error().abs() <= 0.02,
+        "peak pressure {:.4e} against p0 = {:.4e}",
+        run.peak,
+        run.p0_exact
+    );
+    assert!(
+        (run.half_width.estimate - a).abs() <= run.contact_cell,
+        "half-width {} against a = {a} (element {})",
+        run.half_width.estimate,
+        run.contact_cell
+    );
+    assert!(
+        run.half_width.brackets(a),
+        "{:?} against {a}",
+        run.half_width
+    );
+    assert!(
+        run.equilibrium_error() <= 1e-8,
+        "vertical contact force {:e}, reactions {:e} (bottom) and {:e} (top)",
+        run.vertical_force(),
+        run.reaction_bottom,
+        run.reaction_top
+    );
+    // The solver's force sum_j w_j p_j is the normal force, larger than the vertical one by
+    // the tilt of the normals: about a^2 / (8 R^2) for the elliptical profile.
+    let tilt = run.force / run.vertical_force() - 1.0;
+    assert!(
+        (tilt - a * a / 8.0).abs() < 0.2 * a * a / 8.0,
+        "normal over vertical force - 1 = {tilt:e}"
+    );
+    assert!(
+        run.steps.iter().all(|s| s.newton_steps <= 10),
+        "{:?}",
+        run.steps
+    );
+}
+
+/// Regression: the contact Newton matrix with standard multipliers (nonsymmetric, its law rows
+/// some 1e15 larger than its equilibrium rows) was factorised as its transpose (a CSR matrix
+/// read as CSC), whose pivoting lost about 7 digits: each solve left an equilibrium residual
+/// of 1e-2 to 1e-7 and Newton took extra steps after the active set had settled (9 steps,
+/// settled after 7, at 48 arc cells). The problem being linear once the active set is right,
+/// one step after it settles must reach the solution.
+#[test]
+fn the_newton_solve_is_exact_once_the_active_set_settles() {
+    use mortar::scenes::hertz::HertzScene;
+    use mortar::CouplingOptions;
+
+    let mut scene = HertzScene::new(48);
+    scene.coupling = CouplingOptions::default();
+    let run = scene.run().unwrap();
+    for step in &run.steps {
+        let settled = step.settled_at.expect("the active set settles");
+        assert_eq!(
+            step.newton_steps,
+            settled + 1,
+            "standard multipliers: {step:?}"
+        );
+    }
 }

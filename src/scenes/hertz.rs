@@ -1,0 +1,612 @@
+//! The 2D Hertz contact (plane strain): an elastic cylinder pressed onto an elastic block,
+//! checked against the closed form of Johnson, *Contact Mechanics* (Cambridge University
+//! Press, 1985), sec. 4.3 and 5.6 (see [`HertzLine`]).
+//!
+//! The symmetric half model: the lower-right quarter of the cylinder, radius `R`, centre
+//! `(0, R)` ([`quarter_disc_mesh`], the slave body), touches the block `[0, W] x [-H, 0]`
+//! ([`grid_rectangle_mesh`] on [`graded_points`], the master body) at the origin. Both are
+//! refined towards the origin. Conditions: `u_x = 0` on `x = 0` for both bodies (the plane of
+//! symmetry); the cylinder's flat top `y = R` is moved down by the approach `d`
+//! (`u_y = -d`) and is free to slide (`u_x` free: the mid-plane of a cylinder squeezed between
+//! two blocks, by symmetry); `u_y = 0` on the block's bottom `y = -H`. Frictionless mortar
+//! contact with dual multipliers, segment-based integration and the exact complementarity
+//! law (semi-smooth Newton, [`solve_contact`]) with automatic `c`, on the arc faces with
+//! `x <= contact_zone R` (the slave surface) against the block's top (the master surface).
+//!
+//! The load per unit length `P` is twice the vertical contact force of the half model,
+//! `F = -sum_j w_j p_j n_j . e_y` (`w_j` the row sums of D, `n_j` the slave's nodal normals),
+//! which equilibrium makes equal to the reactions at the block's bottom and at the cylinder's
+//! top (both measured, [`HertzRun::reaction_bottom`]). It differs from the solver's
+//! `force = sum_j w_j p_j`, the normal force, by the tilt of the normals (about `a^2 / 8 R^2`,
+//! 1.2e-3 at `a = 0.1 R`): Hertz's `P` is the load, the vertical resultant. The half-width,
+//! the peak and the profile are compared with the closed form at the computed `P`.
+//!
+//! The closed form idealises both bodies as half-spaces and the cylinder as a parabola; at
+//! `a = 0.1 R` the computed peak converges to 0.35 % above it (0.05 % at `a = 0.046 R`: an
+//! `(a / R)^2` effect; unchanged with a block twice as large), which floors the profile's L2
+//! error near 1e-2 from about 100 arc cells on (the default study stops at 96).
+
+use std::time::Instant;
+
+use mortar_core::interface::Interface;
+use mortar_core::linalg::SparseMatrix;
+use mortar_core::mesh::BoundaryFace;
+use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
+use mortar_physics::contact::{
+    automatic_complementarity, solve_contact, ContactOptions, ContactStep, NormalGap,
+};
+use mortar_physics::elastic::{
+    assemble_elastic_load, assemble_elastic_stiffness, ComponentSet, ElasticBody, ElasticMaterial,
+    ElasticOptions,
+};
+use mortar_physics::laws::ContactComplementarity;
+use mortar_physics::tied::Tie;
+use mortar_physics::PhysicsError;
+use nalgebra::Vector3;
+
+use crate::generate::{graded_points, grid_rectangle_mesh, quarter_disc_mesh, CellShape};
+
+/// The closed form of the 2D Hertz contact (Johnson 1985, sec. 4.3 and 5.6): two cylinders
+/// (here a cylinder of radius `R` and a plane) pressed together by a force `P` per unit length
+/// touch over `|x| <= a` with the elliptical pressure `p(x) = p0 sqrt(1 - x^2 / a^2)`,
+/// `a = sqrt(4 P R / (pi E*))`, `p0 = 2 P / (pi a)`, `1 / E* = (1 - nu1^2) / E1 +
+/// (1 - nu2^2) / E2`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzLine {
+    /// The radius `R` of the cylinder (m).
+    pub radius: f64,
+    /// The contact modulus `E*` (Pa).
+    pub contact_modulus: f64,
+}
+
+impl HertzLine {
+    /// The contact of a cylinder of radius `radius` and material `cylinder` with a flat body
+    /// of material `block`.
+    pub fn new(radius: f64, cylinder: &ElasticMaterial, block: &ElasticMaterial) -> Self {
+        let c = |m: &ElasticMaterial| (1.0 - m.poisson_ratio.powi(2)) / m.youngs_modulus;
+        Self {
+            radius,
+            contact_modulus: 1.0 / (c(cylinder) + c(block)),
+        }
+    }
+
+    /// The half-width `a = sqrt(4 P R / (pi E*))` for the load `load` (N/m).
+    pub fn half_width(&self, load: f64) -> f64 {
+        (4.0 * load * self.radius / (std::f64::consts::PI * self.contact_modulus)).sqrt()
+    }
+
+    /// The peak pressure `p0 = 2 P / (pi a)`.
+    pub fn peak(&self, load: f64) -> f64 {
+        2.0 * load / (std::f64::consts::PI * self.half_width(load))
+    }
+
+    /// The pressure `p0 sqrt(1 - x^2 / a^2)` at `x` (zero for `|x| >= a`).
+    pub fn pressure(&self, load: f64, x: f64) -> f64 {
+        let a = self.half_width(load);
+        if x.abs() >= a {
+            0.0
+        } else {
+            self.peak(load) * (1.0 - (x / a).powi(2)).sqrt()
+        }
+    }
+
+    /// The load per unit length that gives the half-width `a`: `P = pi E* a^2 / (4 R)`.
+    pub fn load_for_half_width(&self, a: f64) -> f64 {
+        std::f64::consts::PI * self.contact_modulus * a * a / (4.0 * self.radius)
+    }
+}
+
+/// A Hertz scene: geometry, materials, meshes and solver settings (see the
+/// [module](self) documentation).
+#[derive(Debug, Clone)]
+pub struct HertzScene {
+    /// The cylinder's radius `R` (m).
+    pub radius: f64,
+    /// The cylinder's material.
+    pub cylinder: ElasticMaterial,
+    /// The block's material.
+    pub block: ElasticMaterial,
+    /// The block's width and depth over the radius: `W = H = block_size R`.
+    pub block_size: f64,
+    /// The approach `d` (m): the cylinder's top moves by `-d` in `y`.
+    pub approach: f64,
+    /// Cells along the quarter disc's arc (see [`quarter_disc_mesh`]).
+    pub arc_cells: usize,
+    /// The quarter disc's grading (see [`quarter_disc_mesh`]).
+    pub grading: f64,
+    /// The block's grading, in `x` from `x = 0` and in `y` from `y = 0` (see
+    /// [`graded_points`]).
+    pub block_grading: f64,
+    /// The block's first cell (at the origin) over the cylinder's first arc cell, about; the
+    /// block's cell count per direction follows, proportional to `arc_cells` (see
+    /// [`block_cell_count`](Self::block_cell_count)).
+    pub block_cell_ratio: f64,
+    /// The block's cells per direction, if given; otherwise from `block_cell_ratio`. A
+    /// refinement study doubles it with `arc_cells`, so that the block's meshes are nested.
+    pub block_cells: Option<usize>,
+    /// The slave surface: the arc faces with `x <= contact_zone R`.
+    pub contact_zone: f64,
+    /// The mortar coupling (default: dual multipliers, segment-based integration); full
+    /// coverage of the slave surface is required whatever this says.
+    pub coupling: CouplingOptions,
+    /// The contact solve.
+    pub contact: ContactOptions,
+}
+
+impl Default for HertzScene {
+    /// The scene at [`DEFAULT_ARC_CELLS`].
+    fn default() -> Self {
+        Self::new(DEFAULT_ARC_CELLS)
+    }
+}
+
+impl HertzScene {
+    /// The default scene at `arc_cells` cells along the arc: `R = 1`, both bodies
+    /// `E = 200 GPa`, `nu = 0.3`, `W = H = 8 R`, the approach that makes `a` about `0.1 R`
+    /// ([`DEFAULT_APPROACH`]), the disc graded by 8, the block by 100 with about the disc's
+    /// cell at the origin, the slave surface out to `0.3 R`, one load step.
+    pub fn new(arc_cells: usize) -> Self {
+        Self {
+            radius: 1.0,
+            cylinder: ElasticMaterial::new(200e9, 0.3),
+            block: ElasticMaterial::new(200e9, 0.3),
+            block_size: 8.0,
+            approach: DEFAULT_APPROACH,
+            arc_cells,
+            grading: 8.0,
+            block_grading: 100.0,
+            block_cell_ratio: 1.0,
+            block_cells: None,
+            contact_zone: 0.3,
+            coupling: CouplingOptions::default().dual(),
+            contact: ContactOptions::default(),
+        }
+    }
+
+    /// The closed form for this scene's radius and materials.
+    pub fn closed_form(&self) -> HertzLine {
+        HertzLine::new(self.radius, &self.cylinder, &self.block)
+    }
+
+    /// The block's cells per direction: the field `block_cells` if given, otherwise
+    /// such that its first cell `W f(1/n_b) ~ W ln(G) / ((G - 1) n_b)` is about
+    /// `block_cell_ratio` times the disc's `(pi / 2) R ln(g) / ((g - 1) n)`.
+    pub fn block_cell_count(&self) -> usize {
+        if let Some(n) = self.block_cells {
+            return n.max(1);
+        }
+        let slope = |g: f64| {
+            if g > 1.0 + 1e-12 {
+                g.ln() / (g - 1.0)
+            } else {
+                1.0
+            }
+        };
+        let w = self.block_size * self.radius;
+        let disc = std::f64::consts::FRAC_PI_2 * self.radius * slope(self.grading);
+        let ratio = w * slope(self.block_grading) / (self.block_cell_ratio * disc);
+        ((ratio * self.arc_cells as f64).round() as usize).max(1)
+    }
+
+    /// The two bodies, their stiffness matrices, loads and Dirichlet data, the tie and the
+    /// normal gap of the scene, and the law with automatic `c`.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
+    /// coupling (with full coverage of the slave surface required) and of the assembly.
+    pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
+        let invalid = |what: String| PhysicsError::InvalidInput {
+            body: "hertz scene".into(),
+            what,
+        };
+        let r = self.radius;
+        if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 1.0) {
+            return Err(invalid(format!(
+                "block size {} (over the radius, above 1) or contact zone {} (a fraction of \
+                 the radius, in (0, 1))",
+                self.block_size, self.contact_zone
+            )));
+        }
+        let (w, h) = (self.block_size * r, self.block_size * r);
+        let disc = quarter_disc_mesh(
+            r,
+            [0.0, r],
+            self.arc_cells,
+            self.grading,
+            CellShape::Tensor,
+            1,
+        )?;
+        let nb = self.block_cell_count();
+        let xs = graded_points(0.0, w, nb, self.block_grading);
+        let mut ys = graded_points(0.0, -h, nb, self.block_grading);
+        ys.reverse();
+        let block = grid_rectangle_mesh(&xs, &ys, CellShape::Tensor, 1_000_001)?;
+
+        let tol = 1e-12 * r;
+        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let zero = |_: &Vector3<f64>| Vector3::zeros();
+        let d = self.approach;
+        let slave = ElasticBody::new("cylinder", disc, self.cylinder)
+            .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
+            .with_dirichlet_where(
+                |f| near(f.centroid.y, r),
+                ComponentSet::One(1),
+                move |_| Vector3::new(0.0, -d, 0.0),
+            )?;
+        let master = ElasticBody::new("block", block, self.block)
+            .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
+            .with_dirichlet_where(|f| near(f.centroid.y, -h), ComponentSet::One(1), zero)?;
+
+        // The interface: the arc faces near the contact, the block's top.
+        let coords = slave.mesh.coords();
+        let zone = self.contact_zone * r;
+        let on_arc = |f: &BoundaryFace| {
+            f.nodes.iter().all(|&n| {
+                let x = coords[n as usize];
+                (x.x.hypot(x.y - r) - r).abs() <= 1e-9 * r && x.x <= zone
+            })
+        };
+        let slave_surface = slave.mesh.boundary_surface(on_arc)?;
+        let master_surface = master.mesh.boundary_surface(|f| near(f.centroid.y, 0.0))?;
+        // The gap grows to r - sqrt(r^2 - zone^2) < zone at the zone's end: search that far.
+        let tolerances = Tolerances {
+            search_radius: SearchRadius::Distance(zone),
+            ..Tolerances::default()
+        };
+        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
+        let mut coupling_options = self.coupling.clone();
+        coupling_options.require_full_coverage = true;
+        let coupling = assemble_coupling(&interface, &coupling_options)?;
+        let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
+
+        let options = ElasticOptions::default();
+        let stiffness = [
+            assemble_elastic_stiffness(&slave, &options)?,
+            assemble_elastic_stiffness(&master, &options)?,
+        ];
+        let load = [
+            assemble_elastic_load(&slave, &options)?,
+            assemble_elastic_load(&master, &options)?,
+        ];
+        let dirichlet = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
+        let gap = NormalGap::new(&tie, 2, slave.mesh.node_count(), master.mesh.node_count())?;
+        let c = automatic_complementarity(&stiffness[0], &tie, &gap, 2);
+        let law = ContactComplementarity::try_new(c)?;
+        Ok(HertzProblem {
+            bodies: [slave, master],
+            stiffness,
+            load,
+            dirichlet,
+            tie,
+            gap,
+            law,
+            block_cells: nb,
+        })
+    }
+
+    /// Builds and solves the scene and compares it with the closed form.
+    ///
+    /// # Errors
+    /// The errors of [`build`](Self::build) and of [`solve_contact`].
+    pub fn run(&self) -> Result<HertzRun, PhysicsError> {
+        let t0 = Instant::now();
+        let r = self.radius;
+        let h = self.block_size * r;
+        let tol = 1e-12 * r;
+        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let problem = self.build()?;
+        let HertzProblem {
+            bodies: [slave, master],
+            stiffness: k,
+            load: f,
+            dirichlet: dir,
+            tie,
+            gap,
+            law,
+            block_cells: nb,
+        } = &problem;
+        let (ns, nm) = (slave.mesh.node_count(), master.mesh.node_count());
+        let c = law.parameter();
+        let sol = solve_contact(
+            [&k[0], &k[1]],
+            [&f[0], &f[1]],
+            [(&dir[0].0, &dir[0].1), (&dir[1].0, &dir[1].1)],
+            gap,
+            law,
+            &self.contact,
+        )?;
+        let seconds = t0.elapsed().as_secs_f64();
+
+        // Reactions: K u - f on the Dirichlet rows of u_y at the block's bottom and at the
+        // cylinder's top.
+        let reaction = |b: usize, select: &dyn Fn(&Vector3<f64>) -> bool| -> f64 {
+            let body = [slave, master][b];
+            let u = &sol.displacements[b];
+            dir[b]
+                .0
+                .iter()
+                .filter(|&&dof| dof % 2 == 1 && select(&body.mesh.coords()[dof as usize / 2]))
+                .map(|&dof| {
+                    let row = k[b].outer_view(dof as usize).expect("row");
+                    row.iter().map(|(j, v)| v * u[j]).sum::<f64>() - f[b][dof as usize]
+                })
+                .sum()
+        };
+        let reaction_bottom = reaction(1, &|x| near(x.y, -h));
+        let reaction_top = -reaction(0, &|x| near(x.y, r));
+
+        // The profile, by x.
+        let cpl = tie.coupling();
+        let coords = slave.mesh.coords();
+        let mut nodes: Vec<ProfileNode> = (0..sol.pressure.len())
+            .map(|j| ProfileNode {
+                x: coords[tie.slave_nodes()[j] as usize].x,
+                y: coords[tie.slave_nodes()[j] as usize].y,
+                pressure: sol.pressure[j],
+                weight: gap.weights[j],
+                normal: [cpl.slave_normals[j].x, cpl.slave_normals[j].y],
+            })
+            .collect();
+        nodes.sort_by(|a, b| a.x.total_cmp(&b.x));
+        let vertical_force: f64 = nodes
+            .iter()
+            .map(|n| -n.weight * n.pressure * n.normal[1])
+            .sum();
+        let load = 2.0 * vertical_force;
+        let hertz = self.closed_form();
+        let a_exact = hertz.half_width(load);
+        let p0_exact = hertz.peak(load);
+        let half_width = HalfWidth::of(&nodes);
+        let length = |p: &ProfileNode, q: &ProfileNode| (q.x - p.x).hypot(q.y - p.y);
+        let contact_cell = length(&nodes[0], &nodes[1]);
+        let edge_cell = nodes
+            .windows(2)
+            .find(|w| w[1].x >= a_exact)
+            .map_or(f64::NAN, |w| length(&w[0], &w[1]));
+        let profile_l2 = profile_error(&nodes, &hertz, load);
+        Ok(HertzRun {
+            arc_cells: self.arc_cells,
+            block_cells: *nb,
+            unknowns: 2 * (ns + nm) + nodes.len(),
+            slave_nodes: nodes.len(),
+            active: nodes.iter().filter(|n| n.pressure > 0.0).count(),
+            contact_cell,
+            edge_cell,
+            load,
+            force: sol.force,
+            reaction_bottom,
+            reaction_top,
+            half_width,
+            a_exact,
+            peak: nodes[0].pressure,
+            p0_exact,
+            profile_l2,
+            complementarity: c,
+            steps: sol.steps.clone(),
+            seconds,
+            profile: nodes,
+        })
+    }
+}
+
+/// The approach of [`HertzScene::new`] over the radius: `a = 0.0999 R` for its bodies at
+/// the default mesh (`P = 8.6e8 N/m`), measured (the approach of a 2D contact depends on the
+/// bodies' size, not only on `P`).
+pub const DEFAULT_APPROACH: f64 = 0.021;
+
+/// The default mesh: cells along the quarter disc's arc (first arc cell `0.020 R`, five slave
+/// nodes in contact at the default approach).
+pub const DEFAULT_ARC_CELLS: usize = 24;
+
+/// The assembled scene (see [`HertzScene::build`]): what [`solve_contact`] takes.
+#[derive(Debug, Clone)]
+pub struct HertzProblem {
+    /// The cylinder (slave) and the block (master).
+    pub bodies: [ElasticBody; 2],
+    /// Their stiffness matrices.
+    pub stiffness: [SparseMatrix; 2],
+    /// Their load vectors (zero: the load is the prescribed approach).
+    pub load: [Vec<f64>; 2],
+    /// Their Dirichlet unknowns and values.
+    pub dirichlet: [(Vec<u32>, Vec<f64>); 2],
+    /// The mortar coupling of the arc (slave) and the block's top (master).
+    pub tie: Tie,
+    /// The weighted normal gap.
+    pub gap: NormalGap,
+    /// The exact complementarity law with automatic `c`.
+    pub law: ContactComplementarity,
+    /// The block's cells per direction.
+    pub block_cells: usize,
+}
+
+/// One slave interface node of the solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfileNode {
+    /// Its abscissa (reference configuration).
+    pub x: f64,
+    /// Its ordinate (reference configuration).
+    pub y: f64,
+    /// The contact pressure (Pa).
+    pub pressure: f64,
+    /// Its weight `w_j`, the row sum of D (m, per unit length).
+    pub weight: f64,
+    /// Its averaged unit normal (outward from the cylinder).
+    pub normal: [f64; 2],
+}
+
+/// The contact half-width from the nodal pressures (nodes by `x`, the node at `x = 0`
+/// first): the last node in contact (positive pressure) and the next one (zero pressure)
+/// bracket it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HalfWidth {
+    /// The estimate compared with `a`: the midpoint of the bracket, within half the edge's
+    /// element of any half-width in the bracket; no assumption on the profile.
+    pub estimate: f64,
+    /// The abscissa of the last node with positive pressure.
+    pub last_in_contact: f64,
+    /// The abscissa of the next node, the first with zero pressure: the extent of the
+    /// positive pressure of the piecewise linear interpolant.
+    pub first_open: f64,
+    /// The zero of `p^2` extrapolated linearly in `x^2` through the last two nodes in
+    /// contact, kept in the bracket: exact for the elliptical profile, so it assumes it
+    /// (reported, not the estimate).
+    pub squared: f64,
+    /// Whether the nodes in contact are the first ones, no open node among them.
+    pub contiguous: bool,
+}
+
+impl HalfWidth {
+    fn of(nodes: &[ProfileNode]) -> Self {
+        let k = nodes.iter().rposition(|n| n.pressure > 0.0).unwrap_or(0);
+        let contiguous = nodes[..=k].iter().all(|n| n.pressure > 0.0);
+        let lo = nodes[k].x;
+        let hi = nodes.get(k + 1).map_or(lo, |n| n.x);
+        let squared = if k == 0 {
+            0.5 * (lo + hi)
+        } else {
+            let (a, b) = (nodes[k - 1], nodes[k]);
+            let a2 = b.x * b.x
+                + b.pressure.powi(2) * (b.x * b.x - a.x * a.x)
+                    / (a.pressure.powi(2) - b.pressure.powi(2));
+            if a2.is_finite() {
+                a2.max(0.0).sqrt().clamp(lo, hi)
+            } else {
+                hi
+            }
+        };
+        Self {
+            estimate: 0.5 * (lo + hi),
+            last_in_contact: lo,
+            first_open: hi,
+            squared,
+            contiguous,
+        }
+    }
+
+    /// Whether `a` lies in the bracket.
+    pub fn brackets(&self, a: f64) -> bool {
+        self.last_in_contact <= a && a <= self.first_open
+    }
+}
+
+/// `||p_h - p||_L2(0, X) / (p0 sqrt(a))` with `p_h` the piecewise linear interpolant of the
+/// nodal pressures over the slave surface's segments (by `x`) and `p` the closed form at the
+/// load `load`, over the segments up to the first that ends beyond both the exact and the
+/// discrete contact zone. The segments are integrated by 8-point Gauss-Legendre rules, split
+/// at `x = a`, the piece ending at `a` after the substitution `x = a - L s^2` (which makes
+/// the square root smooth).
+fn profile_error(nodes: &[ProfileNode], hertz: &HertzLine, load: f64) -> f64 {
+    let a = hertz.half_width(load);
+    let p0 = hertz.peak(load);
+    let last = nodes.iter().rposition(|n| n.pressure > 0.0).unwrap_or(0);
+    let mut sum = 0.0;
+    for (i, w) in nodes.windows(2).enumerate() {
+        let (x0, x1) = (w[0].x, w[1].x);
+        if x0 >= a && i > last {
+            break;
+        }
+        let ph = |x: f64| w[0].pressure + (w[1].pressure - w[0].pressure) * (x - x0) / (x1 - x0);
+        let e2 = |x: f64| (ph(x) - hertz.pressure(load, x)).powi(2);
+        if x0 < a && a < x1 {
+            let l = a - x0;
+            sum += gauss(0.0, 1.0, |s| e2(a - l * s * s) * 2.0 * l * s);
+            sum += gauss(a, x1, e2);
+        } else {
+            sum += gauss(x0, x1, e2);
+        }
+    }
+    sum.sqrt() / (p0 * a.sqrt())
+}
+
+/// The 8-point Gauss-Legendre rule on `[lo, hi]`.
+fn gauss(lo: f64, hi: f64, f: impl Fn(f64) -> f64) -> f64 {
+    const X: [f64; 4] = [
+        0.183_434_642_495_649_8,
+        0.525_532_409_916_329,
+        0.796_666_477_413_626_7,
+        0.960_289_856_497_536_3,
+    ];
+    const W: [f64; 4] = [
+        0.362_683_783_378_362,
+        0.313_706_645_877_887_3,
+        0.222_381_034_453_374_5,
+        0.101_228_536_290_376_3,
+    ];
+    let (m, h) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+    X.iter()
+        .zip(&W)
+        .map(|(x, w)| w * (f(m - h * x) + f(m + h * x)))
+        .sum::<f64>()
+        * h
+}
+
+/// A solved Hertz scene and its comparison with the closed form.
+#[derive(Debug, Clone)]
+pub struct HertzRun {
+    /// Cells along the arc.
+    pub arc_cells: usize,
+    /// The block's cells per direction.
+    pub block_cells: usize,
+    /// Unknowns of the saddle-point system before the Dirichlet values are eliminated: two
+    /// displacements per node of both bodies and a pressure per slave interface node.
+    pub unknowns: usize,
+    /// Slave interface nodes.
+    pub slave_nodes: usize,
+    /// Slave interface nodes in contact (positive pressure).
+    pub active: usize,
+    /// The length of the slave face at the contact point (`x = 0`).
+    pub contact_cell: f64,
+    /// The length of the slave face in which the exact contact zone ends.
+    pub edge_cell: f64,
+    /// `P`: twice the vertical contact force of the half model (N/m).
+    pub load: f64,
+    /// The solver's normal contact force of the half model, `sum_j w_j p_j` (N/m).
+    pub force: f64,
+    /// The reaction at the block's bottom (upwards, N/m): the vertical contact force.
+    pub reaction_bottom: f64,
+    /// The force the cylinder's top carries (downwards, N/m): the vertical contact force.
+    pub reaction_top: f64,
+    /// The computed half-width.
+    pub half_width: HalfWidth,
+    /// The closed form's half-width at `P`.
+    pub a_exact: f64,
+    /// The computed pressure at `x = 0`.
+    pub peak: f64,
+    /// The closed form's peak pressure at `P`.
+    pub p0_exact: f64,
+    /// The L2 error of the pressure profile relative to `p0 sqrt(a)` (see the module
+    /// documentation).
+    pub profile_l2: f64,
+    /// The complementarity parameter `c` used (Pa/m).
+    pub complementarity: f64,
+    /// The load steps of the contact solve.
+    pub steps: Vec<ContactStep>,
+    /// Wall-clock seconds of meshing, assembly and solve.
+    pub seconds: f64,
+    /// The slave interface nodes by `x`.
+    pub profile: Vec<ProfileNode>,
+}
+
+impl HertzRun {
+    /// `(p0_h - p0) / p0`.
+    pub fn peak_error(&self) -> f64 {
+        (self.peak - self.p0_exact) / self.p0_exact
+    }
+
+    /// `(a_h - a) / a`, with [`HalfWidth::estimate`].
+    pub fn half_width_error(&self) -> f64 {
+        (self.half_width.estimate - self.a_exact) / self.a_exact
+    }
+
+    /// The vertical force of the half model, `P / 2`.
+    pub fn vertical_force(&self) -> f64 {
+        0.5 * self.load
+    }
+
+    /// The largest relative difference between the vertical contact force and the two
+    /// reactions (zero up to round-off: equilibrium).
+    pub fn equilibrium_error(&self) -> f64 {
+        let f = self.vertical_force();
+        ((self.reaction_bottom - f).abs()).max((self.reaction_top - f).abs()) / f
+    }
+}
