@@ -636,9 +636,11 @@ fn chunk(
         // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
         // far fewer nodes, so this cuts the triplets about threefold.
         cols.clear();
+        let mut mcols = [0u32; MAX_FACE_NODES];
         for (mf, km, block) in blocks.m_blocks() {
-            let face = ctx.masters.get(interface, mf as usize);
-            for (l, &c) in face.columns().iter().enumerate() {
+            let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
+            debug_assert_eq!(kc, km);
+            for (l, &c) in mcols[..kc].iter().enumerate() {
                 let at = match cols.iter().position(|(cc, _)| *cc == c) {
                     Some(at) => at,
                     None => {

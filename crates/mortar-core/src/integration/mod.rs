@@ -114,14 +114,14 @@ impl SegmentContext<'_> {
     /// The geometry of the master face in slot `slot` (from the packed copy; no nodal
     /// normals, as [`Interface::master_face`]).
     pub fn master_face(&self, slot: u32) -> FaceGeometry {
-        let f = self.masters.get(self.interface, slot as usize);
+        let s = slot as usize;
         let mut nodes = [Vector3::zeros(); MAX_FACE_NODES];
-        nodes[..f.coords().len()].copy_from_slice(f.coords());
+        let (element, _) = self.masters.coords_into(self.interface, s, &mut nodes);
         FaceGeometry {
-            index: f.index,
-            tag: f.tag,
+            index: self.masters.face_index(s) as u32,
+            tag: self.masters.tag(self.interface, s),
             side: Side::Master,
-            element: f.element,
+            element,
             nodes,
             normals: [Vector3::zeros(); MAX_FACE_NODES],
         }
@@ -129,7 +129,7 @@ impl SegmentContext<'_> {
 
     /// The tag of the master face in slot `slot`.
     pub fn master_tag(&self, slot: u32) -> u64 {
-        self.masters.get(self.interface, slot as usize).tag
+        self.masters.tag(self.interface, slot as usize)
     }
 }
 

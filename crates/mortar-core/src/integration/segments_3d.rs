@@ -1,7 +1,7 @@
 //! 3D segment-based integration: auxiliary plane, clipping, triangulation, quadrature.
 
 use arrayvec::ArrayVec;
-use nalgebra::Vector2;
+use nalgebra::{Vector2, Vector3};
 
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
@@ -69,15 +69,14 @@ pub(super) fn segments_into(
     // The area the rounding of the coordinates alone can give a zero-measure overlap.
     let area_noise = rounding * spoly.diameter();
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
+    let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
     let mut covered = 0.0;
 
     for &m in candidates {
-        let face = ctx.masters.get(ctx.interface, m as usize);
-        let (mel, xm) = (face.element, face.coords());
-        let km = xm.len();
-        for (p, x) in mp.iter_mut().zip(xm) {
+        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut xm);
+        for (p, x) in mp.iter_mut().zip(&xm[..km]) {
             *p = plane.project(x);
         }
         // Quick rejection by in-plane bounding boxes before clipping.

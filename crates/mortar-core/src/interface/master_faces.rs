@@ -38,33 +38,6 @@ struct Packed {
     coords: Vec<Vector3<f64>>,
 }
 
-/// One master face of [`MasterFaces`] (a copy).
-#[derive(Debug, Clone, Copy)]
-pub struct MasterFace {
-    /// The face's index in the master mesh.
-    pub index: u32,
-    /// The face tag.
-    pub tag: u64,
-    /// The element type.
-    pub element: ElementRef,
-    columns: [u32; MAX_FACE_NODES],
-    coords: [Vector3<f64>; MAX_FACE_NODES],
-}
-
-impl MasterFace {
-    /// The column in M of each node, in element order.
-    #[inline]
-    pub fn columns(&self) -> &[u32] {
-        &self.columns[..self.element.node_count()]
-    }
-
-    /// The coordinates of each node, in element order.
-    #[inline]
-    pub fn coords(&self) -> &[Vector3<f64>] {
-        &self.coords[..self.element.node_count()]
-    }
-}
-
 /// Slot distance beyond which two faces consecutive in the file count as far apart.
 const NEAR_SLOTS: u32 = 256;
 
@@ -138,36 +111,63 @@ impl MasterFaces {
         }
     }
 
-    /// The master face in slot `s` of `interface` (the interface these were built for).
+    /// Writes the node coordinates of the master face in slot `s` of `interface` (the
+    /// interface these were built for) into `out` and returns its element type and node
+    /// count.
     #[inline]
-    pub fn get(&self, interface: &Interface, s: usize) -> MasterFace {
-        let mut out = MasterFace {
-            index: self.face[s],
-            tag: 0,
-            element: self.element(interface, s),
-            columns: [0; MAX_FACE_NODES],
-            coords: [Vector3::zeros(); MAX_FACE_NODES],
-        };
+    pub fn coords_into(
+        &self,
+        interface: &Interface,
+        s: usize,
+        out: &mut [Vector3<f64>; MAX_FACE_NODES],
+    ) -> (ElementRef, usize) {
         match &self.packed {
             Some(p) => {
                 let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
-                out.tag = p.tag[s];
-                out.columns[..b - a].copy_from_slice(&p.columns[a..b]);
-                out.coords[..b - a].copy_from_slice(&p.coords[a..b]);
+                out[..b - a].copy_from_slice(&p.coords[a..b]);
+                (p.element[s], b - a)
             }
             None => {
-                let mesh = interface.master();
-                let view = mesh.face(self.face[s] as usize);
-                out.tag = view.tag;
-                for (k, &i) in view.nodes.iter().enumerate() {
-                    out.columns[k] = interface
-                        .master_col(i)
-                        .expect("the nodes of a master face are on the interface");
-                    out.coords[k] = mesh.coords()[i as usize];
-                }
+                let f = self.face[s] as usize;
+                let k = interface.master().face_coords_into(f, out);
+                (interface.master().face(f).element, k)
             }
         }
-        out
+    }
+
+    /// Writes the columns in M of the nodes of the master face in slot `s` into `out` and
+    /// returns the node count.
+    #[inline]
+    pub fn columns_into(
+        &self,
+        interface: &Interface,
+        s: usize,
+        out: &mut [u32; MAX_FACE_NODES],
+    ) -> usize {
+        match &self.packed {
+            Some(p) => {
+                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
+                out[..b - a].copy_from_slice(&p.columns[a..b]);
+                b - a
+            }
+            None => {
+                let nodes = interface.master().face(self.face[s] as usize).nodes;
+                for (o, &n) in out.iter_mut().zip(nodes) {
+                    *o = interface
+                        .master_col(n)
+                        .expect("the nodes of a master face are on the interface");
+                }
+                nodes.len()
+            }
+        }
+    }
+
+    /// The tag of the master face in slot `s`.
+    pub fn tag(&self, interface: &Interface, s: usize) -> u64 {
+        match &self.packed {
+            Some(p) => p.tag[s],
+            None => interface.master().face(self.face[s] as usize).tag,
+        }
     }
 
     /// The element type of the master face in slot `s`.

@@ -9,4 +9,4 @@ mod validate;
 
 pub use face::FaceGeometry;
 pub use interface::{Interface, SpatialDim};
-pub use master_faces::{MasterFace, MasterFaces};
+pub use master_faces::MasterFaces;
