@@ -13,5 +13,6 @@ mod convergence {
     mod patch;
     mod paths;
     mod rates;
+    mod shrink_fit;
     mod transient;
 }

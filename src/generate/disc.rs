@@ -1,5 +1,6 @@
 //! A quarter of a disc refined towards one point of its rim: the cylinder of a 2D (plane
-//! strain) Hertz contact, cut along its two planes of symmetry.
+//! strain) Hertz contact, cut along its two planes of symmetry; and a quarter of an annulus
+//! (the ring of a shrink fit).
 
 use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::{QUAD4, TRI3};
@@ -161,6 +162,77 @@ pub fn quarter_disc_mesh(
                 shell_tag(i + 1, k + 1),
                 shell_tag(i, k + 1),
             ])?;
+        }
+    }
+    Ok(m)
+}
+
+/// The lower-right quarter of the annulus `inner <= r <= outer` centred at the origin
+/// (`x >= 0`, `y <= 0`, the quadrant of [`quarter_disc_mesh`] about its centre), in the plane
+/// `z = 0`, polar-mapped: `cells[0]` equal cells in the angle `theta` (from the downward
+/// vertical, towards `+x`: the node `(r sin(theta), -r cos(theta))`), `cells[1]` equal cells in
+/// the radius. Quad4, or Tri3 (each quad cut in two) for [`CellShape::Simplex`]; every cell
+/// positively oriented. Nodes are tagged from `first_node_tag`, ring by ring from the inner
+/// arc (`tag = first + k (cells[0] + 1) + i`, `k` the radial index, `i` the angular one from
+/// the bottom), cells from 1.
+///
+/// The boundary: the inner and the outer arc (`cells[0]` faces each, their nodes exactly on
+/// the circles to round-off), the segment `x = 0` and the segment `y = 0` (`cells[1]` faces
+/// each, exactly on their lines).
+///
+/// # Errors
+/// [`VolumeMeshError::BadCell`] for radii that are not finite with `0 < inner < outer`, or
+/// zero cells in a direction.
+pub fn quarter_annulus_mesh(
+    inner: f64,
+    outer: f64,
+    cells: [usize; 2],
+    shape: CellShape,
+    first_node_tag: u64,
+) -> Result<VolumeMesh, VolumeMeshError> {
+    let bad = |reason: String| VolumeMeshError::BadCell {
+        cell: 0,
+        element: "quarter annulus mesh",
+        reason,
+    };
+    if !(inner > 0.0 && outer > inner && outer.is_finite()) {
+        return Err(bad(format!(
+            "radii {inner} and {outer} are not finite with 0 < inner < outer"
+        )));
+    }
+    let [nt, nr] = cells;
+    if nt == 0 || nr == 0 {
+        return Err(bad(format!(
+            "needs at least one cell per direction, got {cells:?}"
+        )));
+    }
+    let tag = |i: usize, k: usize| first_node_tag + (k * (nt + 1) + i) as u64;
+    let mut m = VolumeMesh::new();
+    for k in 0..=nr {
+        let r = if k == nr {
+            outer
+        } else {
+            inner + (outer - inner) * k as f64 / nr as f64
+        };
+        for i in 0..=nt {
+            let p = match i {
+                0 => [0.0, -r],
+                i if i == nt => [r, 0.0],
+                i => {
+                    let t = std::f64::consts::FRAC_PI_2 * i as f64 / nt as f64;
+                    [r * t.sin(), -r * t.cos()]
+                }
+            };
+            m.add_node(tag(i, k), [p[0], p[1], 0.0])?;
+        }
+    }
+    for k in 0..nr {
+        for i in 0..nt {
+            add_quad(
+                &mut m,
+                [tag(i, k), tag(i + 1, k), tag(i + 1, k + 1), tag(i, k + 1)],
+                shape,
+            )?;
         }
     }
     Ok(m)

@@ -8,7 +8,7 @@
 //! Volume generators ([`rectangle_mesh`], [`box_mesh`], and the O-grids [`ball_mesh`] and
 //! [`box_with_hole_mesh`] of a curved inclusion, [`grid_rectangle_mesh`] on given (e.g.
 //! [`graded_points`]) coordinates, and [`quarter_disc_mesh`], a quarter disc refined towards
-//! a point of its rim for a cylinder in contact) number nodes from `first_node_tag` and cells
+//! a point of its rim for a cylinder in contact, and [`quarter_annulus_mesh`]) number nodes from `first_node_tag` and cells
 //! from 1, all cells positively oriented; their boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
 
@@ -21,7 +21,7 @@ mod sphere;
 mod volume;
 
 pub use cylinder::cylinder_surface;
-pub use disc::quarter_disc_mesh;
+pub use disc::{quarter_annulus_mesh, quarter_disc_mesh};
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};

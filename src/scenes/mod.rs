@@ -7,10 +7,13 @@
 //!   non-conforming interface, with a manufactured solution.
 //! - [`hertz`]: the 2D Hertz contact of a cylinder pressed onto a block (plane strain,
 //!   frictionless mortar contact), checked against the closed form.
+//! - [`shrink_fit`]: a disc pressed into a ring (plane strain, frictionless mortar contact on
+//!   non-matching faceted circles), checked against Lamé's closed form.
 //! - [`file`](mod@file): scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions
 //!   and the interface, as run by `mortar run SCENE.toml --out DIR`.
 
 pub mod file;
 pub mod hertz;
 pub mod pellet;
+pub mod shrink_fit;
 pub mod tied_heat;
