@@ -1,5 +1,7 @@
 //! The Newton (semi-smooth for the exact law) iteration of frictionless contact.
 
+use std::time::Instant;
+
 use mortar_core::linalg::{
     CholeskyFactorization, LuFactorization, SolverError, SparseMatrix, Triplets,
 };
@@ -45,6 +47,11 @@ pub struct ContactStep {
     pub residuals: Vec<f64>,
     /// Slave nodes in contact (pressure positive) at the end of the step.
     pub active: usize,
+    /// Seconds of each Newton step's linear solve (building the condensed or saddle-point
+    /// system, factorising, solving).
+    pub linear_seconds: Vec<f64>,
+    /// Seconds of the whole load step.
+    pub seconds: f64,
 }
 
 /// The solution of [`solve_contact`].
@@ -246,6 +253,8 @@ pub fn solve_contact<L: ConstraintLaw>(
                 u[g] = factor * fixed_value[g];
             }
         }
+        let t_step = Instant::now();
+        let mut linear_seconds = Vec::new();
         let mut residuals = Vec::new();
         let mut branch_prev: Option<Vec<bool>> = None;
         let mut settled_at = None;
@@ -348,18 +357,20 @@ pub fn solve_contact<L: ConstraintLaw>(
                 }
                 e => e.into(),
             };
-            let condensed = if gap.diagonal {
-                condensed_step(&lin, kff.clone(), &free_of_slave)
+            let t_linear = Instant::now();
+            let pivots = if gap.diagonal {
+                plan_pivots(&lin, &free_of_slave)
             } else {
                 None
             };
-            let (du, dp) = match condensed {
-                Some(step) => {
+            let (du, dp) = match pivots {
+                Some(pivots) => {
                     condensed_steps += 1;
-                    step.map_err(singular)?
+                    condensed_step(&lin, kff, &pivots).map_err(singular)?
                 }
                 None => saddle_step(&lin, kff).map_err(singular)?,
             };
+            linear_seconds.push(t_linear.elapsed().as_secs_f64());
             for g in 0..ndof {
                 if free[g] != NONE {
                     u[g] += du[free[g] as usize];
@@ -383,6 +394,8 @@ pub fn solve_contact<L: ConstraintLaw>(
             settled_at,
             residuals,
             active: p.iter().filter(|&&v| v > 0.0).count(),
+            linear_seconds,
+            seconds: t_step.elapsed().as_secs_f64(),
         });
     }
     let gaps = gap.nodal(&u);
@@ -454,60 +467,35 @@ fn saddle_step(lin: &Linearised<'_>, mut t: Triplets) -> Result<Step, SolverErro
     Ok((rhs, dp))
 }
 
-/// The step with the pressures condensed out, when D is diagonal (each row's slave part on
-/// its own node only). Rows whose law has `C_p != 0` (inactive, or a regularised law) give
-/// `dp_j = (-C_j - a_j N_j du) / C_p,j`, which adds `N_j^T (-a_j / C_p,j) N_j` to the
-/// stiffness; each row with `C_p = 0` (active) fixes `N_j du = -C_j / a_j`, solved for the
-/// free component of its slave node with the largest normal component (the pivot), an affine
-/// function of the other unknowns, as the tied condensation does. The remaining system, the
-/// size of the displacements less one per active node, is symmetric: Cholesky, or LU if it
-/// is not positive definite. The active pressures follow from the pivots' equilibrium rows.
-/// `None` when a row cannot be condensed (no free slave component along its normal).
-fn condensed_step(
-    lin: &Linearised<'_>,
-    kff: Triplets,
-    free_of_slave: &[Vec<u32>],
-) -> Option<Result<Step, SolverError>> {
+/// The pivot of each active row, `(free index, N_j at it)` (`None` for inactive rows).
+type Pivots = Vec<Option<(u32, f64)>>;
+
+/// The pivots of the active rows, or `None` when some active row cannot be condensed.
+fn plan_pivots(lin: &Linearised<'_>, free_of_slave: &[Vec<u32>]) -> Option<Pivots> {
     const NONE: u32 = u32::MAX;
-    let (nfree, rows) = (lin.nfree, lin.c.len());
-    // K' = K_ff + sum over C_p != 0 rows of N_j^T (-a_j / C_p,j) N_j; rhs' likewise.
-    let mut kt = kff;
-    let mut rhs: Vec<f64> = lin.r_u.iter().map(|r| -r).collect();
-    // Pivot of each active row: (free index, N_j at it).
-    let mut pivot: Vec<Option<(u32, f64)>> = vec![None; rows];
-    let mut pivot_row = vec![NONE; nfree];
+    let rows = lin.c.len();
+    let mut pivot: Pivots = vec![None; rows];
+    let mut pivot_row = vec![NONE; lin.nfree];
     for j in 0..rows {
-        let row = &lin.n_free[j];
         if lin.c_p[j] != 0.0 {
-            let s = -lin.a[j] / lin.c_p[j];
-            if s != 0.0 {
-                for &(i, vi) in row {
-                    for &(k, vk) in row {
-                        kt.push(i, k, s * vi * vk);
-                    }
-                }
-            }
-            let f = lin.c[j] / lin.c_p[j];
-            for &(i, vi) in row {
-                rhs[i as usize] += vi * f;
-            }
-        } else {
-            if lin.a[j] == 0.0 {
-                return None;
-            }
-            let own = &free_of_slave[j];
-            let best = row
-                .iter()
-                .filter(|(i, _)| own.contains(i))
-                .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
-                .copied()?;
-            let scale = row.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs()));
-            if best.1.abs() <= 1e-8 * scale || pivot_row[best.0 as usize] != NONE {
-                return None;
-            }
-            pivot[j] = Some(best);
-            pivot_row[best.0 as usize] = j as u32;
+            continue;
         }
+        if lin.a[j] == 0.0 {
+            return None;
+        }
+        let row = &lin.n_free[j];
+        let own = &free_of_slave[j];
+        let best = row
+            .iter()
+            .filter(|(i, _)| own.contains(i))
+            .max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
+            .copied()?;
+        let scale = row.iter().fold(0.0f64, |m, (_, v)| m.max(v.abs()));
+        if best.1.abs() <= 1e-8 * scale || pivot_row[best.0 as usize] != NONE {
+            return None;
+        }
+        pivot[j] = Some(best);
+        pivot_row[best.0 as usize] = j as u32;
     }
     // A pivot must appear in its own row only (D diagonal to round-off is not enough when an
     // off-diagonal entry lands on another row's pivot): otherwise keep the saddle point.
@@ -517,6 +505,53 @@ fn condensed_step(
             .any(|&(m, _)| pivot_row[m as usize] != NONE && pivot_row[m as usize] != j as u32)
         {
             return None;
+        }
+    }
+    Some(pivot)
+}
+
+/// The step with the pressures condensed out, when D is diagonal (each row's slave part on
+/// its own node only). Rows whose law has `C_p != 0` (inactive, or a regularised law) give
+/// `dp_j = (-C_j - a_j N_j du) / C_p,j`, which adds `N_j^T (-a_j / C_p,j) N_j` to the
+/// stiffness; each row with `C_p = 0` (active) fixes `N_j du = -C_j / a_j`, solved for the
+/// free component of its slave node with the largest normal component (the pivot), an affine
+/// function of the other unknowns, as the tied condensation does. The remaining system, the
+/// size of the displacements less one per active node, is symmetric: Cholesky, or LU if it
+/// is not positive definite. The active pressures follow from the pivots' equilibrium rows.
+/// The pivots come from [`plan_pivots`], which refuses a row without a free slave component
+/// along its normal (the saddle point is solved then).
+fn condensed_step(
+    lin: &Linearised<'_>,
+    kff: Triplets,
+    pivot: &Pivots,
+) -> Result<Step, SolverError> {
+    const NONE: u32 = u32::MAX;
+    let (nfree, rows) = (lin.nfree, lin.c.len());
+    let mut pivot_row = vec![NONE; nfree];
+    for (j, p) in pivot.iter().enumerate() {
+        if let Some((pv, _)) = p {
+            pivot_row[*pv as usize] = j as u32;
+        }
+    }
+    // K' = K_ff + sum over C_p != 0 rows of N_j^T (-a_j / C_p,j) N_j; rhs' likewise.
+    let mut kt = kff;
+    let mut rhs: Vec<f64> = lin.r_u.iter().map(|r| -r).collect();
+    for j in 0..rows {
+        if lin.c_p[j] == 0.0 {
+            continue;
+        }
+        let row = &lin.n_free[j];
+        let s = -lin.a[j] / lin.c_p[j];
+        if s != 0.0 {
+            for &(i, vi) in row {
+                for &(k, vk) in row {
+                    kt.push(i, k, s * vi * vk);
+                }
+            }
+        }
+        let f = lin.c[j] / lin.c_p[j];
+        for &(i, vi) in row {
+            rhs[i as usize] += vi * f;
         }
     }
     let kp = kt.to_csr(nfree, nfree);
@@ -575,12 +610,9 @@ fn condensed_step(
         }
     }
     let s = t.to_csr(nr, nr);
-    let solved = match CholeskyFactorization::try_new(&s) {
-        Ok(f) => f.solve_in_place(&mut b),
-        Err(_) => LuFactorization::try_new(&s).and_then(|f| f.solve_in_place(&mut b)),
-    };
-    if let Err(e) = solved {
-        return Some(Err(e));
+    match CholeskyFactorization::try_new(&s) {
+        Ok(f) => f.solve_in_place(&mut b)?,
+        Err(_) => LuFactorization::try_new(&s).and_then(|f| f.solve_in_place(&mut b))?,
     }
     let mut du = vec![0.0; nfree];
     let mut e = Vec::new();
@@ -603,5 +635,5 @@ fn condensed_step(
             }
         };
     }
-    Some(Ok((du, dp)))
+    Ok((du, dp))
 }
