@@ -27,3 +27,6 @@ mod gmsh_meshes;
 
 #[path = "integration/orient.rs"]
 mod orient;
+
+#[path = "integration/contact_scene.rs"]
+mod contact_scene;

@@ -6,8 +6,11 @@ use std::path::Path;
 
 use mortar::io::write_outputs;
 use mortar::scenes::file::{
-    builtin_scene, scene_kind, tied_heat::TiedHeatSpec, FileSystem, InMemory, SceneOutput,
-    SceneSource,
+    builtin_scene,
+    contact::{run_builtin_contact, ContactSpec},
+    scene_kind,
+    tied_heat::TiedHeatSpec,
+    FileSystem, InMemory, SceneOutput, SceneSource,
 };
 
 use mortar::scenes::pellet;
@@ -94,6 +97,12 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
             let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
             (run_kind(&text, path, &base, &FileSystem)?, Vec::new())
         }
+        (None, Some(name)) if name == "hertz2d" || name == "shrink_fit" => {
+            let output = run_builtin_contact(name)
+                .map_err(|e| e.to_string())?
+                .ok_or_else(|| format!("no built-in contact scene named \"{name}\""))?;
+            (output, Vec::new())
+        }
         (None, Some(name)) => {
             let scene = builtin_scene(name).map_err(|e| e.to_string())?;
             // The scene runs from its meshes in memory, as if written into DIR; they are
@@ -150,8 +159,12 @@ fn run_kind(
             let spec = TiedHeatSpec::parse(text, path).map_err(|e| e.to_string())?;
             spec.run(path, base, source).map_err(|e| e.to_string())
         }
+        "contact" => {
+            let spec = ContactSpec::parse(text, path).map_err(|e| e.to_string())?;
+            spec.run(path, base, source).map_err(|e| e.to_string())
+        }
         other => Err(format!(
-            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, pellet)",
+            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, contact, pellet)",
             path.display()
         )),
     }

@@ -66,6 +66,20 @@ fn escape(s: &str) -> String {
 /// [`IoError::Write`] (kind `InvalidInput`) naming the cell or field: an element without a
 /// VTK cell type, or a field whose length is not the piece's node count.
 pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoError> {
+    vtu_string_with_vectors(path, pieces, &[])
+}
+
+/// [`vtu_string`] with vector point data besides the scalar fields: each `(name, values)` of
+/// `vectors` has one slice per piece of `3 * nodes` values (`node * 3 + k`), written as one
+/// `NumberOfComponents="3"` array.
+///
+/// # Errors
+/// As [`vtu_string`], and for a vector field of the wrong length or piece count.
+pub fn vtu_string_with_vectors(
+    path: &Path,
+    pieces: &[VtuPiece<'_>],
+    vectors: &[(&str, Vec<&[f64]>)],
+) -> Result<String, IoError> {
     let invalid = |message: String| IoError::Write {
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
@@ -83,6 +97,24 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
             }
             if !names.contains(name) {
                 names.push(name);
+            }
+        }
+    }
+    for (name, values) in vectors {
+        if values.len() != pieces.len() {
+            return Err(invalid(format!(
+                "vector field {name:?} has {} pieces for {}",
+                values.len(),
+                pieces.len()
+            )));
+        }
+        for (p, (v, piece)) in values.iter().zip(pieces).enumerate() {
+            if v.len() != 3 * piece.mesh.node_count() {
+                return Err(invalid(format!(
+                    "piece {p}: vector field {name:?} has {} values for 3 x {} nodes",
+                    v.len(),
+                    piece.mesh.node_count()
+                )));
             }
         }
     }
@@ -115,6 +147,20 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
             (0..piece.mesh.node_count()).map(move |i| field.map_or(f64::NAN, |(_, v)| v[i]))
         });
         write_values(&mut s, values.map(|v| format!("{v:e}")));
+        s.push_str("        </DataArray>\n");
+    }
+    for (name, values) in vectors {
+        let _ = writeln!(
+            s,
+            "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">",
+            escape(name)
+        );
+        write_values(
+            &mut s,
+            values
+                .iter()
+                .flat_map(|v| v.iter().map(|x| format!("{x:e}"))),
+        );
         s.push_str("        </DataArray>\n");
     }
     s.push_str("      </PointData>\n      <CellData Scalars=\"piece\">\n");
@@ -172,6 +218,96 @@ pub fn vtu_string(path: &Path, pieces: &[VtuPiece<'_>]) -> Result<String, IoErro
     s.push_str("        </DataArray>\n");
     s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
     write_values(&mut s, types.iter().map(|t| t.to_string()));
+    s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
+    s.push_str("  </UnstructuredGrid>\n</VTKFile>\n");
+    Ok(s)
+}
+
+/// The VTU document of a surface: `points`, `cells` (node indices into `points`: 2 nodes a
+/// `VTK_LINE` (3), 3 a `VTK_TRIANGLE` (5), 4 a `VTK_QUAD` (9)) and nodal scalar fields.
+///
+/// # Errors
+/// [`IoError::Write`] (kind `InvalidInput`) for a cell of another node count, a node index
+/// out of range or a field of the wrong length.
+pub fn surface_vtu_string(
+    path: &Path,
+    points: &[nalgebra::Vector3<f64>],
+    cells: &[Vec<u32>],
+    point_data: &[(&str, &[f64])],
+) -> Result<String, IoError> {
+    let invalid = |message: String| IoError::Write {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
+    };
+    let mut types = Vec::with_capacity(cells.len());
+    for (c, nodes) in cells.iter().enumerate() {
+        types.push(match nodes.len() {
+            2 => 3,
+            3 => 5,
+            4 => 9,
+            n => return Err(invalid(format!("surface cell {c} has {n} nodes"))),
+        });
+        if let Some(n) = nodes.iter().find(|&&n| n as usize >= points.len()) {
+            return Err(invalid(format!(
+                "surface cell {c}: node {n} of {}",
+                points.len()
+            )));
+        }
+    }
+    for (name, values) in point_data {
+        if values.len() != points.len() {
+            return Err(invalid(format!(
+                "field {name:?} has {} values for {} nodes",
+                values.len(),
+                points.len()
+            )));
+        }
+    }
+    let mut s = String::new();
+    s.push_str("<?xml version=\"1.0\"?>\n");
+    s.push_str(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
+         header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
+    );
+    let _ = writeln!(
+        s,
+        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        points.len(),
+        cells.len()
+    );
+    s.push_str("      <PointData>\n");
+    for (name, values) in point_data {
+        let _ = writeln!(
+            s,
+            "        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">",
+            escape(name)
+        );
+        write_values(&mut s, values.iter().map(|v| format!("{v:e}")));
+        s.push_str("        </DataArray>\n");
+    }
+    s.push_str("      </PointData>\n      <Points>\n");
+    s.push_str("        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+    write_values(
+        &mut s,
+        points
+            .iter()
+            .map(|x| format!("{:e} {:e} {:e}", x.x, x.y, x.z)),
+    );
+    s.push_str("        </DataArray>\n      </Points>\n      <Cells>\n");
+    s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    write_values(&mut s, cells.iter().flatten().map(|n| n.to_string()));
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    write_values(
+        &mut s,
+        cells.iter().scan(0usize, |o, c| {
+            *o += c.len();
+            Some(o.to_string())
+        }),
+    );
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    write_values(&mut s, types.iter().map(|t: &u8| t.to_string()));
     s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
     s.push_str("  </UnstructuredGrid>\n</VTKFile>\n");
     Ok(s)

@@ -207,8 +207,20 @@ fn scene_kinds() {
     assert_fails(
         &dir,
         "kind.toml",
+        &text.replace("kind = \"tied_heat\"", "kind = \"friction\""),
+        &[
+            "unknown scene kind \"friction\"",
+            "tied_heat",
+            "contact",
+            "pellet",
+        ],
+    );
+    assert_fails(
+        &dir,
+        "contact.toml",
         &text.replace("kind = \"tied_heat\"", "kind = \"contact\""),
-        &["unknown scene kind \"contact\"", "tied_heat", "pellet"],
+        // A tied-heat file relabelled as a contact scene: the contact reader refuses its keys.
+        &["contact.toml", "unknown field `conductivity`"],
     );
     assert_fails(
         &dir,

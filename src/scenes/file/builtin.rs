@@ -13,9 +13,10 @@ use super::SceneError;
 use crate::generate::{box_mesh, rectangle_mesh, CellShape};
 use crate::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 
-/// The names of the built-in scenes (`mortar run --scene NAME`): `tied_heat` (this module)
-/// and `pellet` (`crate::scenes::pellet`, run by its own driver).
-pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet"];
+/// The names of the built-in scenes (`mortar run --scene NAME`): `tied_heat` (this module),
+/// `pellet` (`crate::scenes::pellet`, run by its own driver), `hertz2d` and `shrink_fit`
+/// (contact, run from memory by [`run_builtin_contact`](super::contact::run_builtin_contact)).
+pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet", "hertz2d", "shrink_fit"];
 
 /// A built-in scene: its scene file and the mesh files it names.
 #[derive(Debug, Clone)]
@@ -41,6 +42,10 @@ pub fn builtin_scene(name: &str) -> Result<BuiltinScene, SceneError> {
              `mortar run --scene pellet` (or mortar::scenes::pellet)"
                 .into(),
         )),
+        "hertz2d" | "shrink_fit" => Err(SceneError::Other(format!(
+            "the built-in scene \"{name}\" is a contact scene run from memory: run it with \
+             `mortar run --scene {name}` (or mortar::scenes::file::contact::run_builtin_contact)"
+        ))),
         _ => Err(SceneError::Other(format!(
             "no built-in scene named \"{name}\" (built-in scenes: {})",
             BUILTIN_SCENES.join(", ")

@@ -2,8 +2,9 @@
 //! conditions, the interface, the solve), run by `mortar run SCENE.toml --out DIR`.
 //!
 //! Every scene file starts with `kind = "..."`, which picks the problem; this build knows
-//! [`tied_heat`] (`kind = "tied_heat"`). Unknown keys are errors naming the key and its line;
-//! mesh paths are relative to the scene file's folder.
+//! [`tied_heat`] (`kind = "tied_heat"`) and [`contact`] (`kind = "contact"`). Unknown keys
+//! are errors naming the key and its line; mesh paths are relative to the scene file's
+//! folder.
 //!
 //! ```toml
 //! kind = "tied_heat"
@@ -31,6 +32,7 @@
 //! ```
 
 mod builtin;
+pub mod contact;
 mod error;
 pub mod tied_heat;
 

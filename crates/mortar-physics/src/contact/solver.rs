@@ -280,7 +280,12 @@ pub fn solve_contact<L: ConstraintLaw>(
                     r_u[free[g] as usize] = ku[g] - factor * f[g] + ntp[g];
                 }
             }
-            let scale_u = (factor * norm(&f)).max(norm(&ntp)).max(f64::MIN_POSITIVE);
+            // The scale of the forces: applied, contact, or (for a displacement-driven load,
+            // before contact) the elastic forces of the prescribed displacements.
+            let scale_u = (factor * norm(&f))
+                .max(norm(&ntp))
+                .max(norm(&ku))
+                .max(f64::MIN_POSITIVE);
             let res_u = norm(&r_u) / scale_u;
             let p_max = p.iter().fold(0.0f64, |a, b| a.max(b.abs()));
             let res_p = c.iter().fold(0.0f64, |a, b| a.max(b.abs())) / p_max.max(f64::MIN_POSITIVE);

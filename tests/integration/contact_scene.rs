@@ -1,0 +1,318 @@
+//! `mortar run` with `kind = "contact"`: two stacked elastic blocks read from Gmsh files
+//! (non-matching meshes), pressed by `sigma` on the top, carry it through the interface as a
+//! uniform contact pressure `sigma` (the patch test); the outputs; the refusals.
+
+use std::path::Path;
+
+use mortar::core::mesh::{BoundaryFace, VolumeMesh};
+use mortar::generate::{rectangle_mesh, CellShape};
+use mortar::io::{msh41_volume_bytes, MshFormat};
+use mortar::scenes::file::contact::ContactSpec;
+use mortar::scenes::file::FileSystem;
+use serde_json::Value;
+
+use crate::common::{mortar, TempDir};
+
+const SIGMA: f64 = 50e6;
+
+/// A body's Gmsh file with face groups `NAME_bottom`, `NAME_top`, `NAME_left`, `NAME_rest`.
+fn body_file(mesh: &VolumeMesh, name: &str, y0: f64, y1: f64) -> Vec<u8> {
+    let faces = mesh.boundary_faces().unwrap();
+    let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    let pick = |p: &dyn Fn(&BoundaryFace) -> bool| -> Vec<BoundaryFace> {
+        faces.iter().filter(|f| p(f)).cloned().collect()
+    };
+    let bottom = pick(&|f| near(f.centroid.y, y0));
+    let top = pick(&|f| near(f.centroid.y, y1));
+    let left = pick(&|f| near(f.centroid.x, 0.0));
+    let rest =
+        pick(&|f| !near(f.centroid.y, y0) && !near(f.centroid.y, y1) && !near(f.centroid.x, 0.0));
+    msh41_volume_bytes(
+        (mesh, name),
+        &[
+            (&bottom, &format!("{name}_bottom")),
+            (&top, &format!("{name}_top")),
+            (&left, &format!("{name}_left")),
+            (&rest, &format!("{name}_rest")),
+        ],
+        MshFormat::Ascii,
+    )
+    .unwrap()
+}
+
+const SCENE: &str = r#"kind = "contact"
+title = "stacked blocks"
+
+[bodies.upper]
+mesh = "upper.msh"
+group = "upper"
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+dirichlet = [{ group = "upper_left", component = "x", value = 0.0 }]
+traction = [{ group = "upper_top", value = [0.0, -50e6] }]
+
+[bodies.lower]
+mesh = "lower.msh"
+group = "lower"
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+dirichlet = [
+    { group = "lower_bottom", component = "y", value = 0.0 },
+    { group = "lower_left", component = "x", value = 0.0 },
+]
+
+[contact]
+slave = { body = "upper", group = "upper_bottom" }
+master = { body = "lower", group = "lower_top" }
+law = "exact"
+multipliers = "dual"
+integration = "segment"
+
+[solve]
+load_steps = 1
+"#;
+
+/// Writes the meshes and the scene into `dir`; returns the scene file.
+fn setup(dir: &TempDir) -> String {
+    let lower = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [4, 4], CellShape::Tensor, 1).unwrap();
+    let upper = rectangle_mesh([0.0, 1.0], [1.0, 2.0], [5, 5], CellShape::Simplex, 1000).unwrap();
+    dir.file("lower.msh", body_file(&lower, "lower", 0.0, 1.0));
+    dir.file("upper.msh", body_file(&upper, "upper", 1.0, 2.0));
+    dir.file("scene.toml", SCENE)
+}
+
+/// The named `DataArray`'s values in a VTU text.
+fn array(vtu: &str, name: &str) -> Vec<f64> {
+    let head = format!("Name=\"{name}\"");
+    let rest = vtu
+        .split(&head)
+        .nth(1)
+        .unwrap_or_else(|| panic!("{name} in VTU"));
+    let body = rest.split_once('>').unwrap().1;
+    body.split("</DataArray>")
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect()
+}
+
+#[test]
+fn stacked_blocks_carry_the_uniform_pressure() {
+    let dir = TempDir::new("contact-scene");
+    let scene = setup(&dir);
+    for (multipliers, formulation) in [("dual", "pressures condensed"), ("standard", "saddle")] {
+        let text = SCENE.replace("\"dual\"", &format!("\"{multipliers}\""));
+        let path = Path::new(&scene);
+        let spec = ContactSpec::parse(&text, path).unwrap();
+        let solved = spec
+            .solve(path, path.parent().unwrap(), &FileSystem)
+            .unwrap();
+        let worst = solved
+            .solution
+            .pressure
+            .iter()
+            .map(|p| (p - SIGMA).abs() / SIGMA)
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-8, "{multipliers}: pressure off by {worst:e}");
+        assert!(
+            solved.solution.formulation.starts_with(formulation),
+            "{}",
+            solved.solution.formulation
+        );
+        // The force: sigma times the width (per unit thickness).
+        assert!((solved.solution.force - SIGMA).abs() < 1e-8 * SIGMA);
+    }
+
+    let out = dir.join("out");
+    let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let upper = std::fs::read_to_string(out.join("upper.vtu")).unwrap();
+    let lower = std::fs::read_to_string(out.join("lower.vtu")).unwrap();
+    for vtu in [&upper, &lower] {
+        assert!(vtu.contains("Name=\"displacement\" NumberOfComponents=\"3\""));
+        for name in ["stress_xx", "stress_yy", "stress_xy", "von_mises"] {
+            assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name}");
+        }
+        // The uniaxial stress: sigma_yy = -sigma everywhere.
+        let syy = array(vtu, "stress_yy");
+        let worst = syy
+            .iter()
+            .map(|s| (s + SIGMA).abs() / SIGMA)
+            .fold(0.0f64, f64::max);
+        assert!(worst < 1e-6, "sigma_yy off by {worst:e}");
+        let u = array(vtu, "displacement");
+        assert_eq!(u.len() % 3, 0);
+        assert!(u.chunks(3).all(|c| c[2] == 0.0), "2D: u_z = 0");
+    }
+    let interface = std::fs::read_to_string(out.join("interface.vtu")).unwrap();
+    let p = array(&interface, "contact_pressure");
+    assert_eq!(p.len(), 6, "6 slave interface nodes");
+    assert!(p.iter().all(|p| (p - SIGMA).abs() < 1e-6 * SIGMA), "{p:?}");
+    let gap = array(&interface, "gap");
+    assert!(gap.iter().all(|g| g.abs() < 1e-12), "{gap:?}");
+    let types = array(&interface, "types");
+    assert_eq!(types, vec![3.0; 5], "5 VTK_LINE cells");
+
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["kind"], "contact");
+    assert_eq!(report["dimension"], 2);
+    assert!(report["formulation"]
+        .as_str()
+        .unwrap()
+        .starts_with("pressures condensed out"));
+    let step = &report["load_steps"][0];
+    assert!(step["newton_steps"].as_u64().unwrap() >= 1);
+    assert!(step["settled_at"].is_number() || step["settled_at"].is_null());
+    assert!(!step["residuals"].as_array().unwrap().is_empty());
+    assert_eq!(step["active"], 6);
+    let f = report["contact_force"].as_f64().unwrap();
+    assert!((f - SIGMA).abs() < 1e-8 * SIGMA, "{f}");
+    for k in [
+        "read",
+        "coupling",
+        "assembly",
+        "contact_solve",
+        "stress",
+        "total",
+    ] {
+        assert!(report["seconds"][k].as_f64().unwrap() >= 0.0, "{k}");
+    }
+}
+
+/// Runs the scene text `text` from `dir`; asserts failure, each needle in stderr, and
+/// nothing written.
+fn assert_fails(dir: &TempDir, name: &str, text: &str, needles: &[&str]) {
+    let scene = dir.file(name, text);
+    let out = dir.join(&format!("out-{name}"));
+    let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{name}: {stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{name}: one line: {stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{name}: {n:?} not in {stderr}");
+    }
+    assert!(!out.exists(), "{name}: nothing written");
+}
+
+#[test]
+fn bad_contact_scenes_are_refused_naming_the_key() {
+    let dir = TempDir::new("contact-scene-err");
+    setup(&dir);
+    let once = |old: &str, new: &str| SCENE.replacen(old, new, 1);
+    assert_fails(
+        &dir,
+        "e.toml",
+        &once("youngs_modulus = 210e9", "youngs_modulus = 0.0"),
+        &["bodies.upper.youngs_modulus", "not positive"],
+    );
+    assert_fails(
+        &dir,
+        "nu.toml",
+        &once("poisson_ratio = 0.3", "poisson_ratio = 0.5"),
+        &["bodies.upper.poisson_ratio", "(-1, 0.5)"],
+    );
+    assert_fails(
+        &dir,
+        "group.toml",
+        &once("group = \"upper_top\"", "group = \"roof\""),
+        &["bodies.upper.traction[0]", "roof"],
+    );
+    assert_fails(
+        &dir,
+        "cells.toml",
+        &once("group = \"lower\"", "group = \"floor\""),
+        &["bodies.lower.group", "floor"],
+    );
+    assert_fails(
+        &dir,
+        "contact_group.toml",
+        &once("group = \"lower_top\"", "group = \"lid\""),
+        &["contact.master", "lid"],
+    );
+    assert_fails(
+        &dir,
+        "file.toml",
+        &once("mesh = \"lower.msh\"", "mesh = \"nowhere.msh\""),
+        &["bodies.lower.mesh", "nowhere.msh"],
+    );
+    assert_fails(
+        &dir,
+        "z.toml",
+        &once("component = \"x\"", "component = \"z\""),
+        &["bodies.upper.dirichlet[0].component", "2D"],
+    );
+    let bad = once("law = \"exact\"", "law = \"exact\"\nfriction = 0.3");
+    let line = 1 + bad.lines().position(|l| l.starts_with("friction")).unwrap();
+    assert_fails(
+        &dir,
+        "key.toml",
+        &bad,
+        &["unknown field `friction`", &format!("line {line}")],
+    );
+    assert_fails(
+        &dir,
+        "newton.toml",
+        &once("load_steps = 1", "load_steps = 2\nmax_newton_steps = 3").replace(
+            "law = \"exact\"",
+            "law = \"exponential\"\nbase_pressure = 1e5\nstiffness = 6.2146e12\nonset = 0.0",
+        ),
+        &["load step 1 of 2", "Newton"],
+    );
+}
+
+#[test]
+fn builtin_hertz2d_matches_the_closed_form() {
+    let dir = TempDir::new("contact-hertz");
+    let out = dir.join("out");
+    let o = mortar(&[
+        "--json",
+        "run",
+        "--scene",
+        "hertz2d",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in ["R", "E_star", "d"] {
+        assert!(report["inputs"][k].as_f64().unwrap() > 0.0, "{k}");
+    }
+    assert!(report["P"].as_f64().unwrap() > 0.0);
+    let (a, a_exact) = (
+        report["computed"]["a"].as_f64().unwrap(),
+        report["closed_form"]["a"].as_f64().unwrap(),
+    );
+    // The bracket of the last node in contact and the first open one holds the closed form's
+    // half-width; the zero of p^2 extrapolated through the last two nodes in contact (exact
+    // for the elliptical profile) is within 2 % of it, the bracket's midpoint within a cell.
+    let bracket: Vec<f64> = report["computed"]["a_bracket"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(
+        bracket[0] <= a_exact && a_exact <= bracket[1],
+        "{bracket:?} {a_exact}"
+    );
+    let a2 = report["computed"]["a_squared"].as_f64().unwrap();
+    assert!(
+        (a2 - a_exact).abs() < 0.02 * a_exact,
+        "a^2 fit {a2}, closed form {a_exact}"
+    );
+    assert!(
+        (a - a_exact).abs() <= bracket[1] - bracket[0],
+        "a = {a}, {a_exact}"
+    );
+    let (p0, p0_exact) = (
+        report["computed"]["p0"].as_f64().unwrap(),
+        report["closed_form"]["p0"].as_f64().unwrap(),
+    );
+    assert!(
+        (p0 - p0_exact).abs() < 0.02 * p0_exact,
+        "p0 = {p0}, {p0_exact}"
+    );
+    assert!(out.join("report.json").is_file());
+}
