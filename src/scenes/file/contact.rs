@@ -41,6 +41,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
+use super::{dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
 use crate::io::{parse_gmsh_volume, CouplingSettings, Integration, Multipliers};
@@ -169,10 +170,6 @@ pub struct ContactInterfaceSpec {
     /// The search radius (a distance).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub search_radius: Option<f64>,
-}
-
-fn dual() -> Multipliers {
-    Multipliers::Dual
 }
 
 /// The settings of the solve.
@@ -903,14 +900,6 @@ impl SolvedContact {
         );
         Ok(SceneOutput { files, summary })
     }
-}
-
-/// The node indices of some faces, ascending, each once.
-fn face_nodes(faces: &[BoundaryFace]) -> Vec<u32> {
-    let mut nodes: Vec<u32> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    nodes
 }
 
 /// The built-in contact scenes, run from their builders in memory (no scene file or meshes

@@ -29,7 +29,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use mortar_core::mesh::BoundaryFace;
 use mortar_elements::volume::VolumeRegistry;
 use mortar_physics::heat::{
     HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, TiedHeatSolution,
@@ -37,6 +36,7 @@ use mortar_physics::heat::{
 use mortar_physics::tied::{FormulationChoice, TiedOptions};
 use serde::{Deserialize, Serialize};
 
+use super::{dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::io::vtu::{vtu_string, VtuPiece};
 use crate::io::{parse_gmsh_volume, CouplingSettings, GmshVolume, Integration, Multipliers};
@@ -140,10 +140,6 @@ pub struct InterfaceSpec {
     /// The quadrature degree (default automatic).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub degree: Option<u32>,
-}
-
-fn dual() -> Multipliers {
-    Multipliers::Dual
 }
 
 /// Steady or transient.
@@ -726,12 +722,4 @@ impl SolvedTiedHeat {
         );
         Ok(SceneOutput { files, summary })
     }
-}
-
-/// The node indices of some faces, ascending, each once.
-fn face_nodes(faces: &[BoundaryFace]) -> Vec<u32> {
-    let mut nodes: Vec<u32> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
-    nodes.sort_unstable();
-    nodes.dedup();
-    nodes
 }
