@@ -163,22 +163,20 @@ impl MasterTree {
             .into_par_iter()
             .zip(first_slots)
             .map(|(faces, first_slot)| {
-                let leaves: Vec<(u32, Box3)> = faces
+                // The slab's boxes gathered once in its (spatial) order: the leaves and the
+                // f32 copies then read them in sequence, whatever the file's numbering.
+                let sorted: Vec<Box3> = faces.iter().map(|&f| boxes[f as usize]).collect();
+                let leaves: Vec<(u32, Box3)> = sorted
                     .chunks(LEAF_FACES)
                     .enumerate()
-                    .map(|(l, group)| {
-                        let b = group
-                            .iter()
-                            .fold(EMPTY, |acc, &f| union(&acc, &boxes[f as usize]));
-                        (l as u32, b)
-                    })
+                    .map(|(l, group)| (l as u32, group.iter().fold(EMPTY, |acc, b| union(&acc, b))))
                     .collect();
                 let bounds = leaves.iter().fold(EMPTY, |acc, (_, b)| union(&acc, b));
                 Slab {
                     tree: BoxTree::build(&leaves, planar),
                     bounds,
                     first_slot,
-                    boxes: faces.iter().map(|&f| box_f32(&boxes[f as usize])).collect(),
+                    boxes: sorted.iter().map(box_f32).collect(),
                     faces,
                 }
             })
