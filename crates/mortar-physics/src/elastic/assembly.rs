@@ -1,8 +1,6 @@
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
-use mortar_core::element::MAX_FACE_NODES;
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_core::quadrature::{Quadrature, QuadratureRule};
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::body::ElasticBody;
@@ -197,33 +195,28 @@ pub fn assemble_elastic_load(
             }
         }
     }
-    let mut nvals = [0.0; MAX_FACE_NODES];
-    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
     for cond in &body.tractions {
         for face in &cond.faces {
-            let el = face.element;
-            let degree = options.degree(el.shape_degree());
-            let rule = QuadratureRule::cached(el.domain(), degree).map_err(|e| {
+            cells::for_each_face_point(
+                mesh,
+                face,
+                |p| options.degree(p),
+                |xp, w, jac, nodes, na| {
+                    let t = (cond.traction)(xp) * (w * jac);
+                    for (&n, a) in nodes.iter().zip(na) {
+                        for i in 0..dim {
+                            f[layout.dof(n, i) as usize] += t[i] * a;
+                        }
+                    }
+                },
+            )
+            .map_err(|e| {
                 body.invalid(format!(
-                    "no {:?} face quadrature of degree {degree}: {e}",
-                    el.domain()
+                    "no {:?} face quadrature of degree {}: {e}",
+                    face.element.domain(),
+                    options.degree(face.element.shape_degree())
                 ))
             })?;
-            let k = face.nodes.len();
-            for (xi, &n) in x.iter_mut().zip(&face.nodes) {
-                *xi = mesh.coords()[n as usize];
-            }
-            for (p, w) in rule.points().iter().zip(rule.weights()) {
-                let p: &Vector2<f64> = p;
-                el.shape_values_into(p, &mut nvals[..k]);
-                let xp = el.map(&x[..k], p);
-                let t = (cond.traction)(&xp) * (w * el.jacobian_det(&x[..k], p));
-                for (&n, na) in face.nodes.iter().zip(&nvals[..k]) {
-                    for i in 0..dim {
-                        f[layout.dof(n, i) as usize] += t[i] * na;
-                    }
-                }
-            }
         }
     }
     Ok(f)

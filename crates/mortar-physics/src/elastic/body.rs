@@ -198,12 +198,7 @@ impl ElasticBody {
         select: impl Fn(&BoundaryFace) -> bool,
         traction: impl Fn(&Vector3<f64>) -> Vector3<f64> + Send + Sync + 'static,
     ) -> Result<Self, PhysicsError> {
-        let faces: Vec<BoundaryFace> = self
-            .mesh
-            .boundary_faces()?
-            .into_iter()
-            .filter(|f| select(f))
-            .collect();
+        let faces = crate::field::cells::boundary_faces_where(&self.mesh, select)?;
         if faces.is_empty() {
             return Err(self.invalid("no boundary face selected for a traction condition"));
         }

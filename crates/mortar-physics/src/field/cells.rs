@@ -1,9 +1,13 @@
 //! Cell set-up shared by the assemblies of every field (heat, elasticity).
 
 use mortar_core::element::volume::{CellValues, VolumeDomain, MAX_CELL_NODES};
-use mortar_core::mesh::VolumeMesh;
-use mortar_core::quadrature::{max_volume_degree, VolumeQuadratureRule};
-use nalgebra::Vector3;
+use mortar_core::element::MAX_FACE_NODES;
+use mortar_core::mesh::{BoundaryFace, VolumeMesh};
+use mortar_core::quadrature::{
+    max_volume_degree, Quadrature, QuadratureRule, VolumeQuadratureRule,
+};
+use mortar_core::MortarError;
+use nalgebra::{Vector2, Vector3};
 
 use crate::error::PhysicsError;
 
@@ -54,4 +58,56 @@ fn cell_rule(
             max_volume_degree(domain)
         ),
     })
+}
+
+/// Calls `f(x, w, jac, nodes, shape)` at each point of the degree-`degree(p)` rule on a
+/// boundary face of `mesh` (`p` its shape degree): the point `x`, the rule's weight `w`, the
+/// face's Jacobian `jac`, the face's node indices and its shape values there. The face loads of every field
+/// (heat flux, traction) are sums of `w * value(x) * shape` over these points.
+///
+/// # Errors
+/// The core's error for a degree no cached rule reaches.
+pub(crate) fn for_each_face_point(
+    mesh: &VolumeMesh,
+    face: &BoundaryFace,
+    degree: impl Fn(u32) -> u32,
+    mut f: impl FnMut(&Vector3<f64>, f64, f64, &[u32], &[f64]),
+) -> Result<(), MortarError> {
+    let el = face.element;
+    let rule = QuadratureRule::cached(el.domain(), degree(el.shape_degree()))?;
+    let k = face.nodes.len();
+    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+    let mut nvals = [0.0; MAX_FACE_NODES];
+    for (xi, &n) in x.iter_mut().zip(&face.nodes) {
+        *xi = mesh.coords()[n as usize];
+    }
+    for (p, w) in rule.points().iter().zip(rule.weights()) {
+        let p: &Vector2<f64> = p;
+        el.shape_values_into(p, &mut nvals[..k]);
+        let xp = el.map(&x[..k], p);
+        f(
+            &xp,
+            *w,
+            el.jacobian_det(&x[..k], p),
+            &face.nodes,
+            &nvals[..k],
+        );
+    }
+    Ok(())
+}
+
+/// The boundary faces of `mesh` for which `select` is true (the faces a flux or traction
+/// condition applies to).
+///
+/// # Errors
+/// The mesh's error for a broken boundary.
+pub(crate) fn boundary_faces_where(
+    mesh: &VolumeMesh,
+    select: impl Fn(&BoundaryFace) -> bool,
+) -> Result<Vec<BoundaryFace>, mortar_core::mesh::VolumeMeshError> {
+    Ok(mesh
+        .boundary_faces()?
+        .into_iter()
+        .filter(|f| select(f))
+        .collect())
 }

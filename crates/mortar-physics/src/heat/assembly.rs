@@ -1,8 +1,6 @@
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
-use mortar_core::element::MAX_FACE_NODES;
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_core::quadrature::{Quadrature, QuadratureRule};
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::body::HeatBody;
@@ -176,25 +174,19 @@ pub fn assemble_heat_load(
             }
         }
     }
-    let mut nvals = [0.0; MAX_FACE_NODES];
-    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
     for cond in &body.neumann {
         for face in &cond.faces {
-            let el = face.element;
-            let rule = QuadratureRule::cached(el.domain(), options.degree(el.shape_degree()))?;
-            let k = face.nodes.len();
-            for (xi, &n) in x.iter_mut().zip(&face.nodes) {
-                *xi = mesh.coords()[n as usize];
-            }
-            for (p, w) in rule.points().iter().zip(rule.weights()) {
-                let p: &Vector2<f64> = p;
-                el.shape_values_into(p, &mut nvals[..k]);
-                let xp = el.map(&x[..k], p);
-                let s = (cond.flux)(&xp, t) * w * el.jacobian_det(&x[..k], p);
-                for (&n, na) in face.nodes.iter().zip(&nvals[..k]) {
-                    f[n as usize] += s * na;
-                }
-            }
+            cells::for_each_face_point(
+                mesh,
+                face,
+                |p| options.degree(p),
+                |xp, w, jac, nodes, na| {
+                    let s = (cond.flux)(xp, t) * w * jac;
+                    for (&n, a) in nodes.iter().zip(na) {
+                        f[n as usize] += s * a;
+                    }
+                },
+            )?;
         }
     }
     Ok(f)

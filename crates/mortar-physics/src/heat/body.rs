@@ -154,12 +154,7 @@ impl HeatBody {
         select: impl Fn(&BoundaryFace) -> bool,
         flux: impl Fn(&Vector3<f64>, f64) -> f64 + Send + Sync + 'static,
     ) -> Result<Self, PhysicsError> {
-        let faces: Vec<BoundaryFace> = self
-            .mesh
-            .boundary_faces()?
-            .into_iter()
-            .filter(|f| select(f))
-            .collect();
+        let faces = crate::field::cells::boundary_faces_where(&self.mesh, select)?;
         if faces.is_empty() {
             return Err(self.invalid("no boundary face selected for a Neumann condition"));
         }
