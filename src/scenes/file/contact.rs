@@ -830,21 +830,7 @@ impl SolvedContact {
         .map_err(|e| other(&e))?;
         files.push(("interface.vtu".to_string(), vtu.into_bytes()));
 
-        let steps: Vec<serde_json::Value> = sol
-            .steps
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                serde_json::json!({
-                    "step": k + 1,
-                    "load_factor": s.load_factor,
-                    "newton_steps": s.newton_steps,
-                    "settled_at": s.settled_at,
-                    "residuals": s.residuals,
-                    "active": s.active,
-                })
-            })
-            .collect();
+        let steps = steps_json(&sol.steps);
         let pmax = sol.pressure.iter().fold(0.0f64, |a, x| a.max(*x));
         let mut seconds: serde_json::Map<String, serde_json::Value> = self
             .seconds
@@ -902,6 +888,24 @@ impl SolvedContact {
     }
 }
 
+/// The load steps of a contact solution as the reports write them.
+fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json::Value> {
+    steps
+        .iter()
+        .enumerate()
+        .map(|(k, s)| {
+            serde_json::json!({
+                "step": k + 1,
+                "load_factor": s.load_factor,
+                "newton_steps": s.newton_steps,
+                "settled_at": s.settled_at,
+                "residuals": s.residuals,
+                "active": s.active,
+            })
+        })
+        .collect()
+}
+
 /// The built-in contact scenes, run from their builders in memory (no scene file or meshes
 /// are written): `hertz2d` ([`crate::scenes::hertz::HertzScene::new`]`(HERTZ_ARC_CELLS)`) and `shrink_fit`
 /// ([`crate::scenes::shrink_fit::ShrinkFitScene::new`]`(32, 32)`). `None` for another name.
@@ -913,22 +917,6 @@ impl SolvedContact {
 pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError> {
     let t = Instant::now();
     let fail = |e: PhysicsError| SceneError::Other(format!("built-in scene {name}: {e}"));
-    let steps_json = |steps: &[mortar_physics::contact::ContactStep]| -> Vec<serde_json::Value> {
-        steps
-            .iter()
-            .enumerate()
-            .map(|(k, s)| {
-                serde_json::json!({
-                    "step": k + 1,
-                    "load_factor": s.load_factor,
-                    "newton_steps": s.newton_steps,
-                    "settled_at": s.settled_at,
-                    "residuals": s.residuals,
-                    "active": s.active,
-                })
-            })
-            .collect()
-    };
     let (report, summary) = match name {
         "hertz2d" => {
             let scene = crate::scenes::hertz::HertzScene::new(HERTZ_ARC_CELLS);
