@@ -128,9 +128,12 @@ impl MasterFaces {
                 (p.element[s], b - a)
             }
             None => {
-                let f = self.face[s] as usize;
-                let k = interface.master().face_coords_into(f, out);
-                (interface.master().face(f).element, k)
+                let mesh = interface.master();
+                let view = mesh.face(self.face[s] as usize);
+                for (o, &n) in out.iter_mut().zip(view.nodes) {
+                    *o = mesh.coords()[n as usize];
+                }
+                (view.element, view.nodes.len())
             }
         }
     }
