@@ -130,6 +130,9 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
         .collect();
     files.extend(extra.iter().map(|(n, b)| (n.as_str(), b.clone())));
     write_outputs(&args.out, &files).map_err(|e| e.to_string())?;
+    for w in &output.warnings {
+        eprintln!("mortar: warning: {w}");
+    }
     if json {
         let report = output
             .files

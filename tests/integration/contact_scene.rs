@@ -158,6 +158,8 @@ fn stacked_blocks_carry_the_uniform_pressure() {
         serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
     assert_eq!(report["kind"], "contact");
     assert_eq!(report["dimension"], 2);
+    // Fully covered: the warnings are reported, and there are none.
+    assert_eq!(report["warnings"].as_array().map(Vec::len), Some(0));
     assert!(report["formulation"]
         .as_str()
         .unwrap()
@@ -315,4 +317,36 @@ fn builtin_hertz2d_matches_the_closed_form() {
         "p0 = {p0}, {p0_exact}"
     );
     assert!(out.join("report.json").is_file());
+}
+
+/// Regression: the coupling's warnings reached neither the terminal nor (for scene files)
+/// report.json. The built-in shrink fit (disc as slave) leaves two end faces covered in part
+/// (the ring's end projects short of the disc's across the interference): the warning is
+/// printed as `mortar: warning: ...` and kept in report.json.
+#[test]
+fn scene_warnings_are_printed_and_reported() {
+    let dir = TempDir::new("contact-warnings");
+    let out = dir.join("out");
+    let o = mortar(&[
+        "run",
+        "--scene",
+        "shrink_fit",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("mortar: warning: uncovered slave area"),
+        "{stderr}"
+    );
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    let warnings = report["warnings"].as_array().unwrap();
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.as_str().unwrap().starts_with("uncovered slave area")),
+        "{warnings:?}"
+    );
 }

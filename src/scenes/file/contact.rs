@@ -846,6 +846,13 @@ impl SolvedContact {
             serde_json::json!(self.t_start.elapsed().as_secs_f64()),
         );
         let c = &self.spec.contact;
+        let warnings: Vec<String> = self
+            .tie
+            .coupling()
+            .warnings
+            .iter()
+            .map(ToString::to_string)
+            .collect();
         let report = serde_json::json!({
             "kind": "contact",
             "scene": self.path.display().to_string(),
@@ -867,6 +874,7 @@ impl SolvedContact {
             "contact_force": sol.force,
             "pressure_max": pmax,
             "bodies": body_reports,
+            "warnings": warnings,
             "seconds": seconds,
         });
         let mut json = serde_json::to_string_pretty(&report).map_err(|e| other(&e))?;
@@ -884,7 +892,11 @@ impl SolvedContact {
             sol.force,
             pmax,
         );
-        Ok(SceneOutput { files, summary })
+        Ok(SceneOutput {
+            files,
+            summary,
+            warnings,
+        })
     }
 }
 
@@ -917,6 +929,9 @@ fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json:
 pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError> {
     let t = Instant::now();
     let fail = |e: PhysicsError| SceneError::Other(format!("built-in scene {name}: {e}"));
+    // The Hertz scene requires full coverage (an error otherwise): only the shrink fit can
+    // carry coupling warnings.
+    let mut warnings = Vec::new();
     let (report, summary) = match name {
         "hertz2d" => {
             let scene = crate::scenes::hertz::HertzScene::new(HERTZ_ARC_CELLS);
@@ -994,6 +1009,7 @@ pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError
                 "warnings": run.warnings,
                 "seconds": { "run": run.seconds, "total": t.elapsed().as_secs_f64() },
             });
+            warnings = run.warnings.clone();
             let summary = format!(
                 "shrink_fit: p mean {:.6e} Pa in [{:.6e}, {:.6e}] (closed form {:.6e}, mean error {:+.2e})",
                 run.mean,
@@ -1012,6 +1028,7 @@ pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError
     Ok(Some(SceneOutput {
         files: vec![("report.json".to_string(), json.into_bytes())],
         summary,
+        warnings,
     }))
 }
 

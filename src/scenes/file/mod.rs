@@ -94,6 +94,9 @@ pub struct SceneOutput {
     pub files: Vec<(String, Vec<u8>)>,
     /// A few lines for the terminal.
     pub summary: String,
+    /// The coupling's warnings (uncovered slave area, skipped pairs), also in `report.json`:
+    /// the program prints them as `mortar: warning: ...`.
+    pub warnings: Vec<String>,
 }
 
 /// The `kind` of a scene file's text.

@@ -643,6 +643,13 @@ impl SolvedTiedHeat {
         let stats = &problem.tie().coupling().stats;
         let dofs: usize = problem.bodies().iter().map(|b| b.mesh.node_count()).sum();
         let seconds_output = t_out.elapsed().as_secs_f64();
+        let warnings: Vec<String> = problem
+            .tie()
+            .coupling()
+            .warnings
+            .iter()
+            .map(ToString::to_string)
+            .collect();
         let report = serde_json::json!({
             "kind": "tied_heat",
             "scene": path.display().to_string(),
@@ -674,6 +681,7 @@ impl SolvedTiedHeat {
                 "area": stats.area,
             },
             "bodies": body_reports,
+            "warnings": warnings,
             "seconds": {
                 "read": t_read,
                 "assembly": s.assembly,
@@ -720,6 +728,10 @@ impl SolvedTiedHeat {
             s.solve,
             t_start.elapsed().as_secs_f64(),
         );
-        Ok(SceneOutput { files, summary })
+        Ok(SceneOutput {
+            files,
+            summary,
+            warnings,
+        })
     }
 }
