@@ -46,3 +46,75 @@ fn assembly_is_bit_identical_across_thread_counts() {
         }
     }
 }
+
+/// The coupling operators of `slave` against `master` on `threads` threads, keyed by node
+/// tags: `(slave tag, slave tag) -> D` and `(slave tag, master tag) -> M`.
+type Keyed = std::collections::BTreeMap<(u64, u64), f64>;
+fn keyed_operators(
+    slave: mortar::SurfaceMesh,
+    master: mortar::SurfaceMesh,
+    threads: usize,
+) -> (Keyed, Keyed) {
+    let interface = mortar::Interface::new(slave, master).unwrap();
+    let options = mortar::CouplingOptions {
+        threads: Some(threads),
+        ..Default::default()
+    };
+    let c = mortar::assemble_coupling(&interface, &options).unwrap();
+    assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+    let key = |m: &mortar::core::linalg::SparseMatrix, cols: &[u64]| -> Keyed {
+        m.iter()
+            .map(|(v, (r, k))| ((c.slave_nodes[r], cols[k]), *v))
+            .collect()
+    };
+    (key(&c.d, &c.slave_nodes), key(&c.m, &c.master_nodes))
+}
+
+/// Files whose nodes and faces are numbered far apart (a seeded shuffle, as a mesher that
+/// numbers faces in its own order writes them) give the operators of the sorted file: the
+/// same entries by node tags, to round-off (the search and the per-face work run in a spatial
+/// order of their own, and the master faces are copied in it). Sizes that take several
+/// blocks and waves of the master copy (more than 64 x 4096 faces in 2D).
+#[test]
+fn shuffled_files_give_the_operators_of_sorted_ones() {
+    use mortar::generate::{line_mesh, square_triangles, Diagonal};
+    use mortar::testing::{shuffled, shuffled_faces};
+    let cases: Vec<(mortar::SurfaceMesh, mortar::SurfaceMesh)> = vec![
+        (
+            line_mesh(200_000, false, 1).unwrap(),
+            line_mesh(300_001, true, 1).unwrap(),
+        ),
+        (
+            square_triangles(40, Diagonal::Main, 0.0, false, 1).unwrap(),
+            square_triangles(61, Diagonal::Anti, 0.0, true, 1).unwrap(),
+        ),
+    ];
+    for (slave, master) in cases {
+        let sorted = keyed_operators(slave.clone(), master.clone(), 2);
+        let orders = [
+            (shuffled(&slave, 7).unwrap(), shuffled(&master, 8).unwrap()),
+            (
+                shuffled_faces(&slave, 7).unwrap(),
+                shuffled_faces(&master, 8).unwrap(),
+            ),
+        ];
+        for (s, m) in orders {
+            let got = keyed_operators(s, m, 2);
+            for (want, got) in [(&sorted.0, &got.0), (&sorted.1, &got.1)] {
+                assert_eq!(
+                    want.keys().collect::<Vec<_>>(),
+                    got.keys().collect::<Vec<_>>(),
+                    "the same sparsity by node tags"
+                );
+                let scale = want.values().fold(0.0f64, |a, v| a.max(v.abs()));
+                for (k, v) in want {
+                    assert!(
+                        (v - got[k]).abs() <= 1e-12 * scale,
+                        "{k:?}: {v} vs {}",
+                        got[k]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -10,7 +10,7 @@ use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::integration::{PairedRule, SegmentContext};
-use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
+use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::{spatial_order, MasterTree};
 
@@ -181,6 +181,8 @@ impl Coupling {
 #[derive(Default)]
 struct ChunkWorkspace {
     geometry: Vec<FaceGeometry>,
+    /// Per face of the chunk, the rows in D of its nodes.
+    rows: Vec<[u32; MAX_FACE_NODES]>,
     offsets: Vec<usize>,
     all: Vec<u32>,
     scratch: Vec<u32>,
@@ -332,8 +334,7 @@ fn assemble_on_pool(
     threads: usize,
 ) -> Result<Coupling> {
     let start = Instant::now();
-    let tree = MasterTree::build(interface);
-    let masters = MasterFaces::new(interface, tree.face_order());
+    let (tree, masters) = MasterTree::build_with_faces(interface);
 
     let ctx = SegmentContext {
         interface,
@@ -344,16 +345,14 @@ fn assemble_on_pool(
     // Slave faces are processed in the Morton order of their centres: the queries of a chunk
     // then walk the same branches of the tree, whatever the file's numbering.
     let slave = interface.slave();
-    let centres: Vec<Vector3<f64>> = (0..faces)
+    // (Ordered by their first nodes: one read of the node coordinates per face, in the file's
+    // order, which may be random.)
+    let anchors: Vec<Vector3<f64>> = (0..faces)
         .into_par_iter()
-        .map(|f| {
-            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
-            let k = slave.face_coords_into(f, &mut x);
-            x[..k].iter().sum::<Vector3<f64>>() / k as f64
-        })
+        .map(|f| slave.coords()[slave.face(f).nodes[0] as usize])
         .collect();
-    let order = spatial_order(&centres, interface.dim() == SpatialDim::Two);
-    drop(centres);
+    let order = spatial_order(&anchors, interface.dim() == SpatialDim::Two);
+    drop(anchors);
     let tree_seconds = start.elapsed().as_secs_f64();
     // Each worker folds its chunks into one accumulator (its buffers and its part lists); the
     // first failing chunk in slave-face order decides the error, and chunks after a known
@@ -528,9 +527,11 @@ fn chunk(
     let faces = &order[positions.clone()];
     let mut out = ChunkStats::default();
     let tol = interface.tolerances();
+    let slave_mesh = interface.slave();
     let t_search = Instant::now();
     let ChunkWorkspace {
         geometry,
+        rows: face_rows,
         offsets,
         all,
         scratch,
@@ -552,6 +553,16 @@ fn chunk(
     // one after the other between tree queries), and kept for the per-face work.
     geometry.clear();
     geometry.extend(faces.iter().map(|&s| interface.slave_face(s as usize)));
+    face_rows.clear();
+    face_rows.extend(faces.iter().map(|&s| {
+        let mut rows = [0u32; MAX_FACE_NODES];
+        for (r, &n) in rows.iter_mut().zip(slave_mesh.face(s as usize).nodes) {
+            *r = interface
+                .slave_row(n)
+                .expect("face nodes are on the interface");
+        }
+        rows
+    }));
     for face in geometry.iter() {
         tree.candidates_of(interface, face, scratch);
         all.extend_from_slice(scratch);
@@ -561,7 +572,6 @@ fn chunk(
     let t0 = Instant::now();
     out.seconds_search = (t0 - t_search).as_secs_f64();
     // Each face is segmented and integrated at once, while its points are in cache.
-    let slave_mesh = interface.slave();
     let coverage = tol.coverage;
     let mut uncovered: ArrayVec<u64, { CouplingWarning::EXAMPLES }> = ArrayVec::new();
     let mut note_uncovered = |tag: u64| {
@@ -569,8 +579,7 @@ fn chunk(
             uncovered.push(tag);
         }
     };
-    for (i, &s) in faces.iter().enumerate() {
-        let s = s as usize;
+    for i in 0..faces.len() {
         let cands = &all[offsets[i]..offsets[i + 1]];
         let face = &geometry[i];
         if cands.is_empty() {
@@ -620,14 +629,7 @@ fn chunk(
         }
         let basis = options.multipliers.basis(face, tol)?;
         integrate_face_into(interface, ctx.masters, face, &basis, &rule.points, blocks);
-        let mut rows = [0u32; MAX_FACE_NODES];
-        let snodes = slave_mesh.face(s).nodes;
-        for (r, &n) in rows.iter_mut().zip(snodes) {
-            *r = interface
-                .slave_row(n)
-                .expect("face nodes are on the interface");
-        }
-        let rows = &rows[..snodes.len()];
+        let rows = &face_rows[i][..face.node_count()];
         for (j, &r) in rows.iter().enumerate() {
             for (k, &c) in rows.iter().enumerate() {
                 d.push(r, c, blocks.d[j][k]);

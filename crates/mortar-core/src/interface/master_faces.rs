@@ -41,6 +41,59 @@ struct Packed {
 /// Slot distance beyond which two faces consecutive in the file count as far apart.
 const NEAR_SLOTS: u32 = 256;
 
+/// Faces per block of the packed copy, and blocks per wave.
+const COPY_BLOCK: usize = 4096;
+const COPY_WAVE: usize = 64;
+
+impl Packed {
+    /// The faces `faces` of `interface`'s master surface copied in the given order (`start`
+    /// relative to the block, without its leading zero).
+    fn copy(interface: &Interface, faces: &[u32]) -> Self {
+        let mesh = interface.master();
+        let xyz = mesh.coords();
+        let mut out = Packed {
+            start: Vec::with_capacity(faces.len()),
+            element: Vec::with_capacity(faces.len()),
+            tag: Vec::with_capacity(faces.len()),
+            columns: Vec::with_capacity(faces.len() * 4),
+            coords: Vec::with_capacity(faces.len() * 4),
+        };
+        // In three sweeps of independent reads (the faces, their node lists, the nodes), so
+        // that the cache misses of many faces overlap instead of queueing behind each other.
+        let views: Vec<_> = faces.iter().map(|&f| mesh.face(f as usize)).collect();
+        let mut nodes: Vec<u32> = Vec::with_capacity(faces.len() * 4);
+        for view in &views {
+            out.element.push(view.element);
+            out.tag.push(view.tag);
+            nodes.extend_from_slice(view.nodes);
+            out.start.push(nodes.len() as u32);
+        }
+        out.coords.extend(nodes.iter().map(|&i| xyz[i as usize]));
+        out.columns.extend(nodes.iter().map(|&i| {
+            interface
+                .master_col(i)
+                .expect("the nodes of a master face are on the interface")
+        }));
+        out
+    }
+
+    /// Appends a block made by [`copy`](Self::copy).
+    ///
+    /// # Panics
+    /// If the faces have 2^32 nodes or more in all.
+    fn append(&mut self, block: Packed) {
+        let base = *self.start.last().unwrap_or(&0);
+        self.start.extend(block.start.iter().map(|&e| {
+            base.checked_add(e)
+                .expect("fewer than 2^32 master face nodes")
+        }));
+        self.element.extend_from_slice(&block.element);
+        self.tag.extend_from_slice(&block.tag);
+        self.columns.extend_from_slice(&block.columns);
+        self.coords.extend_from_slice(&block.coords);
+    }
+}
+
 impl MasterFaces {
     /// The master faces of `interface` in `order` (a permutation of the master face indices),
     /// copied in that order if the mesh's own numbering is not spatially coherent (more than
@@ -67,47 +120,30 @@ impl MasterFaces {
         if far * 10 <= n {
             return Self { face, packed: None };
         }
-        // The gathers read the mesh in random order: run them on the current rayon pool (the
-        // collected order is the given one).
-        let (element, tag): (Vec<ElementRef>, Vec<u64>) = face
-            .par_iter()
-            .map(|&f| {
-                let view = mesh.face(f as usize);
-                (view.element, view.tag)
-            })
-            .unzip();
-        let mut start = Vec::with_capacity(n + 1);
-        start.push(0u32);
-        for e in &element {
-            let last = *start.last().unwrap_or(&0) as usize;
-            start.push(
-                u32::try_from(last + e.node_count()).expect("fewer than 2^32 master face nodes"),
-            );
+        // One pass over the faces in slot order reads each face and its nodes once, in
+        // blocks on the current rayon pool (the mesh is read in random order: the reads of a
+        // block overlap); the blocks are appended in order, a wave at a time, so that the
+        // copy is the same whatever the thread count and the transient memory is a wave's.
+        let mut packed = Packed {
+            start: Vec::with_capacity(n + 1),
+            element: Vec::with_capacity(n),
+            tag: Vec::with_capacity(n),
+            columns: Vec::new(),
+            coords: Vec::new(),
+        };
+        packed.start.push(0);
+        for wave in face.chunks(COPY_BLOCK * COPY_WAVE) {
+            let parts: Vec<Packed> = wave
+                .par_chunks(COPY_BLOCK)
+                .map(|faces| Packed::copy(interface, faces))
+                .collect();
+            for part in parts {
+                packed.append(part);
+            }
         }
-        let xyz = mesh.coords();
-        let columns: Vec<u32> = face
-            .par_iter()
-            .flat_map_iter(|&f| {
-                mesh.face(f as usize).nodes.iter().map(|&i| {
-                    interface
-                        .master_col(i)
-                        .expect("the nodes of a master face are on the interface")
-                })
-            })
-            .collect();
-        let coords: Vec<Vector3<f64>> = face
-            .par_iter()
-            .flat_map_iter(|&f| mesh.face(f as usize).nodes.iter().map(|&i| xyz[i as usize]))
-            .collect();
         Self {
             face,
-            packed: Some(Packed {
-                start,
-                element,
-                tag,
-                columns,
-                coords,
-            }),
+            packed: Some(packed),
         }
     }
 

@@ -2,10 +2,9 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::bvh::{Box3, BoxTree};
-use super::morton::spatial_order;
+use super::morton::morton_code;
 use crate::element::MAX_FACE_NODES;
-use crate::interface::{FaceGeometry, Interface, SpatialDim};
-use crate::mesh::SurfaceMesh;
+use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::tolerances::Tolerances;
 
 /// Candidate master faces per slave face, in compressed rows: the candidates of slave face `s`
@@ -38,11 +37,12 @@ impl Candidates {
 /// BVHs over the master faces' inflated bounding boxes, queried one slave face at a time.
 ///
 /// The master faces are cut into slabs of equal width along the longest axis of their
-/// bounding box (by box centre) and one tree is built per slab, in parallel. Within a slab the
-/// faces follow the Morton order of their centres (whatever the file's numbering), and each
-/// leaf holds up to four consecutive ones (`LEAF_FACES`), which makes the trees several times
-/// cheaper to build; a hit leaf's faces are then tested one by one. A query visits the slabs whose bounds meet its box. The candidates
-/// are sorted, so they depend neither on the slab layout nor on the thread count.
+/// bounding box (by first node) and one tree is built per slab, in parallel. Within a slab
+/// the faces follow the Morton order of their first nodes (whatever the file's numbering),
+/// and each leaf holds up to four consecutive ones (`LEAF_FACES`), which makes the trees
+/// several times cheaper to build; a hit leaf's faces are then tested one by one. A query
+/// visits the slabs whose bounds meet its box. The candidates are sorted, so they depend
+/// neither on the slab layout nor on the thread count.
 pub struct MasterTree {
     slabs: Vec<Slab>,
     planar: bool,
@@ -53,10 +53,9 @@ struct Slab {
     bounds: Box3,
     /// The slot of the slab's first face: the slabs' faces concatenated are the slots.
     first_slot: u32,
-    /// The slab's faces; leaf `l` holds `faces[LEAF_FACES * l..]` (up to `LEAF_FACES`).
-    faces: Vec<u32>,
-    /// Their boxes, in the same order, in `f32` rounded outward (conservative, half the
-    /// memory): the per-face test of a hit leaf reads them instead of the mesh.
+    /// The boxes of the slab's faces (slots `first_slot..`; leaf `l` holds the faces
+    /// `LEAF_FACES * l..`, up to `LEAF_FACES`), in `f32` rounded outward (conservative, half
+    /// the memory): the per-face test of a hit leaf reads them instead of the mesh.
     boxes: Vec<[f32; 6]>,
 }
 
@@ -118,55 +117,76 @@ const EMPTY: Box3 = (
 
 impl MasterTree {
     /// Builds the trees over the master faces of `interface`, in parallel on the current
-    /// rayon pool.
+    /// rayon pool (see [`build_with_faces`](Self::build_with_faces)).
     pub fn build(interface: &Interface) -> Self {
+        Self::build_with_faces(interface).0
+    }
+
+    /// Builds the trees over the master faces of `interface` and the master faces by slot
+    /// ([`MasterFaces`]: a face's slot is its position in the trees' order), in parallel on
+    /// the current rayon pool.
+    ///
+    /// The mesh is read in the file's order once, for one node per face (its first: the
+    /// anchor of its Morton code and of its slab), and once in slot order, by
+    /// [`MasterFaces::new`]; the boxes are computed from the faces in slot order. A file
+    /// whose faces and nodes are numbered far apart thus costs two reads of the mesh in
+    /// random order, not the five it took to build boxes, order them, gather them by slab
+    /// and copy the faces.
+    pub fn build_with_faces(interface: &Interface) -> (Self, MasterFaces) {
         let tol = interface.tolerances();
         let planar = interface.dim() == SpatialDim::Two;
         let master = interface.master();
         let n = master.face_count();
-        let boxes: Vec<Box3> = (0..n)
+        let xyz = master.coords();
+        let anchors: Vec<Vector3<f64>> = (0..n)
             .into_par_iter()
-            .map(|f| face_box(master, f, tol))
+            .map(|f| xyz[master.face(f).nodes[0] as usize])
             .collect();
-        let centres: Vec<Vector3<f64>> = boxes.par_iter().map(|b| 0.5 * (b.0 + b.1)).collect();
-        // Faces in the Morton order of their centres, so that a leaf's faces are neighbours
-        // whatever the file's numbering.
-        let order = spatial_order(&centres, planar);
-        // Bucket the faces into slabs of equal width along the longest axis (by box centre,
-        // in spatial order within a slab): O(n), deterministic.
-        let slab_count = n.div_ceil(SLAB_FACES).max(1);
-        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); slab_count];
-        if slab_count == 1 {
-            buckets[0] = order;
-        } else {
-            let (lo, hi) = centres
-                .iter()
-                .fold((EMPTY.0, EMPTY.1), |(lo, hi), c| (lo.inf(c), hi.sup(c)));
-            let axis = (hi - lo).imax();
-            let width = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
-            for f in order {
-                let c = &centres[f as usize];
-                let k = (((c[axis] - lo[axis]) / width) * slab_count as f64) as usize;
-                buckets[k.min(slab_count - 1)].push(f);
-            }
-        }
-        buckets.retain(|b| !b.is_empty());
-        let first_slots: Vec<u32> = buckets
+        let (lo, hi) = anchors
             .iter()
-            .scan(0u32, |acc, b| {
-                let first = *acc;
-                *acc += b.len() as u32;
-                Some(first)
+            .fold((EMPTY.0, EMPTY.1), |(lo, hi), c| (lo.inf(c), hi.sup(c)));
+        // Slabs of equal width along the longest axis (by anchor), Morton order within a
+        // slab: one sort of (slab, code, face), so that the order depends on the coordinates
+        // only, not on the thread count.
+        let slab_count = n.div_ceil(SLAB_FACES).max(1);
+        let axis = (hi - lo).imax();
+        let width = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
+        let mut keyed: Vec<(u32, u64, u32)> = anchors
+            .par_iter()
+            .enumerate()
+            .map(|(f, c)| {
+                let k = if slab_count == 1 {
+                    0
+                } else {
+                    ((((c[axis] - lo[axis]) / width) * slab_count as f64) as usize)
+                        .min(slab_count - 1)
+                };
+                (k as u32, morton_code(c, &lo, &hi, planar), f as u32)
             })
             .collect();
-        let slabs = buckets
+        drop(anchors);
+        keyed.par_sort_unstable();
+        let mut ranges: Vec<(u32, u32)> = Vec::new();
+        for (i, &(k, _, _)) in keyed.iter().enumerate() {
+            match ranges.last_mut() {
+                Some((first, len)) if keyed[*first as usize].0 == k => *len += 1,
+                _ => ranges.push((i as u32, 1)),
+            }
+        }
+        let masters = MasterFaces::new(interface, keyed.into_iter().map(|(_, _, f)| f));
+        let slabs = ranges
             .into_par_iter()
-            .zip(first_slots)
-            .map(|(faces, first_slot)| {
-                // The slab's boxes gathered once in its (spatial) order: the leaves and the
-                // f32 copies then read them in sequence, whatever the file's numbering.
-                let sorted: Vec<Box3> = faces.iter().map(|&f| boxes[f as usize]).collect();
-                let leaves: Vec<(u32, Box3)> = sorted
+            .map(|(first_slot, len)| {
+                // The slab's boxes from its faces in slot order: the leaves and the f32
+                // copies then read them in sequence, whatever the file's numbering.
+                let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+                let boxes: Vec<Box3> = (first_slot..first_slot + len)
+                    .map(|s| {
+                        let (_, k) = masters.coords_into(interface, s as usize, &mut x);
+                        points_box(&x[..k], tol)
+                    })
+                    .collect();
+                let leaves: Vec<(u32, Box3)> = boxes
                     .chunks(LEAF_FACES)
                     .enumerate()
                     .map(|(l, group)| (l as u32, group.iter().fold(EMPTY, |acc, b| union(&acc, b))))
@@ -176,22 +196,15 @@ impl MasterTree {
                     tree: BoxTree::build(&leaves, planar),
                     bounds,
                     first_slot,
-                    boxes: sorted.iter().map(box_f32).collect(),
-                    faces,
+                    boxes: boxes.iter().map(box_f32).collect(),
                 }
             })
             .collect();
-        Self { slabs, planar }
+        (Self { slabs, planar }, masters)
     }
 
-    /// The master faces in the order the tree stores them (slab by slab, Morton order within
-    /// a slab): a spatial order. The position of a face in it is its *slot*.
-    pub fn face_order(&self) -> impl Iterator<Item = u32> + '_ {
-        self.slabs.iter().flat_map(|s| s.faces.iter().copied())
-    }
-
-    /// The candidate master faces of slave face `s`, as slots (positions in
-    /// [`face_order`](Self::face_order)), ascending, written into `out` (cleared first).
+    /// The candidate master faces of slave face `s`, as slots (see
+    /// [`MasterFaces::face_index`] for the face of a slot), ascending, written into `out` (cleared first).
     /// Slots near each other are faces near each other in space.
     pub fn candidates_into(&self, interface: &Interface, s: usize, out: &mut Vec<u32>) {
         self.candidates_of(interface, &interface.slave_face(s), out);
@@ -213,7 +226,7 @@ impl MasterTree {
             let end = out.len();
             for i in start..end {
                 let first = out[i] as usize * LEAF_FACES;
-                let last = (first + LEAF_FACES).min(slab.faces.len());
+                let last = (first + LEAF_FACES).min(slab.boxes.len());
                 for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
                     if overlaps_f32(&b, fb, self.planar) {
                         out.push(slab.first_slot + k as u32);
@@ -237,13 +250,15 @@ fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
 /// depend on the thread count. (`assemble_coupling` queries chunk by chunk instead, without
 /// storing every candidate.)
 pub fn find_candidates(interface: &Interface) -> Candidates {
-    let tree = MasterTree::build(interface);
-    let face_of: Vec<u32> = tree.face_order().collect();
+    let (tree, masters) = MasterTree::build_with_faces(interface);
     let lists: Vec<Vec<u32>> = (0..interface.slave().face_count())
         .into_par_iter()
         .map_init(Vec::new, |scratch, s| {
             tree.candidates_into(interface, s, scratch);
-            let mut faces: Vec<u32> = scratch.iter().map(|&k| face_of[k as usize]).collect();
+            let mut faces: Vec<u32> = scratch
+                .iter()
+                .map(|&k| masters.face_index(k as usize) as u32)
+                .collect();
             faces.sort_unstable();
             faces
         })
@@ -284,12 +299,10 @@ fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
     (lo - pad, hi + pad)
 }
 
-/// The face's bounding box, inflated for the search.
-fn face_box(mesh: &SurfaceMesh, f: usize, tol: &Tolerances) -> Box3 {
-    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
-    let k = mesh.face_coords_into(f, &mut x);
+/// The bounding box of a face's nodes, inflated for the search.
+fn points_box(x: &[Vector3<f64>], tol: &Tolerances) -> Box3 {
     let (mut lo, mut hi) = (x[0], x[0]);
-    for p in &x[1..k] {
+    for p in &x[1..] {
         lo = lo.inf(p);
         hi = hi.sup(p);
     }
