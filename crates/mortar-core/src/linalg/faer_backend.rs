@@ -10,9 +10,16 @@
 //! without copying: the CSR arrays of `A` are the CSC arrays of `A^T`, so a CSR matrix is
 //! factorised as `A^T` and solved with the transposed factors.
 
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::SolveCore;
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
-use faer::sparse::linalg::{LltError, LuError};
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
+use faer::sparse::linalg::LuError;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Side};
 
@@ -174,15 +181,6 @@ fn lu_error(e: LuError) -> SolverError {
     }
 }
 
-fn llt_error(e: LltError) -> SolverError {
-    match e {
-        LltError::Numeric(faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot {
-            index,
-        }) => SolverError::NotPositiveDefinite { pivot: index },
-        LltError::Generic(e) => SolverError::Backend(format!("{e:?}")),
-    }
-}
-
 /// A sparse LU factorisation with partial pivoting (faer, supernodal or simplicial), for
 /// square non-singular matrices such as the saddle-point systems of mesh tying.
 ///
@@ -273,12 +271,29 @@ impl LuFactorization {
 /// A sparse Cholesky factorisation `A = L L^T` (faer) of a symmetric positive definite matrix.
 /// Only one triangle of `A` is read (for a CSR matrix the upper one, `col >= row`; for CSC the
 /// lower one); the caller guarantees the symmetry.
+///
+/// The fill-reducing ordering is nested dissection (METIS, see [`nested_dissection`]) for
+/// matrices of [`NESTED_DISSECTION_MIN`] unknowns or more, approximate minimum degree (faer's)
+/// below that or if METIS fails; [`ordering`](Self::ordering) says which. Factors of
+/// [`PARALLEL_MIN_COLUMN`] entries per column or more are computed on faer's global
+/// parallelism, smaller ones sequentially.
+///
+/// [`nested_dissection`]: super::nested_dissection
 #[derive(Debug, Clone)]
 pub struct CholeskyFactorization {
     pattern: Pattern,
-    symbolic: SymbolicLlt<usize>,
-    numeric: Llt<usize, f64>,
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    values: Vec<f64>,
+    ordering: &'static str,
 }
+
+/// The size from which [`CholeskyFactorization`] orders by nested dissection: below it,
+/// minimum degree costs about as much fill and less time to compute.
+pub const NESTED_DISSECTION_MIN: usize = 20_000;
+
+/// The mean entries per column of a Cholesky factor from which it is factorised and solved
+/// in parallel (see [`CholeskyFactorization`]).
+pub const PARALLEL_MIN_COLUMN: usize = 256;
 
 impl CholeskyFactorization {
     /// Analyses and factorises `a`.
@@ -287,16 +302,72 @@ impl CholeskyFactorization {
     /// [`SolverError::DimensionMismatch`] for a non-square matrix,
     /// [`SolverError::NotPositiveDefinite`], [`SolverError::Backend`].
     pub fn try_new(a: &SparseMatrix) -> Result<Self, SolverError> {
+        let (perm, ordering) = fill_reducing_ordering(a)?;
+        Self::build(a, &perm, ordering)
+    }
+
+    /// Analyses and factorises `a` in the given elimination order (`perm[new] = old`, a
+    /// permutation of the unknowns): an ordering computed once for a family of matrices
+    /// (the Newton systems of a contact solve, whose patterns differ in a few rows) and
+    /// reused, instead of one per matrix.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`] if `perm` is not a permutation of the unknowns, and
+    /// the errors of [`try_new`](Self::try_new).
+    pub fn try_new_ordered(a: &SparseMatrix, perm: &[usize]) -> Result<Self, SolverError> {
+        Self::build(a, perm, "given")
+    }
+
+    fn build(a: &SparseMatrix, fwd: &[usize], ordering: &'static str) -> Result<Self, SolverError> {
         let view = CscView::of(a)?;
-        let symbolic = SymbolicLlt::try_new(view.symbolic(), Side::Lower)
-            .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
-        let numeric = Llt::try_new_with_symbolic(symbolic.clone(), view.matrix(), Side::Lower)
-            .map_err(llt_error)?;
-        Ok(Self {
+        let inv = inverse(fwd, view.n)?;
+        let perm = PermRef::new_checked(fwd, &inv, view.n);
+        let symbolic = factorize_symbolic_cholesky(
+            view.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Custom(perm),
+            Default::default(),
+        )
+        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+        let mut this = Self {
             pattern: Pattern::of(a),
-            symbolic,
-            numeric,
-        })
+            symbolic: Arc::new(symbolic),
+            values: Vec::new(),
+            ordering,
+        };
+        this.values = this.numeric(&view)?;
+        Ok(this)
+    }
+
+    /// The numeric factor of the matrix `view` on the analysed pattern.
+    fn numeric(&self, view: &CscView<'_>) -> Result<Vec<f64>, SolverError> {
+        let symbolic = &*self.symbolic;
+        let mut values = Vec::new();
+        values
+            .try_reserve_exact(symbolic.len_val())
+            .map_err(|e| SolverError::Backend(format!("the factor does not fit: {e}")))?;
+        values.resize(symbolic.len_val(), 0.0);
+        let par = self.parallelism();
+        let mut mem = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        )
+        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+        symbolic
+            .factorize_numeric_llt::<f64>(
+                &mut values,
+                view.matrix(),
+                Side::Lower,
+                Default::default(),
+                par,
+                MemStack::new(&mut mem),
+                Default::default(),
+            )
+            .map_err(|e| match e {
+                faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
+                    SolverError::NotPositiveDefinite { pivot: index }
+                }
+            })?;
+        Ok(values)
     }
 
     /// Factorises a new matrix with the same sparsity pattern, reusing the symbolic analysis.
@@ -307,15 +378,37 @@ impl CholeskyFactorization {
     pub fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
         self.pattern.check(a)?;
         let view = CscView::of(a)?;
-        self.numeric =
-            Llt::try_new_with_symbolic(self.symbolic.clone(), view.matrix(), Side::Lower)
-                .map_err(llt_error)?;
+        self.values = self.numeric(&view)?;
         Ok(())
     }
 
     /// The matrix size.
     pub fn dim(&self) -> usize {
         self.pattern.n
+    }
+
+    /// faer's global parallelism for a factor of [`PARALLEL_MIN_COLUMN`] entries per column
+    /// or more (large dense blocks, as in 3D), sequential below: the many small supernodes of
+    /// a 2D factor cost more in thread wake-ups than they gain (`bench_contact`, 2D Hertz at
+    /// 3.7e5 unknowns: 1.73 s per Newton step sequential against 2.15 s on two threads; the
+    /// 3D patch at 9.4e4: 4.55 s on two threads against 4.94 s sequential).
+    fn parallelism(&self) -> faer::Par {
+        if self.symbolic.len_val() >= PARALLEL_MIN_COLUMN * self.pattern.n.max(1) {
+            faer::get_global_parallelism()
+        } else {
+            faer::Par::Seq
+        }
+    }
+
+    /// The fill-reducing ordering used: `"nested dissection (METIS)"`, `"approximate minimum
+    /// degree"` or `"given"` ([`try_new_ordered`](Self::try_new_ordered)).
+    pub fn ordering(&self) -> &'static str {
+        self.ordering
+    }
+
+    /// The number of stored entries of the factor `L`.
+    pub fn factor_entries(&self) -> usize {
+        self.symbolic.len_val()
     }
 
     /// Overwrites `x` (the right-hand side) with the solution of `A x = b`.
@@ -327,8 +420,16 @@ impl CholeskyFactorization {
         check_rhs(self.pattern.n, x.len())?;
         let n = x.len();
         let rhs = MatMut::from_column_major_slice_mut(x, n, 1);
+        let par = self.parallelism();
+        let mut mem = MemBuffer::try_new(self.symbolic.solve_in_place_scratch::<f64>(1, par))
+            .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
         // Symmetric: A = A^T, whichever storage the arrays came from.
-        self.numeric.solve_in_place_with_conj(Conj::No, rhs);
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            par,
+            MemStack::new(&mut mem),
+        );
         check_finite(x)
     }
 
@@ -341,6 +442,60 @@ impl CholeskyFactorization {
         self.solve_in_place(&mut x)?;
         Ok(x)
     }
+}
+
+/// The inverse of the permutation `fwd` of `0..n`.
+fn inverse(fwd: &[usize], n: usize) -> Result<Vec<usize>, SolverError> {
+    let bad = || {
+        SolverError::DimensionMismatch(format!(
+            "an ordering of {} entries is not a permutation of {n} unknowns",
+            fwd.len()
+        ))
+    };
+    if fwd.len() != n {
+        return Err(bad());
+    }
+    let mut inv = vec![usize::MAX; n];
+    for (new, &old) in fwd.iter().enumerate() {
+        if old >= n || inv[old] != usize::MAX {
+            return Err(bad());
+        }
+        inv[old] = new;
+    }
+    Ok(inv)
+}
+
+/// A fill-reducing elimination order of the symmetric matrix `a` (`perm[new] = old`) and its
+/// name: nested dissection (METIS, see [`nested_dissection`](super::nested_dissection)) for
+/// [`NESTED_DISSECTION_MIN`] unknowns or more when the graph is of 3D character, approximate
+/// minimum degree (faer's) otherwise. What [`CholeskyFactorization::try_new`] uses.
+///
+/// # Errors
+/// [`SolverError::DimensionMismatch`] for a non-square matrix, [`SolverError::Backend`].
+pub fn fill_reducing_ordering(a: &SparseMatrix) -> Result<(Vec<usize>, &'static str), SolverError> {
+    let view = CscView::of(a)?;
+    if view.n >= NESTED_DISSECTION_MIN {
+        if let Some(perm) = super::nested_dissection::nested_dissection(a) {
+            return Ok((perm, "nested dissection (METIS)"));
+        }
+    }
+    let n = view.n;
+    let mut fwd = vec![0usize; n];
+    let mut inv = vec![0usize; n];
+    let mut mem = MemBuffer::try_new(faer::sparse::linalg::amd::order_scratch::<usize>(
+        n,
+        a.nnz(),
+    ))
+    .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+    faer::sparse::linalg::amd::order(
+        &mut fwd,
+        &mut inv,
+        view.symbolic(),
+        Default::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+    Ok((fwd, "approximate minimum degree"))
 }
 
 /// Solves `a x = b` by faer's sparse LU factorisation (analysis, factorisation and solve in

@@ -11,10 +11,12 @@
 
 mod faer_backend;
 mod gmres;
+pub mod nested_dissection;
 mod triplets;
 
 pub use faer_backend::{
-    solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization, SolverError,
+    fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,
+    SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
 };
 pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
