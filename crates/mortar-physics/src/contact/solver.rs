@@ -3,7 +3,8 @@
 use std::time::Instant;
 
 use mortar_core::linalg::{
-    CholeskyFactorization, LuFactorization, SolverError, SparseMatrix, Triplets,
+    fill_reducing_ordering, CholeskyFactorization, LuFactorization, SolverError, SparseMatrix,
+    Triplets,
 };
 
 use super::normal::NormalGap;
@@ -50,6 +51,11 @@ pub struct ContactStep {
     /// Seconds of each Newton step's linear solve (building the condensed or saddle-point
     /// system, factorising, solving).
     pub linear_seconds: Vec<f64>,
+    /// Newton steps whose system had a rigid mode held by nothing (a body held only by
+    /// contact before it touches, or on a flat branch of a regularised law), so that each
+    /// slave node without contact stiffness got a spring for that step only (the residual,
+    /// hence the solution, unchanged; only the step's size made definite).
+    pub regularised: usize,
     /// Seconds of the whole load step.
     pub seconds: f64,
 }
@@ -242,6 +248,33 @@ pub fn solve_contact<L: ConstraintLaw>(
         out
     };
 
+    // K_ff, the stiffness on the free displacements (the same in every Newton step), in CSR: the free numbering is
+    // monotone, so each row's columns stay sorted.
+    let mut ptr = Vec::with_capacity(nfree + 1);
+    let (mut idx, mut val) = (Vec::new(), Vec::new());
+    ptr.push(0usize);
+    for g in 0..ndof {
+        if free[g] == NONE {
+            continue;
+        }
+        let (b, i) = entry(g);
+        let off = if b == 0 { 0 } else { n[0] };
+        if let Some(row) = stiffness[b].outer_view(i) {
+            for (j, v) in row.iter() {
+                let cf = free[off + j];
+                if cf != NONE {
+                    idx.push(cf as usize);
+                    val.push(*v);
+                }
+            }
+        }
+        ptr.push(idx.len());
+    }
+    let kff = SparseMatrix::new((nfree, nfree), ptr, idx, val);
+    // The elimination order of the condensed systems, over the free displacements: computed
+    // for the first, reused for the next ones (their patterns differ in the rows of the
+    // slave nodes that change branch).
+    let mut order: Option<Vec<u32>> = None;
     let mut u = vec![0.0; ndof];
     let mut p = vec![0.0; rows];
     let mut steps = Vec::with_capacity(options.load_steps.max(1));
@@ -255,6 +288,8 @@ pub fn solve_contact<L: ConstraintLaw>(
         }
         let t_step = Instant::now();
         let mut linear_seconds = Vec::new();
+        let mut regularised = 0usize;
+        let mut last_held = false;
         let mut residuals = Vec::new();
         let mut branch_prev: Option<Vec<bool>> = None;
         let mut settled_at = None;
@@ -306,24 +341,6 @@ pub fn solve_contact<L: ConstraintLaw>(
                 settled_at = Some(it);
             }
             branch_prev = Some(branch);
-            // K_ff, the stiffness on the free displacements.
-            let mut kff = Triplets::default();
-            for g in 0..ndof {
-                let rf = free[g];
-                if rf == NONE {
-                    continue;
-                }
-                let (b, i) = entry(g);
-                let off = if b == 0 { 0 } else { n[0] };
-                if let Some(row) = stiffness[b].outer_view(i) {
-                    for (j, v) in row.iter() {
-                        let cf = free[off + j];
-                        if cf != NONE {
-                            kff.push(rf, cf, *v);
-                        }
-                    }
-                }
-            }
             // Each row of N on the free displacements.
             let n_free: Vec<Vec<(u32, f64)>> = gap
                 .matrix
@@ -336,8 +353,10 @@ pub fn solve_contact<L: ConstraintLaw>(
                 })
                 .collect();
             let a: Vec<f64> = (0..rows).map(|j| -c_g[j] / gap.weights[j]).collect();
+            let weighted_gap: Vec<f64> = (0..rows).map(|j| gap.weights[j] * gaps[j]).collect();
             let lin = Linearised {
                 nfree,
+                weighted_gap: &weighted_gap,
                 r_u: &r_u,
                 n_free: &n_free,
                 a: &a,
@@ -368,14 +387,16 @@ pub fn solve_contact<L: ConstraintLaw>(
             } else {
                 None
             };
-            let (du, dp) = match pivots {
+            let (du, dp, held) = match pivots {
                 Some(pivots) => {
                     condensed_steps += 1;
-                    condensed_step(&lin, kff, &pivots).map_err(singular)?
+                    condensed_step(&lin, &kff, &pivots, &mut order).map_err(singular)?
                 }
-                None => saddle_step(&lin, kff).map_err(singular)?,
+                None => saddle_step(&lin, &kff).map_err(singular)?,
             };
             linear_seconds.push(t_linear.elapsed().as_secs_f64());
+            regularised += usize::from(held);
+            last_held = held;
             for g in 0..ndof {
                 if free[g] != NONE {
                     u[g] += du[free[g] as usize];
@@ -385,6 +406,20 @@ pub fn solve_contact<L: ConstraintLaw>(
                 p[j] += dp[j];
             }
             taken = it + 1;
+        }
+        if !converged && last_held {
+            return Err(PhysicsError::InvalidInput {
+                body: "contact".into(),
+                what: format!(
+                    "Newton did not converge at load step {s} ({taken} steps, relative \
+                     residual {:.1e}), and its last system (of {regularised} such) still had a \
+                     rigid mode held by nothing but the contact springs: a body is not held against rigid \
+                     motion in some direction but by contact, and contact does not hold it \
+                     there (pulled off?); fix it with a Dirichlet condition in that \
+                     direction, or load it by a prescribed displacement",
+                    residuals.last().copied().unwrap_or(f64::NAN)
+                ),
+            });
         }
         if !converged {
             return Err(PhysicsError::Newton(crate::nonlinear::NewtonFailure {
@@ -400,6 +435,7 @@ pub fn solve_contact<L: ConstraintLaw>(
             residuals,
             active: p.iter().filter(|&&v| v > 0.0).count(),
             linear_seconds,
+            regularised,
             seconds: t_step.elapsed().as_secs_f64(),
         });
     }
@@ -433,12 +469,16 @@ pub fn solve_contact<L: ConstraintLaw>(
 }
 
 /// A Newton step: the change of the free displacements and of the pressures.
-type Step = (Vec<f64>, Vec<f64>);
+/// A Newton step: the displacement and pressure increments, and whether its system had to be
+/// regularised (see [`condensed_step`]).
+type Step = (Vec<f64>, Vec<f64>, bool);
 
 /// The Newton system of one step, on the free displacements and the slave-node pressures:
 /// `[[K_ff, N_f^T], [A N_f, diag(C_p)]] [du; dp] = [-R_u; -C]`, `A = diag(-C_g / w)`.
 struct Linearised<'a> {
     nfree: usize,
+    /// The weighted gaps `w_j g_j`.
+    weighted_gap: &'a [f64],
     r_u: &'a [f64],
     n_free: &'a [Vec<(u32, f64)>],
     a: &'a [f64],
@@ -447,8 +487,12 @@ struct Linearised<'a> {
 }
 
 /// The step by sparse LU of the whole system (any D).
-fn saddle_step(lin: &Linearised<'_>, mut t: Triplets) -> Result<Step, SolverError> {
+fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverError> {
     let (nfree, rows) = (lin.nfree, lin.c.len());
+    let mut t = Triplets::default();
+    for (v, (i, k)) in kff.iter() {
+        t.push(i as u32, k as u32, *v);
+    }
     let size = nfree + rows;
     let mut rhs = vec![0.0; size];
     for (i, r) in lin.r_u.iter().enumerate() {
@@ -469,8 +513,39 @@ fn saddle_step(lin: &Linearised<'_>, mut t: Triplets) -> Result<Step, SolverErro
     let jac = t.to_csr(size, size);
     LuFactorization::try_new(&jac)?.solve_in_place(&mut rhs)?;
     let dp = rhs.split_off(nfree);
-    Ok((rhs, dp))
+    Ok((rhs, dp, false))
 }
+
+fn inf_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// Whether the bound from below of the condition number of `a` that the solution `x` of
+/// `a x = b` gives, `|a| |x| / |b|` (infinity norms), is at most [`MAX_CONDITION`]: above it
+/// the solution has no correct digit (a body held in some direction by nothing, a law with no
+/// stiffness there yet), and the factorisation's success means nothing. (For a system of
+/// displacements only: in a saddle point of displacements and pressures the bound mixes
+/// units.)
+fn well_conditioned(a: &SparseMatrix, x: &[f64], b_norm: f64) -> bool {
+    let a_norm = a
+        .outer_iterator()
+        .map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>())
+        .fold(0.0f64, f64::max);
+    a_norm * inf_norm(x) <= MAX_CONDITION * b_norm
+}
+
+/// Solves the symmetric `a x = b` in place: Cholesky in the elimination order `perm`, or LU if
+/// `a` is not positive definite.
+fn solve_symmetric(a: &SparseMatrix, perm: &[usize], b: &mut [f64]) -> Result<(), SolverError> {
+    match CholeskyFactorization::try_new_ordered(a, perm) {
+        Ok(f) => f.solve_in_place(b),
+        Err(_) => LuFactorization::try_new(a).and_then(|f| f.solve_in_place(b)),
+    }
+}
+
+/// The condition number beyond which a Newton step is refused: `1e-3 / eps`, so that a step
+/// keeps about three correct digits.
+const MAX_CONDITION: f64 = 1e-3 / f64::EPSILON;
 
 /// The pivot of each active row, `(free index, N_j at it)` (`None` for inactive rows).
 type Pivots = Vec<Option<(u32, f64)>>;
@@ -527,8 +602,9 @@ fn plan_pivots(lin: &Linearised<'_>, free_of_slave: &[Vec<u32>]) -> Option<Pivot
 /// along its normal (the saddle point is solved then).
 fn condensed_step(
     lin: &Linearised<'_>,
-    kff: Triplets,
+    kff: &SparseMatrix,
     pivot: &Pivots,
+    order: &mut Option<Vec<u32>>,
 ) -> Result<Step, SolverError> {
     const NONE: u32 = u32::MAX;
     let (nfree, rows) = (lin.nfree, lin.c.len());
@@ -538,28 +614,40 @@ fn condensed_step(
             pivot_row[*pv as usize] = j as u32;
         }
     }
-    // K' = K_ff + sum over C_p != 0 rows of N_j^T (-a_j / C_p,j) N_j; rhs' likewise.
-    let mut kt = kff;
+    // K' = K_ff + sum over C_p != 0 rows of N_j^T s_j N_j, s_j = -a_j / C_p,j; rhs' likewise.
+    let weight: Vec<f64> = (0..rows)
+        .map(|j| {
+            if lin.c_p[j] == 0.0 {
+                0.0
+            } else {
+                -lin.a[j] / lin.c_p[j]
+            }
+        })
+        .collect();
     let mut rhs: Vec<f64> = lin.r_u.iter().map(|r| -r).collect();
     for j in 0..rows {
-        if lin.c_p[j] == 0.0 {
-            continue;
+        if lin.c_p[j] != 0.0 {
+            let f = lin.c[j] / lin.c_p[j];
+            for &(i, vi) in &lin.n_free[j] {
+                rhs[i as usize] += vi * f;
+            }
         }
-        let row = &lin.n_free[j];
-        let s = -lin.a[j] / lin.c_p[j];
-        if s != 0.0 {
-            for &(i, vi) in row {
-                for &(k, vk) in row {
-                    kt.push(i, k, s * vi * vk);
+    }
+    let kprime_times = |x: &[f64]| -> Vec<f64> {
+        let mut out: Vec<f64> = kff
+            .outer_iterator()
+            .map(|row| row.iter().map(|(k, v)| v * x[k]).sum())
+            .collect();
+        for (j, row) in lin.n_free.iter().enumerate() {
+            if weight[j] != 0.0 {
+                let d: f64 = row.iter().map(|&(k, v)| v * x[k as usize]).sum();
+                for &(i, v) in row {
+                    out[i as usize] += weight[j] * v * d;
                 }
             }
         }
-        let f = lin.c[j] / lin.c_p[j];
-        for &(i, vi) in row {
-            rhs[i as usize] += vi * f;
-        }
-    }
-    let kp = kt.to_csr(nfree, nfree);
+        out
+    };
     // Reduced unknowns: the free displacements but the pivots.
     let mut reduced = vec![NONE; nfree];
     let mut nr = 0usize;
@@ -592,32 +680,139 @@ fn condensed_step(
             q[pv as usize] = -lin.c[j] / lin.a[j] / nv;
         }
     }
-    // S = Q^T K' Q, b = Q^T (rhs' - K' q).
-    let kq: Vec<f64> = kp
-        .outer_iterator()
-        .map(|row| row.iter().map(|(k, v)| v * q[k]).sum())
-        .collect();
-    let mut t = Triplets::default();
+    // S = Q^T K' Q, b = Q^T (rhs' - K' q). The entries of K_ff between two unknowns that
+    // are not pivots (nearly all) go straight into S's compressed rows, in order; those
+    // touching a pivot and the N_j^T s_j N_j terms go through triplets, added after.
+    let kq = kprime_times(&q);
     let mut b = vec![0.0; nr];
     let (mut ei, mut ek) = (Vec::new(), Vec::new());
-    for (i, row) in kp.outer_iterator().enumerate() {
+    let mut extra = Triplets::default();
+    let mut ptr = Vec::with_capacity(nr + 1);
+    let (mut idx, mut val) = (Vec::with_capacity(kff.nnz()), Vec::with_capacity(kff.nnz()));
+    ptr.push(0usize);
+    for (i, row) in kff.outer_iterator().enumerate() {
         expansion(i, &mut ei);
         for &(ri, wi) in &ei {
             b[ri as usize] += wi * (rhs[i] - kq[i]);
         }
-        for (k, v) in row.iter() {
-            expansion(k, &mut ek);
-            for &(ri, wi) in &ei {
-                for &(rk, wk) in &ek {
-                    t.push(ri, rk, wi * v * wk);
+        if pivot_row[i] == NONE {
+            let ri = reduced[i];
+            for (k, v) in row.iter() {
+                if pivot_row[k] == NONE {
+                    idx.push(reduced[k] as usize);
+                    val.push(*v);
+                } else {
+                    expansion(k, &mut ek);
+                    for &(rk, wk) in &ek {
+                        extra.push(ri, rk, v * wk);
+                    }
+                }
+            }
+            ptr.push(idx.len());
+        } else {
+            for (k, v) in row.iter() {
+                expansion(k, &mut ek);
+                for &(ri, wi) in &ei {
+                    for &(rk, wk) in &ek {
+                        extra.push(ri, rk, wi * v * wk);
+                    }
                 }
             }
         }
     }
-    let s = t.to_csr(nr, nr);
-    match CholeskyFactorization::try_new(&s) {
-        Ok(f) => f.solve_in_place(&mut b)?,
-        Err(_) => LuFactorization::try_new(&s).and_then(|f| f.solve_in_place(&mut b))?,
+    for (j, row) in lin.n_free.iter().enumerate() {
+        if weight[j] == 0.0 {
+            continue;
+        }
+        for &(i, vi) in row {
+            expansion(i as usize, &mut ei);
+            for &(k, vk) in row {
+                expansion(k as usize, &mut ek);
+                let v = weight[j] * vi * vk;
+                for &(ri, wi) in &ei {
+                    for &(rk, wk) in &ek {
+                        extra.push(ri, rk, wi * v * wk);
+                    }
+                }
+            }
+        }
+    }
+    let base = SparseMatrix::new((nr, nr), ptr, idx, val);
+    let s = &base + &extra.to_csr(nr, nr);
+    drop(base);
+    // The elimination order: the free displacements' order (made from this system the first
+    // time, the pivots of that step put last) without this step's pivots.
+    let perm: Vec<usize> = match order {
+        Some(o) => o
+            .iter()
+            .filter(|&&i| pivot_row[i as usize] == NONE)
+            .map(|&i| reduced[i as usize] as usize)
+            .collect(),
+        None => {
+            let (perm, _) = fill_reducing_ordering(&s)?;
+            let mut free_of = vec![0u32; nr];
+            for (i, &r) in reduced.iter().enumerate() {
+                if r != NONE {
+                    free_of[r as usize] = i as u32;
+                }
+            }
+            let mut o: Vec<u32> = perm.iter().map(|&r| free_of[r]).collect();
+            o.extend((0..nfree as u32).filter(|&i| pivot_row[i as usize] != NONE));
+            *order = Some(o);
+            perm
+        }
+    };
+    let b_norm = inf_norm(&b);
+    let mut rhs_b = b.clone();
+    solve_symmetric(&s, &perm, &mut b)?;
+    // A system without a correct digit has a rigid mode held by nothing (a body held only by
+    // contact, before contact, or on a flat branch of a regularised law): each row without
+    // stiffness gets a spring that pulls its gap shut, the penalty `mu_j / 2 (w_j g_j -
+    // N_j du)^2` (`N_j du` is minus the change of the weighted gap) with `mu_j` as stiff as its stiffest unknown, and the step is solved again:
+    // the body moves into contact, where the law takes over. The residual is not changed, so
+    // neither is the solution; only this step is.
+    let mut regularised = false;
+    if !well_conditioned(&s, &b, b_norm) {
+        let mut spring = Triplets::default();
+        for (j, row) in lin.n_free.iter().enumerate() {
+            if weight[j] != 0.0 || pivot[j].is_some() {
+                continue;
+            }
+            let nn: f64 = row.iter().map(|(_, v)| v * v).sum();
+            let mut stiffest = 0.0f64;
+            for &(i, _) in row {
+                expansion(i as usize, &mut ei);
+                for &(r, _) in &ei {
+                    stiffest = stiffest.max(s.get(r as usize, r as usize).copied().unwrap_or(0.0));
+                }
+            }
+            if nn == 0.0 || stiffest == 0.0 {
+                continue;
+            }
+            let mu = stiffest / nn;
+            for &(i, vi) in row {
+                expansion(i as usize, &mut ei);
+                for &(ri, wi) in &ei {
+                    rhs_b[ri as usize] += wi * mu * lin.weighted_gap[j] * vi;
+                }
+                for &(k, vk) in row {
+                    expansion(k as usize, &mut ek);
+                    for &(ri, wi) in &ei {
+                        for &(rk, wk) in &ek {
+                            spring.push(ri, rk, wi * mu * vi * vk * wk);
+                        }
+                    }
+                }
+            }
+        }
+        let held = &s + &spring.to_csr(nr, nr);
+        b = rhs_b;
+        let b_norm = inf_norm(&b);
+        solve_symmetric(&held, &perm, &mut b)?;
+        if !well_conditioned(&held, &b, b_norm) {
+            return Err(SolverError::Singular { pivot: None });
+        }
+        regularised = true;
     }
     let mut du = vec![0.0; nfree];
     let mut e = Vec::new();
@@ -626,10 +821,7 @@ fn condensed_step(
         *d = q[i] + e.iter().map(|&(r, w)| w * b[r as usize]).sum::<f64>();
     }
     // Pressures: inactive rows from their law, active ones from their pivot's equilibrium.
-    let kdu: Vec<f64> = kp
-        .outer_iterator()
-        .map(|row| row.iter().map(|(k, v)| v * du[k]).sum())
-        .collect();
+    let kdu = kprime_times(&du);
     let mut dp = vec![0.0; rows];
     for j in 0..rows {
         dp[j] = match pivot[j] {
@@ -640,5 +832,5 @@ fn condensed_step(
             }
         };
     }
-    Ok((du, dp))
+    Ok((du, dp, regularised))
 }
