@@ -1,12 +1,15 @@
-//! The Hertz contact verification: an elastic cylinder (2D, plane strain, [`cylinder`])
-//! pressed onto an elastic block by a prescribed approach, checked against the closed form of
-//! Johnson, *Contact Mechanics* (Cambridge University Press, 1985), sec. 4.3 and 5.6
-//! ([`HertzLine`]).
+//! The Hertz contact verifications: an elastic cylinder (2D, plane strain, [`cylinder`]) or
+//! sphere (3D, [`sphere`]) pressed onto an elastic block by a prescribed approach, checked
+//! against the closed forms of Johnson, *Contact Mechanics* (Cambridge University Press,
+//! 1985), sec. 4.2 (sphere, [`HertzPoint`]) and sec. 4.3 and 5.6 (cylinder, [`HertzLine`]).
 //!
-//! What a Hertz scene needs beside its geometry lives here: the contact modulus, the
-//! assembled problem ([`HertzProblem`], built from the two bodies and their surfaces by one
-//! function), the solve and its reactions, and the extent of the computed contact zone
-//! ([`HalfWidth`]), bracketed by the slave nodes.
+//! Both scenes are symmetric parts (the half of a 2D section, the quarter of a 3D body, with
+//! the body cut at its mid-plane) of two bodies refined towards the point of first contact,
+//! frictionless mortar contact with dual multipliers, segment-based integration and the exact
+//! complementarity law (semi-smooth Newton, [`solve_contact`]) with automatic `c`. What they
+//! share lives here: the contact modulus, the assembled problem ([`HertzProblem`], built from
+//! the two bodies and their surfaces by one function), the solve and its reactions, and the
+//! extent of the computed contact zone ([`HalfWidth`]), bracketed by the slave nodes.
 
 use mortar_core::interface::Interface;
 use mortar_core::linalg::SparseMatrix;
@@ -24,9 +27,14 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 pub mod cylinder;
+pub mod sphere;
 
 pub use cylinder::{
     HertzLine, HertzRun, HertzScene, ProfileNode, DEFAULT_APPROACH, DEFAULT_ARC_CELLS,
+};
+pub use sphere::{
+    HertzContact, HertzPoint, HertzSphereRun, HertzSphereScene, SphereNode,
+    DEFAULT_SPHERE_APPROACH, DEFAULT_SPHERE_CELLS,
 };
 
 /// The contact modulus `E*` of two bodies: `1 / E* = (1 - nu1^2) / E1 + (1 - nu2^2) / E2`
@@ -48,11 +56,11 @@ pub(crate) fn first_cell(length: f64, cells: f64, grading: f64) -> f64 {
     length * slope / cells
 }
 
-/// The assembled scene (see [`HertzScene::build`]): what
+/// The assembled scene (see [`HertzScene::build`] and [`HertzSphereScene::build`]): what
 /// [`solve_contact`] takes.
 #[derive(Debug, Clone)]
 pub struct HertzProblem {
-    /// The cylinder (slave) and the block (master).
+    /// The cylinder or sphere (slave) and the block (master).
     pub bodies: [ElasticBody; 2],
     /// Their stiffness matrices.
     pub stiffness: [SparseMatrix; 2],
@@ -60,7 +68,7 @@ pub struct HertzProblem {
     pub load: [Vec<f64>; 2],
     /// Their Dirichlet unknowns and values.
     pub dirichlet: [(Vec<u32>, Vec<f64>); 2],
-    /// The mortar coupling of the arc (slave) and the block's top (master).
+    /// The mortar coupling of the curved surface (slave) and the block's top (master).
     pub tie: Tie,
     /// The weighted normal gap.
     pub gap: NormalGap,
