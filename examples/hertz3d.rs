@@ -190,7 +190,8 @@ fn main() -> Res<()> {
         "Hertz 3D, d = {:.3e} R (a = {:.4} R by the closed form): at n = {} the peak pressure \
          is {:+.2} % off p0 at d and {:+.2} % at the computed P ({:+.2} % off the closed \
          form's load at d); the contact radius is {:+.2} % off a at d ({:.2} elements) and \
-         {:+.2} % at P, bracketed by [{:.4}, {:.4}] R; at most {} Newton steps per load step; \
+         {:+.2} % at P, the last slave node in contact and the next at {:.4} and {:.4} R \
+         (bracketing a at d: {}, at P: {}); at most {} Newton steps per load step; \
          equilibrium to {:.1e}.",
         base.approach / base.radius,
         first.at_approach.radius / base.radius,
@@ -203,6 +204,8 @@ fn main() -> Res<()> {
         100.0 * first.radius_error_at_load(),
         first.contact_radius.last_in_contact / base.radius,
         first.contact_radius.first_open / base.radius,
+        first.contact_radius.brackets(first.at_approach.radius),
+        first.contact_radius.brackets(first.at_load.radius),
         runs.iter()
             .map(HertzSphereRun::max_newton_steps)
             .max()
