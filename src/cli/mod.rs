@@ -78,7 +78,7 @@ struct RunArgs {
     )]
     scene_file: Option<PathBuf>,
 
-    /// A built-in scene instead of a file (tied_heat, pellet, hertz2d, shrink_fit).
+    /// A built-in scene instead of a file (tied_heat, pellet, hertz2d, hertz3d, shrink_fit).
     #[arg(long, value_name = "NAME")]
     scene: Option<String>,
 

@@ -10,7 +10,7 @@ use mortar::scenes::file::{
     contact::{run_builtin_contact, ContactSpec},
     scene_kind,
     tied_heat::TiedHeatSpec,
-    FileSystem, InMemory, SceneOutput, SceneSource,
+    FileSystem, InMemory, SceneOutput, SceneSource, BUILTIN_CONTACT_SCENES,
 };
 
 use mortar::scenes::pellet;
@@ -97,7 +97,7 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
             let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
             (run_kind(&text, path, &base, &FileSystem)?, Vec::new())
         }
-        (None, Some(name)) if name == "hertz2d" || name == "shrink_fit" => {
+        (None, Some(name)) if BUILTIN_CONTACT_SCENES.contains(&name.as_str()) => {
             let output = run_builtin_contact(name)
                 .map_err(|e| e.to_string())?
                 .ok_or_else(|| format!("no built-in contact scene named \"{name}\""))?;

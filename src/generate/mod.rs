@@ -6,12 +6,15 @@
 //! `flip` reverses it, as the master side of a tied interface usually wants.
 //!
 //! Volume generators ([`rectangle_mesh`], [`box_mesh`], and the O-grids [`ball_mesh`] and
-//! [`box_with_hole_mesh`] of a curved inclusion, [`grid_rectangle_mesh`] on given (e.g.
-//! [`graded_points`]) coordinates, and [`quarter_disc_mesh`], a quarter disc refined towards
-//! a point of its rim for a cylinder in contact, and [`quarter_annulus_mesh`]) number nodes from `first_node_tag` and cells
-//! from 1, all cells positively oriented; their boundary surfaces come from
+//! [`box_with_hole_mesh`] of a curved inclusion, [`grid_rectangle_mesh`] and
+//! [`grid_box_mesh`] on given (e.g. [`graded_points`]) coordinates, [`quarter_disc_mesh`], a
+//! quarter disc refined towards a point of its rim for a cylinder in contact,
+//! [`ball_octant_mesh`], its 3D counterpart for a sphere, and [`quarter_annulus_mesh`])
+//! number nodes from `first_node_tag` and cells from 1, all cells positively oriented; their
+//! boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
 
+mod ball_octant;
 mod cylinder;
 mod disc;
 mod inclusion;
@@ -20,10 +23,13 @@ mod plane;
 mod sphere;
 mod volume;
 
+pub use ball_octant::ball_octant_mesh;
 pub use cylinder::cylinder_surface;
 pub use disc::{quarter_annulus_mesh, quarter_disc_mesh};
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
 pub use sphere::sphere_surface;
-pub use volume::{box_mesh, graded_points, grid_rectangle_mesh, rectangle_mesh, CellShape};
+pub use volume::{
+    box_mesh, graded_points, grid_box_mesh, grid_rectangle_mesh, rectangle_mesh, CellShape,
+};

@@ -48,7 +48,13 @@ pub fn grid_rectangle_mesh(
     shape: CellShape,
     first_node_tag: u64,
 ) -> Result<VolumeMesh, VolumeMeshError> {
-    for (axis, p) in [("x", xs), ("y", ys)] {
+    check_points(&[("x", xs), ("y", ys)])?;
+    tensor_rectangle(xs, ys, shape, first_node_tag)
+}
+
+/// Each axis's points: at least two, finite and strictly increasing.
+fn check_points(axes: &[(&str, &[f64])]) -> Result<(), VolumeMeshError> {
+    for &(axis, p) in axes {
         if p.len() < 2 {
             return Err(grid_error(format!(
                 "needs at least two {axis} points, got {}",
@@ -66,7 +72,7 @@ pub fn grid_rectangle_mesh(
             )));
         }
     }
-    tensor_rectangle(xs, ys, shape, first_node_tag)
+    Ok(())
 }
 
 fn grid_error(reason: String) -> VolumeMeshError {
@@ -161,23 +167,54 @@ pub fn box_mesh(
     shape: CellShape,
     first_node_tag: u64,
 ) -> Result<VolumeMesh, VolumeMeshError> {
-    let [nx, ny, nz] = cells;
     check_cells(&cells)?;
+    let points = |d: usize| -> Vec<f64> {
+        (0..=cells[d])
+            .map(|i| lo[d] + (hi[d] - lo[d]) * (i as f64 / cells[d] as f64))
+            .collect()
+    };
+    tensor_box(&[points(0), points(1), points(2)], shape, first_node_tag)
+}
+
+/// The box of the tensor grid `xs x ys x zs` (each strictly increasing, at least two points):
+/// `(xs.len() - 1) x (ys.len() - 1) x (zs.len() - 1)` cells, Hex8 or Tet4 (six per cube, the
+/// Kuhn split of [`box_mesh`]), positively oriented. Nodes are tagged from `first_node_tag`,
+/// x fastest, then y, then z; cells from 1. With [`graded_points`] it makes a box refined
+/// towards a face, an edge or a corner.
+///
+/// # Errors
+/// [`VolumeMeshError::BadCell`] for fewer than two points in a direction, or points that are
+/// not finite and strictly increasing.
+pub fn grid_box_mesh(
+    xs: &[f64],
+    ys: &[f64],
+    zs: &[f64],
+    shape: CellShape,
+    first_node_tag: u64,
+) -> Result<VolumeMesh, VolumeMeshError> {
+    check_points(&[("x", xs), ("y", ys), ("z", zs)])?;
+    tensor_box(
+        &[xs.to_vec(), ys.to_vec(), zs.to_vec()],
+        shape,
+        first_node_tag,
+    )
+}
+
+/// The tensor-grid box (points checked by the caller).
+fn tensor_box(
+    points: &[Vec<f64>; 3],
+    shape: CellShape,
+    first_node_tag: u64,
+) -> Result<VolumeMesh, VolumeMeshError> {
+    let [xs, ys, zs] = points;
+    let (nx, ny, nz) = (xs.len() - 1, ys.len() - 1, zs.len() - 1);
     let mut m = VolumeMesh::new();
     let id =
         |i: usize, j: usize, k: usize| first_node_tag + (i + (nx + 1) * (j + (ny + 1) * k)) as u64;
-    for k in 0..=nz {
-        for j in 0..=ny {
-            for i in 0..=nx {
-                let p = [
-                    i as f64 / nx as f64,
-                    j as f64 / ny as f64,
-                    k as f64 / nz as f64,
-                ];
-                m.add_node(
-                    id(i, j, k),
-                    std::array::from_fn(|d| lo[d] + (hi[d] - lo[d]) * p[d]),
-                )?;
+    for (k, &z) in zs.iter().enumerate() {
+        for (j, &y) in ys.iter().enumerate() {
+            for (i, &x) in xs.iter().enumerate() {
+                m.add_node(id(i, j, k), [x, y, z])?;
             }
         }
     }
@@ -274,5 +311,27 @@ mod tests {
         assert!(grid_rectangle_mesh(&[0.0, 1.0], &[1.0, 0.0], t, 1).is_err());
         assert!(grid_rectangle_mesh(&[f64::NEG_INFINITY, 1.0], &[0.0, 1.0], t, 1).is_err());
         assert!(grid_rectangle_mesh(&[0.0, f64::NAN], &[0.0, 1.0], t, 1).is_err());
+    }
+
+    #[test]
+    fn grid_box_matches_box_and_checks_points() {
+        for shape in [CellShape::Tensor, CellShape::Simplex] {
+            let a = box_mesh([0.0, -1.0, 2.0], [2.0, 0.5, 3.0], [3, 2, 2], shape, 5).unwrap();
+            let xs: Vec<f64> = (0..=3).map(|i| 2.0 * (i as f64 / 3.0)).collect();
+            let ys: Vec<f64> = (0..=2).map(|j| -1.0 + 1.5 * (j as f64 / 2.0)).collect();
+            let zs: Vec<f64> = (0..=2).map(|k| 2.0 + (k as f64 / 2.0)).collect();
+            let b = grid_box_mesh(&xs, &ys, &zs, shape, 5).unwrap();
+            assert_eq!(a.coords(), b.coords());
+            assert_eq!(a.node_tags(), b.node_tags());
+            assert_eq!(a.cell_count(), b.cell_count());
+            for c in 0..a.cell_count() {
+                assert_eq!(a.cell(c).nodes, b.cell(c).nodes);
+            }
+        }
+        let t = CellShape::Tensor;
+        let ok = [0.0, 1.0];
+        assert!(grid_box_mesh(&ok, &ok, &[0.0], t, 1).is_err());
+        assert!(grid_box_mesh(&ok, &ok, &[1.0, 0.0], t, 1).is_err());
+        assert!(grid_box_mesh(&ok, &[0.0, f64::NAN], &ok, t, 1).is_err());
     }
 }

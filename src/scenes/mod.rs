@@ -5,8 +5,8 @@
 //!   the open gap, nonlinear `k(T)`, Newton or JFNK, checked against the closed form.
 //! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
 //!   non-conforming interface, with a manufactured solution.
-//! - [`hertz`]: the 2D Hertz contact of a cylinder pressed onto a block (plane strain,
-//!   frictionless mortar contact), checked against the closed form.
+//! - [`hertz`]: the Hertz contact of a cylinder (2D, plane strain) or a sphere (3D) pressed
+//!   onto a block (frictionless mortar contact), checked against the closed forms.
 //! - [`shrink_fit`]: a disc pressed into a ring (plane strain, frictionless mortar contact on
 //!   non-matching faceted circles), checked against Lamé's closed form.
 //! - [`file`](mod@file): scene files (TOML) naming Gmsh meshes, groups, materials, boundary conditions

@@ -319,6 +319,65 @@ fn builtin_hertz2d_matches_the_closed_form() {
     assert!(out.join("report.json").is_file());
 }
 
+/// The built-in 3D Hertz scene (a sphere octant on a block, the default mesh of
+/// `mortar::scenes::hertz::sphere`): report.json carries the inputs, and the closed form of
+/// Johnson (1985, sec. 4.2) at the imposed approach `d` (`a = sqrt(R d)`,
+/// `p0 = 2 E* a / (pi R)`) and at the computed load `P` beside the computed values: the peak
+/// pressure within 3 % of both, the contact radius within one element of both, at most 10
+/// Newton steps.
+#[test]
+fn builtin_hertz3d_matches_the_closed_form() {
+    let dir = TempDir::new("contact-hertz3d");
+    let out = dir.join("out");
+    let o = mortar(&[
+        "--json",
+        "run",
+        "--scene",
+        "hertz3d",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let report: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(report["dimension"].as_u64(), Some(3));
+    for k in ["R", "E_star", "d"] {
+        assert!(report["inputs"][k].as_f64().unwrap() > 0.0, "{k}");
+    }
+    let (r, e, d) = (
+        report["inputs"]["R"].as_f64().unwrap(),
+        report["inputs"]["E_star"].as_f64().unwrap(),
+        report["inputs"]["d"].as_f64().unwrap(),
+    );
+    let at_d = &report["closed_form"]["at_d"];
+    let a_d = at_d["a"].as_f64().unwrap();
+    assert!((a_d - (r * d).sqrt()).abs() < 1e-12 * a_d);
+    let p0_d = at_d["p0"].as_f64().unwrap();
+    assert!((p0_d - 2.0 * e * a_d / (std::f64::consts::PI * r)).abs() < 1e-9 * p0_d);
+    let p = report["P"].as_f64().unwrap();
+    assert!(p > 0.0);
+    let a_p = report["closed_form"]["at_P"]["a"].as_f64().unwrap();
+    assert!((a_p - (3.0 * p * r / (4.0 * e)).cbrt()).abs() < 1e-12 * a_p);
+    let p0 = report["computed"]["p0"].as_f64().unwrap();
+    let a = report["computed"]["a"].as_f64().unwrap();
+    for closed in ["at_d", "at_P"] {
+        let c = &report["closed_form"][closed];
+        let (a_c, p0_c) = (c["a"].as_f64().unwrap(), c["p0"].as_f64().unwrap());
+        assert!(
+            (p0 - p0_c).abs() < 0.03 * p0_c,
+            "{closed}: p0 = {p0}, {p0_c}"
+        );
+        let element = report["element_at_a"][closed].as_f64().unwrap();
+        assert!(
+            (a - a_c).abs() <= element,
+            "{closed}: a = {a}, {a_c}, element {element}"
+        );
+    }
+    for step in report["load_steps"].as_array().unwrap() {
+        assert!(step["newton_steps"].as_u64().unwrap() <= 10, "{step}");
+    }
+    assert!(out.join("report.json").is_file());
+}
+
 /// Regression: the coupling's warnings reached neither the terminal nor (for scene files)
 /// report.json. The built-in shrink fit (disc as slave) leaves two end faces covered in part
 /// (the ring's end projects short of the disc's across the interference): the warning is

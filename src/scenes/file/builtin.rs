@@ -14,9 +14,14 @@ use crate::generate::{box_mesh, rectangle_mesh, CellShape};
 use crate::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 
 /// The names of the built-in scenes (`mortar run --scene NAME`): `tied_heat` (this module),
-/// `pellet` (`crate::scenes::pellet`, run by its own driver), `hertz2d` and `shrink_fit`
-/// (contact, run from memory by [`run_builtin_contact`](super::contact::run_builtin_contact)).
-pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet", "hertz2d", "shrink_fit"];
+/// `pellet` (`crate::scenes::pellet`, run by its own driver), and the
+/// [`BUILTIN_CONTACT_SCENES`].
+pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet", "hertz2d", "hertz3d", "shrink_fit"];
+
+/// The built-in contact scenes, run from memory by
+/// [`run_builtin_contact`](super::contact::run_builtin_contact): `hertz2d`, `hertz3d` and
+/// `shrink_fit`.
+pub const BUILTIN_CONTACT_SCENES: &[&str] = &["hertz2d", "hertz3d", "shrink_fit"];
 
 /// A built-in scene: its scene file and the mesh files it names.
 #[derive(Debug, Clone)]
@@ -42,7 +47,7 @@ pub fn builtin_scene(name: &str) -> Result<BuiltinScene, SceneError> {
              `mortar run --scene pellet` (or mortar::scenes::pellet)"
                 .into(),
         )),
-        "hertz2d" | "shrink_fit" => Err(SceneError::Other(format!(
+        name if BUILTIN_CONTACT_SCENES.contains(&name) => Err(SceneError::Other(format!(
             "the built-in scene \"{name}\" is a contact scene run from memory: run it with \
              `mortar run --scene {name}` (or mortar::scenes::file::contact::run_builtin_contact)"
         ))),

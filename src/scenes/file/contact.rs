@@ -918,8 +918,11 @@ fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json:
         .collect()
 }
 
-/// The built-in contact scenes, run from their builders in memory (no scene file or meshes
-/// are written): `hertz2d` ([`crate::scenes::hertz::HertzScene::new`]`(HERTZ_ARC_CELLS)`) and `shrink_fit`
+/// The built-in contact scenes ([`BUILTIN_CONTACT_SCENES`](super::BUILTIN_CONTACT_SCENES)),
+/// run from their builders in memory (no scene file or meshes are written): `hertz2d`
+/// ([`crate::scenes::hertz::HertzScene::new`]`(HERTZ_ARC_CELLS)`), `hertz3d`
+/// ([`crate::scenes::hertz::HertzSphereScene::default`], compared with the closed form both at
+/// the imposed approach and at the computed load) and `shrink_fit`
 /// ([`crate::scenes::shrink_fit::ShrinkFitScene::new`]`(32, 32)`). `None` for another name.
 /// Their `report.json` carries the inputs and the closed-form values beside the computed
 /// ones, and the contact steps as a scene file's report does.
@@ -929,7 +932,7 @@ fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json:
 pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError> {
     let t = Instant::now();
     let fail = |e: PhysicsError| SceneError::Other(format!("built-in scene {name}: {e}"));
-    // The Hertz scene requires full coverage (an error otherwise): only the shrink fit can
+    // The Hertz scenes require full coverage (an error otherwise): only the shrink fit can
     // carry coupling warnings.
     let mut warnings = Vec::new();
     let (report, summary) = match name {
@@ -979,6 +982,80 @@ pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError
                 run.peak,
                 run.p0_exact,
                 run.peak_error()
+            );
+            (report, summary)
+        }
+        "hertz3d" => {
+            let scene = crate::scenes::hertz::HertzSphereScene::default();
+            let closed = scene.closed_form();
+            let run = scene.run().map_err(fail)?;
+            let bracket = |h: &crate::scenes::hertz::HalfWidth| [h.last_in_contact, h.first_open];
+            let closed_json = |c: &crate::scenes::hertz::HertzContact| serde_json::json!({ "a": c.radius, "p0": c.peak, "P": c.load, "d": c.approach });
+            let report = serde_json::json!({
+                "kind": "contact",
+                "scene": "hertz3d",
+                "title": "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
+                "dimension": 3,
+                "inputs": {
+                    "R": scene.radius,
+                    "E_star": closed.contact_modulus,
+                    "d": scene.approach,
+                    "E": scene.sphere.youngs_modulus,
+                    "nu": scene.sphere.poisson_ratio,
+                    "block_size": scene.block_size * scene.radius,
+                    "cells": run.cells,
+                    "block_cells": run.block_cells,
+                },
+                "P": run.load,
+                "computed": {
+                    "a": run.contact_radius.estimate,
+                    "a_bracket": bracket(&run.contact_radius),
+                    "a_bracket_along_y0": bracket(&run.contact_radius_axis),
+                    "a_squared": run.contact_radius.squared,
+                    "p0": run.peak,
+                    "P": run.load,
+                },
+                "closed_form": {
+                    "at_d": closed_json(&run.at_approach),
+                    "at_P": closed_json(&run.at_load),
+                },
+                "element_at_a": { "at_d": run.edge_cell, "at_P": run.edge_cell_at_load },
+                "error": {
+                    "at_d": {
+                        "a": run.radius_error_at_approach(),
+                        "a_in_elements": (run.contact_radius.estimate - run.at_approach.radius) / run.edge_cell,
+                        "p0": run.peak_error_at_approach(),
+                        "P": run.load_error_at_approach(),
+                    },
+                    "at_P": {
+                        "a": run.radius_error_at_load(),
+                        "a_in_elements": (run.contact_radius.estimate - run.at_load.radius) / run.edge_cell_at_load,
+                        "p0": run.peak_error_at_load(),
+                        "profile_l2": run.profile_l2,
+                    },
+                    "equilibrium": run.equilibrium_error(),
+                },
+                "load_steps": steps_json(&run.steps),
+                "active": run.active,
+                "slave_nodes": run.slave_nodes,
+                "unknowns": run.unknowns,
+                "contact_force": run.force,
+                "complementarity": run.complementarity,
+                "seconds": { "build": run.seconds_build, "run": run.seconds, "total": t.elapsed().as_secs_f64() },
+            });
+            let summary = format!(
+                "hertz3d: d = {:.6e} m, P = {:.6e} N ({:+.2e} off the closed form at d); a = {:.6e} m (closed form {:.6e} at d, {:.6e} at P); p0 = {:.6e} Pa (closed form {:.6e} at d, {:+.2e}; {:.6e} at P, {:+.2e})",
+                scene.approach,
+                run.load,
+                run.load_error_at_approach(),
+                run.contact_radius.estimate,
+                run.at_approach.radius,
+                run.at_load.radius,
+                run.peak,
+                run.at_approach.peak,
+                run.peak_error_at_approach(),
+                run.at_load.peak,
+                run.peak_error_at_load()
             );
             (report, summary)
         }

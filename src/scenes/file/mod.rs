@@ -38,7 +38,10 @@ pub mod tied_heat;
 
 use std::path::{Path, PathBuf};
 
-pub use builtin::{builtin_scene, tied_block, tied_block_exact, BuiltinScene, BUILTIN_SCENES};
+pub use builtin::{
+    builtin_scene, tied_block, tied_block_exact, BuiltinScene, BUILTIN_CONTACT_SCENES,
+    BUILTIN_SCENES,
+};
 pub use error::SceneError;
 
 use crate::io::IoError;

@@ -28,23 +28,17 @@
 
 use std::time::Instant;
 
-use mortar_core::interface::Interface;
-use mortar_core::linalg::SparseMatrix;
 use mortar_core::mesh::BoundaryFace;
-use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
-use mortar_physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactStep, NormalGap,
-};
-use mortar_physics::elastic::{
-    assemble_elastic_load, assemble_elastic_stiffness, ComponentSet, ElasticBody, ElasticMaterial,
-    ElasticOptions,
-};
-use mortar_physics::laws::ContactComplementarity;
-use mortar_physics::tied::Tie;
+use mortar_core::CouplingOptions;
+use mortar_physics::contact::{ContactOptions, ContactStep};
+use mortar_physics::elastic::{ComponentSet, ElasticBody, ElasticMaterial};
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
+use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
 use crate::generate::{graded_points, grid_rectangle_mesh, quarter_disc_mesh, CellShape};
+#[cfg(doc)]
+use mortar_physics::contact::solve_contact;
 
 /// The closed form of the 2D Hertz contact (Johnson 1985, sec. 4.3 and 5.6): two cylinders
 /// (here a cylinder of radius `R` and a plane) pressed together by a force `P` per unit length
@@ -63,10 +57,9 @@ impl HertzLine {
     /// The contact of a cylinder of radius `radius` and material `cylinder` with a flat body
     /// of material `block`.
     pub fn new(radius: f64, cylinder: &ElasticMaterial, block: &ElasticMaterial) -> Self {
-        let c = |m: &ElasticMaterial| (1.0 - m.poisson_ratio.powi(2)) / m.youngs_modulus;
         Self {
             radius,
-            contact_modulus: 1.0 / (c(cylinder) + c(block)),
+            contact_modulus: contact_modulus(cylinder, block),
         }
     }
 
@@ -175,16 +168,9 @@ impl HertzScene {
         if let Some(n) = self.block_cells {
             return n.max(1);
         }
-        let slope = |g: f64| {
-            if g > 1.0 + 1e-12 {
-                g.ln() / (g - 1.0)
-            } else {
-                1.0
-            }
-        };
         let w = self.block_size * self.radius;
-        let disc = std::f64::consts::FRAC_PI_2 * self.radius * slope(self.grading);
-        let ratio = w * slope(self.block_grading) / (self.block_cell_ratio * disc);
+        let disc = first_cell(std::f64::consts::FRAC_PI_2 * self.radius, 1.0, self.grading);
+        let ratio = first_cell(w, 1.0, self.block_grading) / (self.block_cell_ratio * disc);
         ((ratio * self.arc_cells as f64).round() as usize).max(1)
     }
 
@@ -249,39 +235,14 @@ impl HertzScene {
         let slave_surface = slave.mesh.boundary_surface(on_arc)?;
         let master_surface = master.mesh.boundary_surface(|f| near(f.centroid.y, 0.0))?;
         // The gap grows to r - sqrt(r^2 - zone^2) < zone at the zone's end: search that far.
-        let tolerances = Tolerances {
-            search_radius: SearchRadius::Distance(zone),
-            ..Tolerances::default()
-        };
-        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
-        let mut coupling_options = self.coupling.clone();
-        coupling_options.require_full_coverage = true;
-        let coupling = assemble_coupling(&interface, &coupling_options)?;
-        let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
-
-        let options = ElasticOptions::default();
-        let stiffness = [
-            assemble_elastic_stiffness(&slave, &options)?,
-            assemble_elastic_stiffness(&master, &options)?,
-        ];
-        let load = [
-            assemble_elastic_load(&slave, &options)?,
-            assemble_elastic_load(&master, &options)?,
-        ];
-        let dirichlet = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
-        let gap = NormalGap::new(&tie, 2, slave.mesh.node_count(), master.mesh.node_count())?;
-        let c = automatic_complementarity(&stiffness[0], &tie, &gap, 2);
-        let law = ContactComplementarity::try_new(c)?;
-        Ok(HertzProblem {
-            bodies: [slave, master],
-            stiffness,
-            load,
-            dirichlet,
-            tie,
-            gap,
-            law,
-            block_cells: nb,
-        })
+        HertzProblem::assemble(
+            [slave, master],
+            [slave_surface, master_surface],
+            zone,
+            &self.coupling,
+            2,
+            nb,
+        )
     }
 
     /// Builds and solves the scene and compares it with the closed form.
@@ -297,43 +258,21 @@ impl HertzScene {
         let problem = self.build()?;
         let HertzProblem {
             bodies: [slave, master],
-            stiffness: k,
-            load: f,
-            dirichlet: dir,
             tie,
             gap,
             law,
             block_cells: nb,
+            ..
         } = &problem;
         let (ns, nm) = (slave.mesh.node_count(), master.mesh.node_count());
         let c = law.parameter();
-        let sol = solve_contact(
-            [&k[0], &k[1]],
-            [&f[0], &f[1]],
-            [(&dir[0].0, &dir[0].1), (&dir[1].0, &dir[1].1)],
-            gap,
-            law,
-            &self.contact,
-        )?;
+        let sol = problem.solve(&self.contact)?;
         let seconds = t0.elapsed().as_secs_f64();
 
         // Reactions: K u - f on the Dirichlet rows of u_y at the block's bottom and at the
         // cylinder's top.
-        let reaction = |b: usize, select: &dyn Fn(&Vector3<f64>) -> bool| -> f64 {
-            let body = [slave, master][b];
-            let u = &sol.displacements[b];
-            dir[b]
-                .0
-                .iter()
-                .filter(|&&dof| dof % 2 == 1 && select(&body.mesh.coords()[dof as usize / 2]))
-                .map(|&dof| {
-                    let row = k[b].outer_view(dof as usize).expect("row");
-                    row.iter().map(|(j, v)| v * u[j]).sum::<f64>() - f[b][dof as usize]
-                })
-                .sum()
-        };
-        let reaction_bottom = reaction(1, &|x| near(x.y, -h));
-        let reaction_top = -reaction(0, &|x| near(x.y, r));
+        let reaction_bottom = problem.reaction(&sol, 1, 1, |x| near(x.y, -h));
+        let reaction_top = -problem.reaction(&sol, 0, 1, |x| near(x.y, r));
 
         // The profile, by x.
         let cpl = tie.coupling();
@@ -356,7 +295,8 @@ impl HertzScene {
         let hertz = self.closed_form();
         let a_exact = hertz.half_width(load);
         let p0_exact = hertz.peak(load);
-        let half_width = HalfWidth::of(&nodes);
+        let half_width =
+            HalfWidth::of_profile(&nodes.iter().map(|n| (n.x, n.pressure)).collect::<Vec<_>>());
         let length = |p: &ProfileNode, q: &ProfileNode| (q.x - p.x).hypot(q.y - p.y);
         let contact_cell = length(&nodes[0], &nodes[1]);
         let edge_cell = nodes
@@ -398,27 +338,6 @@ pub const DEFAULT_APPROACH: f64 = 0.021;
 /// nodes in contact at the default approach).
 pub const DEFAULT_ARC_CELLS: usize = 24;
 
-/// The assembled scene (see [`HertzScene::build`]): what [`solve_contact`] takes.
-#[derive(Debug, Clone)]
-pub struct HertzProblem {
-    /// The cylinder (slave) and the block (master).
-    pub bodies: [ElasticBody; 2],
-    /// Their stiffness matrices.
-    pub stiffness: [SparseMatrix; 2],
-    /// Their load vectors (zero: the load is the prescribed approach).
-    pub load: [Vec<f64>; 2],
-    /// Their Dirichlet unknowns and values.
-    pub dirichlet: [(Vec<u32>, Vec<f64>); 2],
-    /// The mortar coupling of the arc (slave) and the block's top (master).
-    pub tie: Tie,
-    /// The weighted normal gap.
-    pub gap: NormalGap,
-    /// The exact complementarity law with automatic `c`.
-    pub law: ContactComplementarity,
-    /// The block's cells per direction.
-    pub block_cells: usize,
-}
-
 /// One slave interface node of the solution.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProfileNode {
@@ -432,61 +351,6 @@ pub struct ProfileNode {
     pub weight: f64,
     /// Its averaged unit normal (outward from the cylinder).
     pub normal: [f64; 2],
-}
-
-/// The contact half-width from the nodal pressures (nodes by `x`, the node at `x = 0`
-/// first): the last node in contact (positive pressure) and the next one (zero pressure)
-/// bracket it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HalfWidth {
-    /// The estimate compared with `a`: the midpoint of the bracket, within half the edge's
-    /// element of any half-width in the bracket; no assumption on the profile.
-    pub estimate: f64,
-    /// The abscissa of the last node with positive pressure.
-    pub last_in_contact: f64,
-    /// The abscissa of the next node, the first with zero pressure: the extent of the
-    /// positive pressure of the piecewise linear interpolant.
-    pub first_open: f64,
-    /// The zero of `p^2` extrapolated linearly in `x^2` through the last two nodes in
-    /// contact, kept in the bracket: exact for the elliptical profile, so it assumes it
-    /// (reported, not the estimate).
-    pub squared: f64,
-    /// Whether the nodes in contact are the first ones, no open node among them.
-    pub contiguous: bool,
-}
-
-impl HalfWidth {
-    fn of(nodes: &[ProfileNode]) -> Self {
-        let k = nodes.iter().rposition(|n| n.pressure > 0.0).unwrap_or(0);
-        let contiguous = nodes[..=k].iter().all(|n| n.pressure > 0.0);
-        let lo = nodes[k].x;
-        let hi = nodes.get(k + 1).map_or(lo, |n| n.x);
-        let squared = if k == 0 {
-            0.5 * (lo + hi)
-        } else {
-            let (a, b) = (nodes[k - 1], nodes[k]);
-            let a2 = b.x * b.x
-                + b.pressure.powi(2) * (b.x * b.x - a.x * a.x)
-                    / (a.pressure.powi(2) - b.pressure.powi(2));
-            if a2.is_finite() {
-                a2.max(0.0).sqrt().clamp(lo, hi)
-            } else {
-                hi
-            }
-        };
-        Self {
-            estimate: 0.5 * (lo + hi),
-            last_in_contact: lo,
-            first_open: hi,
-            squared,
-            contiguous,
-        }
-    }
-
-    /// Whether `a` lies in the bracket.
-    pub fn brackets(&self, a: f64) -> bool {
-        self.last_in_contact <= a && a <= self.first_open
-    }
 }
 
 /// `||p_h - p||_L2(0, X) / (p0 sqrt(a))` with `p_h` the piecewise linear interpolant of the
