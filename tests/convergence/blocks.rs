@@ -2,7 +2,8 @@
 //! tests' set-up: the lower block `[0,1]^dim` (master, Quad4 4 x 4 or Hex8 3 x 3 x 3) held by
 //! symmetry conditions (`u_y = 0` at its bottom, `u_x = 0` on `x = 0`, and `u_z = 0` on `z = 0`
 //! in 3D, as for the upper block), the upper block `[0,1] x [1 + lift, 2 + lift] (x [0,1])`
-//! (slave, Tri3 5 x 5 or Tet4 4 x 4 x 4) held laterally only (`u_x = 0` on `x = 0`), a uniform
+//! (slave, Tri3 5 x 5 or Tet4 4 x 4 x 4, in 3D turned in the plane of the interface by up to
+//! [`TWIST_DEGREES`]) held laterally only (`u_x = 0` on `x = 0`), a uniform
 //! pressure `SIGMA` on its top. Steel: E = 210 GPa, nu = 0.3.
 
 use mortar::core::linalg::SparseMatrix;
@@ -36,6 +37,9 @@ pub fn stacked_blocks(dim: usize, lift: f64, pressure: f64) -> Blocks {
     stacked_blocks_with(dim, lift, pressure, &CouplingOptions::default().dual())
 }
 
+/// In 3D, the in-plane rotation of the upper mesh at the centre of the interface, degrees.
+pub const TWIST_DEGREES: f64 = 5.0;
+
 /// [`stacked_blocks`] with the coupling options `coupling` (dual multipliers by default).
 pub fn stacked_blocks_with(
     dim: usize,
@@ -51,16 +55,28 @@ pub fn stacked_blocks_with(
             rectangle_mesh([0.0, top], [1.0, bottom], [5, 5], CellShape::Simplex, 1000).unwrap(),
         )
     } else {
+        let mut upper = box_mesh(
+            [0.0, top, 0.0],
+            [1.0, bottom, 1.0],
+            [4, 4, 4],
+            CellShape::Simplex,
+            1000,
+        )
+        .unwrap();
+        // The upper mesh turned in the plane of the interface by up to TWIST_DEGREES (at the
+        // centre; the angle falls to zero on the sides, so the block stays a box): its
+        // contact faces cross the lower ones at an angle.
+        upper
+            .transform(|x| {
+                let (dx, dz) = (x.x - 0.5, x.z - 0.5);
+                let bump = 16.0 * x.x * (1.0 - x.x) * x.z * (1.0 - x.z);
+                let (s, c) = (TWIST_DEGREES.to_radians() * bump).sin_cos();
+                Vector3::new(0.5 + c * dx - s * dz, x.y, 0.5 + s * dx + c * dz)
+            })
+            .unwrap();
         (
             box_mesh([0.0; 3], [1.0; 3], [3, 3, 3], CellShape::Tensor, 1).unwrap(),
-            box_mesh(
-                [0.0, top, 0.0],
-                [1.0, bottom, 1.0],
-                [4, 4, 4],
-                CellShape::Simplex,
-                1000,
-            )
-            .unwrap(),
+            upper,
         )
     };
     let near = |a: f64, b: f64| (a - b).abs() < 1e-9;

@@ -27,8 +27,11 @@ fn exact(x: &Vector3<f64>, dim: usize) -> Vector3<f64> {
     }
 }
 
-fn patch(dim: usize) {
-    let b = stacked_blocks(dim, 0.0, SIGMA);
+/// The solution of the patch on `b`, its largest pressure and displacement errors (relative).
+fn patch_errors(
+    b: &super::blocks::Blocks,
+    dim: usize,
+) -> (mortar::physics::contact::ContactSolution, f64, f64, f64) {
     let c = automatic_complementarity(&b.stiffness[0], &b.tie, &b.gap, dim);
     let law = ContactComplementarity::try_new(c).unwrap();
     let sol = solve_contact(
@@ -48,10 +51,6 @@ fn patch(dim: usize) {
         .iter()
         .map(|p| (p - SIGMA).abs() / SIGMA)
         .fold(0.0f64, f64::max);
-    assert!(
-        worst_p < 1e-8,
-        "{dim}D: pressure off by {worst_p:e} (relative)"
-    );
     let scale = exact(&Vector3::new(1.0, 2.0, 1.0), dim).amax();
     let mut worst_u = 0.0f64;
     for (k, body) in b.bodies.iter().enumerate() {
@@ -63,6 +62,16 @@ fn patch(dim: usize) {
             }
         }
     }
+    (sol, worst_p, worst_u, c)
+}
+
+fn patch(dim: usize) {
+    let b = stacked_blocks(dim, 0.0, SIGMA);
+    let (sol, worst_p, worst_u, c) = patch_errors(&b, dim);
+    assert!(
+        worst_p < 1e-8,
+        "{dim}D: pressure off by {worst_p:e} (relative)"
+    );
     assert!(
         worst_u < 1e-10,
         "{dim}D: displacement off by {worst_u:e} (relative)"
@@ -82,6 +91,23 @@ fn patch(dim: usize) {
     // The active set is right from the start (touching surfaces start closed): one step to
     // the solution, one to confirm it.
     assert!(sol.steps[0].newton_steps <= 2, "{:?}", sol.steps[0]);
+
+    // Element-based integration instead (the slave face's own quadrature, no segments):
+    // not exact on non-matching faces, the patch is then lost, by how much is reported.
+    let options = mortar::CouplingOptions::default()
+        .dual()
+        .element_based(None)
+        .unwrap();
+    let b = super::blocks::stacked_blocks_with(dim, 0.0, SIGMA, &options);
+    let (_, p_elem, u_elem, _) = patch_errors(&b, dim);
+    eprintln!(
+        "contact patch {dim}D, element-based integration: pressure error {p_elem:.1e}, \
+         displacement error {u_elem:.1e}"
+    );
+    assert!(
+        p_elem.is_finite() && p_elem > worst_p && p_elem < 1.0,
+        "{dim}D: element-based pressure error {p_elem:e}"
+    );
 }
 
 #[test]

@@ -238,6 +238,28 @@ impl VolumeMesh {
         &self.nodes.coords
     }
 
+    /// Moves every node by `f` (a rigid motion, a scaling, a distortion of the mesh inside a
+    /// fixed boundary). Cells that `f` inverts are refused later, by whatever integrates over
+    /// them.
+    ///
+    /// # Errors
+    /// [`VolumeMeshError::NonFiniteCoordinate`] if `f` returns a non-finite point; the mesh is
+    /// then left unchanged.
+    pub fn transform(
+        &mut self,
+        f: impl Fn(Vector3<f64>) -> Vector3<f64>,
+    ) -> Result<(), VolumeMeshError> {
+        let moved: Vec<Vector3<f64>> = self.nodes.coords.iter().map(|&x| f(x)).collect();
+        if let Some(i) = moved.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
+            return Err(VolumeMeshError::NonFiniteCoordinate {
+                tag: self.nodes.tags[i],
+                coords: moved[i].into(),
+            });
+        }
+        self.nodes.coords = moved;
+        Ok(())
+    }
+
     /// All node tags.
     pub fn node_tags(&self) -> &[u64] {
         &self.nodes.tags
