@@ -201,7 +201,7 @@ fn main() -> Res<()> {
         vec![("blocks3d", vec![6, 12]), ("hertz2d", vec![48, 96])]
     } else {
         vec![
-            ("blocks3d", vec![12, 24, 36]),
+            ("blocks3d", vec![12, 20, 30]),
             ("hertz2d", vec![96, 192, 384, 640]),
         ]
     };
