@@ -13,26 +13,18 @@
 //! - [`recover_stress`]: the Cauchy stress (Voigt `[xx, yy, zz, yz, xz, xy]`) per cell and
 //!   averaged at the nodes, with the von Mises stress ([`StressField`]).
 //!
+//! - [`solve_elastic`]: the static solve of one body held by its own displacement
+//!   conditions (sparse Cholesky on the free unknowns), with a compiled example.
+//!
 //! Weak form: `int eps(v) : C eps(u) = int v . b + int_Gamma_t v . t + int eps(v) : C eps_th`
 //! for every `v` vanishing on the prescribed components. The Dirichlet unknowns and values
-//! come from [`ElasticBody::dirichlet_dofs`]; eliminating them (or tying bodies) is the
-//! caller's.
-//!
-//! ```text
-//! use mortar_physics::elastic::*;
-//! let body = ElasticBody::new("block", mesh, ElasticMaterial::new(210e9, 0.3))
-//!     .with_dirichlet_where(|f| f.centroid.x.abs() < 1e-12, ComponentSet::One(0), |_| Vector3::zeros())?
-//!     .with_traction_where(|f| (f.centroid.x - 1.0).abs() < 1e-12, |_| Vector3::new(1e6, 0.0, 0.0))?;
-//! let k = assemble_elastic_stiffness(&body, &ElasticOptions::default())?;
-//! let f = assemble_elastic_load(&body, &ElasticOptions::default())?;
-//! let (fixed, values) = body.dirichlet_dofs();
-//! // ... solve K u = f with u[fixed] = values ...
-//! let stress = recover_stress(&body, &u, &ElasticOptions::default())?;
-//! ```
+//! come from [`ElasticBody::dirichlet_dofs`]; [`solve_elastic`] eliminates them for one body,
+//! tying and contact (`crate::tied`, `crate::contact`) for two.
 
 mod assembly;
 mod body;
 mod material;
+mod solve;
 mod stress;
 #[cfg(test)]
 mod tests;
@@ -41,4 +33,5 @@ pub use crate::field::{ComponentSet, DofLayout};
 pub use assembly::{assemble_elastic_load, assemble_elastic_stiffness, ElasticOptions};
 pub use body::{DisplacementCondition, ElasticBody, TractionCondition, VectorField};
 pub use material::{von_mises, ElasticMaterial};
+pub use solve::solve_elastic;
 pub use stress::{recover_stress, StressField};
