@@ -3,6 +3,7 @@
 
 mod pellet {
     mod closed_form;
+    mod free_expansion;
     mod scene_file;
     mod solvers;
 }
