@@ -9,11 +9,13 @@
 //!   assembled matrix or a matrix-free product), with any [`Preconditioner`] (the
 //!   factorisations above, or [`IdentityPreconditioner`]).
 
+mod conditioning;
 mod faer_backend;
 mod gmres;
 pub mod nested_dissection;
 mod triplets;
 
+pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
 pub use faer_backend::{
     fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,
     SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,

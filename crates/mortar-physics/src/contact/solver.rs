@@ -3,8 +3,8 @@
 use std::time::Instant;
 
 use mortar_core::linalg::{
-    fill_reducing_ordering, CholeskyFactorization, LuFactorization, SolverError, SparseMatrix,
-    Triplets,
+    fill_reducing_ordering, inf_norm, well_conditioned, CholeskyFactorization, LuFactorization,
+    SolverError, SparseMatrix, Triplets,
 };
 
 use super::normal::NormalGap;
@@ -516,24 +516,6 @@ fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverE
     Ok((rhs, dp, false))
 }
 
-fn inf_norm(x: &[f64]) -> f64 {
-    x.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// Whether the bound from below of the condition number of `a` that the solution `x` of
-/// `a x = b` gives, `|a| |x| / |b|` (infinity norms), is at most [`MAX_CONDITION`]: above it
-/// the solution has no correct digit (a body held in some direction by nothing, a law with no
-/// stiffness there yet), and the factorisation's success means nothing. (For a system of
-/// displacements only: in a saddle point of displacements and pressures the bound mixes
-/// units.)
-fn well_conditioned(a: &SparseMatrix, x: &[f64], b_norm: f64) -> bool {
-    let a_norm = a
-        .outer_iterator()
-        .map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>())
-        .fold(0.0f64, f64::max);
-    a_norm * inf_norm(x) <= MAX_CONDITION * b_norm
-}
-
 /// Solves the symmetric `a x = b` in place: Cholesky in the elimination order `perm`, or LU if
 /// `a` is not positive definite.
 fn solve_symmetric(a: &SparseMatrix, perm: &[usize], b: &mut [f64]) -> Result<(), SolverError> {
@@ -542,10 +524,6 @@ fn solve_symmetric(a: &SparseMatrix, perm: &[usize], b: &mut [f64]) -> Result<()
         Err(_) => LuFactorization::try_new(a).and_then(|f| f.solve_in_place(b)),
     }
 }
-
-/// The condition number beyond which a Newton step is refused: `1e-3 / eps`, so that a step
-/// keeps about three correct digits.
-const MAX_CONDITION: f64 = 1e-3 / f64::EPSILON;
 
 /// The pivot of each active row, `(free index, N_j at it)` (`None` for inactive rows).
 type Pivots = Vec<Option<(u32, f64)>>;

@@ -1,6 +1,6 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_core::linalg::{CholeskyFactorization, SparseMatrix};
+use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
 
 use super::{assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticOptions};
 use crate::PhysicsError;
@@ -34,7 +34,8 @@ use crate::PhysicsError;
 ///
 /// # Errors
 /// The errors of the assembly; [`PhysicsError::InvalidInput`] if the body is not held
-/// against rigid motion (the stiffness of the free unknowns is not positive definite).
+/// against rigid motion (the stiffness of the free unknowns is not positive definite, or its
+/// solution has no correct digit: [`well_conditioned`]).
 pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
     let options = ElasticOptions::default();
     let k = assemble_elastic_stiffness(body, &options)?;
@@ -77,14 +78,26 @@ pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
         rhs.push(b);
     }
     let kff = SparseMatrix::new((m, m), ptr, idx, val);
-    let factor = CholeskyFactorization::try_new(&kff).map_err(|e| PhysicsError::InvalidInput {
+    let not_held = |why: String| PhysicsError::InvalidInput {
         body: body.name.clone(),
         what: format!(
-            "the stiffness of the free displacements is not positive definite ({e}): the body \
-             is not held against rigid motion by its displacement conditions"
+            "{why}: the body is not held against rigid motion by its displacement conditions"
         ),
+    };
+    let factor = CholeskyFactorization::try_new(&kff).map_err(|e| {
+        not_held(format!(
+            "the stiffness of the free displacements is not positive definite ({e})"
+        ))
     })?;
+    let b_norm = inf_norm(&rhs);
     factor.solve_in_place(&mut rhs)?;
+    // A singular stiffness whose round-off left a small positive pivot factorises: its
+    // solution has no correct digit.
+    if !well_conditioned(&kff, &rhs, b_norm) {
+        return Err(not_held(
+            "the solution has no correct digit (|K| |u| / |f| above 1e-3 / eps)".into(),
+        ));
+    }
     for (i, &p) in index.iter().enumerate() {
         if p < FREE - 1 {
             u[i] = rhs[p as usize];

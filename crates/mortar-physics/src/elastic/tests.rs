@@ -638,3 +638,46 @@ fn component_sets_and_dof_layout() {
         vec![4, 2]
     );
 }
+
+/// `solve_elastic` agrees with the dense solve of these tests, and refuses a body held in x
+/// only (free to move in y and to turn): an error that says so, not a solution of round-off
+/// size.
+#[test]
+fn solve_elastic_solves_and_refuses_a_body_not_held() {
+    let material = ElasticMaterial::new(210e9, 0.3).with_expansion(1e-5, 300.0);
+    let held = ElasticBody::new("held", square(4, true, 0.1), material)
+        .with_temperature(vec![350.0; 25])
+        .unwrap()
+        .with_traction_where(
+            |f| (f.centroid.x - 1.0).abs() < 1e-12,
+            |_| Vector3::new(1e6, 2e5, 0.0),
+        )
+        .unwrap()
+        .with_dirichlet_where(
+            |f| f.centroid.x.abs() < 1e-12,
+            ComponentSet::All,
+            |_| Vector3::zeros(),
+        )
+        .unwrap();
+    let sparse = solve_elastic(&held).unwrap();
+    assert!(rel_err(&sparse, &solve(&held)) < 1e-12);
+
+    let floating = ElasticBody::new("floating", square(4, true, 0.1), material)
+        .with_traction_where(
+            |f| (f.centroid.x - 1.0).abs() < 1e-12,
+            |_| Vector3::new(1e6, 2e5, 0.0),
+        )
+        .unwrap()
+        .with_dirichlet_where(
+            |f| f.centroid.x.abs() < 1e-12,
+            ComponentSet::One(0),
+            |_| Vector3::zeros(),
+        )
+        .unwrap();
+    match solve_elastic(&floating) {
+        Err(e @ PhysicsError::InvalidInput { .. }) => {
+            assert!(e.to_string().contains("not held"), "{e}")
+        }
+        other => panic!("expected a refusal, got {other:?}"),
+    }
+}
