@@ -23,8 +23,9 @@
 //! axis bracket it (over all slave nodes, and along the symmetry line `y = 0`, where the
 //! bracket is one element); the estimate is the bracket's midpoint. The peak: the pressure of
 //! the node at the pole. Each level doubles the cells of both bodies (eight times the cells:
-//! the default's second level, 28 cells, is some 300k unknowns, minutes and several GB with
-//! the sparse direct solves; `--n 20` takes about a minute and 2 GB).
+//! the default's second level, 28 cells, 2.8e5 unknowns, took 4.6 min and 5.4 GB here, five
+//! Newton steps of about 54 s, each a new sparse Cholesky; the L2 profile error went from
+//! 5.5e-2 to 2.4e-2 and the peak at `P` from 1.0 % to 0.6 %).
 //!
 //! The JSON report: the inputs, `levels` (per level: mesh sizes, `unknowns`, the computed and
 //! closed-form values at `d` and at `P` with relative errors, the brackets, `profile_l2`,
