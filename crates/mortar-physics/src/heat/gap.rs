@@ -517,4 +517,25 @@ impl<L: ConstraintLaw> NewtonProblem for Step<'_, L> {
         stats.linear_seconds += t1.elapsed().as_secs_f64();
         Ok(its)
     }
+
+    /// `| |A| |x| | + |F(x) - A x|`, `A` the Picard matrix at `x` (conduction, capacity, the
+    /// law's rows) and `F(x) - A x` the loads: the magnitudes of the terms before they cancel.
+    fn residual_scale(&mut self, x: &[f64]) -> Result<f64, PhysicsError> {
+        let mut r = vec![0.0; x.len()];
+        let a = self
+            .problem
+            .evaluate(x, &self.data, &mut r, Some(Linearization::Picard))?
+            .expect("a matrix was asked");
+        let mut terms = vec![0.0; x.len()];
+        let mut ax = vec![0.0; x.len()];
+        for (row, vec) in a.outer_iterator().enumerate() {
+            for (col, v) in vec.iter() {
+                terms[row] += (v * x[col]).abs();
+                ax[row] += v * x[col];
+            }
+        }
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let loads: Vec<f64> = r.iter().zip(&ax).map(|(f, a)| f - a).collect();
+        Ok(norm(&terms) + norm(&loads))
+    }
 }

@@ -10,5 +10,6 @@ mod newton;
 
 pub use jfnk::{jfnk_solve, FiniteDifferenceJacobian, JfnkOptions};
 pub use newton::{
-    newton, Forcing, NewtonFailure, NewtonFailureReason, NewtonOptions, NewtonProblem, NewtonReport,
+    newton, Forcing, NewtonFailure, NewtonFailureReason, NewtonOptions, NewtonProblem,
+    NewtonReport, ROUNDOFF_FLOOR,
 };

@@ -25,7 +25,25 @@ pub trait NewtonProblem {
         dx: &mut [f64],
         forcing: f64,
     ) -> Result<usize, PhysicsError>;
+
+    /// The size of the terms that make up `F(x)` before they cancel (for an assembled
+    /// operator `A x - f`: `| |A| |x| | + |f|`), the problem's own magnitude. [`newton`]
+    /// stops once `|F|` is at round-off of it ([`ROUNDOFF_FLOOR`] times it), whatever the
+    /// relative criterion asks: a solve that starts at round-off (zero load) is converged,
+    /// not a failed line search. The default, 0, has no floor.
+    ///
+    /// # Errors
+    /// A failure of the evaluation.
+    fn residual_scale(&mut self, x: &[f64]) -> Result<f64, PhysicsError> {
+        let _ = x;
+        Ok(0.0)
+    }
 }
+
+/// The round-off floor of [`newton`]'s convergence test, relative to
+/// [`NewtonProblem::residual_scale`]: `10 eps`, about 2e-15 (the pellet at zero power
+/// stagnates at 8e-18 of its scale, 2e6 W/m against a residual of 1.7e-11 W/m).
+pub const ROUNDOFF_FLOOR: f64 = 10.0 * f64::EPSILON;
 
 /// How tightly each Newton step's linear problem is solved (relative residual `eta`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,7 +82,8 @@ impl Forcing {
 pub struct NewtonOptions {
     /// Converged when `|F| <= absolute_tolerance` ...
     pub absolute_tolerance: f64,
-    /// ... or `|F| <= relative_tolerance |F(x_0)|` (Euclidean norms).
+    /// ... or `|F| <= relative_tolerance |F(x_0)|` (Euclidean norms), or at round-off of the
+    /// problem's own magnitude ([`NewtonProblem::residual_scale`]).
     pub relative_tolerance: f64,
     /// The most Newton steps.
     pub max_iterations: usize,
@@ -171,7 +190,8 @@ pub fn newton(
     }
     let tol = options
         .absolute_tolerance
-        .max(options.relative_tolerance * norm_r);
+        .max(options.relative_tolerance * norm_r)
+        .max(ROUNDOFF_FLOOR * problem.residual_scale(x)?);
     let mut eta = match options.forcing {
         Forcing::Constant(e) => e,
         Forcing::EisenstatWalker { initial, .. } => initial,
