@@ -331,6 +331,30 @@ fn bad_options_and_unwritable_outputs() {
     assert!(String::from_utf8_lossy(&run.stderr).contains("degree 0"));
     assert!(!dir.join("o").exists());
 
+    // An absurd thread count is refused at once (it ran past 60 s starting threads), naming
+    // the limit; nothing is written.
+    let start = std::time::Instant::now();
+    let out = dir.join("t").to_string_lossy().into_owned();
+    let run = mortar(&[
+        "couple",
+        "--slave",
+        &s,
+        "--master",
+        &m,
+        "--out",
+        &out,
+        "--threads",
+        "100000",
+    ]);
+    assert_eq!(run.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("100000 threads") && stderr.contains("per core"),
+        "{stderr}"
+    );
+    assert!(start.elapsed().as_secs_f64() < 10.0, "refused at once");
+    assert!(!dir.join("t").exists());
+
     // The output path is a file: nothing is written, the file is untouched.
     let blocker = dir.file("blocker", "keep");
     let run = mortar(&["couple", "--slave", &s, "--master", &m, "--out", &blocker]);

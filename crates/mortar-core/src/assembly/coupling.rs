@@ -307,17 +307,29 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// # Errors
 /// [`MortarError::NoOverlap`] when no slave face overlaps a master face; the errors of the
 /// integration strategy and the multiplier space (the first in slave-face order);
-/// [`MortarError::InvalidOption`] for a thread count of zero or a pool that cannot start.
+/// [`MortarError::InvalidOption`] for a thread count of zero or above
+/// [`MAX_THREADS_PER_CORE`] per core, or a pool that cannot start.
 pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Result<Coupling> {
     let pool = build_pool(options.threads)?;
     pool.install(|| assemble_on_pool(interface, options, pool.current_num_threads()))
 }
+
+/// The most worker threads per core [`assemble_coupling`] accepts: more only costs thread
+/// start-up and memory (100000 threads took over a minute before any work).
+pub const MAX_THREADS_PER_CORE: usize = 16;
 
 fn build_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
     if threads == Some(0) {
         return Err(MortarError::InvalidOption(
             "thread count must be at least 1".into(),
         ));
+    }
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    if let Some(t) = threads.filter(|&t| t > MAX_THREADS_PER_CORE * cores) {
+        return Err(MortarError::InvalidOption(format!(
+            "{t} threads on {cores} cores: at most {} ({MAX_THREADS_PER_CORE} per core)",
+            MAX_THREADS_PER_CORE * cores
+        )));
     }
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = threads {

@@ -14,7 +14,9 @@ mod local;
 mod options;
 mod warning;
 
-pub use coupling::{assemble_coupling, Coupling, CouplingStats, PhaseSeconds, ThreadSeconds};
+pub use coupling::{
+    assemble_coupling, Coupling, CouplingStats, PhaseSeconds, ThreadSeconds, MAX_THREADS_PER_CORE,
+};
 pub use local::{integrate_face_into, LocalBlocks};
 pub use options::CouplingOptions;
 pub use warning::CouplingWarning;
