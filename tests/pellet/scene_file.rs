@@ -80,3 +80,22 @@ fn run_from_toml_writes_the_report() {
     assert!(dir.join("pellet.pvd").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Regression (issue 14, item 4): a run that fails in the transient (here Newton allowed one
+/// step at a tolerance it cannot reach in one) left `pellet_0000.vtu` behind. Every output
+/// is now written at the end, all or none: the failed run leaves no output folder.
+#[test]
+fn a_failed_run_writes_nothing() {
+    let mut scene = mortar::scenes::pellet::PelletScene::default();
+    scene.solver.max_iterations = 1;
+    scene.solver.relative_tolerance = 1e-15;
+    let dir = std::env::temp_dir().join(format!("mortar-pellet-failed-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let err = mortar::scenes::pellet::run(&scene, &dir, false).unwrap_err();
+    eprintln!("failed as asked: {err}");
+    assert!(
+        !dir.exists(),
+        "{:?}",
+        std::fs::read_dir(&dir).map(|d| d.count())
+    );
+}

@@ -13,7 +13,8 @@ use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
 use serde_json::{json, Value};
 
 use super::{annulus_mesh, pellet_mesh, PelletError, PelletScene, SolverMethod};
-use crate::io::vtu::{write_vtu, VtuPiece};
+use crate::io::vtu::{vtu_string, VtuPiece};
+use crate::io::write_outputs;
 
 /// Parses the scene file `text` (see the [module documentation](super)) and runs it,
 /// writing VTU snapshots and `report.json` into `out` (created if needed). Shows a progress
@@ -56,13 +57,6 @@ fn mesh_area(mesh: &VolumeMesh) -> f64 {
         .sum()
 }
 
-fn write_dir(out: &Path) -> Result<(), PelletError> {
-    std::fs::create_dir_all(out).map_err(|source| PelletError::Write {
-        path: out.to_path_buf(),
-        source,
-    })
-}
-
 /// Runs `scene` (see [`run_from_toml`]).
 ///
 /// The pellet's heat source is `Q = q'(t) / A_h`, with `A_h` the area of the pellet mesh
@@ -76,7 +70,6 @@ fn write_dir(out: &Path) -> Result<(), PelletError> {
 pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
     let start = Instant::now();
     scene.check()?;
-    write_dir(out)?;
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
 
@@ -176,10 +169,13 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
     } else {
         steps.div_ceil(scene.time.snapshots).max(1)
     };
+    // Every output is kept in memory and written at the end, all or none: a run that fails
+    // leaves no half-written folder.
+    let mut outputs: Vec<(String, Vec<u8>)> = Vec::new();
     let mut files = Vec::new();
     let mut history = Vec::new();
     let mut time = 0.0;
-    write_snapshot(out, &problem, &x, files.len(), time, &mut files)?;
+    write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
     for k in 1..=steps {
         let dt = scene.time.step.min(scene.time.end - time);
         let old = x.clone();
@@ -196,7 +192,7 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
             "linear_iterations": rep.linear_iterations,
         }));
         if k % snapshot_every == 0 || k == steps {
-            write_snapshot(out, &problem, &x, files.len(), time, &mut files)?;
+            write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
         }
         bar.set_message(format!("t = {time:.1} s, T0 = {:.1} K", s[0]));
         bar.inc(1);
@@ -207,16 +203,8 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
     let rep = problem.solve(&mut x, t_steady, None, &mut solver, &newton)?;
     bar.inc(1);
     bar.finish_and_clear();
-    let steady_file_index = files.len();
-    write_snapshot(
-        out,
-        &problem,
-        &x,
-        steady_file_index,
-        f64::INFINITY,
-        &mut files,
-    )?;
-    write_pvd(out, &files)?;
+    write_snapshot(out, &problem, &x, f64::INFINITY, &mut files, &mut outputs)?;
+    outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
 
     let s = summary(&problem, &x, centre);
     let cf = scene.closed_form()?;
@@ -270,9 +258,11 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
         "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
         "scene_data": scene,
     });
-    let path = out.join("report.json");
     let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
-    std::fs::write(&path, text).map_err(|source| PelletError::Write { path, source })?;
+    outputs.push(("report.json".to_string(), text.into_bytes()));
+    let (names, bytes): (Vec<String>, Vec<Vec<u8>>) = outputs.into_iter().unzip();
+    let files: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(bytes).collect();
+    write_outputs(out, &files)?;
     Ok(report)
 }
 
@@ -321,22 +311,24 @@ fn summary<L: mortar_physics::laws::ConstraintLaw>(
     ]
 }
 
+/// The VTU of the state `x` at `time` (`INFINITY`: the steady state), kept in `outputs` and
+/// listed in `files`.
 fn write_snapshot<L: mortar_physics::laws::ConstraintLaw>(
     out: &Path,
     problem: &GapHeat<L>,
     x: &[f64],
-    index: usize,
     time: f64,
     files: &mut Vec<(String, f64)>,
+    outputs: &mut Vec<(String, Vec<u8>)>,
 ) -> Result<(), PelletError> {
     let [ts, tm, _] = problem.split(x);
     let [pellet, cladding] = problem.bodies();
     let name = if time.is_finite() {
-        format!("pellet_{index:04}.vtu")
+        format!("pellet_{:04}.vtu", files.len())
     } else {
         "pellet_steady.vtu".to_string()
     };
-    write_vtu(
+    let text = vtu_string(
         &out.join(&name),
         &[
             VtuPiece {
@@ -349,12 +341,13 @@ fn write_snapshot<L: mortar_physics::laws::ConstraintLaw>(
             },
         ],
     )?;
+    outputs.push((name.clone(), text.into_bytes()));
     files.push((name, time));
     Ok(())
 }
 
 /// A ParaView collection of the transient snapshots (the steady one at the last time + 1).
-fn write_pvd(out: &Path, files: &[(String, f64)]) -> Result<(), PelletError> {
+fn pvd(files: &[(String, f64)]) -> String {
     let last = files
         .iter()
         .map(|f| f.1)
@@ -370,6 +363,5 @@ fn write_pvd(out: &Path, files: &[(String, f64)]) -> Result<(), PelletError> {
         ));
     }
     s.push_str("  </Collection>\n</VTKFile>\n");
-    let path = out.join("pellet.pvd");
-    std::fs::write(&path, s).map_err(|source| PelletError::Write { path, source })
+    s
 }
