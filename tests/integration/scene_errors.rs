@@ -237,6 +237,21 @@ fn scene_kinds() {
         ),
         &["rho_cp", "transient"],
     );
+    // A step count without end (it ran on and on) is refused at once, naming the key and
+    // the limit (issue 14, item 5).
+    for steps in ["1000000000000", "9223372036854775807"] {
+        assert_fails(
+            &dir,
+            &format!("steps_{}.toml", steps.len()),
+            &text
+                .replace(
+                    "mode = \"steady\"",
+                    &format!("mode = \"transient\"\ndt = 0.1\nsteps = {steps}"),
+                )
+                .replace("conductivity = ", "rho_cp = 1.0\nconductivity = "),
+            &["solve.steps", "at most 1000000"],
+        );
+    }
     let out = dir.join("out-builtin");
     let o = mortar(&["run", "--scene", "nope", "--out", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));

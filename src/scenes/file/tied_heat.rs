@@ -18,6 +18,7 @@
 //!   `integration = "segment" | "element"` (default `"segment"`), `degree` (default
 //!   automatic).
 //! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
+//!   (at most [`MAX_STEPS`])
 //!   for a transient solve; `formulation = "auto" | "saddle_point" | "dual_condensed"`
 //!   (default auto: the dual condensation when D is diagonal).
 //!
@@ -38,6 +39,10 @@ use serde::{Deserialize, Serialize};
 
 use super::{dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
+
+/// The most time steps a transient tied-heat scene may ask for (the pellet scene's limit too):
+/// beyond it a step count is refused rather than run without end.
+pub const MAX_STEPS: usize = 1_000_000;
 use crate::io::vtu::{vtu_string, VtuPiece};
 use crate::io::{parse_gmsh_volume, CouplingSettings, GmshVolume, Integration, Multipliers};
 
@@ -354,6 +359,12 @@ impl TiedHeatSpec {
                     }
                 }
                 match self.solve.steps {
+                    Some(s) if s > MAX_STEPS => {
+                        return Err(invalid(
+                            "solve.steps",
+                            format!("{s} steps: at most {MAX_STEPS} (as the pellet scene)"),
+                        ))
+                    }
                     Some(s) if s >= 1 => {}
                     _ => {
                         return Err(invalid(
