@@ -311,3 +311,56 @@ fn empty_surfaces_and_invalid_options_are_refused() {
     let err = assemble_coupling(&interface, &CouplingOptions::default().threads(0)).unwrap_err();
     assert!(matches!(err, MortarError::InvalidOption(_)), "{err:?}");
 }
+
+/// `mesh` with face `face` added again, under the tag `tag`, its nodes rotated by `turn`
+/// (the same face, another starting node).
+fn with_duplicate(mesh: &SurfaceMesh, face: usize, tag: u64, turn: usize) -> SurfaceMesh {
+    let mut out = mesh.clone();
+    let mut nodes = face_tags(mesh, face);
+    let k = nodes.len();
+    nodes.rotate_left(turn % k);
+    out.add_face_with_tag(tag, mesh.face(face).element, &nodes)
+        .unwrap();
+    out
+}
+
+proptest! {
+    #![proptest_config(config(32))]
+
+    /// Regression (issue 14, item 6): a face given twice (same nodes, any starting node) made
+    /// its area count twice (sum(D) 1.12 for a unit square, exit 0). It is a topology error
+    /// naming both faces, on either side, in 2D and 3D.
+    #[test]
+    fn a_duplicated_face_is_a_topology_error_naming_both(
+        (mesh, as_master) in (cell_kind(), 1..=4usize, any::<bool>()).prop_flat_map(|(k, n, m)| {
+            (perturbed_square(k, n..=n, MAX_SQUARE_JITTER, m), Just(m))
+        }),
+        pick in any::<prop::sample::Index>(),
+        turn in 0..4usize,
+    ) {
+        let f = pick.index(mesh.face_count());
+        let (first, extra) = (mesh.face(f).tag, 9_999_999);
+        let bad = with_duplicate(&mesh, f, extra, turn);
+        let err = if as_master {
+            Interface::new(square_quads(2, 0.0, false, 1).unwrap(), bad)
+        } else {
+            Interface::new(bad, master())
+        }
+        .unwrap_err();
+        prop_assert!(matches!(err, MortarError::Topology { .. }), "{err:?}");
+        let text = err.to_string();
+        prop_assert!(text.contains(&first.to_string()) && text.contains(&extra.to_string()), "{text}");
+        prop_assert!(text.contains("duplicate"), "{text}");
+    }
+
+    /// The same in 2D: a line given twice.
+    #[test]
+    fn a_duplicated_line_is_a_topology_error(n in 2..=8usize, pick in any::<prop::sample::Index>(), turn in 0..2usize) {
+        let slave = line_mesh(n, false, 1).unwrap();
+        let f = pick.index(slave.face_count());
+        let bad = with_duplicate(&slave, f, 777_777, turn);
+        let err = Interface::new(bad, line_mesh(n + 1, true, 1).unwrap()).unwrap_err();
+        prop_assert!(matches!(err, MortarError::Topology { .. }), "{err:?}");
+        prop_assert!(err.to_string().contains("777777"), "{err}");
+    }
+}

@@ -1,6 +1,6 @@
 use nalgebra::Vector3;
 
-use super::validate::{check_dimension, check_faces, nodal_normals};
+use super::validate::{check_dimension, check_duplicates, check_faces, nodal_normals};
 use super::FaceGeometry;
 use crate::error::{MortarError, Result, Side};
 use crate::mesh::SurfaceMesh;
@@ -67,6 +67,8 @@ impl Interface {
         let scale = interface_scale(&slave, &master);
         check_faces(&slave, Side::Slave, scale, &tolerances)?;
         check_faces(&master, Side::Master, scale, &tolerances)?;
+        check_duplicates(&slave, Side::Slave)?;
+        check_duplicates(&master, Side::Master)?;
         let slave_normals = nodal_normals(&slave, Side::Slave)?;
         nodal_normals(&master, Side::Master)?;
         let (slave_nodes, slave_rows) = node_map(&slave);

@@ -3,7 +3,7 @@
 use nalgebra::{Vector2, Vector3};
 
 use super::SpatialDim;
-use crate::element::ReferenceDomain;
+use crate::element::{ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::mesh::SurfaceMesh;
 use crate::tolerances::Tolerances;
@@ -49,6 +49,64 @@ pub(super) fn check_dimension(
         }
     }
     Ok(SpatialDim::Two)
+}
+
+/// Faces given twice (the same nodes, whatever their order): their area would count twice.
+/// The first repeat (in face order) is a [`MortarError::Topology`] naming both faces and the
+/// nodes. Faces are keyed by a hash of their sorted nodes, sorted (in parallel), and faces of
+/// equal keys compared node by node: no allocation per face.
+pub(super) fn check_duplicates(mesh: &SurfaceMesh, side: Side) -> Result<()> {
+    use rayon::prelude::*;
+    use std::hash::{Hash, Hasher};
+    let sorted = |f: usize| {
+        let nodes = mesh.face(f).nodes;
+        let mut key = [u32::MAX; MAX_FACE_NODES];
+        key[..nodes.len()].copy_from_slice(nodes);
+        key[..nodes.len()].sort_unstable();
+        key
+    };
+    let mut keys: Vec<(u64, u32)> = (0..mesh.face_count())
+        .into_par_iter()
+        .map(|f| {
+            // A fixed hasher: the same keys, hence the same report, on every run.
+            let mut h = std::collections::hash_map::DefaultHasher::new();
+            sorted(f).hash(&mut h);
+            (h.finish(), f as u32)
+        })
+        .collect();
+    keys.par_sort_unstable();
+    let mut repeat: Option<(usize, usize)> = None;
+    for run in keys.chunk_by(|a, b| a.0 == b.0).filter(|r| r.len() > 1) {
+        for (i, &(_, a)) in run.iter().enumerate() {
+            for &(_, b) in &run[i + 1..] {
+                let (a, b) = (a.min(b) as usize, a.max(b) as usize);
+                if sorted(a) == sorted(b) && repeat.is_none_or(|(_, r)| b < r) {
+                    repeat = Some((a, b));
+                }
+            }
+        }
+    }
+    let Some((first, f)) = repeat else {
+        return Ok(());
+    };
+    let tags: Vec<u64> = mesh
+        .face(f)
+        .nodes
+        .iter()
+        .map(|&n| mesh.node_tags()[n as usize])
+        .collect();
+    Err(MortarError::Topology {
+        face: FaceLocation {
+            side: Some(side),
+            tag: mesh.face(f).tag,
+        },
+        reason: format!(
+            "{side} faces {} and {} have the same nodes {tags:?}: a duplicated face (its area \
+             would count twice); remove one",
+            mesh.face(first).tag,
+            mesh.face(f).tag
+        ),
+    })
 }
 
 /// Degenerate faces (repeated nodes, zero length or area) and inverted ones (a Jacobian that
