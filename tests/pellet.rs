@@ -1,9 +1,11 @@
 //! The pellet scene: the steady state against the closed form of PHYSICS.md section 5 and its
-//! convergence under refinement, Newton against JFNK, the scene file.
+//! convergence under refinement, Newton against JFNK, the scene file, and the independent 1D
+//! radial reference of the coupled thermomechanical pellet (issue 15).
 
 mod pellet {
     mod closed_form;
     mod free_expansion;
+    mod radial;
     mod scene_file;
     mod solvers;
 }
