@@ -54,6 +54,23 @@ fn unknown_keys_are_named_with_their_line() {
     );
     let bad = text.replace("[interface]", "[interface]\nmultiplier = \"dual\"");
     assert_fails(&dir, "key2.toml", &bad, &["unknown field `multiplier`"]);
+    // A value of the wrong type is named by its key as well as its line (issue 14, item 9:
+    // the line alone was given).
+    let bad = text.replace("conductivity = 2.0", "conductivity = \"2.0\"");
+    let line = 1 + bad.lines().position(|l| l.contains("\"2.0\"")).unwrap();
+    let body = bad
+        .lines()
+        .take(line)
+        .filter(|l| l.starts_with("[bodies."))
+        .last()
+        .unwrap();
+    let key = format!("{}.conductivity", &body[1..body.len() - 1]);
+    assert_fails(
+        &dir,
+        "type.toml",
+        &bad,
+        &[&format!("line {line}"), &key, "invalid type"],
+    );
     let bad = format!("{text}\n[output]\nformat = \"vtk\"\n");
     assert_fails(&dir, "key3.toml", &bad, &["unknown field `output`"]);
     let bad = text.replace("multipliers = \"dual\"", "multipliers = \"mortar\"");

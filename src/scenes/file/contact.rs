@@ -224,7 +224,7 @@ impl ContactSpec {
     /// [`SceneError::Syntax`] for bad TOML or an unknown key; [`SceneError::Invalid`] naming
     /// the key for values out of range (see [`check`](Self::check)).
     pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
-        let spec: Self = toml::from_str(text).map_err(|e| SceneError::from_toml(path, text, &e))?;
+        let spec: Self = SceneError::parse(path, text)?;
         spec.check(path)?;
         Ok(spec)
     }

@@ -33,7 +33,7 @@
 
 mod builtin;
 pub mod contact;
-mod error;
+pub(crate) mod error;
 pub mod tied_heat;
 
 use std::path::{Path, PathBuf};
@@ -108,8 +108,7 @@ pub struct SceneOutput {
 /// [`SceneError::Syntax`] for text that is not TOML, [`SceneError::Invalid`] without a
 /// string `kind` at the top level.
 pub fn scene_kind(text: &str, path: &Path) -> Result<String, SceneError> {
-    let table: toml::Table =
-        toml::from_str(text).map_err(|e| SceneError::from_toml(path, text, &e))?;
+    let table: toml::Table = SceneError::parse(path, text)?;
     match table.get("kind") {
         Some(toml::Value::String(kind)) => Ok(kind.clone()),
         Some(other) => Err(SceneError::Invalid {

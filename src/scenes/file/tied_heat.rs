@@ -197,7 +197,7 @@ impl TiedHeatSpec {
     /// its line); [`SceneError::Invalid`] for values out of range or inconsistent (see
     /// [`check`](Self::check)).
     pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
-        let spec: Self = toml::from_str(text).map_err(|e| SceneError::from_toml(path, text, &e))?;
+        let spec: Self = SceneError::parse(path, text)?;
         spec.check(path)?;
         Ok(spec)
     }

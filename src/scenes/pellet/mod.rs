@@ -300,7 +300,8 @@ impl PelletScene {
     /// [`PelletError::Parse`] for invalid TOML, an unknown key or a wrong type;
     /// [`PelletError::Invalid`] for values out of range (see [`check`](Self::check)).
     pub fn from_toml(text: &str) -> Result<Self, PelletError> {
-        let scene: Self = toml::from_str(text).map_err(|e| PelletError::Parse(e.to_string()))?;
+        let scene: Self = crate::scenes::file::error::parse_toml(text)
+            .map_err(|f| PelletError::Parse(format!("line {}: {}", f.line, f.keyed_message())))?;
         scene.check()?;
         Ok(scene)
     }
