@@ -134,7 +134,7 @@ pub fn nodal_areas(mesh: &SurfaceMesh) -> HashMap<u64, f64> {
             .iter()
             .map(|&n| mesh.coords()[n as usize])
             .collect();
-        let rule = QuadratureRule::for_domain(el.domain(), 6).expect("degree 6 exists");
+        let rule = QuadratureRule::for_domain(el.domain(), 20).expect("degree 20 exists");
         let mut n = vec![0.0; k];
         let mut g = vec![[0.0; 2]; k];
         for (xi, w) in rule.points().iter().zip(rule.weights()) {

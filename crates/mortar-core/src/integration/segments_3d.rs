@@ -9,7 +9,7 @@ use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
     clip_convex, AuxiliaryPlane, InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
 };
-use crate::interface::FaceGeometry;
+use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
 pub(super) fn segments_into(
@@ -52,6 +52,16 @@ pub(super) fn segments_into(
     // on a curved surface, where the plane follows the averaged nodal normals). Any other slave
     // face is integrated in its reference coordinates with its own Jacobian.
     let in_reference = !(slave_map.is_affine() && is_affine_in_space(slave));
+    // The degree added to the integrands' for a slave face integrated in its reference
+    // coordinates: one for a flat face (its Jacobian a polynomial), WARPED_EXTRA_DEGREE for a
+    // warped or curved one (its Jacobian the norm of a polynomial vector).
+    let extra_degree = if !in_reference {
+        0
+    } else if slave.is_flat() {
+        1
+    } else {
+        WARPED_EXTRA_DEGREE
+    };
     let measure = if in_reference {
         1.0
     } else {
@@ -112,8 +122,8 @@ pub(super) fn segments_into(
             continue;
         }
         // A slave face whose Jacobian varies is integrated in its reference coordinates with
-        // the Jacobian as a factor: one degree more.
-        let deg = degree.unwrap_or_else(|| default_degree(el, mel) + u32::from(in_reference));
+        // the Jacobian as a factor: `extra_degree` more.
+        let deg = degree.unwrap_or_else(|| default_degree(el, mel) + extra_degree);
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
         let master_map = PlanarMap::new(mel, &mp[..km]);
         let fail =

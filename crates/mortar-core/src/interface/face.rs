@@ -5,6 +5,11 @@ use crate::error::{FaceLocation, Side};
 use crate::mesh::SurfaceMesh;
 use crate::quadrature::{Quadrature, QuadratureRule};
 
+/// The quadrature degree added for a warped or curved face (see [`FaceGeometry::is_flat`]):
+/// a bilinear quad whose corners leave its plane by 0.2 of its size then integrates to 1e-10
+/// of its nodal areas, standard and dual (the degree of a flat face: 6e-8; issue 14, item 7).
+pub const WARPED_EXTRA_DEGREE: u32 = 9;
+
 /// One face's geometry gathered on the stack: element, node coordinates and (on the slave side)
 /// the averaged nodal normals at its nodes. What the segmenter and the integrator work on.
 #[derive(Debug, Clone, Copy)]
@@ -98,6 +103,26 @@ impl FaceGeometry {
                 .sum(),
             Err(_) => el.jacobian_det(self.node_coords(), &domain.centre()) * domain.measure(),
         }
+    }
+
+    /// Whether the face lies in one plane (its unit normal the same at every node, to 1e-12):
+    /// its Jacobian is then a polynomial; otherwise (a warped bilinear quad, a curved face)
+    /// it is the norm of a polynomial vector, and its integrals need
+    /// [`WARPED_EXTRA_DEGREE`] more.
+    pub fn is_flat(&self) -> bool {
+        let el = self.element;
+        if el.is_affine() {
+            return true;
+        }
+        let x = self.node_coords();
+        let normal = |xi: &Vector2<f64>| {
+            let t = el.tangents(x, xi);
+            t[0].cross(&t[1]).normalize()
+        };
+        let n0 = normal(&el.domain().centre());
+        el.node_reference_coords()
+            .iter()
+            .all(|xi| (normal(&Vector2::new(xi[0], xi[1])) - n0).amax() <= 1e-12)
     }
 
     /// The largest distance between two corner nodes.

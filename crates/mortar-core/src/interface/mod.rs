@@ -7,6 +7,6 @@ mod interface;
 mod master_faces;
 mod validate;
 
-pub use face::FaceGeometry;
+pub use face::{FaceGeometry, WARPED_EXTRA_DEGREE};
 pub use interface::{Interface, SpatialDim};
 pub use master_faces::MasterFaces;

@@ -4,6 +4,7 @@ use super::{LmBasis, MultiplierSpace};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result};
 use crate::interface::FaceGeometry;
+use crate::interface::WARPED_EXTRA_DEGREE;
 use crate::quadrature::{Quadrature, QuadratureRule};
 use crate::tolerances::Tolerances;
 
@@ -30,8 +31,14 @@ impl MultiplierSpace for DualMultipliers {
     fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
         let el = face.element;
         let k = face.node_count();
-        // N_j N_k has degree 2p; the Jacobian of a planar quad adds 1 (2 with margin).
-        let degree = (2 * el.shape_degree() + 2).min(20);
+        // N_j N_k has degree 2p; the Jacobian of a planar quad adds 1 (2 with margin); that of
+        // a warped or curved face is not a polynomial (WARPED_EXTRA_DEGREE more).
+        let extra = if face.is_flat() {
+            0
+        } else {
+            WARPED_EXTRA_DEGREE
+        };
+        let degree = (2 * el.shape_degree() + 2 + extra).min(20);
         let rule = QuadratureRule::cached(el.domain(), degree)?;
         let mut me = Square::identity();
         for j in 0..k {
