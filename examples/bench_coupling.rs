@@ -12,7 +12,9 @@
 //!   (0,0)-(1,1) diagonal, master `floor(1.5 n) + 1` cells per side cut along the other one;
 //! - `cylinder`: the lateral surface of the unit cylinder (radius 1, height 1); slave `n` x
 //!   `n / 4` quads, master `floor(1.5 n) + 1` x `floor(1.5 n / 4) + 1` cells cut into triangles;
-//! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements.
+//! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements;
+//! - `ratio2d`, `ratio3d`: one slave face (a line, a Quad4) against `n` master lines or
+//!   `n x n` master quads covering it: the work of one face must stay linear in its partners.
 //!
 //! Each case also runs `faces-shuffled`: the same meshes with the faces of slave and master
 //! stored in a seeded random order (`mortar::testing::shuffled_faces`), the order a mesher that
@@ -42,7 +44,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use clap::Parser;
-use mortar::generate::{cylinder_surface, line_mesh, square_triangles, Diagonal};
+use mortar::generate::{cylinder_surface, line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::testing::{shuffled, shuffled_faces};
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
 use serde_json::{json, Value};
@@ -116,6 +118,13 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
             )
         }
         "line2d" => (line_mesh(n, false, 1)?, line_mesh(master_n(n), true, 1)?),
+        // One slave face against n master lines (2D) or n x n master quads (3D): the work of
+        // a face must stay linear in its partners (issue 14, item 1).
+        "ratio2d" => (line_mesh(1, false, 1)?, line_mesh(n, true, 1)?),
+        "ratio3d" => (
+            square_quads(1, 0.0, false, 1)?,
+            square_quads(n, 0.0, true, 1)?,
+        ),
         _ => return Err(format!("unknown case {case:?}").into()),
     };
     match order {
@@ -258,16 +267,20 @@ fn bench(args: &Args) -> Res<()> {
             ("plane3d", vec![16, 32, 100]),
             ("cylinder", vec![64]),
             ("line2d", vec![1_000, 10_000]),
+            ("ratio2d", vec![10_000]),
+            ("ratio3d", vec![100]),
         ]
     } else {
         vec![
             ("plane3d", vec![16, 32, 100, 316, 708, 1000]),
             ("cylinder", vec![64, 256, 1024]),
             ("line2d", vec![1_000, 10_000, 100_000, 1_000_000]),
+            ("ratio2d", vec![100_000, 1_000_000]),
+            ("ratio3d", vec![316, 1000]),
         ]
     };
     for (case, ns) in &mut sizes {
-        if *case != "line2d" {
+        if !case.ends_with("2d") {
             ns.retain(|&n| n <= cap);
         }
     }
