@@ -24,8 +24,11 @@ impl fmt::Display for InterfaceArg {
     }
 }
 
-/// Splits `FILE#GROUP` at its last `#`; a plain `FILE` selects the whole file. A file whose
-/// own name contains `#` is taken whole when it exists.
+/// Splits `FILE#GROUP` at the first `#` after which the file part exists (so a group name
+/// may contain `#` itself: `block.msh#top#2` selects the group `top#2` of `block.msh`), at
+/// the last `#` when no such file exists (the reader then names the missing file); a plain
+/// `FILE` selects the whole file. A file whose own name contains `#` is taken whole when it
+/// exists.
 ///
 /// ```
 /// let a = mortar::io::parse_interface_arg("meshes/block.msh#contact top").unwrap();
@@ -45,12 +48,17 @@ pub fn parse_interface_arg(arg: &str) -> Result<InterfaceArg, IoError> {
         return Err(invalid("no file name"));
     }
     let whole = PathBuf::from(arg);
-    let Some((file, group)) = arg.rsplit_once('#') else {
+    let Some(last) = arg.rsplit_once('#') else {
         return Ok(InterfaceArg {
             path: whole,
             group: None,
         });
     };
+    let (file, group) = arg
+        .match_indices('#')
+        .map(|(i, _)| (&arg[..i], &arg[i + 1..]))
+        .find(|(file, _)| std::path::Path::new(file).is_file())
+        .unwrap_or(last);
     if whole.is_file() {
         return Ok(InterfaceArg {
             path: whole,
@@ -69,4 +77,28 @@ pub fn parse_interface_arg(arg: &str) -> Result<InterfaceArg, IoError> {
         path: PathBuf::from(file),
         group: Some(group.to_string()),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 14, item 9: a group whose name contains `#` can be selected (it was cut at the
+    /// last `#`, and the file part did not exist).
+    #[test]
+    fn a_group_name_may_contain_a_hash() {
+        let dir = std::env::temp_dir().join(format!("mortar-hash-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("block.msh");
+        std::fs::write(&file, "").unwrap();
+        let arg = format!("{}#top#2", file.display());
+        let a = parse_interface_arg(&arg).unwrap();
+        assert_eq!(a.path, file);
+        assert_eq!(a.group.as_deref(), Some("top#2"));
+        // No such file: split at the last '#', the reader will name the missing file.
+        let b = parse_interface_arg("nowhere.msh#a#b").unwrap();
+        assert_eq!(b.path, PathBuf::from("nowhere.msh#a"));
+        assert_eq!(b.group.as_deref(), Some("b"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
