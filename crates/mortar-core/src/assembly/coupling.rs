@@ -5,6 +5,7 @@ use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
+use super::key_index::KeyIndex;
 use super::local::{integrate_face_into, LocalBlocks};
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
@@ -177,9 +178,6 @@ impl Coupling {
     }
 }
 
-/// Master columns of one slave face searched linearly; beyond, through a map.
-const LINEAR_COLUMNS: usize = 32;
-
 /// Buffers a worker reuses from chunk to chunk, so that only the compressed results grow.
 #[derive(Default)]
 struct ChunkWorkspace {
@@ -192,8 +190,8 @@ struct ChunkWorkspace {
     rule: PairedRule,
     blocks: LocalBlocks,
     cols: Vec<(u32, [f64; MAX_FACE_NODES])>,
-    /// Where each column is in `cols`, once there are more than [`LINEAR_COLUMNS`].
-    col_index: std::collections::HashMap<u32, usize>,
+    /// Where each column is in `cols`.
+    col_index: KeyIndex,
     d: Triplets,
     m: Triplets,
     sort: CompressWorkspace,
@@ -654,10 +652,8 @@ fn chunk(
             }
         }
         // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
-        // far fewer nodes, so this cuts the triplets about threefold. The columns are found
-        // by a linear search while they are few, through a map beyond (a coarse slave face
-        // against a million master faces: the search made the face quadratic in its
-        // partners); either way in the order first met, so the sums are the same.
+        // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
+        // first met (found through `col_index`), so the sums are the same whatever the count.
         cols.clear();
         col_index.clear();
         let mut mcols = [0u32; MAX_FACE_NODES];
@@ -665,21 +661,11 @@ fn chunk(
             let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
             debug_assert_eq!(kc, km);
             for (l, &c) in mcols[..kc].iter().enumerate() {
-                let found = if cols.len() <= LINEAR_COLUMNS {
-                    cols.iter().position(|(cc, _)| *cc == c)
-                } else {
-                    if col_index.is_empty() {
-                        col_index.extend(cols.iter().enumerate().map(|(i, (cc, _))| (*cc, i)));
-                    }
-                    col_index.get(&c).copied()
-                };
-                let at = match found {
+                let at = match col_index.find(cols.len(), |i| cols[i].0, c) {
                     Some(at) => at,
                     None => {
                         cols.push((c, [0.0; MAX_FACE_NODES]));
-                        if !col_index.is_empty() {
-                            col_index.insert(c, cols.len() - 1);
-                        }
+                        col_index.pushed(c, cols.len() - 1);
                         cols.len() - 1
                     }
                 };

@@ -1,3 +1,4 @@
+use super::key_index::KeyIndex;
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::integration::PairedPoint;
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
@@ -15,14 +16,9 @@ pub struct LocalBlocks {
     /// The M blocks, each `ks x km` row-major: `m[j][l] = int Phi_j N_l^m`.
     vals: Vec<f64>,
     ks: usize,
-    /// Where each master face is in `masters`, once there are more than
-    /// [`LINEAR_MASTERS`].
-    index: std::collections::HashMap<u32, usize>,
+    /// Where each master face is in `masters`.
+    index: KeyIndex,
 }
-
-/// Master faces of one slave face searched linearly; beyond, through a map (a coarse slave
-/// face against a million master faces made the search quadratic in its partners).
-const LINEAR_MASTERS: usize = 32;
 
 impl LocalBlocks {
     fn clear(&mut self, ks: usize) {
@@ -35,24 +31,14 @@ impl LocalBlocks {
 
     /// The offset of the block of `master` (with `km` nodes), created zero if new.
     fn block_offset(&mut self, master: u32, km: usize) -> usize {
-        let found = if self.masters.len() <= LINEAR_MASTERS {
-            self.masters.iter().position(|(f, _, _)| *f == master)
-        } else {
-            if self.index.is_empty() {
-                let entries = self.masters.iter().enumerate().map(|(i, m)| (m.0, i));
-                self.index.extend(entries);
-            }
-            self.index.get(&master).copied()
-        };
-        match found {
+        let masters = &self.masters;
+        match self.index.find(masters.len(), |i| masters[i].0, master) {
             Some(i) => self.masters[i].2,
             None => {
                 let off = self.vals.len();
                 self.vals.resize(off + self.ks * km, 0.0);
                 self.masters.push((master, km, off));
-                if !self.index.is_empty() {
-                    self.index.insert(master, self.masters.len() - 1);
-                }
+                self.index.pushed(master, self.masters.len() - 1);
                 off
             }
         }

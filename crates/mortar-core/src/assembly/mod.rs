@@ -10,6 +10,7 @@
 //! M are bit-for-bit identical serial or parallel.
 
 mod coupling;
+mod key_index;
 mod local;
 mod options;
 mod warning;
