@@ -9,6 +9,7 @@ use mortar_core::linalg::{
 
 use super::normal::NormalGap;
 use crate::error::PhysicsError;
+use crate::field::free::{free_block, free_numbering, FIXED};
 use crate::laws::{evaluate, ConstraintLaw, LawPoint};
 use crate::tied::Tie;
 
@@ -173,8 +174,8 @@ pub fn solve_contact<L: ConstraintLaw>(
         return Err(wrong("normal gap columns", ndof, gap.matrix.cols()));
     }
     // Unknown numbering: free displacements, then the pressures.
-    const NONE: u32 = u32::MAX;
-    let mut fixed = vec![NONE; ndof];
+    const NONE: u32 = FIXED;
+    let mut fixed = Vec::new();
     let mut fixed_value = vec![0.0; ndof];
     for b in 0..2 {
         let offset = if b == 0 { 0 } else { n[0] };
@@ -185,18 +186,11 @@ pub fn solve_contact<L: ConstraintLaw>(
                     what: format!("Dirichlet unknown {d} out of range ({})", n[b]),
                 });
             }
-            fixed[offset + d as usize] = 0;
+            fixed.push((offset + d as usize) as u32);
             fixed_value[offset + d as usize] = v;
         }
     }
-    let mut free = vec![NONE; ndof];
-    let mut nfree = 0usize;
-    for g in 0..ndof {
-        if fixed[g] == NONE {
-            free[g] = nfree as u32;
-            nfree += 1;
-        }
-    }
+    let (free, nfree) = free_numbering(ndof, &fixed);
     let rows = gap.weights.len();
     let dim = gap.dim;
     if rows > 0
@@ -248,29 +242,8 @@ pub fn solve_contact<L: ConstraintLaw>(
         out
     };
 
-    // K_ff, the stiffness on the free displacements (the same in every Newton step), in CSR: the free numbering is
-    // monotone, so each row's columns stay sorted.
-    let mut ptr = Vec::with_capacity(nfree + 1);
-    let (mut idx, mut val) = (Vec::new(), Vec::new());
-    ptr.push(0usize);
-    for g in 0..ndof {
-        if free[g] == NONE {
-            continue;
-        }
-        let (b, i) = entry(g);
-        let off = if b == 0 { 0 } else { n[0] };
-        if let Some(row) = stiffness[b].outer_view(i) {
-            for (j, v) in row.iter() {
-                let cf = free[off + j];
-                if cf != NONE {
-                    idx.push(cf as usize);
-                    val.push(*v);
-                }
-            }
-        }
-        ptr.push(idx.len());
-    }
-    let kff = SparseMatrix::new((nfree, nfree), ptr, idx, val);
+    // K_ff, the stiffness on the free displacements (the same in every Newton step).
+    let kff = free_block(&stiffness, &free, nfree);
     // The elimination order of the condensed systems, over the free displacements: computed
     // for the first, reused for the next ones (their patterns differ in the rows of the
     // slave nodes that change branch).
@@ -282,7 +255,7 @@ pub fn solve_contact<L: ConstraintLaw>(
     for s in 1..=load_steps {
         let factor = s as f64 / load_steps as f64;
         for g in 0..ndof {
-            if fixed[g] != NONE {
+            if free[g] == NONE {
                 u[g] = factor * fixed_value[g];
             }
         }

@@ -1,6 +1,8 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
+use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization};
+
+use crate::field::free::{free_block, free_numbering, FIXED};
 
 use super::{assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticOptions};
 use crate::PhysicsError;
@@ -41,43 +43,24 @@ pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
     let k = assemble_elastic_stiffness(body, &options)?;
     let f = assemble_elastic_load(body, &options)?;
     let (fixed, values) = body.dirichlet_dofs();
-    let n = f.len();
-    const FREE: u32 = u32::MAX;
-    let mut u = vec![0.0; n];
-    let mut index = vec![FREE; n];
+    let (free, m) = free_numbering(f.len(), &fixed);
+    let mut u = vec![0.0; f.len()];
     for (&d, &v) in fixed.iter().zip(&values) {
         u[d as usize] = v;
-        index[d as usize] = FREE - 1;
     }
-    let mut m = 0u32;
-    for i in index.iter_mut() {
-        if *i == FREE {
-            *i = m;
-            m += 1;
-        }
-    }
-    let m = m as usize;
-    // K_ff in compressed rows (the free numbering is monotone: rows stay sorted), and the
-    // right-hand side less the prescribed displacements' forces.
-    let (mut ptr, mut idx, mut val) = (vec![0usize], Vec::new(), Vec::new());
+    let kff = free_block(&[&k], &free, m);
+    // The right-hand side less the prescribed displacements' forces.
     let mut rhs = Vec::with_capacity(m);
     for (r, row) in k.outer_iterator().enumerate() {
-        if index[r] >= FREE - 1 {
-            continue;
+        if free[r] != FIXED {
+            let prescribed: f64 = row
+                .iter()
+                .filter(|(c, _)| free[*c] == FIXED)
+                .map(|(c, v)| v * u[c])
+                .sum();
+            rhs.push(f[r] - prescribed);
         }
-        let mut b = f[r];
-        for (c, v) in row.iter() {
-            if index[c] < FREE - 1 {
-                idx.push(index[c] as usize);
-                val.push(*v);
-            } else {
-                b -= v * u[c];
-            }
-        }
-        ptr.push(idx.len());
-        rhs.push(b);
     }
-    let kff = SparseMatrix::new((m, m), ptr, idx, val);
     let not_held = |why: String| PhysicsError::InvalidInput {
         body: body.name.clone(),
         what: format!(
@@ -98,8 +81,8 @@ pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
             "the solution has no correct digit (|K| |u| / |f| above 1e-3 / eps)".into(),
         ));
     }
-    for (i, &p) in index.iter().enumerate() {
-        if p < FREE - 1 {
+    for (i, &p) in free.iter().enumerate() {
+        if p != FIXED {
             u[i] = rhs[p as usize];
         }
     }

@@ -6,5 +6,6 @@
 
 pub(crate) mod cells;
 mod dofs;
+pub(crate) mod free;
 
 pub use dofs::{ComponentSet, DofLayout};
