@@ -27,10 +27,11 @@ pub trait NewtonProblem {
     ) -> Result<usize, PhysicsError>;
 
     /// The size of the terms that make up `F(x)` before they cancel (for an assembled
-    /// operator `A x - f`: `| |A| |x| | + |f|`), the problem's own magnitude. [`newton`]
-    /// stops once `|F|` is at round-off of it ([`ROUNDOFF_FLOOR`] times it), whatever the
-    /// relative criterion asks: a solve that starts at round-off (zero load) is converged,
-    /// not a failed line search. The default, 0, has no floor.
+    /// operator `A x - f`: `| |A| |x| | + |f|`), the problem's own magnitude. When [`newton`]
+    /// can make no more progress (its line search fails, or its steps run out) with `|F|` at
+    /// round-off of it ([`ROUNDOFF_FLOOR`] times it), it has converged, whatever the relative
+    /// criterion asked: a solve that starts at round-off (zero load) is not a failure. Asked
+    /// only then, so it costs nothing on the way. The default, 0, has no floor.
     ///
     /// # Errors
     /// A failure of the evaluation.
@@ -82,8 +83,9 @@ impl Forcing {
 pub struct NewtonOptions {
     /// Converged when `|F| <= absolute_tolerance` ...
     pub absolute_tolerance: f64,
-    /// ... or `|F| <= relative_tolerance |F(x_0)|` (Euclidean norms), or at round-off of the
-    /// problem's own magnitude ([`NewtonProblem::residual_scale`]).
+    /// ... or `|F| <= relative_tolerance |F(x_0)|` (Euclidean norms), or, once no more
+    /// progress can be made, at round-off of the problem's own magnitude
+    /// ([`NewtonProblem::residual_scale`]).
     pub relative_tolerance: f64,
     /// The most Newton steps.
     pub max_iterations: usize,
@@ -190,8 +192,14 @@ pub fn newton(
     }
     let tol = options
         .absolute_tolerance
-        .max(options.relative_tolerance * norm_r)
-        .max(ROUNDOFF_FLOOR * problem.residual_scale(x)?);
+        .max(options.relative_tolerance * norm_r);
+    // Whether `|F(x)|` is at round-off of the problem's own magnitude: asked when no more
+    // progress can be made.
+    let at_roundoff = |problem: &mut dyn NewtonProblem, x: &[f64], norm_r: f64| {
+        problem
+            .residual_scale(x)
+            .map(|scale| norm_r <= ROUNDOFF_FLOOR * scale)
+    };
     let mut eta = match options.forcing {
         Forcing::Constant(e) => e,
         Forcing::EisenstatWalker { initial, .. } => initial,
@@ -203,6 +211,10 @@ pub fn newton(
             return Ok(report);
         }
         if report.iterations >= options.max_iterations {
+            if at_roundoff(problem, x, norm_r)? {
+                report.seconds = start.elapsed().as_secs_f64();
+                return Ok(report);
+            }
             return Err(fail(NewtonFailureReason::MaxIterations, &report));
         }
         if let Forcing::EisenstatWalker {
@@ -240,6 +252,10 @@ pub fn newton(
             a *= 0.5;
         }
         if !accepted {
+            if at_roundoff(problem, x, norm_r)? {
+                report.seconds = start.elapsed().as_secs_f64();
+                return Ok(report);
+            }
             return Err(fail(NewtonFailureReason::LineSearch, &report));
         }
         x.copy_from_slice(&trial);
