@@ -185,3 +185,97 @@ impl ConstraintLaw for GapConductance {
         (r * p.multiplier - p.gap) / (r + cst(self.reference_resistance))
     }
 }
+
+/// Heat transfer across a gap that moves: the Ross-Stoute conductance on the point's current
+/// mechanical gap `g_n` ([`LawPoint::normal_gap`]) plus a contact term that grows with the
+/// contact pressure `p_c` ([`LawPoint::contact_pressure`]) once the surfaces touch
+/// (docs/physics.md, section 6):
+///
+/// ```text
+/// U = k_g(T) / (max(g_n, 0) + 1.5 (R_f + R_c) + g_f + g_c) + h_contact max(p_c, 0)
+/// ```
+///
+/// written, as [`GapConductance`], in the resistance `R = 1/U` and normalised by `R_ref`:
+/// `C(g, q; T, g_n, p_c) = (R q - g) / (R + R_ref)`, with `g = T_s - T_m` and `q` the flux
+/// leaving the slave. `R = d / (k_g + h_contact max(p_c, 0) d)`, `d` the total distance,
+/// never divides by zero (`d > 0`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MechanicalGapConductance {
+    /// The added distance `1.5 (R_f + R_c) + g_f + g_c` (m), positive.
+    pub added_distance: f64,
+    /// The gas conductivity.
+    pub gas: GasConductivity,
+    /// `h_contact` (W/m^2/K/Pa): the conductance gained per pascal of contact pressure.
+    pub contact_conductance: f64,
+    /// The reference resistance `R_ref` (m^2 K/W) of the normalisation.
+    pub reference_resistance: f64,
+}
+
+impl MechanicalGapConductance {
+    /// The law with roughnesses `R_f` (fuel, slave) and `R_c` (cladding), jump distances
+    /// `g_f + g_c` (m), the gas, and `h_contact` (W/m^2/K/Pa; 0 for none), with the default
+    /// reference resistance ([`GapConductance::DEFAULT_REFERENCE_RESISTANCE`]).
+    ///
+    /// # Errors
+    /// [`LawError::InvalidParameter`] for a negative or non-finite distance or `h_contact`,
+    /// an added distance of zero (the conductance of a closed gap would be infinite), or a
+    /// non-positive gas conductivity.
+    pub fn try_new(
+        roughness_fuel: f64,
+        roughness_cladding: f64,
+        jump_distance: f64,
+        gas: GasConductivity,
+        contact_conductance: f64,
+    ) -> Result<Self, LawError> {
+        let bad = |what: String| {
+            Err(LawError::InvalidParameter {
+                law: "gap conductance",
+                what,
+            })
+        };
+        for (what, v) in [
+            ("fuel roughness", roughness_fuel),
+            ("cladding roughness", roughness_cladding),
+            ("jump distance", jump_distance),
+            ("contact conductance", contact_conductance),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return bad(format!("{what} {v} is not non-negative and finite"));
+            }
+        }
+        let added_distance = 1.5 * (roughness_fuel + roughness_cladding) + jump_distance;
+        if added_distance <= 0.0 {
+            return bad(
+                "roughness and jump distances are all zero: a closed gap would conduct infinitely"
+                    .into(),
+            );
+        }
+        gas.check()?;
+        Ok(Self {
+            added_distance,
+            gas,
+            contact_conductance,
+            reference_resistance: GapConductance::DEFAULT_REFERENCE_RESISTANCE,
+        })
+    }
+
+    /// The resistance `R = 1/U` (m^2 K/W) at gap `g_n` (m), contact pressure `p_c` (Pa) and
+    /// temperature `T` (K).
+    pub fn resistance<S: Float>(&self, normal_gap: S, contact_pressure: S, temperature: S) -> S {
+        let d = normal_gap.max(S::zero()) + cst(self.added_distance);
+        let h = cst::<S>(self.contact_conductance) * contact_pressure.max(S::zero());
+        d / (self.gas.at(temperature) + h * d)
+    }
+
+    /// The conductance `U = 1/R` (W/m^2/K), for reports.
+    pub fn conductance(&self, normal_gap: f64, contact_pressure: f64, temperature: f64) -> f64 {
+        1.0 / self.resistance(normal_gap, contact_pressure, temperature)
+    }
+}
+
+impl ConstraintLaw for MechanicalGapConductance {
+    fn residual<S: Float>(&self, p: LawPoint<S>) -> S {
+        let r = self.resistance(p.normal_gap, p.contact_pressure, p.temperature);
+        (r * p.multiplier - p.gap) / (r + cst(self.reference_resistance))
+    }
+}

@@ -12,8 +12,13 @@
 //! - [`GapConductance`]: `q = U (T_s - T_m)` with the Ross-Stoute or simplified conductance,
 //!   written in the resistance `R = 1/U` and normalised so that both limits `U -> 0` and
 //!   `U -> infinity` stay finite and well scaled.
+//! - [`MechanicalGapConductance`]: the same across a gap that moves, `U = k_g(T) /
+//!   (max(g_n, 0) + added) + h_contact p_contact` with the point's mechanical gap and contact
+//!   pressure (the pellet in its cladding).
 //! - [`ExponentialPressure`]: the seed's regularised contact pressure
-//!   `P_c = P_o exp(S_NE (xi - g)^2)`, overflow-safe.
+//!   `P_c = P_o exp(S_NE (xi - g)^2)`, overflow-safe; [`ExponentialContact`], the same with
+//!   `P_o` the point's gas pressure as it goes and the contact pressure `P_c - P_o` as the
+//!   multiplier.
 //! - [`ContactComplementarity`]: `C = lambda - max(0, lambda - c g)` (semi-smooth Newton).
 //!
 //! [`evaluate`] is the checked evaluation: value and partial derivatives, or a [`LawError`]
@@ -47,12 +52,20 @@ mod pressure;
 
 pub use complementarity::ContactComplementarity;
 pub use dual::Dual;
-pub use gap::{GapConductance, GasConductivity};
-pub use pressure::ExponentialPressure;
+pub use gap::{GapConductance, GasConductivity, MechanicalGapConductance};
+pub use pressure::{ExponentialContact, ExponentialPressure};
 
 use num_traits::Float;
 
 /// The arguments of a law at one point (one slave node).
+///
+/// The first three are the law's own: its gap, its multiplier and the interface temperature.
+/// The last three are what a law of a thermomechanical interface may also see of the other
+/// physics at the same point (zero where no such physics runs): the mechanical normal gap and
+/// contact pressure (for a thermal law whose conductance follows the gap), and the gas pressure
+/// of the gap (for a mechanical law whose pressure follows the plenum). For a mechanical law
+/// `normal_gap` and `contact_pressure` repeat `gap` and `multiplier`; a law reads one or the
+/// other, and the solver adds the two derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LawPoint<S> {
     /// The gap: the temperature jump `T_s - T_m` (thermal) or the normal gap (mechanical).
@@ -61,16 +74,35 @@ pub struct LawPoint<S> {
     pub multiplier: S,
     /// The interface temperature (K), for temperature-dependent coefficients.
     pub temperature: S,
+    /// The mechanical normal gap (m, positive open) at the point.
+    pub normal_gap: S,
+    /// The contact pressure (Pa, positive in compression), in excess of the gas pressure.
+    pub contact_pressure: S,
+    /// The pressure of the gas in the gap (Pa), the plenum pressure `P_o`.
+    pub gas_pressure: S,
 }
 
-impl<S> LawPoint<S> {
-    /// The point `(gap, multiplier, temperature)`.
+impl<S: num_traits::Zero> LawPoint<S> {
+    /// The point `(gap, multiplier, temperature)`, with no mechanical gap, contact pressure or
+    /// gas pressure (all zero).
     pub fn new(gap: S, multiplier: S, temperature: S) -> Self {
         Self {
             gap,
             multiplier,
             temperature,
+            normal_gap: S::zero(),
+            contact_pressure: S::zero(),
+            gas_pressure: S::zero(),
         }
+    }
+
+    /// The same point seen by a thermomechanical interface: mechanical normal gap (m),
+    /// contact pressure and gas pressure (Pa).
+    pub fn with_mechanics(mut self, normal_gap: S, contact_pressure: S, gas_pressure: S) -> Self {
+        self.normal_gap = normal_gap;
+        self.contact_pressure = contact_pressure;
+        self.gas_pressure = gas_pressure;
+        self
     }
 }
 
@@ -95,6 +127,12 @@ pub struct LawTangent {
     pub d_multiplier: f64,
     /// `dC/dT`.
     pub d_temperature: f64,
+    /// `dC/d(normal gap)`.
+    pub d_normal_gap: f64,
+    /// `dC/d(contact pressure)`.
+    pub d_contact_pressure: f64,
+    /// `dC/d(gas pressure)`.
+    pub d_gas_pressure: f64,
 }
 
 /// Errors of laws.
@@ -104,7 +142,8 @@ pub enum LawError {
     /// An argument is NaN.
     #[error("constraint law evaluated with a NaN {argument}")]
     NanInput {
-        /// `"gap"`, `"multiplier"` or `"temperature"`.
+        /// `"gap"`, `"multiplier"`, `"temperature"`, `"normal gap"`, `"contact pressure"` or
+        /// `"gas pressure"`.
         argument: &'static str,
     },
     /// The law's value or a derivative is not finite at a finite point.
@@ -130,7 +169,7 @@ pub enum LawError {
 }
 
 /// The checked evaluation of a law: its value and partial derivatives at `p` (by forward
-/// automatic differentiation, one pass with three directions).
+/// automatic differentiation, one pass with six directions).
 ///
 /// # Errors
 /// [`LawError::NanInput`] if an argument is NaN, [`LawError::NonFinite`] if the value or a
@@ -143,27 +182,39 @@ pub fn evaluate<L: ConstraintLaw + ?Sized>(
         ("gap", p.gap),
         ("multiplier", p.multiplier),
         ("temperature", p.temperature),
+        ("normal gap", p.normal_gap),
+        ("contact pressure", p.contact_pressure),
+        ("gas pressure", p.gas_pressure),
     ] {
         if v.is_nan() {
             return Err(LawError::NanInput { argument });
         }
     }
-    let c = law.residual(LawPoint::new(
-        Dual::<3>::variable(p.gap, 0),
-        Dual::variable(p.multiplier, 1),
-        Dual::variable(p.temperature, 2),
-    ));
+    let c = law.residual(LawPoint {
+        gap: Dual::<6>::variable(p.gap, 0),
+        multiplier: Dual::variable(p.multiplier, 1),
+        temperature: Dual::variable(p.temperature, 2),
+        normal_gap: Dual::variable(p.normal_gap, 3),
+        contact_pressure: Dual::variable(p.contact_pressure, 4),
+        gas_pressure: Dual::variable(p.gas_pressure, 5),
+    });
     let t = LawTangent {
         value: c.re,
         d_gap: c.eps[0],
         d_multiplier: c.eps[1],
         d_temperature: c.eps[2],
+        d_normal_gap: c.eps[3],
+        d_contact_pressure: c.eps[4],
+        d_gas_pressure: c.eps[5],
     };
     for (what, v) in [
         ("value", t.value),
         ("dC/dg", t.d_gap),
         ("dC/dlambda", t.d_multiplier),
         ("dC/dT", t.d_temperature),
+        ("dC/d(normal gap)", t.d_normal_gap),
+        ("dC/d(contact pressure)", t.d_contact_pressure),
+        ("dC/d(gas pressure)", t.d_gas_pressure),
     ] {
         if !v.is_finite() {
             return Err(LawError::NonFinite {

@@ -130,3 +130,58 @@ impl ConstraintLaw for ExponentialPressure {
         p.multiplier - self.pressure(p.gap)
     }
 }
+
+/// The seed's exponential law with the gas pressure as it goes: the multiplier is the contact
+/// pressure `p_c = P_c - P_o` (Pa, in excess of the gas pressure, which acts on both surfaces
+/// beside it), and `P_o` is the point's [`gas_pressure`](LawPoint::gas_pressure), an unknown
+/// of a problem with a plenum:
+///
+/// ```text
+/// C(g, p_c; P_o) = p_c - P_o (exp(S_NE (xi - g)^2) - 1)   for g < xi,    p_c  otherwise,
+/// ```
+///
+/// overflow-safe as [`ExponentialPressure`] (the exponential continued linearly past
+/// `P_max / P_o`, by default 1e6).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExponentialContact {
+    /// The law at `P_o = 1`: `P_c = P_o shape(g)`.
+    shape: ExponentialPressure,
+}
+
+impl ExponentialContact {
+    /// The law with stiffness `S_NE` (1/m^2) and onset gap `xi` (m), and the ratio
+    /// `P_max / P_o` of [`ExponentialPressure::DEFAULT_MAX_RATIO`].
+    ///
+    /// # Errors
+    /// [`LawError::InvalidParameter`] for a negative or non-finite `S_NE` or a non-finite `xi`.
+    pub fn try_new(stiffness: f64, onset: f64) -> Result<Self, LawError> {
+        Ok(Self {
+            shape: ExponentialPressure::try_new(1.0, stiffness, onset)?,
+        })
+    }
+
+    /// The same law with the ratio `P_max / P_o` (above 1, finite).
+    ///
+    /// # Errors
+    /// [`LawError::InvalidParameter`] for a ratio not above 1 or not finite.
+    pub fn with_max_ratio(mut self, ratio: f64) -> Result<Self, LawError> {
+        self.shape = self.shape.with_max_pressure(ratio)?;
+        Ok(self)
+    }
+
+    /// The total interface pressure `P_c(g) = P_o shape(g)` at gas pressure `P_o`.
+    pub fn pressure<S: Float>(&self, g: S, gas_pressure: S) -> S {
+        gas_pressure * self.shape.pressure(g)
+    }
+
+    /// The onset gap `xi` (m): the surfaces feel each other below it.
+    pub fn onset(&self) -> f64 {
+        self.shape.onset
+    }
+}
+
+impl ConstraintLaw for ExponentialContact {
+    fn residual<S: Float>(&self, p: LawPoint<S>) -> S {
+        p.multiplier - p.gas_pressure * (self.shape.pressure(p.gap) - S::one())
+    }
+}
