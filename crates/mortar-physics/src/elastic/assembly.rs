@@ -222,6 +222,71 @@ pub fn assemble_elastic_load(
     Ok(f)
 }
 
+/// Assembles the matrix `G` of the thermal load, linear in the nodal temperatures:
+/// `f_th = G (T - T_ref)` with `G[(a,i), b] = int 3 K alpha N_b dN_a/dx_i` (rows numbered by
+/// the body's [`layout`](ElasticBody::layout), a column per mesh node): the thermal term of
+/// [`assemble_elastic_load`] as an operator, for problems in which the temperature is an
+/// unknown (thermoelasticity: its Jacobian block is `-G`). The body's own temperature field
+/// is not used. Parallel over fixed chunks of cells merged in order (bit for bit whatever
+/// the thread count).
+///
+/// # Errors
+/// As [`assemble_elastic_stiffness`].
+pub fn assemble_thermal_load_matrix(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+) -> Result<SparseMatrix, PhysicsError> {
+    body.check()?;
+    let mesh = &body.mesh;
+    let layout = body.layout();
+    let dim = layout.components;
+    let beta = body.material.thermal_stress_coefficient();
+    let cells = mesh.cell_count();
+    let chunks: Vec<Result<Triplets, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+        .into_par_iter()
+        .map(|ch| {
+            let mut out = Triplets::default();
+            let mut cv = CellValues::new();
+            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
+            let mut ge = vec![0.0; MAX_CELL_DOFS * MAX_CELL_NODES];
+            for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
+                let cell = mesh.cell(c);
+                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
+                ge[..nn * dim * nn].fill(0.0);
+                for q in 0..cv.len() {
+                    let (n, g, w) = (cv.shape(q), cv.gradients(q), beta * cv.jxw(q));
+                    for a in 0..nn {
+                        for i in 0..dim {
+                            let row = (a * dim + i) * nn;
+                            for b in 0..nn {
+                                ge[row + b] += w * g[a][i] * n[b];
+                            }
+                        }
+                    }
+                }
+                for (a, &na) in cell.nodes.iter().enumerate() {
+                    for i in 0..dim {
+                        let row = (a * dim + i) * nn;
+                        for (b, &nb) in cell.nodes.iter().enumerate() {
+                            out.push(layout.dof(na, i), nb, ge[row + b]);
+                        }
+                    }
+                }
+            }
+            Ok(out)
+        })
+        .collect();
+    let mut parts = Vec::with_capacity(chunks.len());
+    for ch in chunks {
+        parts.push(ch?);
+    }
+    Ok(Triplets::to_csr_from_parts(
+        parts,
+        layout.len(),
+        layout.nodes,
+    ))
+}
+
 /// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).
 pub(crate) fn reinit_cell(
     body: &ElasticBody,

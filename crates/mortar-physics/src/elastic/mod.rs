@@ -30,7 +30,9 @@ mod stress;
 mod tests;
 
 pub use crate::field::{ComponentSet, DofLayout};
-pub use assembly::{assemble_elastic_load, assemble_elastic_stiffness, ElasticOptions};
+pub use assembly::{
+    assemble_elastic_load, assemble_elastic_stiffness, assemble_thermal_load_matrix, ElasticOptions,
+};
 pub use body::{DisplacementCondition, ElasticBody, TractionCondition, VectorField};
 pub use material::{von_mises, ElasticMaterial};
 pub use solve::solve_elastic;
