@@ -105,7 +105,7 @@ pub struct GapHeat<L> {
 
 /// The data of one solve: time, step and previous state.
 #[derive(Debug, Clone)]
-struct StepData {
+pub(crate) struct StepData {
     /// External loads (plus capacity times old temperatures over dt) per body.
     load: [Vec<f64>; 2],
     /// Dirichlet values per body, in the order of `dirichlet`.
@@ -269,7 +269,7 @@ impl<L: ConstraintLaw> GapHeat<L> {
 
     /// Loads and Dirichlet values at time `t`; `old` and `dt` for a backward Euler step
     /// (`None`: steady).
-    fn step_data(
+    pub(crate) fn step_data(
         &self,
         t: f64,
         transient: Option<(&[f64], f64)>,
@@ -324,39 +324,7 @@ impl<L: ConstraintLaw> GapHeat<L> {
             });
         }
         let mut trip = Triplets::default();
-        for b in 0..2 {
-            let tb = &x[o[b]..o[b + 1]];
-            let (f, k) = assemble_conduction(
-                &self.bodies[b],
-                &self.conductivity[b],
-                tb,
-                &self.options,
-                lin,
-            )?;
-            let rb = &mut r[o[b]..o[b + 1]];
-            for (i, row) in self.capacity[b].outer_iterator().enumerate() {
-                let ct: f64 = row.iter().map(|(c, v)| v * tb[c]).sum();
-                rb[i] = f[i] + ct * data.inv_dt - data.load[b][i];
-            }
-            if let Some(k) = k {
-                for ((i, krow), crow) in k
-                    .outer_iterator()
-                    .enumerate()
-                    .zip(self.capacity[b].outer_iterator())
-                {
-                    let gi = o[b] + i;
-                    if self.is_dirichlet[gi] {
-                        continue;
-                    }
-                    for (c, v) in krow.iter() {
-                        trip.push(gi as u32, (o[b] + c) as u32, *v);
-                    }
-                    for (c, v) in crow.iter() {
-                        trip.push(gi as u32, (o[b] + c) as u32, v * data.inv_dt);
-                    }
-                }
-            }
-        }
+        self.body_terms(x, data, r, lin, &mut trip)?;
         // Interface.
         let c = self.tie.coupling();
         let sn = self.tie.slave_nodes();
@@ -404,7 +372,68 @@ impl<L: ConstraintLaw> GapHeat<L> {
                 trip.push(row as u32, row as u32, w * tan.d_multiplier * self.scale);
             }
         }
-        // Dirichlet rows.
+        self.dirichlet_terms(x, data, r, lin, &mut trip);
+        Ok(lin.map(|_| trip.to_csr(n, n)))
+    }
+
+    /// The bodies' terms of the residual (conduction, capacity, loads) into the rows of the
+    /// temperatures, `x` and `r` starting with the temperatures `[slave, master]` (longer
+    /// vectors allowed), and the matrix entries of `lin` (Dirichlet rows left out) into `trip`.
+    pub(crate) fn body_terms(
+        &self,
+        x: &[f64],
+        data: &StepData,
+        r: &mut [f64],
+        lin: Option<Linearization>,
+        trip: &mut Triplets,
+    ) -> Result<(), PhysicsError> {
+        let o = self.offsets();
+        for b in 0..2 {
+            let tb = &x[o[b]..o[b + 1]];
+            let (f, k) = assemble_conduction(
+                &self.bodies[b],
+                &self.conductivity[b],
+                tb,
+                &self.options,
+                lin,
+            )?;
+            let rb = &mut r[o[b]..o[b + 1]];
+            for (i, row) in self.capacity[b].outer_iterator().enumerate() {
+                let ct: f64 = row.iter().map(|(c, v)| v * tb[c]).sum();
+                rb[i] = f[i] + ct * data.inv_dt - data.load[b][i];
+            }
+            if let Some(k) = k {
+                for ((i, krow), crow) in k
+                    .outer_iterator()
+                    .enumerate()
+                    .zip(self.capacity[b].outer_iterator())
+                {
+                    let gi = o[b] + i;
+                    if self.is_dirichlet[gi] {
+                        continue;
+                    }
+                    for (c, v) in krow.iter() {
+                        trip.push(gi as u32, (o[b] + c) as u32, *v);
+                    }
+                    for (c, v) in crow.iter() {
+                        trip.push(gi as u32, (o[b] + c) as u32, v * data.inv_dt);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The Dirichlet rows `T - g` (as [`body_terms`](Self::body_terms)).
+    pub(crate) fn dirichlet_terms(
+        &self,
+        x: &[f64],
+        data: &StepData,
+        r: &mut [f64],
+        lin: Option<Linearization>,
+        trip: &mut Triplets,
+    ) {
+        let o = self.offsets();
         for b in 0..2 {
             for (&node, &g) in self.dirichlet[b].iter().zip(&data.values[b]) {
                 let gi = o[b] + node as usize;
@@ -414,7 +443,16 @@ impl<L: ConstraintLaw> GapHeat<L> {
                 }
             }
         }
-        Ok(lin.map(|_| trip.to_csr(n, n)))
+    }
+
+    /// Whether temperature unknown `i` (of `[slave, master]`) is prescribed.
+    pub(crate) fn is_dirichlet(&self, i: usize) -> bool {
+        self.is_dirichlet[i]
+    }
+
+    /// `w_j`, the row sums of D (the slave nodes' shares of the interface).
+    pub(crate) fn weights(&self) -> &[f64] {
+        &self.weight
     }
 
     /// The residual `F(x)` of a steady solve at time `t` (for checks and tests).

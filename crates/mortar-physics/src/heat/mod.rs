@@ -31,6 +31,7 @@ mod tied;
 
 pub use assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
 pub use body::{DirichletCondition, Field, HeatBody, HeatMaterial, NeumannCondition};
+pub(crate) use gap::StepData;
 pub use gap::{GapHeat, GapSolver, GapSolverState, GapSolverStats};
 pub use nonlinear::{assemble_conduction, Conductivity, Linearization};
 pub use norms::{error_norms, ErrorNorms};
