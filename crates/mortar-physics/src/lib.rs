@@ -45,6 +45,7 @@ pub mod field;
 pub mod heat;
 pub mod laws;
 pub mod nonlinear;
+pub mod thermomech;
 pub mod tied;
 pub mod tying;
 

@@ -1,0 +1,730 @@
+use mortar_core::element::{ReferenceDomain, MAX_FACE_NODES};
+use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::mesh::SurfaceMesh;
+use mortar_core::quadrature::{Quadrature, QuadratureRule};
+use mortar_core::{CouplingOptions, Side, Tolerances};
+use nalgebra::{Vector2, Vector3};
+
+use super::plenum::GasPressure;
+use crate::contact::NormalGap;
+use crate::elastic::{
+    assemble_elastic_load, assemble_elastic_stiffness, assemble_thermal_load_matrix, ElasticBody,
+    ElasticOptions,
+};
+use crate::error::PhysicsError;
+use crate::heat::{Conductivity, GapHeat, HeatBody, HeatOptions, Linearization, StepData};
+use crate::laws::{evaluate, ConstraintLaw, LawPoint};
+
+/// One body of a thermomechanical problem: its heat conduction (mesh, capacity, source,
+/// temperature conditions, `k(T)`) and its elasticity (the same mesh, material with thermal
+/// expansion, displacement conditions, tractions). The elastic body's own temperature field is
+/// not used: the temperature is an unknown.
+#[derive(Debug, Clone)]
+pub struct ThermoElasticBody {
+    /// Heat conduction.
+    pub heat: HeatBody,
+    /// `k(T)`.
+    pub conductivity: Conductivity,
+    /// Elasticity, on a mesh with the same nodes as `heat`'s.
+    pub elastic: ElasticBody,
+}
+
+/// Settings of [`GapThermoMechanics`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThermoMechOptions {
+    /// Heat assembly.
+    pub heat: HeatOptions,
+    /// Elastic assembly.
+    pub elastic: ElasticOptions,
+    /// The gap (m) of the reference configuration at every slave node, when given: the
+    /// as-built gap of a design, in place of the distance between the meshes. A polygonal
+    /// mesh of two coaxial circles measures their gap short by up to the sagitta of a master
+    /// edge, `R (1 - cos(pi / n))` (5 um for 64 edges of a 4 mm circle, a quarter of a 20 um
+    /// gap): give the design gap so that the discretisation of the curved surfaces does not
+    /// change it. `None`: the mortar gap of the meshes.
+    pub nominal_gap: Option<f64>,
+    /// The gas pressure in the gap.
+    pub gas: GasPressure,
+    /// The unit of the displacement unknowns (m): the state holds `u / displacement_unit`.
+    pub displacement_unit: f64,
+    /// The unit of the contact and gas pressure unknowns (Pa).
+    pub pressure_unit: f64,
+    /// The unit of the heat flux unknowns (W/m^2): with a gap conductance of the order of
+    /// it, the flux unknowns are kelvin-like.
+    pub flux_unit: f64,
+}
+
+impl Default for ThermoMechOptions {
+    /// Default assembly, the mesh gap, no gas; micrometres, megapascals and 1e4 W/m^2.
+    fn default() -> Self {
+        Self {
+            heat: HeatOptions::default(),
+            elastic: ElasticOptions::default(),
+            nominal_gap: None,
+            gas: GasPressure::Fixed(0.0),
+            displacement_unit: 1e-6,
+            pressure_unit: 1e6,
+            flux_unit: 1e4,
+        }
+    }
+}
+
+/// The offsets of the blocks of the state vector.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Offsets {
+    /// Temperatures: slave, master.
+    pub t: [usize; 3],
+    /// Displacements: slave, master.
+    pub u: [usize; 3],
+    /// Heat fluxes, one per slave interface node.
+    pub flux: usize,
+    /// Contact pressures, one per slave interface node.
+    pub pressure: usize,
+    /// The gas pressure.
+    pub gas: usize,
+    /// The size.
+    pub len: usize,
+}
+
+/// Two bodies in thermomechanical contact across a gap: transient heat conduction with `k(T)`
+/// and small-strain thermoelasticity in both, and across the interface a thermal law (heat
+/// flux against temperature jump, seeing the mechanical gap and contact pressure) and a
+/// mechanical law (contact pressure against normal gap, seeing the gas pressure), with the
+/// gas pressure given or following a plenum. Small deformation: D, M and the normals are
+/// those of the reference configuration.
+///
+/// Unknowns, in this order: temperatures (slave, master; K), displacements (slave, master,
+/// `node * dim + k`, in `displacement_unit`), heat fluxes leaving the slave (`flux_unit`),
+/// contact pressures (`pressure_unit`), one per slave interface node (row of D), and the gas
+/// pressure (`pressure_unit`). Residual (each body's rows; `G` the thermal load matrix,
+/// `N` the weighted normal gap operator, `g_j = (g~_0 - N u)_j / w_j` the nodal gap, `a` the
+/// integrals `int N n` of each body's interface surface with its outward normal `n`: the gas
+/// pressure acts on each surface over its own area, the contact pressure is an interaction
+/// transferred from the slave to the master by the mortar operators):
+///
+/// ```text
+/// heat:       f_int(T) + C (T - T_old)/dt - F  +  D^T q  (slave)  -  M^T q  (master)
+/// mechanics: (K u - G (T - T_ref) - f  +  N^T p  +  P_o a) s_u
+/// flux j:     w_j C_th(dT_j, q_j; Tbar_j, g_j, p_j, P_o)
+/// pressure j: w_j C_mech(g_j, p_j; Tbar_j, g_j, p_j, P_o) s_u
+/// gas:        (P_o - n R T_gap / (V_plenum + V_gap)) L s_u      (plenum; P_o - P_given else)
+/// ```
+///
+/// with `V_gap = sum_j w_j max(g_j, 0)` (first order in the gap over the radius of
+/// curvature), `T_gap = sum_j w_j Tbar_j / L` and `L = sum_j w_j`; Dirichlet rows replaced by
+/// `x - g`. `s_u = k / (E u_unit)` (slave conductivity and Young's modulus) weighs a
+/// micrometre of displacement error as a kelvin of temperature error in Newton's norms.
+#[derive(Debug, Clone)]
+pub struct GapThermoMechanics<TL, ML> {
+    pub(crate) heat: GapHeat<TL>,
+    pub(crate) elastic: [ElasticBody; 2],
+    pub(crate) contact_law: ML,
+    pub(crate) stiffness: [SparseMatrix; 2],
+    pub(crate) thermal_load: [SparseMatrix; 2],
+    pub(crate) load: [Vec<f64>; 2],
+    pub(crate) gap: NormalGap,
+    /// Per body, `int N_a n` over its interface surface (`n` its outward normal): the nodal
+    /// forces of a unit gas pressure are `-gas_load`.
+    pub(crate) gas_load: [Vec<f64>; 2],
+    pub(crate) pinned: Vec<bool>,
+    pub(crate) pinned_values: Vec<(usize, f64)>,
+    pub(crate) options: ThermoMechOptions,
+    pub(crate) row_scale: f64,
+    pub(crate) offsets: Offsets,
+}
+
+impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
+    /// Builds the problem: the heat problem of the two bodies across the interface of
+    /// `slave_surface` and `master_surface` (node tags of the bodies'), the stiffness and
+    /// thermal load matrices, and the normal gap.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for bodies whose heat and elastic meshes differ in
+    /// size, units that are not positive and finite, a nominal gap that is not finite, and
+    /// the errors of [`GapHeat::new`], of the elastic assembly and of [`NormalGap::new`].
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        slave: ThermoElasticBody,
+        master: ThermoElasticBody,
+        slave_surface: SurfaceMesh,
+        master_surface: SurfaceMesh,
+        coupling: &CouplingOptions,
+        tolerances: Tolerances,
+        thermal_law: TL,
+        contact_law: ML,
+        options: &ThermoMechOptions,
+    ) -> Result<Self, PhysicsError> {
+        let invalid = |body: &str, what: String| PhysicsError::InvalidInput {
+            body: body.into(),
+            what,
+        };
+        for b in [&slave, &master] {
+            if b.heat.mesh.node_count() != b.elastic.mesh.node_count() {
+                return Err(invalid(
+                    &b.heat.name,
+                    format!(
+                        "the heat mesh has {} nodes, the elastic mesh {}",
+                        b.heat.mesh.node_count(),
+                        b.elastic.mesh.node_count()
+                    ),
+                ));
+            }
+            b.elastic.check()?;
+        }
+        for (what, v) in [
+            ("displacement unit", options.displacement_unit),
+            ("pressure unit", options.pressure_unit),
+            ("flux unit", options.flux_unit),
+        ] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(invalid(
+                    "options",
+                    format!("{what} {v} is not positive and finite"),
+                ));
+            }
+        }
+        if let Some(g) = options.nominal_gap {
+            if !g.is_finite() {
+                return Err(invalid("options", format!("nominal gap {g} is not finite")));
+            }
+        }
+        match options.gas {
+            GasPressure::Fixed(p) if !(p >= 0.0 && p.is_finite()) => {
+                return Err(invalid(
+                    "options",
+                    format!("gas pressure {p} is not non-negative and finite"),
+                ))
+            }
+            GasPressure::Plenum(p) if !(p.volume >= 0.0 && p.gas_amount >= 0.0) => {
+                return Err(invalid("plenum", format!("{p:?} is not non-negative")))
+            }
+            _ => {}
+        }
+        let row_scale = slave.heat.material.conductivity
+            / (slave.elastic.material.youngs_modulus * options.displacement_unit);
+        if !(row_scale > 0.0 && row_scale.is_finite()) {
+            return Err(invalid(
+                &slave.heat.name,
+                format!("conductivity over Young's modulus gives the row scale {row_scale}"),
+            ));
+        }
+        let ThermoElasticBody {
+            heat: hs,
+            conductivity: ks,
+            elastic: es,
+        } = slave;
+        let ThermoElasticBody {
+            heat: hm,
+            conductivity: km,
+            elastic: em,
+        } = master;
+        let heat = GapHeat::new(
+            (hs, ks),
+            (hm, km),
+            slave_surface,
+            master_surface,
+            coupling,
+            tolerances,
+            thermal_law,
+            &options.heat,
+        )?;
+        let dim = es.components();
+        if em.components() != dim {
+            return Err(invalid(
+                &em.name,
+                format!("a {}D body against a {dim}D one", em.components()),
+            ));
+        }
+        let (ns, nm) = (es.mesh.node_count(), em.mesh.node_count());
+        let mut gap = NormalGap::new(heat.tie(), dim, ns, nm)?;
+        let interface = heat.tie().interface();
+        let gas_load = [
+            surface_load(interface.slave(), &es, Side::Slave, dim)?,
+            surface_load(interface.master(), &em, Side::Master, dim)?,
+        ];
+        if let Some(g) = options.nominal_gap {
+            for (g0, w) in gap.initial.iter_mut().zip(&gap.weights) {
+                *g0 = g * w;
+            }
+        }
+        let stiffness = [
+            assemble_elastic_stiffness(&es, &options.elastic)?,
+            assemble_elastic_stiffness(&em, &options.elastic)?,
+        ];
+        let thermal_load = [
+            assemble_thermal_load_matrix(&es, &options.elastic)?,
+            assemble_thermal_load_matrix(&em, &options.elastic)?,
+        ];
+        // Body forces and tractions only: the thermal load is G (T - T_ref).
+        let load = [
+            assemble_elastic_load(&without_temperature(&es), &options.elastic)?,
+            assemble_elastic_load(&without_temperature(&em), &options.elastic)?,
+        ];
+        let nt = ns + nm;
+        let rows = gap.weights.len();
+        let u = [nt, nt + dim * ns, nt + dim * (ns + nm)];
+        let offsets = Offsets {
+            t: [0, ns, nt],
+            u,
+            flux: u[2],
+            pressure: u[2] + rows,
+            gas: u[2] + 2 * rows,
+            len: u[2] + 2 * rows + 1,
+        };
+        let mut pinned = vec![false; dim * (ns + nm)];
+        let mut pinned_values = Vec::new();
+        for (b, body) in [&es, &em].into_iter().enumerate() {
+            let (dofs, values) = body.dirichlet_dofs();
+            for (d, v) in dofs.into_iter().zip(values) {
+                let i = u[b] - u[0] + d as usize;
+                pinned[i] = true;
+                pinned_values.push((u[0] + i, v / options.displacement_unit));
+            }
+        }
+        Ok(Self {
+            heat,
+            elastic: [es, em],
+            contact_law,
+            stiffness,
+            thermal_load,
+            load,
+            gap,
+            gas_load,
+            pinned,
+            pinned_values,
+            options: *options,
+            row_scale,
+            offsets,
+        })
+    }
+
+    /// The number of unknowns.
+    pub fn dimension(&self) -> usize {
+        self.offsets.len
+    }
+
+    /// The heat problem (bodies, tie, thermal law).
+    pub fn heat(&self) -> &GapHeat<TL> {
+        &self.heat
+    }
+
+    /// The elastic bodies `[slave, master]`.
+    pub fn elastic_bodies(&self) -> &[ElasticBody; 2] {
+        &self.elastic
+    }
+
+    /// The contact law.
+    pub fn contact_law(&self) -> &ML {
+        &self.contact_law
+    }
+
+    /// The weighted normal gap operator.
+    pub fn normal_gap(&self) -> &NormalGap {
+        &self.gap
+    }
+
+    /// The settings.
+    pub fn options(&self) -> &ThermoMechOptions {
+        &self.options
+    }
+
+    /// The state of uniform temperatures `[slave, master]` (K, one per node), zero
+    /// displacements, fluxes and contact pressures, and the gas pressure of the options at
+    /// the reference gap (a plenum's at the slave temperature's mean).
+    pub fn state(&self, temperatures: [&[f64]; 2]) -> Vec<f64> {
+        let o = &self.offsets;
+        let mut x = vec![0.0; o.len];
+        x[..o.t[1]].copy_from_slice(temperatures[0]);
+        x[o.t[1]..o.t[2]].copy_from_slice(temperatures[1]);
+        let mut gas = match self.options.gas {
+            GasPressure::Fixed(p) => p,
+            GasPressure::Plenum(p) => {
+                let t = temperatures[0].iter().sum::<f64>() / temperatures[0].len().max(1) as f64;
+                let v: f64 = self.gap.initial.iter().map(|g| g.max(0.0)).sum();
+                p.pressure(v, t)
+            }
+        };
+        if !gas.is_finite() {
+            gas = 0.0;
+        }
+        x[o.gas] = gas / self.options.pressure_unit;
+        for &(i, v) in &self.pinned_values {
+            x[i] = v;
+        }
+        x
+    }
+
+    /// The physical quantities of a state `x`.
+    pub fn fields<'a>(&self, x: &'a [f64]) -> StateView<'a> {
+        let o = &self.offsets;
+        StateView {
+            temperature: [&x[..o.t[1]], &x[o.t[1]..o.t[2]]],
+            displacement: [&x[o.u[0]..o.u[1]], &x[o.u[1]..o.u[2]]],
+            displacement_unit: self.options.displacement_unit,
+            flux: &x[o.flux..o.pressure],
+            flux_unit: self.options.flux_unit,
+            contact_pressure: &x[o.pressure..o.gas],
+            pressure_unit: self.options.pressure_unit,
+            gas_pressure: x[o.gas] * self.options.pressure_unit,
+        }
+    }
+
+    /// The nodal gaps `g_j` (m) of a state, one per slave interface node.
+    pub fn gaps(&self, x: &[f64]) -> Vec<f64> {
+        let o = &self.offsets;
+        let u: Vec<f64> = x[o.u[0]..o.u[2]]
+            .iter()
+            .map(|v| v * self.options.displacement_unit)
+            .collect();
+        self.gap
+            .matrix
+            .outer_iterator()
+            .enumerate()
+            .map(|(j, row)| {
+                let nu: f64 = row.iter().map(|(k, v)| v * u[k]).sum();
+                (self.gap.initial[j] - nu) / self.gap.weights[j]
+            })
+            .collect()
+    }
+
+    /// The gap's volume `sum_j w_j max(g_j, 0)` (m^2 per unit length in 2D, m^3 in 3D).
+    pub fn gap_volume(&self, x: &[f64]) -> f64 {
+        self.gaps(x)
+            .iter()
+            .zip(&self.gap.weights)
+            .map(|(g, w)| w * g.max(0.0))
+            .sum()
+    }
+
+    /// The residual, and the matrix of `lin` if asked (temperature Jacobian of the
+    /// conduction exact or Picard; everything else exact).
+    pub(crate) fn evaluate(
+        &self,
+        x: &[f64],
+        data: &StepData,
+        r: &mut [f64],
+        lin: Option<Linearization>,
+    ) -> Result<Option<SparseMatrix>, PhysicsError> {
+        let o = self.offsets;
+        let n = o.len;
+        if x.len() != n || r.len() != n {
+            return Err(PhysicsError::WrongLength {
+                what: "state vector".into(),
+                expected: n,
+                got: x.len().min(r.len()),
+            });
+        }
+        let (uu, pu, fu) = (
+            self.options.displacement_unit,
+            self.options.pressure_unit,
+            self.options.flux_unit,
+        );
+        let su = self.row_scale;
+        let mut trip = Triplets::default();
+        // Heat conduction in the bodies.
+        self.heat.body_terms(x, data, r, lin, &mut trip)?;
+        // Elasticity: s_u (K u - G (T - T_ref) - f).
+        for b in 0..2 {
+            let (k, g) = (&self.stiffness[b], &self.thermal_load[b]);
+            let t_ref = self.elastic[b].material.reference_temperature;
+            let ub = &x[o.u[b]..o.u[b + 1]];
+            let tb = &x[o.t[b]..o.t[b + 1]];
+            for (i, (krow, grow)) in k.outer_iterator().zip(g.outer_iterator()).enumerate() {
+                let gi = o.u[b] + i;
+                let ku: f64 = krow.iter().map(|(c, v)| v * ub[c]).sum::<f64>() * uu;
+                let gt: f64 = grow.iter().map(|(c, v)| v * (tb[c] - t_ref)).sum();
+                // The gas pressure on the interface surface: nodal forces -P_o int N n.
+                let gas_force = x[o.gas] * pu * self.gas_load[b][i];
+                r[gi] = su * (ku - gt - self.load[b][i] + gas_force);
+                if lin.is_some() && !self.pinned[gi - o.u[0]] {
+                    for (c, v) in krow.iter() {
+                        trip.push(gi as u32, (o.u[b] + c) as u32, su * uu * v);
+                    }
+                    for (c, v) in grow.iter() {
+                        trip.push(gi as u32, (o.t[b] + c) as u32, -su * v);
+                    }
+                    if self.gas_load[b][i] != 0.0 {
+                        trip.push(gi as u32, o.gas as u32, su * pu * self.gas_load[b][i]);
+                    }
+                }
+            }
+        }
+        // The interface.
+        let tie = self.heat.tie();
+        let c = tie.coupling();
+        let (sn, mn) = (tie.slave_nodes(), tie.master_nodes());
+        let weights = self.heat.weights();
+        let (ts, tm) = (&x[o.t[0]..o.t[1]], &x[o.t[1]..o.t[2]]);
+        let u = &x[o.u[0]..o.u[2]];
+        let gas = x[o.gas] * pu;
+        let mut length = 0.0;
+        let mut volume = 0.0;
+        let mut t_sum = 0.0;
+        // d(volume)/du, d(t_sum)/dT: sparse rows of the gas equation.
+        let mut dvolume: Vec<(usize, f64)> = Vec::new();
+        let mut dtemp: Vec<(usize, f64)> = Vec::new();
+        for (j, ((drow, mrow), nrow)) in
+            c.d.outer_iterator()
+                .zip(c.m.outer_iterator())
+                .zip(self.gap.matrix.outer_iterator())
+                .enumerate()
+        {
+            let w = weights[j];
+            let gs: f64 = drow.iter().map(|(k, v)| v * ts[sn[k] as usize]).sum();
+            let gm: f64 = mrow.iter().map(|(l, v)| v * tm[mn[l] as usize]).sum();
+            let nu: f64 = nrow.iter().map(|(k, v)| v * u[k]).sum::<f64>() * uu;
+            let g = (self.gap.initial[j] - nu) / w;
+            let (dt, tbar) = ((gs - gm) / w, 0.5 * (gs + gm) / w);
+            let q = fu * x[o.flux + j];
+            let p = pu * x[o.pressure + j];
+            let point = LawPoint::new(dt, q, tbar).with_mechanics(g, p, gas);
+            let th = evaluate(self.heat.law(), point)?;
+            let mpoint = LawPoint::new(g, p, tbar).with_mechanics(g, p, gas);
+            let me = evaluate(&self.contact_law, mpoint)?;
+            let (rq, rp) = (o.flux + j, o.pressure + j);
+            r[rq] = w * th.value;
+            r[rp] = su * w * me.value;
+            // Heat flux into the bodies, pressure onto the surfaces.
+            for (k, v) in drow.iter() {
+                r[o.t[0] + sn[k] as usize] += v * q;
+            }
+            for (l, v) in mrow.iter() {
+                r[o.t[1] + mn[l] as usize] -= v * q;
+            }
+            // The contact pressure is an interaction: -p n on the slave, +p n on the master.
+            for (k, v) in nrow.iter() {
+                r[o.u[0] + k] += su * v * p;
+            }
+            length += w;
+            t_sum += w * tbar;
+            if g > 0.0 {
+                volume += w * g;
+            }
+            if lin.is_none() {
+                continue;
+            }
+            let push_t = |trip: &mut Triplets, row: usize, dg: f64, dtb: f64| {
+                for (k, v) in drow.iter() {
+                    trip.push(
+                        row as u32,
+                        (o.t[0] + sn[k] as usize) as u32,
+                        (dg + 0.5 * dtb) * v,
+                    );
+                }
+                for (l, v) in mrow.iter() {
+                    trip.push(
+                        row as u32,
+                        (o.t[1] + mn[l] as usize) as u32,
+                        (-dg + 0.5 * dtb) * v,
+                    );
+                }
+            };
+            // Flux row.
+            push_t(&mut trip, rq, th.d_gap, th.d_temperature);
+            trip.push(rq as u32, rq as u32, w * th.d_multiplier * fu);
+            for (k, v) in nrow.iter() {
+                trip.push(rq as u32, (o.u[0] + k) as u32, -th.d_normal_gap * v * uu);
+            }
+            trip.push(rq as u32, rp as u32, w * th.d_contact_pressure * pu);
+            trip.push(rq as u32, o.gas as u32, w * th.d_gas_pressure * pu);
+            // Pressure row.
+            let dg = me.d_gap + me.d_normal_gap;
+            let dp = me.d_multiplier + me.d_contact_pressure;
+            push_t(&mut trip, rp, 0.0, su * me.d_temperature);
+            for (k, v) in nrow.iter() {
+                trip.push(rp as u32, (o.u[0] + k) as u32, -su * dg * v * uu);
+            }
+            trip.push(rp as u32, rp as u32, su * w * dp * pu);
+            trip.push(rp as u32, o.gas as u32, su * w * me.d_gas_pressure * pu);
+            // The heat rows' flux columns, the equilibrium rows' pressure columns.
+            for (k, v) in drow.iter() {
+                let gi = o.t[0] + sn[k] as usize;
+                if !self.heat.is_dirichlet(gi) {
+                    trip.push(gi as u32, rq as u32, v * fu);
+                }
+            }
+            for (l, v) in mrow.iter() {
+                let gi = o.t[1] + mn[l] as usize;
+                if !self.heat.is_dirichlet(gi) {
+                    trip.push(gi as u32, rq as u32, -v * fu);
+                }
+            }
+            for (k, v) in nrow.iter() {
+                if !self.pinned[k] {
+                    let gi = (o.u[0] + k) as u32;
+                    trip.push(gi, rp as u32, su * v * pu);
+                }
+            }
+            // The gas equation's derivatives.
+            // (Zero entries where the gap is closed: the pattern stays the same.)
+            let open = if g > 0.0 { 1.0 } else { 0.0 };
+            dvolume.extend(nrow.iter().map(|(k, v)| (o.u[0] + k, -open * v * uu)));
+            for (k, v) in drow.iter() {
+                dtemp.push((o.t[0] + sn[k] as usize, 0.5 * v));
+            }
+            for (l, v) in mrow.iter() {
+                dtemp.push((o.t[1] + mn[l] as usize, 0.5 * v));
+            }
+        }
+        // The gas pressure.
+        let rg = o.gas;
+        match self.options.gas {
+            GasPressure::Fixed(p) => {
+                r[rg] = su * length * (gas - p);
+                if lin.is_some() {
+                    trip.push(rg as u32, rg as u32, su * length * pu);
+                }
+            }
+            GasPressure::Plenum(plenum) => {
+                let t_gap = t_sum / length;
+                let v = plenum.volume + volume;
+                r[rg] = su * length * (gas - plenum.gas_amount * t_gap / v);
+                if lin.is_some() {
+                    trip.push(rg as u32, rg as u32, su * length * pu);
+                    // d/dT: -n R / V dT_gap/dT, dT_gap/dT = dtemp / L.
+                    for (i, d) in dtemp {
+                        trip.push(rg as u32, i as u32, -su * plenum.gas_amount / v * d);
+                    }
+                    // d/du: n R T_gap / V^2 dV/du.
+                    let f = su * length * plenum.gas_amount * t_gap / (v * v);
+                    for (i, d) in dvolume {
+                        trip.push(rg as u32, i as u32, f * d);
+                    }
+                }
+            }
+        }
+        // Prescribed temperatures and displacements.
+        self.heat.dirichlet_terms(x, data, r, lin, &mut trip);
+        for &(i, v) in &self.pinned_values {
+            r[i] = x[i] - v;
+            if lin.is_some() {
+                trip.push(i as u32, i as u32, 1.0);
+            }
+        }
+        Ok(lin.map(|_| trip.to_csr(n, n)))
+    }
+}
+
+/// `int N_a n` over the faces of `surface` (a surface of `body`'s mesh, by node tags), `n`
+/// the unit normal pointing out of the body (each face's own orientation is checked against
+/// the cell it bounds), numbered `node * dim + k`.
+fn surface_load(
+    surface: &SurfaceMesh,
+    body: &ElasticBody,
+    side: Side,
+    dim: usize,
+) -> Result<Vec<f64>, PhysicsError> {
+    let mesh = &body.mesh;
+    let mut cells_of: Vec<Vec<u32>> = vec![Vec::new(); mesh.node_count()];
+    for c in 0..mesh.cell_count() {
+        for &n in mesh.cell(c).nodes {
+            cells_of[n as usize].push(c as u32);
+        }
+    }
+    let mut f = vec![0.0; mesh.node_count() * dim];
+    let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+    let mut shape = [0.0; MAX_FACE_NODES];
+    let mut nodes = [0u32; MAX_FACE_NODES];
+    for face in 0..surface.face_count() {
+        let view = surface.face(face);
+        let nn = surface.face_coords_into(face, &mut x);
+        for (k, &i) in view.nodes.iter().enumerate() {
+            let tag = surface.node_tags()[i as usize];
+            nodes[k] = mesh
+                .node_index(tag)
+                .ok_or(PhysicsError::InterfaceNodeNotInBody { side, tag })?;
+        }
+        let cell = cells_of[nodes[0] as usize]
+            .iter()
+            .find(|&&c| {
+                nodes[1..nn]
+                    .iter()
+                    .all(|n| cells_of[*n as usize].contains(&c))
+            })
+            .ok_or_else(|| {
+                body.invalid(format!(
+                    "interface face {} does not bound a cell of the body",
+                    view.tag
+                ))
+            })?;
+        let cell_nodes = mesh.cell(*cell as usize).nodes;
+        let centroid = cell_nodes
+            .iter()
+            .map(|&n| mesh.coords()[n as usize])
+            .sum::<Vector3<f64>>()
+            / cell_nodes.len() as f64;
+        let e = view.element;
+        let face_centroid = x[..nn].iter().sum::<Vector3<f64>>() / nn as f64;
+        let mid = match e.domain() {
+            ReferenceDomain::Line => Vector2::new(0.0, 0.0),
+            ReferenceDomain::Triangle => Vector2::new(1.0 / 3.0, 1.0 / 3.0),
+            ReferenceDomain::Quadrilateral => Vector2::new(0.0, 0.0),
+        };
+        let sign = if e
+            .scaled_normal(&x[..nn], &mid)
+            .dot(&(face_centroid - centroid))
+            < 0.0
+        {
+            -1.0
+        } else {
+            1.0
+        };
+        let rule = QuadratureRule::cached(e.domain(), 2 * e.shape_degree() + 1)?;
+        for (xi, w) in rule.points().iter().zip(rule.weights()) {
+            let normal = e.scaled_normal(&x[..nn], xi) * (sign * w);
+            e.shape_values_into(xi, &mut shape[..nn]);
+            for a in 0..nn {
+                for k in 0..dim {
+                    f[nodes[a] as usize * dim + k] += shape[a] * normal[k];
+                }
+            }
+        }
+    }
+    Ok(f)
+}
+
+/// The body without its temperature field (its thermal load is assembled as an operator).
+fn without_temperature(body: &ElasticBody) -> ElasticBody {
+    let mut b = body.clone();
+    b.temperature = None;
+    b
+}
+
+/// The physical quantities of a state of [`GapThermoMechanics`] (SI units by the accessors).
+#[derive(Debug, Clone, Copy)]
+pub struct StateView<'a> {
+    /// Nodal temperatures `[slave, master]` (K).
+    pub temperature: [&'a [f64]; 2],
+    displacement: [&'a [f64]; 2],
+    displacement_unit: f64,
+    flux: &'a [f64],
+    flux_unit: f64,
+    contact_pressure: &'a [f64],
+    pressure_unit: f64,
+    /// The gas pressure (Pa).
+    pub gas_pressure: f64,
+}
+
+impl StateView<'_> {
+    /// The displacements of body `b` (0 slave, 1 master), `node * dim + k` (m).
+    pub fn displacement(&self, b: usize) -> Vec<f64> {
+        self.displacement[b]
+            .iter()
+            .map(|v| v * self.displacement_unit)
+            .collect()
+    }
+
+    /// The heat fluxes leaving the slave (W/m^2), one per slave interface node.
+    pub fn flux(&self) -> Vec<f64> {
+        self.flux.iter().map(|v| v * self.flux_unit).collect()
+    }
+
+    /// The contact pressures (Pa, in excess of the gas pressure), one per slave interface
+    /// node.
+    pub fn contact_pressure(&self) -> Vec<f64> {
+        self.contact_pressure
+            .iter()
+            .map(|v| v * self.pressure_unit)
+            .collect()
+    }
+}

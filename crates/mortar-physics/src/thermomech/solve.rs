@@ -1,0 +1,386 @@
+use std::time::Instant;
+
+use mortar_core::linalg::{LuFactorization, Preconditioner, SolverError, SparseMatrix, Triplets};
+
+use super::problem::{GapThermoMechanics, Offsets};
+use crate::error::PhysicsError;
+use crate::heat::{Linearization, StepData};
+use crate::laws::ConstraintLaw;
+use crate::nonlinear::{
+    jfnk_solve, newton, JfnkOptions, NewtonOptions, NewtonProblem, NewtonReport,
+};
+
+/// How the linearised problems of [`GapThermoMechanics`] are solved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ThermoMechSolver {
+    /// Newton on the assembled exact Jacobian of the whole problem, sparse LU (symbolic
+    /// analysis reused while the pattern holds), refactorised every Newton step.
+    Newton,
+    /// Jacobian-free Newton-Krylov on the whole residual: GMRES on finite-difference
+    /// products, right-preconditioned by the block lower-triangular preconditioner of the
+    /// thermal unknowns (temperatures, fluxes) and the mechanical ones (displacements,
+    /// pressures, gas pressure), each block factorised by itself from the Picard matrix,
+    /// and kept across Newton steps and time steps until GMRES slows down.
+    Jfnk(JfnkOptions),
+}
+
+/// Counters of the solves, accumulated over calls.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ThermoMechStats {
+    /// Newton steps.
+    pub newton_iterations: usize,
+    /// Linear iterations (1 per direct solve; GMRES iterations for JFNK).
+    pub linear_iterations: usize,
+    /// Numeric factorisations (of the whole Jacobian, or of the two blocks counted as one).
+    pub factorizations: usize,
+    /// Symbolic analyses.
+    pub symbolic_analyses: usize,
+    /// Linear solves with a preconditioner kept from an earlier Newton or time step.
+    pub reused_preconditioners: usize,
+    /// Seconds assembling matrices.
+    pub assembly_seconds: f64,
+    /// Seconds in factorisations and linear solves (GMRES with its residual evaluations).
+    pub linear_seconds: f64,
+    /// Seconds in the Newton solves, all included.
+    pub total_seconds: f64,
+}
+
+/// GMRES is "slowing down" when a solve takes more than this many times the iterations of
+/// the first solve after the last factorisation (and at least [`SLOWDOWN_MIN`] more): a
+/// solve with a kept preconditioner is stopped there, the blocks refactorised and the solve
+/// started again.
+const SLOWDOWN_RATIO: usize = 2;
+/// See [`SLOWDOWN_RATIO`].
+const SLOWDOWN_MIN: usize = 5;
+
+/// The solver state kept across Newton steps and time steps.
+#[derive(Debug)]
+pub struct ThermoMechSolverState {
+    /// The method.
+    pub method: ThermoMechSolver,
+    lu: Option<LuFactorization>,
+    block: Option<BlockPreconditioner>,
+    /// GMRES iterations of the first solve after the last factorisation, and of the last.
+    iterations: (usize, usize),
+    /// The counters.
+    pub stats: ThermoMechStats,
+}
+
+impl ThermoMechSolverState {
+    /// A fresh state for `method`.
+    pub fn new(method: ThermoMechSolver) -> Self {
+        Self {
+            method,
+            lu: None,
+            block: None,
+            iterations: (0, 0),
+            stats: ThermoMechStats::default(),
+        }
+    }
+
+    fn slowed_down(&self) -> bool {
+        let (first, last) = self.iterations;
+        last > SLOWDOWN_RATIO * first && last >= first + SLOWDOWN_MIN
+    }
+}
+
+/// The block lower-triangular preconditioner: thermal unknowns first, then the mechanical
+/// ones with the thermal correction's coupling (thermal expansion) subtracted.
+#[derive(Debug)]
+struct BlockPreconditioner {
+    thermal: Vec<usize>,
+    mechanical: Vec<usize>,
+    thermal_lu: LuFactorization,
+    mechanical_lu: LuFactorization,
+    /// Mechanical rows, thermal columns (local numbering).
+    coupling: SparseMatrix,
+}
+
+impl BlockPreconditioner {
+    /// The blocks of `a`; `thermal[i]` says whether unknown `i` is thermal.
+    fn new(a: &SparseMatrix, is_thermal: &[bool]) -> Result<(Self, usize), SolverError> {
+        let mut local = vec![0u32; is_thermal.len()];
+        let (mut thermal, mut mechanical) = (Vec::new(), Vec::new());
+        for (i, &t) in is_thermal.iter().enumerate() {
+            if t {
+                local[i] = thermal.len() as u32;
+                thermal.push(i);
+            } else {
+                local[i] = mechanical.len() as u32;
+                mechanical.push(i);
+            }
+        }
+        let (mut tt, mut mm, mut mt) = (
+            Triplets::default(),
+            Triplets::default(),
+            Triplets::default(),
+        );
+        for (row, vec) in a.outer_iterator().enumerate() {
+            for (col, &v) in vec.iter() {
+                match (is_thermal[row], is_thermal[col]) {
+                    (true, true) => tt.push(local[row], local[col], v),
+                    (false, false) => mm.push(local[row], local[col], v),
+                    (false, true) => mt.push(local[row], local[col], v),
+                    (true, false) => {}
+                }
+            }
+        }
+        let (nt, nm) = (thermal.len(), mechanical.len());
+        let thermal_lu = LuFactorization::try_new(&tt.to_csr(nt, nt))?;
+        let mechanical_lu = LuFactorization::try_new(&mm.to_csr(nm, nm))?;
+        Ok((
+            Self {
+                thermal,
+                mechanical,
+                thermal_lu,
+                mechanical_lu,
+                coupling: mt.to_csr(nm, nt),
+            },
+            2,
+        ))
+    }
+}
+
+impl Preconditioner for BlockPreconditioner {
+    fn apply_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        let mut xt: Vec<f64> = self.thermal.iter().map(|&i| x[i]).collect();
+        self.thermal_lu.solve_in_place(&mut xt)?;
+        let mut xm: Vec<f64> = self.mechanical.iter().map(|&i| x[i]).collect();
+        for (row, vec) in self.coupling.outer_iterator().enumerate() {
+            xm[row] -= vec.iter().map(|(c, v)| v * xt[c]).sum::<f64>();
+        }
+        self.mechanical_lu.solve_in_place(&mut xm)?;
+        for (&i, v) in self.thermal.iter().zip(xt) {
+            x[i] = v;
+        }
+        for (&i, v) in self.mechanical.iter().zip(xm) {
+            x[i] = v;
+        }
+        Ok(())
+    }
+}
+
+impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
+    /// Solves for the state at time `t`: steady when `transient` is `None`, else one backward
+    /// Euler step of size `dt` from `old` (the previous state). `x` is the initial guess and,
+    /// on success, the solution.
+    ///
+    /// # Errors
+    /// [`PhysicsError::Newton`] with the residual history when Newton fails, and the errors
+    /// of the assembly, of the laws and of the linear solvers.
+    pub fn solve(
+        &self,
+        x: &mut [f64],
+        t: f64,
+        transient: Option<(&[f64], f64)>,
+        solver: &mut ThermoMechSolverState,
+        options: &NewtonOptions,
+    ) -> Result<NewtonReport, PhysicsError> {
+        let start = Instant::now();
+        let data = self.heat.step_data(t, transient)?;
+        let mut step = Step {
+            problem: self,
+            data,
+            solver,
+        };
+        let report = newton(&mut step, x, options);
+        let stats = &mut step.solver.stats;
+        stats.total_seconds += start.elapsed().as_secs_f64();
+        let report = report?;
+        stats.newton_iterations += report.iterations;
+        stats.linear_iterations += report.linear_iterations;
+        Ok(report)
+    }
+
+    /// The residual of a steady solve at time `t` (for checks and tests).
+    ///
+    /// # Errors
+    /// The errors of the assembly and of the laws.
+    pub fn steady_residual(&self, x: &[f64], t: f64) -> Result<Vec<f64>, PhysicsError> {
+        let data = self.heat.step_data(t, None)?;
+        let mut r = vec![0.0; self.dimension()];
+        self.evaluate(x, &data, &mut r, None)?;
+        Ok(r)
+    }
+
+    /// The exact Jacobian of a steady solve at time `t` (for checks and tests).
+    ///
+    /// # Errors
+    /// As [`steady_residual`](Self::steady_residual).
+    pub fn steady_jacobian(&self, x: &[f64], t: f64) -> Result<SparseMatrix, PhysicsError> {
+        let data = self.heat.step_data(t, None)?;
+        let mut r = vec![0.0; self.dimension()];
+        Ok(self
+            .evaluate(x, &data, &mut r, Some(Linearization::Newton))?
+            .expect("a matrix was asked"))
+    }
+
+    /// Whether each unknown is thermal (temperature, flux) rather than mechanical.
+    fn thermal_unknowns(&self) -> Vec<bool> {
+        let o: Offsets = self.offsets;
+        (0..o.len)
+            .map(|i| i < o.u[0] || (o.flux..o.pressure).contains(&i))
+            .collect()
+    }
+}
+
+/// One solve as a [`NewtonProblem`].
+struct Step<'a, TL, ML> {
+    problem: &'a GapThermoMechanics<TL, ML>,
+    data: StepData,
+    solver: &'a mut ThermoMechSolverState,
+}
+
+/// The matrix of `lin` at `x`, its assembly time counted.
+fn matrix<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
+    data: &StepData,
+    stats: &mut ThermoMechStats,
+    x: &[f64],
+    lin: Linearization,
+) -> Result<SparseMatrix, PhysicsError> {
+    let t0 = Instant::now();
+    let mut scratch = vec![0.0; x.len()];
+    let a = problem
+        .evaluate(x, data, &mut scratch, Some(lin))?
+        .expect("a matrix was asked");
+    stats.assembly_seconds += t0.elapsed().as_secs_f64();
+    Ok(a)
+}
+
+/// Factorises the blocks of the Picard matrix at `x` into `solver`.
+fn refresh_blocks<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
+    data: &StepData,
+    solver: &mut ThermoMechSolverState,
+    x: &[f64],
+) -> Result<(), PhysicsError> {
+    let a = matrix(problem, data, &mut solver.stats, x, Linearization::Picard)?;
+    let t0 = Instant::now();
+    let (pc, analyses) = BlockPreconditioner::new(&a, &problem.thermal_unknowns())?;
+    let stats = &mut solver.stats;
+    stats.symbolic_analyses += analyses;
+    stats.factorizations += 1;
+    stats.linear_seconds += t0.elapsed().as_secs_f64();
+    solver.block = Some(pc);
+    solver.iterations = (0, 0);
+    Ok(())
+}
+
+impl<TL: ConstraintLaw, ML: ConstraintLaw> NewtonProblem for Step<'_, TL, ML> {
+    fn residual(&self, x: &[f64], r: &mut [f64]) -> Result<(), PhysicsError> {
+        self.problem.evaluate(x, &self.data, r, None).map(|_| ())
+    }
+
+    fn solve_linearized(
+        &mut self,
+        x: &[f64],
+        r: &[f64],
+        dx: &mut [f64],
+        forcing: f64,
+    ) -> Result<usize, PhysicsError> {
+        match self.solver.method {
+            ThermoMechSolver::Newton => {
+                let a = matrix(
+                    self.problem,
+                    &self.data,
+                    &mut self.solver.stats,
+                    x,
+                    Linearization::Newton,
+                )?;
+                let t0 = Instant::now();
+                let stats = &mut self.solver.stats;
+                let reused = match &mut self.solver.lu {
+                    Some(lu) => lu.refactor(&a).is_ok(),
+                    None => false,
+                };
+                if !reused {
+                    self.solver.lu = Some(LuFactorization::try_new(&a)?);
+                    stats.symbolic_analyses += 1;
+                }
+                stats.factorizations += 1;
+                dx.copy_from_slice(r);
+                self.solver
+                    .lu
+                    .as_ref()
+                    .expect("factorised above")
+                    .solve_in_place(dx)?;
+                stats.linear_seconds += t0.elapsed().as_secs_f64();
+                Ok(1)
+            }
+            ThermoMechSolver::Jfnk(opts) => {
+                let fresh = self.solver.block.is_none() || self.solver.slowed_down();
+                let (problem, data) = (self.problem, &self.data);
+                if fresh {
+                    refresh_blocks(problem, data, self.solver, x)?;
+                } else {
+                    self.solver.stats.reused_preconditioners += 1;
+                }
+                let f = |x: &[f64], r: &mut [f64]| problem.evaluate(x, data, r, None).map(|_| ());
+                let t0 = Instant::now();
+                dx.fill(0.0);
+                // A kept preconditioner gets the iterations of a solve that has not slowed
+                // down; past them it is refactorised and the solve starts again.
+                let first = self.solver.iterations.0;
+                let capped = if fresh {
+                    opts
+                } else {
+                    JfnkOptions {
+                        max_iterations: (SLOWDOWN_RATIO * first)
+                            .max(first + SLOWDOWN_MIN)
+                            .min(opts.max_iterations),
+                        ..opts
+                    }
+                };
+                let pc = self.solver.block.as_ref().expect("built above");
+                let mut out = jfnk_solve(&f, x, r, pc, dx, forcing, &capped);
+                let stale = !fresh
+                    && match &out {
+                        Err(_) => true,
+                        Ok(rep) => rep.relative_residual > forcing,
+                    };
+                let mut wasted = 0;
+                if stale {
+                    wasted = out
+                        .as_ref()
+                        .map_or(capped.max_iterations, |rep| rep.iterations);
+                    self.solver.stats.linear_seconds += t0.elapsed().as_secs_f64();
+                    let t1 = Instant::now();
+                    refresh_blocks(problem, data, self.solver, x)?;
+                    dx.fill(0.0);
+                    let pc = self.solver.block.as_ref().expect("built above");
+                    out = jfnk_solve(&f, x, r, pc, dx, forcing, &opts);
+                    self.solver.stats.linear_seconds += t1.elapsed().as_secs_f64();
+                } else {
+                    self.solver.stats.linear_seconds += t0.elapsed().as_secs_f64();
+                }
+                let its = out?.iterations;
+                let (first, _) = self.solver.iterations;
+                self.solver.iterations = (if first == 0 { its.max(1) } else { first }, its);
+                // The iterations of an abandoned solve count too.
+                Ok(its + wasted)
+            }
+        }
+    }
+
+    /// `| |A| |x| | + |F(x) - A x|`, `A` the Picard matrix at `x`: the magnitudes of the
+    /// terms before they cancel.
+    fn residual_scale(&mut self, x: &[f64]) -> Result<f64, PhysicsError> {
+        let mut r = vec![0.0; x.len()];
+        let a = self
+            .problem
+            .evaluate(x, &self.data, &mut r, Some(Linearization::Picard))?
+            .expect("a matrix was asked");
+        let mut terms = vec![0.0; x.len()];
+        let mut ax = vec![0.0; x.len()];
+        for (row, vec) in a.outer_iterator().enumerate() {
+            for (col, v) in vec.iter() {
+                terms[row] += (v * x[col]).abs();
+                ax[row] += v * x[col];
+            }
+        }
+        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let loads: Vec<f64> = r.iter().zip(&ax).map(|(f, a)| f - a).collect();
+        Ok(norm(&terms) + norm(&loads))
+    }
+}
