@@ -4,6 +4,7 @@
 
 mod pellet {
     mod closed_form;
+    mod coupled;
     mod free_expansion;
     mod radial;
     mod scene_file;

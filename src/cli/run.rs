@@ -21,7 +21,10 @@ use super::RunArgs;
 /// Runs the built-in pellet scene into `out` with a progress bar (the default job).
 pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
     if !json {
-        println!("mortar: default scene, a fuel pellet in its cladding (thermal, helium gap)");
+        println!(
+            "mortar: default scene, a fuel pellet in its cladding: heat, thermal expansion, gap \
+             closure, contact, plenum pressure (2D plane strain)"
+        );
         println!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
     }
     let report = pellet::run_builtin(out, !json).map_err(|e| e.to_string())?;
@@ -33,6 +36,10 @@ pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
 fn print_pellet(report: &Value, out: &Path, json: bool) {
     if json {
         println!("{report}");
+        return;
+    }
+    if report["models"]["mechanics"].as_bool() == Some(true) {
+        print_coupled(report, out);
         return;
     }
     let num = |v: &Value| v.as_f64().map_or("n/a".to_string(), |x| format!("{x:.3}"));
@@ -66,6 +73,72 @@ fn print_pellet(report: &Value, out: &Path, json: bool) {
     if let Some(t) = report["seconds"]["total"].as_f64() {
         println!("{:<28} {t:.3} s", "time");
     }
+    println!("output: {} (report.json, VTU over time)", out.display());
+}
+
+/// Prints the thermomechanical pellet's report: what was modelled and why, and the results.
+fn print_coupled(report: &Value, out: &Path) {
+    let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
+    let m = &report["models"];
+    let law = m["contact_law"].as_str().unwrap_or("?");
+    println!(
+        "{:<28} heat with k(T), plane-strain thermoelasticity, gap conductance on the",
+        "modelled"
+    );
+    println!(
+        "{:<28} mechanical gap, {law} contact law, plenum pressure (ideal gas)",
+        ""
+    );
+    match report["gap_closure_time"].as_f64() {
+        Some(t) => println!(
+            "{:<28} closed at t = {t:.2} s: contact engaged (the gap's pressure law acts)",
+            "gap"
+        ),
+        None => println!(
+            "{:<28} never closed: no contact work (the pressure law stays at the gas pressure)",
+            "gap"
+        ),
+    }
+    let h = &report["history"];
+    let last = |k: &str| h[k].as_array().and_then(|a| a.last()).map_or(f64::NAN, f);
+    println!(
+        "{:<28} {:.3} K",
+        "centre temperature",
+        f(&report["center_temperature"])
+    );
+    println!(
+        "{:<28} {:.3} um (mean; min {:.3} um)",
+        "final gap",
+        1e6 * f(&report["gap"]),
+        1e6 * last("min_gap")
+    );
+    println!(
+        "{:<28} {:.3} MPa (interface, incl. gas)",
+        "peak contact pressure",
+        1e-6 * f(&report["peak_interface_pressure"])
+    );
+    println!(
+        "{:<28} {:.4} MPa",
+        "plenum pressure",
+        1e-6 * f(&report["plenum_pressure"])
+    );
+    let st = &report["steady"];
+    println!(
+        "{:<28} T0 {:.3} K, energy imbalance {:.1e}",
+        "steady state (full power)",
+        f(&st["center_temperature"]),
+        f(&st["relative_imbalance"])
+    );
+    let solver = &report["solver"];
+    println!(
+        "{:<28} {} Newton steps, {} linear iterations, {} factorisations, {} step cuts",
+        format!("solver ({})", report["method"].as_str().unwrap_or("?")),
+        solver["newton_iterations"],
+        solver["linear_iterations"],
+        solver["factorizations"],
+        solver["step_cuts"]
+    );
+    println!("{:<28} {:.3} s", "time", f(&report["seconds"]["total"]));
     println!("output: {} (report.json, VTU over time)", out.display());
 }
 

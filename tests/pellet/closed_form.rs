@@ -4,9 +4,10 @@ fn out(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("mortar-pellet-test-{}-{name}", std::process::id()))
 }
 
-/// A steady-only scene (no transient) at refinement `r`.
+/// A steady-only thermal scene (no transient, the gap held open) at refinement `r`.
 fn steady(r: usize) -> PelletScene {
     let mut s = PelletScene::default();
+    s.model.mechanics = false;
     s.time.end = 0.0;
     s.time.snapshots = 0;
     s.mesh.refinement = r;

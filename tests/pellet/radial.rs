@@ -73,7 +73,7 @@
 
 use std::f64::consts::PI;
 
-use mortar::scenes::pellet::PelletScene;
+use mortar::scenes::pellet::{ContactLawName, PelletScene};
 use nalgebra::{Matrix3, Vector3};
 
 /// The molar gas constant `R` (J/mol/K, exact since the 2019 SI).
@@ -216,14 +216,22 @@ impl Default for RadialPellet {
     /// - `h_contact = 1e-4 W/m^2/K/Pa` (1 kW/m^2/K at 10 MPa): PHYSICS.md gives no value;
     /// - 400 pellet and 60 cladding cells (about 10 um each).
     fn default() -> Self {
-        Self::from_scene(&PelletScene::from_toml("").expect("the default pellet scene"))
+        let mut scene = PelletScene::from_toml("").expect("the default pellet scene");
+        // PHYSICS.md's as-built gap, 80 um (the scene's default is 20 um, so that its gap
+        // closes at 20 kW/m: what this model's tests found).
+        scene.cladding.inner_radius = 4.18e-3;
+        Self {
+            contact_conductance: 1e-4,
+            ..Self::from_scene(&scene)
+        }
     }
 }
 
 impl RadialPellet {
-    /// The model with the thermal data of a 2D pellet scene (radii, conductivities, capacities,
-    /// outer temperature, gap roughness and jump distance, gas, power, ramp, time step and end)
-    /// and the defaults of PHYSICS.md sections 4 and 6 for the rest (see `Default`).
+    /// The model with the data of a 2D pellet scene (radii, conductivities, capacities, outer
+    /// temperature, gap roughness, jump distance and contact conductance, gas, power, ramp,
+    /// time step and end, elastic constants, coolant and plenum, contact law), the exponential
+    /// law's cap of the library (`1e6 P_o`) and 400 pellet and 60 cladding cells.
     pub fn from_scene(scene: &PelletScene) -> Self {
         Self {
             pellet_radius: scene.pellet.radius,
@@ -246,27 +254,30 @@ impl RadialPellet {
                 Some(k) => GasConductivity::Constant(k),
                 None => GasConductivity::Helium,
             },
-            contact_conductance: 1e-4,
+            contact_conductance: scene.gap.contact_conductance,
             pellet_elastic: Thermoelastic {
-                young: 200e9,
-                poisson: 0.3,
-                expansion: 1.0e-5,
+                young: scene.pellet.youngs_modulus,
+                poisson: scene.pellet.poisson_ratio,
+                expansion: scene.pellet.thermal_expansion,
             },
             cladding_elastic: Thermoelastic {
-                young: 80e9,
-                poisson: 0.4,
-                expansion: 6.0e-6,
+                young: scene.cladding.youngs_modulus,
+                poisson: scene.cladding.poisson_ratio,
+                expansion: scene.cladding.thermal_expansion,
             },
-            reference_temperature: 293.0,
-            coolant_pressure: 15.5e6,
-            plenum_volume: 2e-6,
-            fill_pressure: 2e6,
-            fill_temperature: 293.0,
-            onset_gap: 5e-6,
-            stiffness: 1e12,
+            reference_temperature: scene.model.reference_temperature,
+            coolant_pressure: scene.cladding.coolant_pressure,
+            plenum_volume: scene.plenum.volume,
+            fill_pressure: scene.plenum.fill_pressure,
+            fill_temperature: scene.plenum.fill_temperature,
+            onset_gap: scene.contact.onset_gap,
+            stiffness: scene.contact.stiffness_exponent,
             max_pressure_ratio: 1e6,
-            law: ContactLaw::Exponential,
-            mechanics: true,
+            law: match scene.contact.law {
+                ContactLawName::Exponential => ContactLaw::Exponential,
+                ContactLawName::Exact => ContactLaw::Exact,
+            },
+            mechanics: scene.model.mechanics,
             pellet_cells: 400,
             cladding_cells: 60,
         }
@@ -1269,7 +1280,9 @@ fn mechanics_off_steady_state_is_the_closed_form() {
         let np = m.pellet_cells;
         let got = [s.temperature[0], s.temperature[np], s.temperature[np + 1]];
         let want = closed_form(&m, m.linear_power);
-        let lib = PelletScene::from_toml("").unwrap().closed_form().unwrap();
+        let mut scene = PelletScene::from_toml("").unwrap();
+        scene.cladding.inner_radius = m.cladding_inner_radius;
+        let lib = scene.closed_form().unwrap();
         let lib = [
             lib.center_temperature,
             lib.pellet_surface_temperature,

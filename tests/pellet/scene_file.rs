@@ -49,7 +49,7 @@ fn parses_the_keys_and_refuses_unknown_ones() {
 fn run_from_toml_writes_the_report() {
     let dir = std::env::temp_dir().join(format!("mortar-pellet-test-{}-toml", std::process::id()));
     let rep = run_from_toml(
-        "[mesh]\nrefinement = 1\n[time]\nend = 2.0\nsnapshots = 2\n[gap]\ngas_conductivity = 0.3\n",
+        "[model]\nmechanics = false\n[mesh]\nrefinement = 1\n[time]\nend = 2.0\nsnapshots = 2\n[gap]\ngas_conductivity = 0.3\n",
         &dir,
         false,
     )
@@ -87,6 +87,7 @@ fn run_from_toml_writes_the_report() {
 #[test]
 fn a_failed_run_writes_nothing() {
     let mut scene = mortar::scenes::pellet::PelletScene::default();
+    scene.model.mechanics = false;
     scene.solver.max_iterations = 1;
     scene.solver.relative_tolerance = 1e-15;
     let dir = std::env::temp_dir().join(format!("mortar-pellet-failed-{}", std::process::id()));

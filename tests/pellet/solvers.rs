@@ -8,6 +8,7 @@ fn out(name: &str) -> std::path::PathBuf {
 
 fn scene(method: SolverMethod) -> PelletScene {
     let mut s = PelletScene::default();
+    s.model.mechanics = false;
     s.mesh.refinement = 1;
     s.time.step = 2.0;
     s.time.end = 6.0;

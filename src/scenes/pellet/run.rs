@@ -39,7 +39,7 @@ pub fn run_builtin(out: &Path, progress: bool) -> Result<Value, PelletError> {
 
 /// The area of a 2D mesh (shoelace formula per cell; Gmsh node order is cyclic for Tri3 and
 /// Quad4).
-fn mesh_area(mesh: &VolumeMesh) -> f64 {
+pub(super) fn mesh_area(mesh: &VolumeMesh) -> f64 {
     (0..mesh.cell_count())
         .map(|c| {
             let nodes = mesh.cell(c).nodes;
@@ -57,7 +57,22 @@ fn mesh_area(mesh: &VolumeMesh) -> f64 {
         .sum()
 }
 
-/// Runs `scene` (see [`run_from_toml`]).
+/// Runs `scene` (see [`run_from_toml`]): the thermomechanical scene
+/// ([`run_coupled`](super::run_coupled)) when `[model] mechanics` is true (the default), the
+/// thermal one with the gap held open otherwise.
+///
+/// # Errors
+/// As [`run_thermal`] and [`run_coupled`](super::run_coupled).
+pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    scene.check()?;
+    if scene.model.mechanics {
+        super::run_coupled(scene, out, progress)
+    } else {
+        run_thermal(scene, out, progress)
+    }
+}
+
+/// Runs `scene` thermal only, the gap held at its as-built width.
 ///
 /// The pellet's heat source is `Q = q'(t) / A_h`, with `A_h` the area of the pellet mesh
 /// (a polygon slightly smaller than the disc), so that the discrete linear power is exactly
@@ -67,7 +82,7 @@ fn mesh_area(mesh: &VolumeMesh) -> f64 {
 /// [`PelletError::Invalid`] for values out of range, [`PelletError::Physics`] for a failed
 /// solve (a Newton failure carries its residual history), [`PelletError::Io`] /
 /// [`PelletError::Write`] for outputs that cannot be written.
-pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
     let start = Instant::now();
     scene.check()?;
     let (p, c) = (&scene.pellet, &scene.cladding);
@@ -153,7 +168,7 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
     };
 
     let [pellet, cladding] = problem.bodies();
-    let centre = nearest_node(&pellet.mesh);
+    let centre = nearest_node(&pellet.mesh, nalgebra::Vector3::zeros());
     let t0 = vec![t_co; pellet.mesh.node_count()];
     let t1 = vec![t_co; cladding.mesh.node_count()];
     let mut x = problem.state([&t0, &t1]);
@@ -212,6 +227,8 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
     let stats = solver.stats;
     let report = json!({
         "scene": "pellet",
+        "status": "ok",
+        "models": { "heat": true, "mechanics": false, "gap": "held at its as-built width" },
         "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
         "center_temperature": s[0],
         "pellet_surface_temperature": s[1],
@@ -267,7 +284,7 @@ pub fn run(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, Pel
 }
 
 /// The progress bar: drawn on stderr only when asked and stderr is a terminal.
-fn progress_bar(progress: bool, len: u64) -> indicatif::ProgressBar {
+pub(super) fn progress_bar(progress: bool, len: u64) -> indicatif::ProgressBar {
     if progress && std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(len);
         if let Ok(style) =
@@ -281,11 +298,11 @@ fn progress_bar(progress: bool, len: u64) -> indicatif::ProgressBar {
     }
 }
 
-/// The node nearest to the origin.
-fn nearest_node(mesh: &VolumeMesh) -> usize {
+/// The node nearest to `point`.
+pub(super) fn nearest_node(mesh: &VolumeMesh, point: nalgebra::Vector3<f64>) -> usize {
     let mut best = (f64::INFINITY, 0);
     for (i, x) in mesh.coords().iter().enumerate() {
-        let d = x.norm();
+        let d = (x - point).norm();
         if d < best.0 {
             best = (d, i);
         }
@@ -347,7 +364,7 @@ fn write_snapshot<L: mortar_physics::laws::ConstraintLaw>(
 }
 
 /// A ParaView collection of the transient snapshots (the steady one at the last time + 1).
-fn pvd(files: &[(String, f64)]) -> String {
+pub(super) fn pvd(files: &[(String, f64)]) -> String {
     let last = files
         .iter()
         .map(|f| f.1)

@@ -1,0 +1,579 @@
+//! The thermomechanical pellet: expansion, gap closure, contact, gap conductance on the
+//! mechanical gap, plenum pressure (docs/physics.md, sections 4 and 6).
+
+use std::f64::consts::PI;
+use std::path::Path;
+use std::time::Instant;
+
+use mortar_core::mesh::VolumeMesh;
+use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
+use mortar_physics::elastic::{recover_stress, ComponentSet, ElasticBody, ElasticMaterial};
+use mortar_physics::heat::{assemble_conduction, Conductivity, HeatBody, HeatMaterial};
+use mortar_physics::laws::{
+    ConstraintLaw, ContactComplementarity, ExponentialContact, GasConductivity,
+    MechanicalGapConductance,
+};
+use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
+use mortar_physics::thermomech::{
+    GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
+    ThermoMechSolver, ThermoMechSolverState,
+};
+use mortar_physics::PhysicsError;
+use nalgebra::Vector3;
+use serde_json::{json, Value};
+
+use super::run::{mesh_area, nearest_node, progress_bar, pvd};
+use super::{annulus_mesh, pellet_mesh, ContactLawName, PelletError, PelletScene, SolverMethod};
+use crate::io::vtu::{vtu_string, VtuPiece};
+use crate::io::write_outputs;
+
+/// The most times a failing time step is halved before the run stops.
+pub const MAX_STEP_CUTS: usize = 4;
+
+/// The thermal law of the coupled scene: Ross-Stoute on the mechanical gap plus the contact
+/// conductance.
+///
+/// # Errors
+/// [`PelletError::Law`] for parameters out of range.
+pub fn thermal_law(scene: &PelletScene) -> Result<MechanicalGapConductance, PelletError> {
+    let gas = match scene.gap.gas_conductivity {
+        Some(k) => GasConductivity::Constant(k),
+        None => GasConductivity::HELIUM,
+    };
+    Ok(MechanicalGapConductance::try_new(
+        scene.gap.roughness_pellet,
+        scene.gap.roughness_cladding,
+        scene.gap.jump_distance,
+        gas,
+        scene.gap.contact_conductance,
+    )?)
+}
+
+/// The complementarity parameter `c` (Pa/m) of the exact law: the pellet's radial stiffness
+/// `E / (a (1 + nu)(1 - 2 nu))` (any positive value gives the same solution).
+fn complementarity(scene: &PelletScene) -> f64 {
+    let p = &scene.pellet;
+    p.youngs_modulus / (p.radius * (1.0 + p.poisson_ratio) * (1.0 - 2.0 * p.poisson_ratio))
+}
+
+/// Builds the coupled problem of `scene` with the contact law `law` (see [`run_coupled`]).
+///
+/// # Errors
+/// [`PelletError::Mesh`] / [`PelletError::Physics`] for meshes or a problem that cannot be
+/// built.
+pub fn coupled_problem<ML: ConstraintLaw>(
+    scene: &PelletScene,
+    law: ML,
+) -> Result<GapThermoMechanics<MechanicalGapConductance, ML>, PelletError> {
+    scene.check()?;
+    let (p, c) = (&scene.pellet, &scene.cladding);
+    let r = scene.mesh.refinement;
+    // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not match
+    // (they share the four nodes on the axes, which hold the rigid motions).
+    let pellet_mesh = pellet_mesh(p.radius, 4 * r, 2 * r)?;
+    let cladding_mesh = annulus_mesh(c.inner_radius, c.outer_radius, 20 * r, 2 * r, 0.0)?;
+    let area = mesh_area(&pellet_mesh);
+    let power = scene.power;
+    let power = move |t: f64| power.at(t);
+    let k_pellet = Conductivity::InverseLinear {
+        a: p.conductivity_a,
+        b: p.conductivity_b,
+    };
+    let t_co = c.outer_temperature;
+    let t_ref = scene.model.reference_temperature;
+    let zero = |_: &Vector3<f64>| Vector3::zeros();
+    let at = |mesh: &VolumeMesh, x: [f64; 2]| -> u32 {
+        nearest_node(mesh, Vector3::new(x[0], x[1], 0.0)) as u32
+    };
+
+    let pellet_heat = HeatBody::new(
+        "pellet",
+        pellet_mesh.clone(),
+        HeatMaterial::new(k_pellet.at(t_co).0, p.heat_capacity),
+    )
+    .with_source(move |_x, t| power(t) / area);
+    // Rigid motions: the centre held, the node at (a, 0) held in y; the exact field is
+    // radial, so neither loads the body.
+    let (centre, east) = (
+        at(&pellet_mesh, [0.0, 0.0]),
+        at(&pellet_mesh, [p.radius, 0.0]),
+    );
+    let pellet_elastic = ElasticBody::new(
+        "pellet",
+        pellet_mesh,
+        ElasticMaterial::new(p.youngs_modulus, p.poisson_ratio)
+            .with_expansion(p.thermal_expansion, t_ref),
+    )
+    .with_dirichlet_nodes(vec![centre], ComponentSet::All, zero)
+    .with_dirichlet_nodes(vec![east], ComponentSet::One(1), zero);
+
+    let mid = 0.5 * (c.inner_radius + c.outer_radius);
+    let cladding_heat = HeatBody::new(
+        "cladding",
+        cladding_mesh.clone(),
+        HeatMaterial::new(c.conductivity, c.heat_capacity),
+    )
+    .with_dirichlet_where(|f| f.centroid.norm() > mid, move |_x, _t| t_co)?;
+    // Rigid motions: the inner nodes on the axes held in their tangential direction.
+    let b = c.inner_radius;
+    let (e, n, w) = (
+        at(&cladding_mesh, [b, 0.0]),
+        at(&cladding_mesh, [0.0, b]),
+        at(&cladding_mesh, [-b, 0.0]),
+    );
+    let p_cool = c.coolant_pressure;
+    let cladding_elastic = ElasticBody::new(
+        "cladding",
+        cladding_mesh,
+        ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
+            .with_expansion(c.thermal_expansion, t_ref),
+    )
+    .with_dirichlet_nodes(vec![e, w], ComponentSet::One(1), zero)
+    .with_dirichlet_nodes(vec![n], ComponentSet::One(0), zero)
+    .with_traction_where(|f| f.centroid.norm() > mid, move |x| -p_cool * x / x.norm())?;
+
+    let slave_surface = pellet_heat.mesh.boundary_surface(|_| true)?;
+    let master_surface = cladding_heat
+        .mesh
+        .boundary_surface(|f| f.centroid.norm() < mid)?;
+    let gap = c.inner_radius - p.radius;
+    let tolerances = Tolerances {
+        search_radius: SearchRadius::Distance(2.0 * gap),
+        ..Tolerances::default()
+    };
+    let pl = &scene.plenum;
+    let plenum = Plenum::from_fill(
+        pl.volume,
+        PI * (c.inner_radius.powi(2) - p.radius.powi(2)),
+        pl.fill_pressure,
+        pl.fill_temperature,
+    )?;
+    let thermal = thermal_law(scene)?;
+    let options = ThermoMechOptions {
+        nominal_gap: Some(gap),
+        gas: GasPressure::Plenum(plenum),
+        flux_unit: 1.0 / thermal.reference_resistance,
+        ..ThermoMechOptions::default()
+    };
+    Ok(GapThermoMechanics::new(
+        ThermoElasticBody {
+            heat: pellet_heat,
+            conductivity: k_pellet,
+            elastic: pellet_elastic,
+        },
+        ThermoElasticBody {
+            heat: cladding_heat,
+            conductivity: Conductivity::Constant(c.conductivity),
+            elastic: cladding_elastic,
+        },
+        slave_surface,
+        master_surface,
+        &CouplingOptions::default().dual(),
+        tolerances,
+        thermal,
+        law,
+        &options,
+    )?)
+}
+
+/// Runs the coupled scene (see [`run`](super::run)).
+///
+/// # Errors
+/// As [`run`](super::run).
+pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    match scene.contact.law {
+        ContactLawName::Exponential => {
+            let law = ExponentialContact::try_new(
+                scene.contact.stiffness_exponent,
+                scene.contact.onset_gap,
+            )?;
+            let onset = law.onset();
+            run_with(scene, law, "exponential", Some(onset), out, progress)
+        }
+        ContactLawName::Exact => {
+            let law = ContactComplementarity::try_new(complementarity(scene))?;
+            run_with(scene, law, "exact", None, out, progress)
+        }
+    }
+}
+
+/// The quantities of one state, for the history.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Summary {
+    center: f64,
+    pellet_surface: f64,
+    cladding_inner: f64,
+    gap: f64,
+    min_gap: f64,
+    interface_pressure: f64,
+    peak_pressure: f64,
+    contact_pressure: f64,
+    plenum: f64,
+    displacement: f64,
+}
+
+fn summary<ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+    x: &[f64],
+    centre: usize,
+) -> Summary {
+    let f = problem.fields(x);
+    let tie = problem.heat().tie();
+    let w = &problem.normal_gap().weights;
+    let length: f64 = w.iter().sum();
+    let mean = |v: &[f64]| v.iter().zip(w).map(|(a, b)| a * b).sum::<f64>() / length;
+    let (ts, tm) = (f.temperature[0], f.temperature[1]);
+    let node_mean = |nodes: &[u32], t: &[f64]| {
+        nodes.iter().map(|&n| t[n as usize]).sum::<f64>() / nodes.len() as f64
+    };
+    let gaps = problem.gaps(x);
+    let p = f.contact_pressure();
+    let u = f.displacement(0);
+    let coords = problem.heat().bodies()[0].mesh.coords();
+    let sn = tie.slave_nodes();
+    let radial: f64 = sn
+        .iter()
+        .map(|&n| {
+            let (n, x) = (n as usize, coords[n as usize]);
+            (u[2 * n] * x.x + u[2 * n + 1] * x.y) / x.norm()
+        })
+        .sum::<f64>()
+        / sn.len() as f64;
+    Summary {
+        center: ts[centre],
+        pellet_surface: node_mean(sn, ts),
+        cladding_inner: node_mean(tie.master_nodes(), tm),
+        gap: mean(&gaps),
+        min_gap: gaps.iter().copied().fold(f64::INFINITY, f64::min),
+        interface_pressure: f.gas_pressure + mean(&p),
+        peak_pressure: f.gas_pressure + p.iter().copied().fold(0.0, f64::max),
+        contact_pressure: mean(&p),
+        plenum: f.gas_pressure,
+        displacement: radial,
+    }
+}
+
+/// The time stepping, reports and outputs of the coupled scene with contact law `law`
+/// (`onset`: the exponential law's `xi`, for the closure time).
+fn run_with<ML: ConstraintLaw>(
+    scene: &PelletScene,
+    law: ML,
+    law_name: &str,
+    onset: Option<f64>,
+    out: &Path,
+    progress: bool,
+) -> Result<Value, PelletError> {
+    let start = Instant::now();
+    let problem = coupled_problem(scene, law)?;
+    let setup_seconds = start.elapsed().as_secs_f64();
+    let c = &scene.cladding;
+    let method = match scene.solver.method {
+        SolverMethod::Newton => ThermoMechSolver::Newton,
+        SolverMethod::Jfnk => ThermoMechSolver::Jfnk(JfnkOptions {
+            restart: scene.solver.gmres_restart,
+            ..JfnkOptions::default()
+        }),
+    };
+    let mut solver = ThermoMechSolverState::new(method);
+    let newton = NewtonOptions {
+        relative_tolerance: scene.solver.relative_tolerance,
+        // The rows are heat flows (W/m) and forces scaled to them: far below any physical
+        // one, so that a step near the steady state does not chase round-off.
+        absolute_tolerance: 1e-12 * scene.power.linear_power.max(1.0),
+        max_iterations: scene.solver.max_iterations,
+        ..NewtonOptions::default()
+    };
+    let bodies = problem.heat().bodies();
+    let centre = nearest_node(&bodies[0].mesh, Vector3::zeros());
+    let t0 = vec![c.outer_temperature; bodies[0].mesh.node_count()];
+    let t1 = vec![c.outer_temperature; bodies[1].mesh.node_count()];
+    let mut x = problem.state([&t0, &t1]);
+
+    let steps = if scene.time.end > 0.0 {
+        (scene.time.end / scene.time.step).ceil() as usize
+    } else {
+        0
+    };
+    let bar = progress_bar(progress, steps as u64 + 1);
+    let snapshot_every = if scene.time.snapshots == 0 {
+        usize::MAX
+    } else {
+        steps.div_ceil(scene.time.snapshots).max(1)
+    };
+    let mut outputs: Vec<(String, Vec<u8>)> = Vec::new();
+    let mut files = Vec::new();
+    let mut rows: Vec<(f64, Summary, usize, usize, usize)> = Vec::new();
+    let mut time = 0.0;
+    let mut cuts_total = 0;
+
+    // The initial state: mechanical equilibrium at the uniform temperature, no power.
+    let failure = |e: PelletError,
+                   rows: &[(f64, Summary, usize, usize, usize)],
+                   outputs: Vec<(String, Vec<u8>)>,
+                   files: &[(String, f64)]|
+     -> PelletError {
+        let history = match &e {
+            PelletError::Physics(PhysicsError::Newton(f)) => f.residual_history.clone(),
+            _ => Vec::new(),
+        };
+        let report = json!({
+            "scene": "pellet",
+            "status": "failed",
+            "error": e.to_string(),
+            "residual_history": history,
+            "valid_steps": rows.len(),
+            "history": history_json(scene, rows),
+            "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
+            "scene_data": scene,
+        });
+        let mut outputs = outputs;
+        outputs.push(("pellet.pvd".to_string(), pvd(files).into_bytes()));
+        outputs.push((
+            "report.json".to_string(),
+            serde_json::to_string_pretty(&report)
+                .expect("JSON values serialise")
+                .into_bytes(),
+        ));
+        let named: Vec<(&str, Vec<u8>)> = outputs
+            .iter()
+            .map(|(n, b)| (n.as_str(), b.clone()))
+            .collect();
+        match write_outputs(out, &named) {
+            Ok(()) => e,
+            Err(w) => PelletError::Invalid(format!("{e}; and the outputs of the failure: {w}")),
+        }
+    };
+    if let Err(e) = problem.solve(&mut x, 0.0, None, &mut solver, &newton) {
+        return Err(failure(e.into(), &rows, outputs, &files));
+    }
+    let rep0 = solver.stats;
+    rows.push((
+        0.0,
+        summary(&problem, &x, centre),
+        rep0.newton_iterations,
+        rep0.linear_iterations,
+        0,
+    ));
+    write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
+    for k in 1..=steps {
+        let target = (k as f64 * scene.time.step).min(scene.time.end);
+        let before = solver.stats;
+        let mut cuts = 0;
+        // Backward Euler from `time` to `target`, halving the step on a failure.
+        while time < target {
+            let dt = (target - time).min(scene.time.step / f64::powi(2.0, cuts as i32));
+            let old = x.clone();
+            match problem.solve(&mut x, time + dt, Some((&old, dt)), &mut solver, &newton) {
+                Ok(_) => time += dt,
+                Err(e) => {
+                    x = old;
+                    cuts += 1;
+                    if cuts > MAX_STEP_CUTS {
+                        bar.finish_and_clear();
+                        return Err(failure(e.into(), &rows, outputs, &files));
+                    }
+                }
+            }
+        }
+        time = target;
+        cuts_total += cuts;
+        let s = summary(&problem, &x, centre);
+        rows.push((
+            time,
+            s,
+            solver.stats.newton_iterations - before.newton_iterations,
+            solver.stats.linear_iterations - before.linear_iterations,
+            cuts,
+        ));
+        if k % snapshot_every == 0 || k == steps {
+            write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
+        }
+        bar.set_message(format!(
+            "t = {time:.1} s, T0 = {:.0} K, gap = {:.2} um",
+            s.center,
+            s.gap * 1e6
+        ));
+        bar.inc(1);
+    }
+    // The steady state at full power, and its energy balance.
+    let transient_stats = solver.stats;
+    let t_steady = time.max(scene.power.ramp_time);
+    if let Err(e) = problem.solve(&mut x, t_steady, None, &mut solver, &newton) {
+        bar.finish_and_clear();
+        return Err(failure(e.into(), &rows, outputs, &files));
+    }
+    bar.inc(1);
+    bar.finish_and_clear();
+    let steady = summary(&problem, &x, centre);
+    let heat_out = outer_heat_flow(&problem, &x)?;
+    let power_in = scene.power.at(t_steady);
+    outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
+
+    // When the surfaces touch: the exponential law's pressure rises below xi (mean gap); the
+    // exact law's mean contact pressure is positive.
+    // (A millionth of the gas pressure: the round-off of an inactive node's pressure is
+    // far below it.)
+    let touches = |s: &Summary| match onset {
+        Some(xi) => s.gap <= xi,
+        None => s.contact_pressure > 1e-6 * s.plenum,
+    };
+    let closure = rows.windows(2).find(|w| touches(&w[1].1)).map(|w| {
+        let (t0, s0, t1, s1) = (w[0].0, w[0].1, w[1].0, w[1].1);
+        match onset {
+            Some(xi) if s0.gap > s1.gap => t0 + (t1 - t0) * (s0.gap - xi) / (s0.gap - s1.gap),
+            _ => t1,
+        }
+    });
+    let last = rows.last().expect("the initial row").1;
+    let peak = rows.iter().map(|r| r.1.peak_pressure).fold(0.0, f64::max);
+    let stats = solver.stats;
+    let mesh = |b: usize| {
+        json!({
+            "nodes": bodies[b].mesh.node_count(),
+            "cells": bodies[b].mesh.cell_count(),
+        })
+    };
+    let report = json!({
+        "scene": "pellet",
+        "status": "ok",
+        "models": {
+            "heat": true,
+            "mechanics": true,
+            "geometry": "plane_strain",
+            "contact_law": law_name,
+            "gap_conductance": "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
+            "plenum": "ideal gas, fixed moles",
+            "contact_engaged": closure.is_some(),
+        },
+        "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
+        "center_temperature": last.center,
+        "gap": last.gap,
+        "gap_closure_time": closure,
+        "peak_interface_pressure": peak,
+        "plenum_pressure": last.plenum,
+        "interface_pressure": last.interface_pressure,
+        "history": history_json(scene, &rows),
+        "steady": {
+            "time": t_steady,
+            "center_temperature": steady.center,
+            "pellet_surface_temperature": steady.pellet_surface,
+            "cladding_inner_temperature": steady.cladding_inner,
+            "gap": steady.gap,
+            "interface_pressure": steady.interface_pressure,
+            "plenum_pressure": steady.plenum,
+            "pellet_surface_displacement": steady.displacement,
+            "power_in": power_in,
+            "heat_out": heat_out,
+            "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
+        },
+        "solver": {
+            "newton_iterations": stats.newton_iterations,
+            "linear_iterations": stats.linear_iterations,
+            "factorizations": stats.factorizations,
+            "symbolic_analyses": stats.symbolic_analyses,
+            "reused_preconditioners": stats.reused_preconditioners,
+            "transient_newton_iterations": transient_stats.newton_iterations,
+            "step_cuts": cuts_total,
+            "seconds": {
+                "newton_total": stats.total_seconds,
+                "assembly": stats.assembly_seconds,
+                "linear": stats.linear_seconds,
+            },
+        },
+        "mesh": {
+            "refinement": scene.mesh.refinement,
+            "pellet": mesh(0),
+            "cladding": mesh(1),
+            "interface_slave_nodes": problem.normal_gap().weights.len(),
+            "unknowns": problem.dimension(),
+        },
+        "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
+        "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
+        "scene_data": scene,
+    });
+    let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
+    outputs.push(("report.json".to_string(), text.into_bytes()));
+    let named: Vec<(&str, Vec<u8>)> = outputs
+        .iter()
+        .map(|(n, b)| (n.as_str(), b.clone()))
+        .collect();
+    write_outputs(out, &named)?;
+    Ok(report)
+}
+
+/// The heat leaving through the cladding's outer surface (W/m): the reaction of its
+/// prescribed temperatures, `sum over them of int k grad T . grad N_a` (the conduction rows
+/// of the prescribed nodes, which the residual replaces by their conditions).
+fn outer_heat_flow<ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+    x: &[f64],
+) -> Result<f64, PelletError> {
+    let cladding = &problem.heat().bodies()[1];
+    let t = problem.fields(x).temperature[1];
+    let k = Conductivity::Constant(cladding.material.conductivity);
+    let (f, _) = assemble_conduction(cladding, &k, t, &Default::default(), None)?;
+    let (nodes, _) = cladding.dirichlet_nodes();
+    Ok(nodes.iter().map(|&n| -f[n as usize]).sum())
+}
+
+/// The history as arrays over the time steps.
+fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)]) -> Value {
+    let col = |f: &dyn Fn(&Summary) -> f64| rows.iter().map(|r| f(&r.1)).collect::<Vec<_>>();
+    json!({
+        "time": rows.iter().map(|r| r.0).collect::<Vec<_>>(),
+        "linear_power": rows.iter().map(|r| scene.power.at(r.0)).collect::<Vec<_>>(),
+        "center_temperature": col(&|s| s.center),
+        "pellet_surface_temperature": col(&|s| s.pellet_surface),
+        "cladding_inner_temperature": col(&|s| s.cladding_inner),
+        "gap": col(&|s| s.gap),
+        "min_gap": col(&|s| s.min_gap),
+        "interface_pressure": col(&|s| s.interface_pressure),
+        "peak_interface_pressure": col(&|s| s.peak_pressure),
+        "plenum_pressure": col(&|s| s.plenum),
+        "pellet_surface_displacement": col(&|s| s.displacement),
+        "newton_iterations": rows.iter().map(|r| r.2).collect::<Vec<_>>(),
+        "linear_iterations": rows.iter().map(|r| r.3).collect::<Vec<_>>(),
+        "step_cuts": rows.iter().map(|r| r.4).collect::<Vec<_>>(),
+    })
+}
+
+/// The VTU of the state `x` at `time`: temperature, displacement and von Mises stress of
+/// both bodies.
+fn write_snapshot<ML: ConstraintLaw>(
+    out: &Path,
+    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+    x: &[f64],
+    time: f64,
+    files: &mut Vec<(String, f64)>,
+    outputs: &mut Vec<(String, Vec<u8>)>,
+) -> Result<(), PelletError> {
+    let f = problem.fields(x);
+    let elastic = problem.elastic_bodies();
+    let mut data = Vec::new();
+    for b in 0..2 {
+        let u = f.displacement(b);
+        let body = elastic[b]
+            .clone()
+            .with_temperature(f.temperature[b].to_vec())?;
+        let stress = recover_stress(&body, &u, &Default::default())?;
+        let ux: Vec<f64> = u.iter().step_by(2).copied().collect();
+        let uy: Vec<f64> = u.iter().skip(1).step_by(2).copied().collect();
+        data.push((ux, uy, stress.von_mises));
+    }
+    let name = format!("pellet_{:04}.vtu", files.len());
+    let pieces: Vec<VtuPiece> = (0..2)
+        .map(|b| VtuPiece {
+            mesh: &elastic[b].mesh,
+            point_data: vec![
+                ("temperature", f.temperature[b]),
+                ("displacement_x", &data[b].0),
+                ("displacement_y", &data[b].1),
+                ("von_mises", &data[b].2),
+            ],
+        })
+        .collect();
+    let text = vtu_string(&out.join(&name), &pieces)?;
+    outputs.push((name.clone(), text.into_bytes()));
+    files.push((name, time));
+    Ok(())
+}

@@ -1,0 +1,322 @@
+//! The thermomechanical pellet (issue 15): the 2D plane-strain cross-section against the
+//! independent 1D radial model of `radial.rs`, its energy balance, its Jacobian against
+//! finite differences, Newton against JFNK, and its failures.
+
+use mortar::core::linalg::SparseMatrix;
+use mortar::physics::laws::{ContactComplementarity, ExponentialContact};
+use mortar::physics::nonlinear::NewtonFailureReason;
+use mortar::physics::PhysicsError;
+use mortar::scenes::pellet::{
+    coupled_problem, run, ContactLawName, PelletError, PelletScene, SolverMethod,
+};
+use serde_json::Value;
+
+use super::radial::RadialPellet;
+
+fn out(name: &str) -> std::path::PathBuf {
+    std::env::temp_dir().join(format!(
+        "mortar-pellet-coupled-{}-{name}",
+        std::process::id()
+    ))
+}
+
+/// Runs `scene`, removes its outputs, returns the report.
+fn run_scene(scene: &PelletScene, name: &str) -> Value {
+    let dir = out(name);
+    let rep = run(scene, &dir, false).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(dir.join("report.json").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+    rep
+}
+
+fn series(rep: &Value, key: &str) -> Vec<f64> {
+    rep["history"][key]
+        .as_array()
+        .unwrap_or_else(|| panic!("history.{key}"))
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
+
+/// The default scene with a contact conductance (so that its term is exercised).
+fn scene(law: ContactLawName) -> PelletScene {
+    let mut s = PelletScene::default();
+    s.gap.contact_conductance = 1e-4;
+    s.contact.law = law;
+    s
+}
+
+/// Source: the independent 1D radial model of `radial.rs` (finite volumes exact for the
+/// steady profiles, Timoshenko-Goodier plane-strain cylinders, the same gap, contact and
+/// plenum laws), 400 + 60 radial cells, the same time steps. The cross-section agrees at
+/// every step of the ramp and hold (0 to 30 s) on the centre temperature, the mean gap
+/// (relative to the larger of itself and `xi`, 5 um: under the exact law it closes to zero),
+/// the interface pressure `P_c` and the plenum pressure to 0.5%, on the contact pressure
+/// `P_c - P_o` to 0.5% of its peak, and closes the gap within 0.05 s of the radial model's
+/// time (inside the ramp for the default, exponential, law). Measured, largest over the
+/// steps (centre, gap, P_c, P_o, p_contact / peak): exponential law at the default refinement
+/// 3: 0.07%, 0.12%, 0.14%, 0.06%, 0.18%; exact law at refinement 8: 0.01%, 0.04%, 0.11%,
+/// 0.06%, 0.26%. The exact law's contact pressure (2.4 MPa at its peak, from an interference
+/// of about 1 um) is far more sensitive to the displacement's discretisation error: 3.0% of
+/// its peak at refinement 3, 0.50% at 6, hence the finer mesh (solved by JFNK, 9 s).
+#[test]
+fn the_cross_section_agrees_with_the_radial_model_through_the_ramp() {
+    for (law, refinement, method) in [
+        (ContactLawName::Exponential, 3, SolverMethod::Newton),
+        (ContactLawName::Exact, 8, SolverMethod::Jfnk),
+    ] {
+        let mut s = scene(law);
+        s.mesh.refinement = refinement;
+        s.solver.method = method;
+        let rep = run_scene(&s, &format!("radial-{law:?}"));
+        let radial = RadialPellet::from_scene(&s).simulate().unwrap();
+        let t2d = series(&rep, "time");
+        assert_eq!(t2d.len(), radial.rows.len());
+        let peak = radial
+            .rows
+            .iter()
+            .map(|r| r.contact_pressure)
+            .fold(0.0, f64::max);
+        assert!(
+            peak > 1e6,
+            "{law:?}: the contact pressure rises ({peak} Pa)"
+        );
+        let mut worst = [0.0f64; 5];
+        for (k, r) in radial.rows.iter().enumerate() {
+            assert!((t2d[k] - r.time).abs() < 1e-12);
+            let pairs = [
+                (
+                    series(&rep, "center_temperature")[k],
+                    r.center_temperature,
+                    r.center_temperature,
+                ),
+                (
+                    series(&rep, "gap")[k],
+                    r.gap,
+                    r.gap.abs().max(s.contact.onset_gap),
+                ),
+                (
+                    series(&rep, "interface_pressure")[k],
+                    r.interface_pressure,
+                    r.interface_pressure,
+                ),
+                (
+                    series(&rep, "plenum_pressure")[k],
+                    r.plenum_pressure,
+                    r.plenum_pressure,
+                ),
+                (
+                    series(&rep, "interface_pressure")[k] - series(&rep, "plenum_pressure")[k],
+                    r.contact_pressure,
+                    peak,
+                ),
+            ];
+            for (w, (a, b, scale)) in worst.iter_mut().zip(pairs) {
+                *w = w.max((a - b).abs() / scale.abs());
+            }
+        }
+        eprintln!(
+            "{law:?}: largest relative differences to the radial model (centre, gap, P_c, P_o, \
+             p_contact/peak): {worst:?}; closure {} (2D) vs {:?} (radial)",
+            rep["gap_closure_time"], radial.closure
+        );
+        for (what, w) in ["centre", "gap", "P_c", "P_o", "p_contact"]
+            .iter()
+            .zip(worst)
+        {
+            assert!(w < 5e-3, "{law:?}: {what} differs by {w:.2e}");
+        }
+        let closure = rep["gap_closure_time"].as_f64().expect("the gap closes");
+        let reference = radial.closure.expect("closes").interpolated_time;
+        if law == ContactLawName::Exponential {
+            // The default scene's gap closes during the ramp (the exact law, which needs
+            // g = 0 rather than g = xi, closes at 14 s, after it).
+            assert!(
+                closure < s.power.ramp_time,
+                "closes during the ramp: {closure}"
+            );
+        }
+        assert!(
+            (closure - reference).abs() < 0.05 + 1e-9,
+            "{closure} vs {reference}"
+        );
+        // The steady state conserves energy: the power put in leaves through the cladding.
+        let imbalance = rep["steady"]["relative_imbalance"].as_f64().unwrap();
+        assert!(imbalance < 1e-6, "{law:?}: energy imbalance {imbalance:e}");
+    }
+}
+
+/// The largest difference between the assembled Jacobian and central finite differences of
+/// the residual, over `dirs` directions, relative to the largest product.
+fn jacobian_error(j: &SparseMatrix, f: impl Fn(&[f64]) -> Vec<f64>, x: &[f64], dirs: usize) -> f64 {
+    let n = x.len();
+    let mut worst = 0.0f64;
+    for d in 0..dirs {
+        // A deterministic pseudo-random direction of unit entries' scale.
+        let v: Vec<f64> = (0..n)
+            .map(|i| ((i * 7919 + d * 104_729) % 1000) as f64 / 500.0 - 1.0)
+            .collect();
+        let mut jv = vec![0.0; n];
+        for (r, row) in j.outer_iterator().enumerate() {
+            jv[r] = row.iter().map(|(c, a)| a * v[c]).sum();
+        }
+        let h = 1e-6;
+        let plus: Vec<f64> = x.iter().zip(&v).map(|(a, b)| a + h * b).collect();
+        let minus: Vec<f64> = x.iter().zip(&v).map(|(a, b)| a - h * b).collect();
+        let (fp, fm) = (f(&plus), f(&minus));
+        let scale = jv.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        for i in 0..n {
+            let fd = (fp[i] - fm[i]) / (2.0 * h);
+            worst = worst.max((fd - jv[i]).abs() / scale);
+        }
+    }
+    worst
+}
+
+/// The coupled Jacobian (heat with k(T), elasticity, both laws, the plenum) against central
+/// finite differences of the residual at a state with the gap closing (pellet expanded by
+/// 17 um of its 20 um gap, temperatures, fluxes and pressures away from zero), for both
+/// contact laws. Source: the definition of the derivative.
+#[test]
+fn the_coupled_jacobian_matches_finite_differences() {
+    let mut s = scene(ContactLawName::Exponential);
+    s.mesh.refinement = 1;
+    let check = |name: &str, err: f64| {
+        eprintln!("{name}: Jacobian against finite differences {err:.2e}");
+        assert!(err < 1e-6, "{name}: {err:e}");
+    };
+    let exp = ExponentialContact::try_new(1e12, 5e-6).unwrap();
+    let exact = ContactComplementarity::try_new(1e14).unwrap();
+    macro_rules! check_law {
+        ($law:expr, $name:expr) => {{
+            let p = coupled_problem(&s, $law).unwrap();
+            let bodies = p.heat().bodies();
+            let temperature = |b: usize, hot: f64| -> Vec<f64> {
+                bodies[b]
+                    .mesh
+                    .coords()
+                    .iter()
+                    .map(|x| hot - 1e4 * x.norm() * (1.0 + 0.3 * x.x / x.norm().max(1e-9)))
+                    .collect()
+            };
+            let mut x = p.state([&temperature(0, 900.0), &temperature(1, 700.0)]);
+            // Unknowns: T (both), u (both, micrometres), fluxes, contact pressures (MPa), gas.
+            let (n0, n1) = (bodies[0].mesh.node_count(), bodies[1].mesh.node_count());
+            let coords = bodies[0].mesh.coords();
+            let eps = 17.0 / 4.1e-3; // um per metre of radius
+            for (i, c) in coords.iter().enumerate() {
+                let o = n0 + n1 + 2 * i;
+                x[o] = eps * c.x * (1.0 + 0.01 * (i % 3) as f64);
+                x[o + 1] = eps * c.y;
+            }
+            let rows = p.normal_gap().weights.len();
+            let base = n0 + n1 + 2 * (n0 + n1);
+            for j in 0..rows {
+                x[base + j] = 5.0 + 0.1 * j as f64;
+                x[base + rows + j] = 2.0 + 0.05 * j as f64;
+            }
+            let t = 5.0;
+            let jac = p.steady_jacobian(&x, t).unwrap();
+            let err = jacobian_error(&jac, |y| p.steady_residual(y, t).unwrap(), &x, 3);
+            check($name, err);
+        }};
+    }
+    check_law!(exp, "exponential");
+    check_law!(exact, "exact");
+}
+
+/// Newton on the assembled Jacobian and JFNK with the block preconditioner converge to the
+/// same states (1e-8 relative on every history entry), and JFNK keeps its factorisations
+/// across steps.
+#[test]
+fn newton_and_jfnk_agree_on_the_coupled_scene() {
+    let mut s = scene(ContactLawName::Exponential);
+    s.mesh.refinement = 2;
+    s.time.snapshots = 1;
+    let newton = run_scene(&s, "newton");
+    s.solver.method = SolverMethod::Jfnk;
+    let jfnk = run_scene(&s, "jfnk");
+    for key in [
+        "center_temperature",
+        "gap",
+        "interface_pressure",
+        "plenum_pressure",
+        "pellet_surface_displacement",
+    ] {
+        for (a, b) in series(&newton, key).iter().zip(series(&jfnk, key)) {
+            assert!((a - b).abs() <= 1e-8 * a.abs(), "{key}: {a} vs {b}");
+        }
+    }
+    let (sn, sj) = (&newton["solver"], &jfnk["solver"]);
+    eprintln!("Newton: {sn}\nJFNK: {sj}");
+    let steps = sj["newton_iterations"].as_u64().unwrap();
+    assert!(
+        sj["factorizations"].as_u64().unwrap() * 4 < steps,
+        "kept across steps"
+    );
+    assert!(sj["reused_preconditioners"].as_u64().unwrap() > 0);
+}
+
+/// A Newton that cannot converge (one step allowed at a tolerance it cannot reach) cuts the
+/// step MAX_STEP_CUTS times, then fails with its residual history, having written the
+/// report (status "failed", the valid steps) and the last converged state.
+#[test]
+fn a_failing_step_is_cut_then_reported() {
+    let mut s = scene(ContactLawName::Exponential);
+    s.mesh.refinement = 1;
+    s.solver.max_iterations = 1;
+    s.solver.relative_tolerance = 1e-15;
+    let dir = out("failing");
+    let _ = std::fs::remove_dir_all(&dir);
+    let e = run(&s, &dir, false).unwrap_err();
+    match &e {
+        PelletError::Physics(PhysicsError::Newton(f)) => {
+            assert_eq!(f.reason, NewtonFailureReason::MaxIterations);
+            assert_eq!(f.residual_history.len(), 2);
+        }
+        other => panic!("expected a Newton failure, got {other}"),
+    }
+    let text = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    let rep: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(rep["status"], "failed");
+    assert!(rep["error"].as_str().unwrap().contains("Newton"));
+    assert!(rep["residual_history"]
+        .as_array()
+        .is_some_and(|h| !h.is_empty()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Non-physical values are refused, naming the key.
+#[test]
+fn non_physical_values_are_refused() {
+    for (toml, key) in [
+        ("[pellet]\npoisson_ratio = 0.5", "pellet.poisson_ratio"),
+        ("[cladding]\npoisson_ratio = -1.0", "cladding.poisson_ratio"),
+        ("[pellet]\nyoungs_modulus = 0.0", "pellet.youngs_modulus"),
+        (
+            "[cladding]\nyoungs_modulus = -80e9",
+            "cladding.youngs_modulus",
+        ),
+        (
+            "[pellet]\nthermal_expansion = -1e-5",
+            "pellet.thermal_expansion",
+        ),
+        (
+            "[cladding]\ncoolant_pressure = -1.0",
+            "cladding.coolant_pressure",
+        ),
+        (
+            "[plenum]\nfill_temperature = 0.0",
+            "plenum.fill_temperature",
+        ),
+        ("[pellet]\nradius = -4.1e-3", "pellet.radius"),
+        ("[cladding]\ninner_radius = 5e-3", "radii"),
+        ("[model]\ngeometry = \"3d\"", "model.geometry"),
+        ("[model]\ngeometry = \"axisymmetric\"", "model.geometry"),
+    ] {
+        match PelletScene::from_toml(toml) {
+            Err(PelletError::Invalid(m)) => assert!(m.contains(key), "{toml}: {m}"),
+            other => panic!("{toml}: {other:?}"),
+        }
+    }
+}
