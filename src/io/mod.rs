@@ -12,6 +12,7 @@
 //! - [`matrix_market`]: D and M as Matrix Market `coordinate real general`, values round-trip.
 //! - [`CouplingSummary`]: the JSON summary of a run.
 //! - [`vtu`]: volume meshes and nodal fields as ASCII VTU files for ParaView.
+//! - [`plot`]: PNG line charts, in memory.
 //! - [`write_outputs`] / [`write_coupling`]: all output files or none (temporary names, then
 //!   renames).
 //!
@@ -39,6 +40,7 @@ mod interface_arg;
 pub mod json;
 pub mod matrix_market;
 mod output;
+pub mod plot;
 mod summary;
 pub mod vtu;
 
