@@ -10,6 +10,6 @@ mod newton;
 
 pub use jfnk::{jfnk_solve, FiniteDifferenceJacobian, JfnkOptions};
 pub use newton::{
-    newton, Forcing, NewtonFailure, NewtonFailureReason, NewtonOptions, NewtonProblem,
-    NewtonReport, ROUNDOFF_FLOOR,
+    assembled_residual_scale, newton, Forcing, NewtonFailure, NewtonFailureReason, NewtonOptions,
+    NewtonProblem, NewtonReport, ROUNDOFF_FLOOR,
 };

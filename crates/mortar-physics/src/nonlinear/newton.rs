@@ -1,5 +1,7 @@
 use std::time::Instant;
 
+use mortar_core::linalg::SparseMatrix;
+
 use crate::error::PhysicsError;
 
 /// A nonlinear problem `F(x) = 0` as Newton's method sees it: a residual, and a solver of the
@@ -39,6 +41,24 @@ pub trait NewtonProblem {
         let _ = x;
         Ok(0.0)
     }
+}
+
+/// The magnitude of an assembled residual `F(x) = A x - f` before its terms cancel,
+/// `| |A| |x| | + |F(x) - A x|` (Euclidean norms): what [`NewtonProblem::residual_scale`]
+/// returns for a problem that can assemble a matrix `A` (its Picard matrix, say) beside its
+/// residual `r = F(x)`.
+pub fn assembled_residual_scale(a: &SparseMatrix, x: &[f64], r: &[f64]) -> f64 {
+    let mut terms = vec![0.0; x.len()];
+    let mut ax = vec![0.0; x.len()];
+    for (row, vec) in a.outer_iterator().enumerate() {
+        for (col, v) in vec.iter() {
+            terms[row] += (v * x[col]).abs();
+            ax[row] += v * x[col];
+        }
+    }
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let loads: Vec<f64> = r.iter().zip(&ax).map(|(f, a)| f - a).collect();
+    norm(&terms) + norm(&loads)
 }
 
 /// The round-off floor of [`newton`]'s convergence test, relative to

@@ -7,7 +7,8 @@ use crate::error::PhysicsError;
 use crate::heat::{Linearization, StepData};
 use crate::laws::ConstraintLaw;
 use crate::nonlinear::{
-    jfnk_solve, newton, JfnkOptions, NewtonOptions, NewtonProblem, NewtonReport,
+    assembled_residual_scale, jfnk_solve, newton, JfnkOptions, NewtonOptions, NewtonProblem,
+    NewtonReport,
 };
 
 /// How the linearised problems of [`GapThermoMechanics`] are solved.
@@ -371,16 +372,6 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> NewtonProblem for Step<'_, TL, ML> {
             .problem
             .evaluate(x, &self.data, &mut r, Some(Linearization::Picard))?
             .expect("a matrix was asked");
-        let mut terms = vec![0.0; x.len()];
-        let mut ax = vec![0.0; x.len()];
-        for (row, vec) in a.outer_iterator().enumerate() {
-            for (col, v) in vec.iter() {
-                terms[row] += (v * x[col]).abs();
-                ax[row] += v * x[col];
-            }
-        }
-        let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        let loads: Vec<f64> = r.iter().zip(&ax).map(|(f, a)| f - a).collect();
-        Ok(norm(&terms) + norm(&loads))
+        Ok(assembled_residual_scale(&a, x, &r))
     }
 }
