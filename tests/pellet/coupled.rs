@@ -24,7 +24,18 @@ fn out(name: &str) -> std::path::PathBuf {
 fn run_scene(scene: &PelletScene, name: &str) -> Value {
     let dir = out(name);
     let rep = run(scene, &dir, false).unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert!(dir.join("report.json").exists());
+    for file in [
+        "report.json",
+        "pellet.pvd",
+        "interface.pvd",
+        "pellet_0000.vtu",
+        "interface_0000.vtu",
+        "temperatures.png",
+        "gap.png",
+        "pressures.png",
+    ] {
+        assert!(dir.join(file).exists(), "{name}: no {file}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
     rep
 }

@@ -24,7 +24,8 @@ use serde_json::{json, Value};
 
 use super::run::{mesh_area, nearest_node, progress_bar, pvd};
 use super::{annulus_mesh, pellet_mesh, ContactLawName, PelletError, PelletScene, SolverMethod};
-use crate::io::vtu::{vtu_string, VtuPiece};
+use crate::io::plot::{line_chart_png, Chart, Curve};
+use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
 use crate::io::write_outputs;
 
 /// The most times a failing time step is halved before the run stops.
@@ -329,6 +330,10 @@ fn run_with<ML: ConstraintLaw>(
         let mut outputs = outputs;
         outputs.push(("pellet.pvd".to_string(), pvd(files).into_bytes()));
         outputs.push((
+            "interface.pvd".to_string(),
+            pvd(&interface_files(files)).into_bytes(),
+        ));
+        outputs.push((
             "report.json".to_string(),
             serde_json::to_string_pretty(&report)
                 .expect("JSON values serialise")
@@ -408,6 +413,10 @@ fn run_with<ML: ConstraintLaw>(
     let heat_out = outer_heat_flow(&problem, &x)?;
     let power_in = scene.power.at(t_steady);
     outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
+    outputs.push((
+        "interface.pvd".to_string(),
+        pvd(&interface_files(&files)).into_bytes(),
+    ));
 
     // When the surfaces touch: the exponential law's pressure rises below xi (mean gap); the
     // exact law's mean contact pressure is positive.
@@ -491,6 +500,7 @@ fn run_with<ML: ConstraintLaw>(
         "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
         "scene_data": scene,
     });
+    outputs.extend(history_plots(&rows)?);
     let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
     outputs.push(("report.json".to_string(), text.into_bytes()));
     let named: Vec<(&str, Vec<u8>)> = outputs
@@ -516,6 +526,71 @@ fn outer_heat_flow<ML: ConstraintLaw>(
     Ok(nodes.iter().map(|&n| -f[n as usize]).sum())
 }
 
+/// PNG plots of the history: temperatures, gap, pressures.
+fn history_plots(
+    rows: &[(f64, Summary, usize, usize, usize)],
+) -> Result<Vec<(String, Vec<u8>)>, PelletError> {
+    let curve = |name: &'static str, scale: f64, f: fn(&Summary) -> f64| Curve {
+        name,
+        points: rows.iter().map(|r| (r.0, scale * f(&r.1))).collect(),
+    };
+    let charts = [
+        (
+            "temperatures.png",
+            Chart {
+                title: "Pellet temperatures",
+                x_label: "time (s)",
+                y_label: "temperature (K)",
+                curves: vec![
+                    curve("centre", 1.0, |s| s.center),
+                    curve("pellet surface", 1.0, |s| s.pellet_surface),
+                    curve("cladding inner surface", 1.0, |s| s.cladding_inner),
+                ],
+            },
+        ),
+        (
+            "gap.png",
+            Chart {
+                title: "Pellet-cladding gap",
+                x_label: "time (s)",
+                y_label: "gap (um)",
+                curves: vec![
+                    curve("mean gap", 1e6, |s| s.gap),
+                    curve("smallest gap", 1e6, |s| s.min_gap),
+                ],
+            },
+        ),
+        (
+            "pressures.png",
+            Chart {
+                title: "Pressures",
+                x_label: "time (s)",
+                y_label: "pressure (MPa)",
+                curves: vec![
+                    curve("interface pressure P_c (mean)", 1e-6, |s| {
+                        s.interface_pressure
+                    }),
+                    curve("interface pressure (peak)", 1e-6, |s| s.peak_pressure),
+                    curve("plenum pressure P_o", 1e-6, |s| s.plenum),
+                ],
+            },
+        ),
+    ];
+    let mut out = Vec::new();
+    for (name, chart) in charts {
+        out.push((name.to_string(), line_chart_png(&chart)?));
+    }
+    Ok(out)
+}
+
+/// The interface files beside the bodies' `pellet_NNNN.vtu` files.
+fn interface_files(files: &[(String, f64)]) -> Vec<(String, f64)> {
+    files
+        .iter()
+        .map(|(n, t)| (n.replacen("pellet_", "interface_", 1), *t))
+        .collect()
+}
+
 /// The history as arrays over the time steps.
 fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)]) -> Value {
     let col = |f: &dyn Fn(&Summary) -> f64| rows.iter().map(|r| f(&r.1)).collect::<Vec<_>>();
@@ -537,8 +612,9 @@ fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)
     })
 }
 
-/// The VTU of the state `x` at `time`: temperature, displacement and von Mises stress of
-/// both bodies.
+/// The VTU files of the state `x` at `time`: the bodies (temperature, displacement vector,
+/// von Mises stress) in `pellet_NNNN.vtu`, the interface (the pellet's surface: gap, heat
+/// flux, contact and interface pressure) in `interface_NNNN.vtu`.
 fn write_snapshot<ML: ConstraintLaw>(
     out: &Path,
     problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
@@ -549,31 +625,73 @@ fn write_snapshot<ML: ConstraintLaw>(
 ) -> Result<(), PelletError> {
     let f = problem.fields(x);
     let elastic = problem.elastic_bodies();
-    let mut data = Vec::new();
+    let mut von_mises = Vec::new();
+    let mut displacement = Vec::new();
     for b in 0..2 {
         let u = f.displacement(b);
         let body = elastic[b]
             .clone()
             .with_temperature(f.temperature[b].to_vec())?;
-        let stress = recover_stress(&body, &u, &Default::default())?;
-        let ux: Vec<f64> = u.iter().step_by(2).copied().collect();
-        let uy: Vec<f64> = u.iter().skip(1).step_by(2).copied().collect();
-        data.push((ux, uy, stress.von_mises));
+        von_mises.push(recover_stress(&body, &u, &Default::default())?.von_mises);
+        let dim = body.components();
+        displacement.push(
+            u.chunks(dim)
+                .flat_map(|c| [c[0], c[1], if dim == 3 { c[2] } else { 0.0 }])
+                .collect::<Vec<f64>>(),
+        );
     }
-    let name = format!("pellet_{:04}.vtu", files.len());
+    let k = files.len();
+    let name = format!("pellet_{k:04}.vtu");
     let pieces: Vec<VtuPiece> = (0..2)
         .map(|b| VtuPiece {
             mesh: &elastic[b].mesh,
             point_data: vec![
                 ("temperature", f.temperature[b]),
-                ("displacement_x", &data[b].0),
-                ("displacement_y", &data[b].1),
-                ("von_mises", &data[b].2),
+                ("von_mises", &von_mises[b]),
             ],
         })
         .collect();
-    let text = vtu_string(&out.join(&name), &pieces)?;
+    let vectors = [(
+        "displacement",
+        displacement.iter().map(Vec::as_slice).collect::<Vec<_>>(),
+    )];
+    let text = vtu_string_with_vectors(&out.join(&name), &pieces, &vectors)?;
     outputs.push((name.clone(), text.into_bytes()));
+
+    // The interface, one value per slave surface node (NaN off the coupling's rows).
+    let surface = problem.heat().tie().interface().slave();
+    let row_of = |node: usize| {
+        problem
+            .heat()
+            .tie()
+            .coupling()
+            .slave_nodes
+            .binary_search(&surface.node_tags()[node])
+            .ok()
+    };
+    let gaps = problem.gaps(x);
+    let (flux, pressure) = (f.flux(), f.contact_pressure());
+    let per_node = |v: &dyn Fn(usize) -> f64| -> Vec<f64> {
+        (0..surface.node_count())
+            .map(|i| row_of(i).map_or(f64::NAN, v))
+            .collect()
+    };
+    let fields = [
+        ("gap", per_node(&|j| gaps[j])),
+        ("heat_flux", per_node(&|j| flux[j])),
+        ("contact_pressure", per_node(&|j| pressure[j])),
+        (
+            "interface_pressure",
+            per_node(&|j| pressure[j] + f.gas_pressure),
+        ),
+    ];
+    let cells: Vec<Vec<u32>> = (0..surface.face_count())
+        .map(|i| surface.face(i).nodes.to_vec())
+        .collect();
+    let data: Vec<(&str, &[f64])> = fields.iter().map(|(n, v)| (*n, v.as_slice())).collect();
+    let iname = format!("interface_{k:04}.vtu");
+    let text = surface_vtu_string(&out.join(&iname), surface.coords(), &cells, &data)?;
+    outputs.push((iname, text.into_bytes()));
     files.push((name, time));
     Ok(())
 }

@@ -1,53 +1,83 @@
-//! The pellet scene of the seed, thermal only: a fuel pellet (disc, `k = 1 / (A + B T)`)
-//! inside its cladding (annulus, constant `k`), helium in the open gap between them, a power
-//! ramp, and the cladding's outer temperature fixed (docs/physics.md (section 3)). The gap
-//! is held open (no thermal expansion).
+//! The pellet scene of the seed: a fuel pellet (disc, `k = 1 / (A + B T)`) inside its
+//! cladding (annulus, constant `k`), helium in the gap between them, a power ramp, the
+//! cladding's outer temperature fixed (docs/physics.md, sections 3 and 4). By default it is
+//! thermomechanical ([`run_coupled`]): both bodies expand (plane-strain thermoelasticity),
+//! the gap closes, the gap conductance follows the mechanical gap and the contact pressure,
+//! the interface pressure follows the seed's exponential law (or exact contact), the plenum
+//! pressure follows the gap's volume and temperature (ideal gas), the coolant presses on the
+//! cladding. With `[model] mechanics = false` it is thermal only, the gap held at its
+//! as-built width ([`run_thermal`], checked against the closed form [`closed_form`]).
 //!
 //! The 2D cross-section is meshed by the toolkit: an O-grid disc for the pellet and a polar
-//! annulus for the cladding, at different resolutions and rotated by half a cell, so that the
-//! interface does not match. The heat crosses the gap through the Ross-Stoute
-//! [`GapConductance`] law on a dual mortar coupling projected across the gap (pellet surface
-//! the slave side). The heat equation is stepped by backward Euler through the ramp, then
-//! solved steady at full power; each solve is a Newton solve, on the assembled Jacobian or
-//! Jacobian-free (JFNK) as `[solver] method` says. The steady temperatures are compared with
-//! the closed form ([`closed_form`]).
+//! annulus for the cladding, at different resolutions, so that the interface does not match;
+//! dual mortar coupling projected across the gap, the pellet's surface the slave side. Each
+//! backward Euler step (and the final steady state) is one Newton solve of the whole problem,
+//! on the assembled Jacobian or Jacobian-free (JFNK), as `[solver] method` says; a step that
+//! fails is halved up to [`MAX_STEP_CUTS`] times.
 //!
-//! The scene file (TOML; every key optional, defaults from docs/physics.md, section 3):
+//! The scene file (TOML; every key optional, defaults from docs/physics.md, sections 3 and 4,
+//! except the cladding's inner radius, see [`CladdingData`]):
 //!
 //! ```toml
+//! kind = "pellet"
 //! [pellet]
 //! radius = 4.1e-3            # m
 //! conductivity_a = 0.0375    # k = 1 / (a + b T): m K / W
 //! conductivity_b = 2.165e-4  # m / W
 //! heat_capacity = 3.3e6      # rho c_p, J/m^3/K
+//! youngs_modulus = 200e9     # Pa
+//! poisson_ratio = 0.3
+//! thermal_expansion = 1.0e-5 # 1/K
 //! [cladding]
-//! inner_radius = 4.18e-3
+//! inner_radius = 4.12e-3     # a 20 um gap (PHYSICS.md's 4.18 mm never closes at 20 kW/m)
 //! outer_radius = 4.75e-3
 //! conductivity = 16.0
-//! outer_temperature = 580.0  # K
+//! outer_temperature = 580.0  # K, also the initial temperature everywhere
 //! heat_capacity = 2.0e6
+//! youngs_modulus = 80e9
+//! poisson_ratio = 0.4
+//! thermal_expansion = 6.0e-6
+//! coolant_pressure = 15.5e6  # Pa, on the outer surface
 //! [gap]
 //! roughness_pellet = 2e-6
 //! roughness_cladding = 1e-6
 //! jump_distance = 10e-6      # g_f + g_c
 //! # gas_conductivity = 0.3   # W/m/K; when absent, helium: 2.531e-3 T^0.7146
+//! contact_conductance = 0.0  # h_contact, W/m^2/K per Pa of contact pressure
+//! [contact]
+//! law = "exponential"        # P_c = P_o exp(S_NE (xi - g)^2) below xi; or "exact"
+//! stiffness_exponent = 1e12  # S_NE, 1/m^2
+//! onset_gap = 5e-6           # xi, m
+//! [plenum]
+//! fill_pressure = 2e6        # Pa, helium at the fill
+//! fill_temperature = 293.0   # K
+//! volume = 2e-6              # m^3 per metre of rod
+//! [model]
+//! mechanics = true           # false: heat only, the gap held open
+//! geometry = "plane_strain"  # "axisymmetric" and "3d" are refused (not written yet)
+//! reference_temperature = 293.0
 //! [power]
 //! linear_power = 20e3        # W/m
 //! ramp_time = 10.0           # s, from zero
 //! [time]
 //! step = 1.0                 # s, backward Euler
 //! end = 30.0                 # s; then a steady solve at full power
-//! snapshots = 4              # VTU files over the transient (plus the steady one)
+//! snapshots = 4              # VTU files over the transient
 //! [solver]
 //! method = "newton"          # or "jfnk"
 //! relative_tolerance = 1e-10
 //! [mesh]
-//! refinement = 2
+//! refinement = 3
 //! ```
+//!
+//! Outputs: `report.json` (what was modelled, the closure time, the histories, the steady
+//! state and its energy balance, the solver's counts), `pellet_NNNN.vtu` (temperature,
+//! displacement, von Mises stress) and `interface_NNNN.vtu` (gap, heat flux, pressures) with
+//! their `.pvd` collections, and `temperatures.png`, `gap.png`, `pressures.png`.
 //!
 //! ```no_run
 //! let report = mortar::scenes::pellet::run_builtin(std::path::Path::new("out"), false)?;
-//! println!("{}", report["center_temperature"]);
+//! println!("{} {}", report["center_temperature"], report["gap_closure_time"]);
 //! # Ok::<(), mortar::scenes::pellet::PelletError>(())
 //! ```
 

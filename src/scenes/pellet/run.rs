@@ -29,7 +29,7 @@ pub fn run_from_toml(text: &str, out: &Path, progress: bool) -> Result<Value, Pe
     run(&PelletScene::from_toml(text)?, out, progress)
 }
 
-/// Runs the built-in scene (every default of docs/physics.md, section 3), as [`run_from_toml`].
+/// Runs the built-in scene (the defaults of [`PelletScene`]), as [`run_from_toml`].
 ///
 /// # Errors
 /// As [`run`].
