@@ -255,7 +255,10 @@ fn no_arguments_runs_the_pellet_scene_into_out_pellet() {
     assert_eq!(report["status"], "ok");
     assert_eq!(report["models"]["mechanics"], true);
     let closure = report["gap_closure_time"].as_f64().expect("the gap closes");
-    assert!(closure > 0.0 && closure < 10.0, "closes in the ramp: {closure}");
+    assert!(
+        closure > 0.0 && closure < 10.0,
+        "closes in the ramp: {closure}"
+    );
     let imbalance = report["steady"]["relative_imbalance"].as_f64().unwrap();
     assert!(imbalance < 1e-6, "energy imbalance {imbalance:e}");
     assert!(dir.join("out/pellet/pellet_0000.vtu").exists());
