@@ -14,8 +14,8 @@ use super::nonlinear::{assemble_conduction, Conductivity, Linearization};
 use crate::error::PhysicsError;
 use crate::laws::{evaluate, ConstraintLaw, LawPoint};
 use crate::nonlinear::{
-    assembled_residual_scale, jfnk_solve, newton, JfnkOptions, NewtonOptions, NewtonProblem,
-    NewtonReport,
+    assembled_residual_scale, jfnk_solve, JfnkOptions, NewtonOptions, NewtonProblem, NewtonReport,
+    SolverStats,
 };
 use crate::tied::Tie;
 
@@ -32,23 +32,7 @@ pub enum GapSolver {
 }
 
 /// Counters of the linear algebra of [`GapHeat`] solves, accumulated over calls.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct GapSolverStats {
-    /// Newton steps.
-    pub newton_iterations: usize,
-    /// Linear iterations (1 per direct solve; GMRES iterations for JFNK).
-    pub linear_iterations: usize,
-    /// Numeric LU factorisations.
-    pub factorizations: usize,
-    /// Symbolic LU analyses (1 when the pattern is reused throughout).
-    pub symbolic_analyses: usize,
-    /// Seconds assembling Jacobians (or preconditioner matrices).
-    pub assembly_seconds: f64,
-    /// Seconds in factorisations and linear solves.
-    pub linear_seconds: f64,
-    /// Seconds in the Newton solves, all included.
-    pub total_seconds: f64,
-}
+pub type GapSolverStats = SolverStats;
 
 /// The solver state kept across Newton steps and time steps (the LU with its symbolic
 /// analysis, and the counters).
@@ -481,20 +465,13 @@ impl<L: ConstraintLaw> GapHeat<L> {
         solver: &mut GapSolverState,
         options: &NewtonOptions,
     ) -> Result<NewtonReport, PhysicsError> {
-        let start = Instant::now();
         let data = self.step_data(t, transient)?;
         let mut step = Step {
             problem: self,
             data,
             solver,
         };
-        let report = newton(&mut step, x, options);
-        let stats = &mut step.solver.stats;
-        stats.total_seconds += start.elapsed().as_secs_f64();
-        let report = report?;
-        stats.newton_iterations += report.iterations;
-        stats.linear_iterations += report.linear_iterations;
-        Ok(report)
+        SolverStats::timed_newton(&mut step, x, options, |s| &mut s.solver.stats)
     }
 }
 
@@ -530,16 +507,7 @@ impl<L: ConstraintLaw> NewtonProblem for Step<'_, L> {
         let t1 = Instant::now();
         let stats = &mut self.solver.stats;
         stats.assembly_seconds += (t1 - t0).as_secs_f64();
-        let reused = match &mut self.solver.lu {
-            Some(lu) => lu.refactor(&a).is_ok(),
-            None => false,
-        };
-        if !reused {
-            self.solver.lu = Some(LuFactorization::try_new(&a)?);
-            stats.symbolic_analyses += 1;
-        }
-        stats.factorizations += 1;
-        let lu = self.solver.lu.as_ref().expect("factorised above");
+        let lu = stats.factorize(&mut self.solver.lu, &a)?;
         let its = match self.solver.method {
             GapSolver::Newton => {
                 dx.copy_from_slice(r);

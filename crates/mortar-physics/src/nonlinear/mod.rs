@@ -7,9 +7,11 @@
 
 mod jfnk;
 mod newton;
+mod stats;
 
 pub use jfnk::{jfnk_solve, FiniteDifferenceJacobian, JfnkOptions};
 pub use newton::{
     assembled_residual_scale, newton, Forcing, NewtonFailure, NewtonFailureReason, NewtonOptions,
     NewtonProblem, NewtonReport, ROUNDOFF_FLOOR,
 };
+pub use stats::SolverStats;

@@ -7,8 +7,8 @@ use crate::error::PhysicsError;
 use crate::heat::{Linearization, StepData};
 use crate::laws::ConstraintLaw;
 use crate::nonlinear::{
-    assembled_residual_scale, jfnk_solve, newton, JfnkOptions, NewtonOptions, NewtonProblem,
-    NewtonReport,
+    assembled_residual_scale, jfnk_solve, JfnkOptions, NewtonOptions, NewtonProblem, NewtonReport,
+    SolverStats,
 };
 
 /// How the linearised problems of [`GapThermoMechanics`] are solved.
@@ -26,25 +26,7 @@ pub enum ThermoMechSolver {
 }
 
 /// Counters of the solves, accumulated over calls.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ThermoMechStats {
-    /// Newton steps.
-    pub newton_iterations: usize,
-    /// Linear iterations (1 per direct solve; GMRES iterations for JFNK).
-    pub linear_iterations: usize,
-    /// Numeric factorisations (of the whole Jacobian, or of the two blocks counted as one).
-    pub factorizations: usize,
-    /// Symbolic analyses.
-    pub symbolic_analyses: usize,
-    /// Linear solves with a preconditioner kept from an earlier Newton or time step.
-    pub reused_preconditioners: usize,
-    /// Seconds assembling matrices.
-    pub assembly_seconds: f64,
-    /// Seconds in factorisations and linear solves (GMRES with its residual evaluations).
-    pub linear_seconds: f64,
-    /// Seconds in the Newton solves, all included.
-    pub total_seconds: f64,
-}
+pub type ThermoMechStats = SolverStats;
 
 /// GMRES is "slowing down" when a solve takes more than this many times the iterations of
 /// the first solve after the last factorisation (and at least [`SLOWDOWN_MIN`] more): a
@@ -177,20 +159,13 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         solver: &mut ThermoMechSolverState,
         options: &NewtonOptions,
     ) -> Result<NewtonReport, PhysicsError> {
-        let start = Instant::now();
         let data = self.heat.step_data(t, transient)?;
         let mut step = Step {
             problem: self,
             data,
             solver,
         };
-        let report = newton(&mut step, x, options);
-        let stats = &mut step.solver.stats;
-        stats.total_seconds += start.elapsed().as_secs_f64();
-        let report = report?;
-        stats.newton_iterations += report.iterations;
-        stats.linear_iterations += report.linear_iterations;
-        Ok(report)
+        SolverStats::timed_newton(&mut step, x, options, |s| &mut s.solver.stats)
     }
 
     /// The residual of a steady solve at time `t` (for checks and tests).
@@ -290,23 +265,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> NewtonProblem for Step<'_, TL, ML> {
                     Linearization::Newton,
                 )?;
                 let t0 = Instant::now();
-                let stats = &mut self.solver.stats;
-                let reused = match &mut self.solver.lu {
-                    Some(lu) => lu.refactor(&a).is_ok(),
-                    None => false,
-                };
-                if !reused {
-                    self.solver.lu = Some(LuFactorization::try_new(&a)?);
-                    stats.symbolic_analyses += 1;
-                }
-                stats.factorizations += 1;
+                let solver = &mut *self.solver;
+                let lu = solver.stats.factorize(&mut solver.lu, &a)?;
                 dx.copy_from_slice(r);
-                self.solver
-                    .lu
-                    .as_ref()
-                    .expect("factorised above")
-                    .solve_in_place(dx)?;
-                stats.linear_seconds += t0.elapsed().as_secs_f64();
+                lu.solve_in_place(dx)?;
+                solver.stats.linear_seconds += t0.elapsed().as_secs_f64();
                 Ok(1)
             }
             ThermoMechSolver::Jfnk(opts) => {

@@ -1,0 +1,67 @@
+use std::time::Instant;
+
+use mortar_core::linalg::{LuFactorization, SparseMatrix};
+
+use super::{newton, NewtonOptions, NewtonProblem, NewtonReport};
+use crate::error::PhysicsError;
+
+/// Counters of the Newton solves of a problem and of their linear algebra, accumulated over
+/// calls (time steps).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolverStats {
+    /// Newton steps.
+    pub newton_iterations: usize,
+    /// Linear iterations (1 per direct solve; GMRES iterations for JFNK).
+    pub linear_iterations: usize,
+    /// Numeric factorisations (of a Jacobian, or of a preconditioner's blocks counted as one).
+    pub factorizations: usize,
+    /// Symbolic analyses (1 when a pattern is reused throughout).
+    pub symbolic_analyses: usize,
+    /// Linear solves with a preconditioner kept from an earlier Newton or time step.
+    pub reused_preconditioners: usize,
+    /// Seconds assembling Jacobians (or preconditioner matrices).
+    pub assembly_seconds: f64,
+    /// Seconds in factorisations and linear solves.
+    pub linear_seconds: f64,
+    /// Seconds in the Newton solves, all included.
+    pub total_seconds: f64,
+}
+
+impl SolverStats {
+    /// Runs [`newton`] on `problem` from `x`, adding its time and, on success, its steps and
+    /// linear iterations to the counters that `stats` finds in the problem.
+    pub(crate) fn timed_newton<P: NewtonProblem>(
+        problem: &mut P,
+        x: &mut [f64],
+        options: &NewtonOptions,
+        stats: impl Fn(&mut P) -> &mut SolverStats,
+    ) -> Result<NewtonReport, PhysicsError> {
+        let start = Instant::now();
+        let report = newton(problem, x, options);
+        let s = stats(problem);
+        s.total_seconds += start.elapsed().as_secs_f64();
+        let report = report?;
+        s.newton_iterations += report.iterations;
+        s.linear_iterations += report.linear_iterations;
+        Ok(report)
+    }
+
+    /// Factorises `a` into `lu`: numerically only, reusing the symbolic analysis, when the
+    /// pattern is the same as the last one; from scratch otherwise. Counted.
+    pub(crate) fn factorize<'a>(
+        &mut self,
+        lu: &'a mut Option<LuFactorization>,
+        a: &SparseMatrix,
+    ) -> Result<&'a LuFactorization, PhysicsError> {
+        let reused = match lu {
+            Some(f) => f.refactor(a).is_ok(),
+            None => false,
+        };
+        if !reused {
+            *lu = Some(LuFactorization::try_new(a)?);
+            self.symbolic_analyses += 1;
+        }
+        self.factorizations += 1;
+        Ok(lu.as_ref().expect("factorised above"))
+    }
+}
