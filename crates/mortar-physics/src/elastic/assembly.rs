@@ -54,65 +54,31 @@ pub fn assemble_elastic_stiffness(
     options: &ElasticOptions,
 ) -> Result<SparseMatrix, PhysicsError> {
     body.check()?;
-    let mesh = &body.mesh;
-    let layout = body.layout();
-    let dim = layout.components;
+    let dim = body.layout().components;
     let (lambda, mu) = body.material.lame();
-    let cells = mesh.cell_count();
-    let chunks: Vec<Result<Triplets, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
-        .into_par_iter()
-        .map(|ch| {
-            let mut out = Triplets::default();
-            let mut cv = CellValues::new();
-            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
-            let mut ke = vec![0.0; MAX_CELL_DOFS * MAX_CELL_DOFS];
-            for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
-                let cell = mesh.cell(c);
-                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
-                let m = nn * dim;
-                ke[..m * m].fill(0.0);
-                for q in 0..cv.len() {
-                    let (g, w) = (cv.gradients(q), cv.jxw(q));
-                    for a in 0..nn {
-                        for b in 0..nn {
-                            // Each product is formed symmetrically in (a, i) <-> (b, j), so
-                            // that the element matrix is symmetric bit for bit.
-                            let gab = mu * g[a].dot(&g[b]);
-                            for i in 0..dim {
-                                let row = (a * dim + i) * m + b * dim;
-                                for j in 0..dim {
-                                    let mut v =
-                                        lambda * (g[a][i] * g[b][j]) + mu * (g[a][j] * g[b][i]);
-                                    if i == j {
-                                        v += gab;
-                                    }
-                                    ke[row + j] += v * w;
-                                }
-                            }
-                        }
-                    }
-                }
-                for (a, &na) in cell.nodes.iter().enumerate() {
+    assemble_cell_matrix(body, options, dim, dim, |cv, nn, ke| {
+        let m = nn * dim;
+        for q in 0..cv.len() {
+            let (g, w) = (cv.gradients(q), cv.jxw(q));
+            for a in 0..nn {
+                for b in 0..nn {
+                    // Each product is formed symmetrically in (a, i) <-> (b, j), so that the
+                    // element matrix is symmetric bit for bit.
+                    let gab = mu * g[a].dot(&g[b]);
                     for i in 0..dim {
-                        let row = (a * dim + i) * m;
-                        let r = layout.dof(na, i);
-                        for (b, &nb) in cell.nodes.iter().enumerate() {
-                            for j in 0..dim {
-                                out.push(r, layout.dof(nb, j), ke[row + b * dim + j]);
+                        let row = (a * dim + i) * m + b * dim;
+                        for j in 0..dim {
+                            let mut v = lambda * (g[a][i] * g[b][j]) + mu * (g[a][j] * g[b][i]);
+                            if i == j {
+                                v += gab;
                             }
+                            ke[row + j] += v * w;
                         }
                     }
                 }
             }
-            Ok(out)
-        })
-        .collect();
-    let mut parts = Vec::with_capacity(chunks.len());
-    for ch in chunks {
-        parts.push(ch?);
-    }
-    let n = layout.len();
-    Ok(Triplets::to_csr_from_parts(parts, n, n))
+        }
+    })
 }
 
 /// Assembles the load vector of a body (numbered by its [`layout`](ElasticBody::layout)):
@@ -237,38 +203,59 @@ pub fn assemble_thermal_load_matrix(
     options: &ElasticOptions,
 ) -> Result<SparseMatrix, PhysicsError> {
     body.check()?;
-    let mesh = &body.mesh;
-    let layout = body.layout();
-    let dim = layout.components;
+    let dim = body.layout().components;
     let beta = body.material.thermal_stress_coefficient();
+    assemble_cell_matrix(body, options, dim, 1, |cv, nn, ge| {
+        for q in 0..cv.len() {
+            let (n, g, w) = (cv.shape(q), cv.gradients(q), beta * cv.jxw(q));
+            for a in 0..nn {
+                for i in 0..dim {
+                    let row = (a * dim + i) * nn;
+                    for b in 0..nn {
+                        ge[row + b] += w * g[a][i] * n[b];
+                    }
+                }
+            }
+        }
+    })
+}
+
+/// Assembles a matrix cell by cell: rows `node * row_components + i`, columns
+/// `node * col_components + j` (over the body's nodes). `local(cv, nn, m)` adds the cell's
+/// integrals into the zeroed dense matrix `m` of `nn` nodes, row-major with rows
+/// `a * row_components + i` and columns `b * col_components + j`. In parallel over fixed
+/// chunks of cells merged in order: bit for bit the same whatever the thread count.
+fn assemble_cell_matrix(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+    row_components: usize,
+    col_components: usize,
+    local: impl Fn(&CellValues, usize, &mut [f64]) + Sync,
+) -> Result<SparseMatrix, PhysicsError> {
+    let mesh = &body.mesh;
     let cells = mesh.cell_count();
+    let (rc, cc) = (row_components, col_components);
     let chunks: Vec<Result<Triplets, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
         .map(|ch| {
             let mut out = Triplets::default();
             let mut cv = CellValues::new();
             let mut x = [Vector3::zeros(); MAX_CELL_NODES];
-            let mut ge = vec![0.0; MAX_CELL_DOFS * MAX_CELL_NODES];
+            let mut ke = vec![0.0; rc * cc * MAX_CELL_NODES * MAX_CELL_NODES];
             for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                 let cell = mesh.cell(c);
                 let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
-                ge[..nn * dim * nn].fill(0.0);
-                for q in 0..cv.len() {
-                    let (n, g, w) = (cv.shape(q), cv.gradients(q), beta * cv.jxw(q));
-                    for a in 0..nn {
-                        for i in 0..dim {
-                            let row = (a * dim + i) * nn;
-                            for b in 0..nn {
-                                ge[row + b] += w * g[a][i] * n[b];
-                            }
-                        }
-                    }
-                }
+                let cols = nn * cc;
+                ke[..nn * rc * cols].fill(0.0);
+                local(&cv, nn, &mut ke[..nn * rc * cols]);
                 for (a, &na) in cell.nodes.iter().enumerate() {
-                    for i in 0..dim {
-                        let row = (a * dim + i) * nn;
+                    for i in 0..rc {
+                        let row = (a * rc + i) * cols;
+                        let r = na * rc as u32 + i as u32;
                         for (b, &nb) in cell.nodes.iter().enumerate() {
-                            out.push(layout.dof(na, i), nb, ge[row + b]);
+                            for j in 0..cc {
+                                out.push(r, nb * cc as u32 + j as u32, ke[row + b * cc + j]);
+                            }
                         }
                     }
                 }
@@ -280,11 +267,8 @@ pub fn assemble_thermal_load_matrix(
     for ch in chunks {
         parts.push(ch?);
     }
-    Ok(Triplets::to_csr_from_parts(
-        parts,
-        layout.len(),
-        layout.nodes,
-    ))
+    let n = mesh.node_count();
+    Ok(Triplets::to_csr_from_parts(parts, n * rc, n * cc))
 }
 
 /// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).
