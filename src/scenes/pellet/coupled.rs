@@ -290,17 +290,9 @@ fn run_with<ML: ConstraintLaw>(
     let t1 = vec![c.outer_temperature; bodies[1].mesh.node_count()];
     let mut x = problem.state([&t0, &t1]);
 
-    let steps = if scene.time.end > 0.0 {
-        (scene.time.end / scene.time.step).ceil() as usize
-    } else {
-        0
-    };
+    let steps = scene.time.steps();
     let bar = progress_bar(progress, steps as u64 + 1);
-    let snapshot_every = if scene.time.snapshots == 0 {
-        usize::MAX
-    } else {
-        steps.div_ceil(scene.time.snapshots).max(1)
-    };
+    let snapshot_every = scene.time.snapshot_every();
     let mut outputs: Vec<(String, Vec<u8>)> = Vec::new();
     let mut files = Vec::new();
     let mut rows: Vec<(f64, Summary, usize, usize, usize)> = Vec::new();

@@ -280,6 +280,26 @@ pub struct TimeData {
     pub snapshots: usize,
 }
 
+impl TimeData {
+    /// The number of backward Euler steps, `ceil(end / step)` (0 for `end = 0`).
+    pub fn steps(&self) -> usize {
+        if self.end > 0.0 {
+            (self.end / self.step).ceil() as usize
+        } else {
+            0
+        }
+    }
+
+    /// A snapshot every this many steps (`usize::MAX` for none; the last step always has one).
+    pub fn snapshot_every(&self) -> usize {
+        if self.snapshots == 0 {
+            usize::MAX
+        } else {
+            self.steps().div_ceil(self.snapshots).max(1)
+        }
+    }
+}
+
 impl Default for TimeData {
     fn default() -> Self {
         Self {

@@ -173,17 +173,9 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
     let t1 = vec![t_co; cladding.mesh.node_count()];
     let mut x = problem.state([&t0, &t1]);
 
-    let steps = if scene.time.end > 0.0 {
-        (scene.time.end / scene.time.step).ceil() as usize
-    } else {
-        0
-    };
+    let steps = scene.time.steps();
     let bar = progress_bar(progress, steps as u64 + 1);
-    let snapshot_every = if scene.time.snapshots == 0 {
-        usize::MAX
-    } else {
-        steps.div_ceil(scene.time.snapshots).max(1)
-    };
+    let snapshot_every = scene.time.snapshot_every();
     // Every output is kept in memory and written at the end, all or none: a run that fails
     // leaves no half-written folder.
     let mut outputs: Vec<(String, Vec<u8>)> = Vec::new();
