@@ -9,7 +9,8 @@
 //! [`box_with_hole_mesh`] of a curved inclusion, [`grid_rectangle_mesh`] and
 //! [`grid_box_mesh`] on given (e.g. [`graded_points`]) coordinates, [`quarter_disc_mesh`], a
 //! quarter disc refined towards a point of its rim for a cylinder in contact,
-//! [`ball_octant_mesh`], its 3D counterpart for a sphere, and [`quarter_annulus_mesh`])
+//! [`ball_octant_mesh`], its 3D counterpart for a sphere, [`quarter_annulus_mesh`], and
+//! [`extrude_mesh`], a Quad4 mesh swept along z into Hex8)
 //! number nodes from `first_node_tag` and cells from 1, all cells positively oriented; their
 //! boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
@@ -17,6 +18,7 @@
 mod ball_octant;
 mod cylinder;
 mod disc;
+mod extrude;
 mod inclusion;
 mod line;
 mod plane;
@@ -26,6 +28,7 @@ mod volume;
 pub use ball_octant::ball_octant_mesh;
 pub use cylinder::cylinder_surface;
 pub use disc::{quarter_annulus_mesh, quarter_disc_mesh};
+pub use extrude::extrude_mesh;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Instant;
 
-use mortar_core::mesh::VolumeMesh;
+use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
 use mortar_physics::elastic::{recover_stress, ComponentSet, ElasticBody, ElasticMaterial};
 use mortar_physics::heat::{assemble_conduction, Conductivity, HeatBody, HeatMaterial};
@@ -23,7 +23,10 @@ use nalgebra::Vector3;
 use serde_json::{json, Value};
 
 use super::run::{mesh_area, nearest_node, progress_bar, pvd};
-use super::{annulus_mesh, pellet_mesh, ContactLawName, PelletError, PelletScene, SolverMethod};
+use super::{
+    annulus_mesh, pellet_mesh, ContactLawName, Geometry, PelletError, PelletScene, SolverMethod,
+};
+use crate::generate::extrude_mesh;
 use crate::io::plot::{line_chart_png, Chart, Curve};
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
 use crate::io::write_outputs;
@@ -70,10 +73,26 @@ pub fn coupled_problem<ML: ConstraintLaw>(
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
     // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not match
-    // (they share the four nodes on the axes, which hold the rigid motions).
-    let pellet_mesh = pellet_mesh(p.radius, 4 * r, 2 * r)?;
-    let cladding_mesh = annulus_mesh(c.inner_radius, c.outer_radius, 20 * r, 2 * r, 0.0)?;
+    // (they share the four nodes on the axes, which hold the rigid motions). In 3D both
+    // cross-sections are swept along z through `axial_layers` layers of Hex8.
+    let mut pellet_mesh = pellet_mesh(p.radius, 4 * r, 2 * r)?;
+    let mut cladding_mesh = annulus_mesh(c.inner_radius, c.outer_radius, 20 * r, 2 * r, 0.0)?;
     let area = mesh_area(&pellet_mesh);
+    let three_d = scene.model.geometry == Geometry::ThreeD;
+    let height = scene.model.segment_height;
+    if three_d {
+        let layers = scene.mesh.axial_layers;
+        let levels: Vec<f64> = (0..=layers)
+            .map(|k| height * k as f64 / layers as f64)
+            .collect();
+        pellet_mesh = extrude_mesh(&pellet_mesh, &levels, 1)?;
+        cladding_mesh = extrude_mesh(&cladding_mesh, &levels, 1)?;
+    }
+    // Faces: lateral unless on the end planes z = 0, H (3D); the radius in the xy plane.
+    let tol = 1e-9 * c.outer_radius;
+    let lateral =
+        move |f: &BoundaryFace| !three_d || (f.centroid.z > tol && f.centroid.z < height - tol);
+    let radius = |x: &Vector3<f64>| x.xy().norm();
     let power = scene.power;
     let power = move |t: f64| power.at(t);
     let k_pellet = Conductivity::InverseLinear {
@@ -83,8 +102,20 @@ pub fn coupled_problem<ML: ConstraintLaw>(
     let t_co = c.outer_temperature;
     let t_ref = scene.model.reference_temperature;
     let zero = |_: &Vector3<f64>| Vector3::zeros();
-    let at = |mesh: &VolumeMesh, x: [f64; 2]| -> u32 {
-        nearest_node(mesh, Vector3::new(x[0], x[1], 0.0)) as u32
+    // The nodes on the line through (x, y) along z (the one node there in 2D).
+    let at = |mesh: &VolumeMesh, x: [f64; 2]| -> Vec<u32> {
+        let xy = nalgebra::Vector2::new(x[0], x[1]);
+        (0..mesh.node_count() as u32)
+            .filter(|&i| (mesh.coords()[i as usize].xy() - xy).norm() < tol)
+            .collect()
+    };
+    // Plane strain in 3D: no axial displacement on the end planes.
+    let ends = move |body: ElasticBody| -> Result<ElasticBody, PelletError> {
+        if three_d {
+            Ok(body.with_dirichlet_where(|f| !lateral(f), ComponentSet::One(2), zero)?)
+        } else {
+            Ok(body)
+        }
     };
 
     let pellet_heat = HeatBody::new(
@@ -93,20 +124,23 @@ pub fn coupled_problem<ML: ConstraintLaw>(
         HeatMaterial::new(k_pellet.at(t_co).0, p.heat_capacity),
     )
     .with_source(move |_x, t| power(t) / area);
-    // Rigid motions: the centre held, the node at (a, 0) held in y; the exact field is
-    // radial, so neither loads the body.
+    // Rigid motions: the axis held in x and y, the line through (a, 0) held in y; the exact
+    // field is radial, so none of them loads the body.
     let (centre, east) = (
         at(&pellet_mesh, [0.0, 0.0]),
         at(&pellet_mesh, [p.radius, 0.0]),
     );
-    let pellet_elastic = ElasticBody::new(
-        "pellet",
-        pellet_mesh,
-        ElasticMaterial::new(p.youngs_modulus, p.poisson_ratio)
-            .with_expansion(p.thermal_expansion, t_ref),
-    )
-    .with_dirichlet_nodes(vec![centre], ComponentSet::All, zero)
-    .with_dirichlet_nodes(vec![east], ComponentSet::One(1), zero);
+    let pellet_elastic = ends(
+        ElasticBody::new(
+            "pellet",
+            pellet_mesh,
+            ElasticMaterial::new(p.youngs_modulus, p.poisson_ratio)
+                .with_expansion(p.thermal_expansion, t_ref),
+        )
+        .with_dirichlet_nodes(centre.clone(), ComponentSet::One(0), zero)
+        .with_dirichlet_nodes(centre, ComponentSet::One(1), zero)
+        .with_dirichlet_nodes(east, ComponentSet::One(1), zero),
+    )?;
 
     let mid = 0.5 * (c.inner_radius + c.outer_radius);
     let cladding_heat = HeatBody::new(
@@ -114,38 +148,48 @@ pub fn coupled_problem<ML: ConstraintLaw>(
         cladding_mesh.clone(),
         HeatMaterial::new(c.conductivity, c.heat_capacity),
     )
-    .with_dirichlet_where(|f| f.centroid.norm() > mid, move |_x, _t| t_co)?;
-    // Rigid motions: the inner nodes on the axes held in their tangential direction.
+    .with_dirichlet_where(
+        |f| radius(&f.centroid) > mid && lateral(f),
+        move |_x, _t| t_co,
+    )?;
+    // Rigid motions: the inner lines on the axes held in their tangential direction.
     let b = c.inner_radius;
-    let (e, n, w) = (
-        at(&cladding_mesh, [b, 0.0]),
-        at(&cladding_mesh, [0.0, b]),
-        at(&cladding_mesh, [-b, 0.0]),
-    );
+    let (e, w) = (at(&cladding_mesh, [b, 0.0]), at(&cladding_mesh, [-b, 0.0]));
+    let n = at(&cladding_mesh, [0.0, b]);
     let p_cool = c.coolant_pressure;
-    let cladding_elastic = ElasticBody::new(
-        "cladding",
-        cladding_mesh,
-        ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
-            .with_expansion(c.thermal_expansion, t_ref),
-    )
-    .with_dirichlet_nodes(vec![e, w], ComponentSet::One(1), zero)
-    .with_dirichlet_nodes(vec![n], ComponentSet::One(0), zero)
-    .with_traction_where(|f| f.centroid.norm() > mid, move |x| -p_cool * x / x.norm())?;
+    let cladding_elastic = ends(
+        ElasticBody::new(
+            "cladding",
+            cladding_mesh,
+            ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
+                .with_expansion(c.thermal_expansion, t_ref),
+        )
+        .with_dirichlet_nodes([e, w].concat(), ComponentSet::One(1), zero)
+        .with_dirichlet_nodes(n, ComponentSet::One(0), zero)
+        .with_traction_where(
+            |f| radius(&f.centroid) > mid && lateral(f),
+            move |x| {
+                let r = x.xy().norm();
+                Vector3::new(-p_cool * x.x / r, -p_cool * x.y / r, 0.0)
+            },
+        )?,
+    )?;
 
-    let slave_surface = pellet_heat.mesh.boundary_surface(|_| true)?;
+    let slave_surface = pellet_heat.mesh.boundary_surface(lateral)?;
     let master_surface = cladding_heat
         .mesh
-        .boundary_surface(|f| f.centroid.norm() < mid)?;
+        .boundary_surface(|f| radius(&f.centroid) < mid && lateral(f))?;
     let gap = c.inner_radius - p.radius;
     let tolerances = Tolerances {
         search_radius: SearchRadius::Distance(2.0 * gap),
         ..Tolerances::default()
     };
     let pl = &scene.plenum;
+    // Per unit length in 2D; the segment's share of the plenum in 3D.
+    let length = if three_d { height } else { 1.0 };
     let plenum = Plenum::from_fill(
-        pl.volume,
-        PI * (c.inner_radius.powi(2) - p.radius.powi(2)),
+        pl.volume * length,
+        PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
         pl.fill_pressure,
         pl.fill_temperature,
     )?;
@@ -232,11 +276,12 @@ fn summary<ML: ConstraintLaw>(
     let u = f.displacement(0);
     let coords = problem.heat().bodies()[0].mesh.coords();
     let sn = tie.slave_nodes();
+    let dim = problem.elastic_bodies()[0].components();
     let radial: f64 = sn
         .iter()
         .map(|&n| {
             let (n, x) = (n as usize, coords[n as usize]);
-            (u[2 * n] * x.x + u[2 * n + 1] * x.y) / x.norm()
+            (u[dim * n] * x.x + u[dim * n + 1] * x.y) / x.xy().norm()
         })
         .sum::<f64>()
         / sn.len() as f64;
@@ -403,7 +448,12 @@ fn run_with<ML: ConstraintLaw>(
     bar.finish_and_clear();
     let steady = summary(&problem, &x, centre);
     let heat_out = outer_heat_flow(&problem, &x)?;
-    let power_in = scene.power.at(t_steady);
+    // Per unit length in 2D, over the segment in 3D.
+    let length = match scene.model.geometry {
+        Geometry::ThreeD => scene.model.segment_height,
+        _ => 1.0,
+    };
+    let power_in = scene.power.at(t_steady) * length;
     outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
     outputs.push((
         "interface.pvd".to_string(),
@@ -440,7 +490,7 @@ fn run_with<ML: ConstraintLaw>(
         "models": {
             "heat": true,
             "mechanics": true,
-            "geometry": "plane_strain",
+            "geometry": scene.model.geometry,
             "contact_law": law_name,
             "gap_conductance": "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
             "plenum": "ideal gas, fixed moles",

@@ -54,8 +54,9 @@
 //! volume = 2e-6              # m^3 per metre of rod
 //! [model]
 //! mechanics = true           # false: heat only, the gap held open
-//! geometry = "plane_strain"  # "axisymmetric" and "3d" are refused (not written yet)
+//! geometry = "plane_strain"  # or "3d" (a segment, plane strain); "axisymmetric" is refused
 //! reference_temperature = 293.0
+//! segment_height = 1e-3      # m, the 3D segment (its share of the plenum: volume x height)
 //! [power]
 //! linear_power = 20e3        # W/m
 //! ramp_time = 10.0           # s, from zero
@@ -68,6 +69,7 @@
 //! relative_tolerance = 1e-10
 //! [mesh]
 //! refinement = 3
+//! axial_layers = 2           # Hex8 layers of the 3D segment
 //! ```
 //!
 //! Outputs: `report.json` (what was modelled, the closure time, the histories, the steady
@@ -377,7 +379,7 @@ pub enum Geometry {
     PlaneStrain,
     /// An axisymmetric r-z model (not available yet: refused with a message).
     Axisymmetric,
-    /// A 3D pellet segment (not available yet: refused with a message).
+    /// A 3D pellet segment: the cross-section swept along z, its end planes held in z.
     #[serde(rename = "3d")]
     ThreeD,
 }
@@ -393,6 +395,9 @@ pub struct ModelData {
     pub geometry: Geometry,
     /// The temperature of zero thermal strain (K).
     pub reference_temperature: f64,
+    /// The height of the pellet segment of the 3D model (m): its end planes slide freely in
+    /// x and y and are held in z (plane strain, as the 2D model).
+    pub segment_height: f64,
 }
 
 impl Default for ModelData {
@@ -401,6 +406,7 @@ impl Default for ModelData {
             mechanics: true,
             geometry: Geometry::PlaneStrain,
             reference_temperature: 293.0,
+            segment_height: 1e-3,
         }
     }
 }
@@ -449,11 +455,16 @@ pub struct MeshData {
     /// `2 r` radial layers (`16 r` edges on its circle); the cladding `21 r + 1` cells around
     /// and `2 r` radially.
     pub refinement: usize,
+    /// Hex8 layers along z of the 3D model.
+    pub axial_layers: usize,
 }
 
 impl Default for MeshData {
     fn default() -> Self {
-        Self { refinement: 3 }
+        Self {
+            refinement: 3,
+            axial_layers: 2,
+        }
     }
 }
 
@@ -617,11 +628,27 @@ impl PelletScene {
                 ct.onset_gap
             ));
         }
-        if m.mechanics && m.geometry != Geometry::PlaneStrain {
+        if m.geometry == Geometry::Axisymmetric {
+            return bad(
+                "model.geometry = \"axisymmetric\": the r-z model is not available yet".into(),
+            );
+        }
+        if m.geometry == Geometry::ThreeD && !m.mechanics {
+            return bad(
+                "model.geometry = \"3d\" with model.mechanics = false: the thermal scene is 2D"
+                    .into(),
+            );
+        }
+        if !(m.segment_height > 0.0 && m.segment_height.is_finite()) {
             return bad(format!(
-                "model.geometry = {:?}: only \"plane_strain\" is available yet (the axisymmetric \
-                 and 3D models are not written)",
-                m.geometry
+                "model.segment_height = {} is not positive and finite",
+                m.segment_height
+            ));
+        }
+        if self.mesh.axial_layers == 0 || self.mesh.axial_layers > 64 {
+            return bad(format!(
+                "mesh.axial_layers = {} is not in 1..=64",
+                self.mesh.axial_layers
             ));
         }
         Ok(())
