@@ -81,8 +81,12 @@ fn print_coupled(report: &Value, out: &Path) {
     let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
     let m = &report["models"];
     let law = m["contact_law"].as_str().unwrap_or("?");
+    let elasticity = match m["geometry"].as_str() {
+        Some("3d") => "3D thermoelasticity (a segment, ends held in z)",
+        _ => "plane-strain thermoelasticity",
+    };
     println!(
-        "{:<28} heat with k(T), plane-strain thermoelasticity, gap conductance on the",
+        "{:<28} heat with k(T), {elasticity}, gap conductance on the",
         "modelled"
     );
     println!(
