@@ -47,7 +47,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool) -> Result<(), String> {
     print_warnings(&coupling.warnings);
     print_summary(&summary, json);
     if !json {
-        println!(
+        say!(
             "{:<9}{} (D.mtx, M.mtx, summary.json)",
             "output",
             args.out.display()

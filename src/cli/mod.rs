@@ -1,10 +1,20 @@
 //! Command-line parsing and the commands.
 
+/// `say!` for the command's output: a reader that has gone (`mortar ... | head`) ends the
+/// process quietly with the status of a broken pipe, 141, as the Unix tools do, instead of a
+/// panic; any other failure to write is an error message and status 1.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        $crate::cli::print_line(format_args!($($arg)*))
+    };
+}
+
 mod couple;
 mod report;
 mod run;
 mod scene;
 
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -190,5 +200,25 @@ pub fn main() -> ExitCode {
             eprintln!("mortar: error: {line}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// The exit status of a process whose standard output was closed by its reader (128 +
+/// SIGPIPE, what a shell reports for a Unix tool killed by the signal).
+const BROKEN_PIPE_STATUS: i32 = 141;
+
+/// Writes one line to standard output (see `say!`).
+pub(crate) fn print_line(args: std::fmt::Arguments<'_>) {
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out
+        .write_fmt(args)
+        .and_then(|()| out.write_all(b"\n"))
+        .and_then(|()| out.flush())
+    {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(BROKEN_PIPE_STATUS);
+        }
+        eprintln!("mortar: cannot write to standard output: {e}");
+        std::process::exit(1);
     }
 }

@@ -47,8 +47,8 @@ pub(super) fn print_warnings(warnings: &[mortar::CouplingWarning]) {
 /// Prints the summary as text or JSON on stdout.
 pub(super) fn print_summary(summary: &CouplingSummary, json: bool) {
     if json {
-        println!("{}", summary.to_json());
+        say!("{}", summary.to_json());
     } else {
-        println!("{summary}");
+        say!("{summary}");
     }
 }

@@ -21,11 +21,11 @@ use super::RunArgs;
 /// Runs the built-in pellet scene into `out` with a progress bar (the default job).
 pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
     if !json {
-        println!(
+        say!(
             "mortar: default scene, a fuel pellet in its cladding: heat, thermal expansion, gap \
              closure, contact, plenum pressure (2D plane strain)"
         );
-        println!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
+        say!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
     }
     let report = pellet::run_builtin(out, !json).map_err(|e| e.to_string())?;
     print_pellet(&report, out, json);
@@ -35,7 +35,7 @@ pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
 /// Prints the pellet's report: JSON, or the steady temperatures against the closed form.
 fn print_pellet(report: &Value, out: &Path, json: bool) {
     if json {
-        println!("{report}");
+        say!("{report}");
         return;
     }
     if report["models"]["mechanics"].as_bool() == Some(true) {
@@ -52,7 +52,7 @@ fn print_pellet(report: &Value, out: &Path, json: bool) {
             .get("closed_form")
             .and_then(|c| c.get(key))
             .unwrap_or(&Value::Null);
-        println!(
+        say!(
             "{key:<28} {} K   (closed form {} K)",
             num(&report[key]),
             num(closed)
@@ -60,10 +60,10 @@ fn print_pellet(report: &Value, out: &Path, json: bool) {
     }
     let rel = &report["error"]["center_relative_to_span"];
     if let Some(rel) = rel.as_f64() {
-        println!("{:<28} {:.2e} of (T_0 - T_co)", "centre error", rel);
+        say!("{:<28} {:.2e} of (T_0 - T_co)", "centre error", rel);
     }
     let solver = &report["solver"];
-    println!(
+    say!(
         "{:<28} {} Newton steps, {} linear iterations, {} factorisations",
         format!("solver ({})", report["method"].as_str().unwrap_or("?")),
         solver["newton_iterations"],
@@ -71,9 +71,9 @@ fn print_pellet(report: &Value, out: &Path, json: bool) {
         solver["factorizations"]
     );
     if let Some(t) = report["seconds"]["total"].as_f64() {
-        println!("{:<28} {t:.3} s", "time");
+        say!("{:<28} {t:.3} s", "time");
     }
-    println!("output: {} (report.json, VTU over time)", out.display());
+    say!("output: {} (report.json, VTU over time)", out.display());
 }
 
 /// Prints the thermomechanical pellet's report: what was modelled and why, and the results.
@@ -85,56 +85,56 @@ fn print_coupled(report: &Value, out: &Path) {
         Some("3d") => "3D thermoelasticity (a segment, ends held in z)",
         _ => "plane-strain thermoelasticity",
     };
-    println!(
+    say!(
         "{:<28} heat with k(T), {elasticity}, gap conductance on the",
         "modelled"
     );
-    println!(
+    say!(
         "{:<28} mechanical gap, {law} contact law, plenum pressure (ideal gas)",
         ""
     );
     match report["gap_closure_time"].as_f64() {
-        Some(t) => println!(
+        Some(t) => say!(
             "{:<28} closed at t = {t:.2} s: contact engaged (the gap's pressure law acts)",
             "gap"
         ),
-        None => println!(
+        None => say!(
             "{:<28} never closed: no contact work (the pressure law stays at the gas pressure)",
             "gap"
         ),
     }
     let h = &report["history"];
     let last = |k: &str| h[k].as_array().and_then(|a| a.last()).map_or(f64::NAN, f);
-    println!(
+    say!(
         "{:<28} {:.3} K",
         "centre temperature",
         f(&report["center_temperature"])
     );
-    println!(
+    say!(
         "{:<28} {:.3} um (mean; min {:.3} um)",
         "final gap",
         1e6 * f(&report["gap"]),
         1e6 * last("min_gap")
     );
-    println!(
+    say!(
         "{:<28} {:.3} MPa (interface, incl. gas)",
         "peak contact pressure",
         1e-6 * f(&report["peak_interface_pressure"])
     );
-    println!(
+    say!(
         "{:<28} {:.4} MPa",
         "plenum pressure",
         1e-6 * f(&report["plenum_pressure"])
     );
     let st = &report["steady"];
-    println!(
+    say!(
         "{:<28} T0 {:.3} K, energy imbalance {:.1e}",
         "steady state (full power)",
         f(&st["center_temperature"]),
         f(&st["relative_imbalance"])
     );
     let solver = &report["solver"];
-    println!(
+    say!(
         "{:<28} {} Newton steps, {} linear iterations, {} factorisations, {} step cuts",
         format!("solver ({})", report["method"].as_str().unwrap_or("?")),
         solver["newton_iterations"],
@@ -142,8 +142,8 @@ fn print_coupled(report: &Value, out: &Path) {
         solver["factorizations"],
         solver["step_cuts"]
     );
-    println!("{:<28} {:.3} s", "time", f(&report["seconds"]["total"]));
-    println!("output: {} (report.json, VTU over time)", out.display());
+    say!("{:<28} {:.3} s", "time", f(&report["seconds"]["total"]));
+    say!("output: {} (report.json, VTU over time)", out.display());
 }
 
 /// Runs the command; the error is the message for the user.
@@ -219,9 +219,9 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
             .unwrap_or_default();
         print!("{report}");
     } else {
-        println!("{}", output.summary);
+        say!("{}", output.summary);
         let names: Vec<&str> = files.iter().map(|(n, _)| *n).collect();
-        println!("output: {} ({})", args.out.display(), names.join(", "));
+        say!("output: {} ({})", args.out.display(), names.join(", "));
     }
     Ok(())
 }

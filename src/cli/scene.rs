@@ -28,8 +28,8 @@ pub(super) fn run(json: bool) -> Result<(), String> {
         "built-in unit square, {MASTER_CELLS} x {MASTER_CELLS} Quad4, normal -z"
     ));
     if !json {
-        println!("mortar: default scene, tying two non-matching meshes of the unit square");
-        println!("(couple your own Gmsh meshes with `mortar couple --help`)\n");
+        say!("mortar: default scene, tying two non-matching meshes of the unit square");
+        say!("(couple your own Gmsh meshes with `mortar couple --help`)\n");
     }
     print_summary(&summary, json);
     Ok(())

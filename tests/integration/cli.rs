@@ -314,3 +314,22 @@ fn help_is_printed() {
         assert!(text.contains(flag), "{flag}");
     }
 }
+
+/// Regression: `mortar ... | head` panicked ("failed printing to stdout: Broken pipe") when
+/// the reader had gone before the summary was printed. It now ends quietly with status 141
+/// (128 + SIGPIPE, as Unix tools do), no panic message.
+#[test]
+fn a_closed_standard_output_ends_quietly() {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_mortar"))
+        .arg("demo")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run the mortar binary");
+    // The reader goes before anything is written.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("wait for mortar");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.code(), Some(141), "{stderr}");
+}
