@@ -3,8 +3,10 @@
 //! finite differences, Newton against JFNK, and its failures.
 
 use mortar::core::linalg::SparseMatrix;
+use mortar::physics::heat::assemble_heat_matrices;
 use mortar::physics::laws::{ContactComplementarity, ExponentialContact};
-use mortar::physics::nonlinear::NewtonFailureReason;
+use mortar::physics::nonlinear::{NewtonFailureReason, NewtonOptions};
+use mortar::physics::thermomech::{ThermoMechSolver, ThermoMechSolverState};
 use mortar::physics::PhysicsError;
 use mortar::scenes::pellet::{
     coupled_problem, run, ContactLawName, PelletError, PelletScene, SolverMethod,
@@ -372,4 +374,77 @@ fn the_3d_segment_is_the_plane_strain_cross_section() {
     }
     let imbalance = r3["steady"]["relative_imbalance"].as_f64().unwrap();
     assert!(imbalance < 1e-6, "3D energy imbalance {imbalance:e}");
+}
+
+/// Free expansion inside the coupled problem (issue 15, item 4, second bullet): the gap kept
+/// open (cladding inner radius 4.5 mm) and no pressures (no coolant, no fill gas), the steady
+/// pellet surface displacement of the coupled solve against the plane-strain closed form
+/// `u(a) = (1 + nu) (2 alpha / a) int_0^a (T - T_ref) r dr = (1 + nu) alpha / (pi a)
+/// int_A (T - T_ref) dA` evaluated on the computed temperature (the area integral of its
+/// interpolant by the consistent capacity matrix). Second order (measured largest errors over
+/// the surface nodes 6.6e-3, 2.9e-3, 1.6e-3, 7.3e-4 at refinements 2, 3, 4, 6): within 1e-3
+/// from refinement 6. Source: Timoshenko and Goodier, *Theory of Elasticity*, sec. 150.
+#[test]
+fn free_expansion_inside_the_coupled_problem() {
+    let errors: Vec<f64> = [3, 6].into_iter().map(free_expansion_error).collect();
+    eprintln!("free expansion in the coupled problem, refinements 3 and 6: errors {errors:?}");
+    assert!(errors[0] / errors[1] > 3.5, "second order: {errors:?}");
+    assert!(errors[1] < 1e-3, "{errors:?}");
+}
+
+/// The largest relative error of the free expansion at refinement `r` (see above).
+fn free_expansion_error(r: usize) -> f64 {
+    let mut s = scene(ContactLawName::Exponential);
+    s.cladding.inner_radius = 4.5e-3;
+    s.cladding.outer_radius = 5.0e-3;
+    s.cladding.coolant_pressure = 0.0;
+    s.plenum.fill_pressure = 0.0;
+    s.mesh.refinement = r;
+    let p = coupled_problem(&s, ExponentialContact::try_new(1e12, 5e-6).unwrap()).unwrap();
+    let bodies = p.heat().bodies();
+    let t0: Vec<f64> = vec![s.cladding.outer_temperature; bodies[0].mesh.node_count()];
+    let t1: Vec<f64> = vec![s.cladding.outer_temperature; bodies[1].mesh.node_count()];
+    let mut x = p.state([&t0, &t1]);
+    let mut solver = ThermoMechSolverState::new(ThermoMechSolver::Newton);
+    p.solve(
+        &mut x,
+        s.power.ramp_time,
+        None,
+        &mut solver,
+        &NewtonOptions::default(),
+    )
+    .unwrap();
+    let f = p.fields(&x);
+    assert_eq!(f.gas_pressure, 0.0);
+    assert!(p.gaps(&x).iter().all(|&g| g > 100e-6), "the gap stays open");
+    // int_A (T - T_ref) dA by the capacity matrix (rho c_p int N_i N_j).
+    let pellet = &bodies[0];
+    let c = assemble_heat_matrices(pellet, &Default::default())
+        .unwrap()
+        .capacity;
+    let t_ref = s.model.reference_temperature;
+    let integral: f64 = c
+        .outer_iterator()
+        .map(|row| {
+            row.iter()
+                .map(|(j, v)| v * (f.temperature[0][j] - t_ref))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / s.pellet.heat_capacity;
+    let (a, nu, alpha) = (
+        s.pellet.radius,
+        s.pellet.poisson_ratio,
+        s.pellet.thermal_expansion,
+    );
+    let exact = (1.0 + nu) * alpha / (std::f64::consts::PI * a) * integral;
+    let u = f.displacement(0);
+    let coords = pellet.mesh.coords();
+    let mut worst = 0.0f64;
+    for &n in p.heat().tie().slave_nodes() {
+        let (n, x) = (n as usize, coords[n as usize]);
+        let ur = (u[2 * n] * x.x + u[2 * n + 1] * x.y) / x.norm();
+        worst = worst.max((ur - exact).abs() / exact);
+    }
+    worst
 }
