@@ -10,7 +10,7 @@ use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
 use mortar_physics::elastic::{recover_stress, ComponentSet, ElasticBody, ElasticMaterial};
 use mortar_physics::heat::{assemble_conduction, Conductivity, HeatBody, HeatMaterial};
 use mortar_physics::laws::{
-    ConstraintLaw, ContactComplementarity, ExponentialContact, GasConductivity,
+    ConstraintLaw, ContactComplementarity, ExponentialContact, GapConductance, GasConductivity,
     MechanicalGapConductance,
 };
 use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
@@ -60,7 +60,8 @@ fn complementarity(scene: &PelletScene) -> f64 {
     p.youngs_modulus / (p.radius * (1.0 + p.poisson_ratio) * (1.0 - 2.0 * p.poisson_ratio))
 }
 
-/// Builds the coupled problem of `scene` with the contact law `law` (see [`run_coupled`]).
+/// Builds the coupled problem of `scene` with the contact law `law` and the scene's thermal
+/// law ([`thermal_law`]) (see [`run_coupled`]).
 ///
 /// # Errors
 /// [`PelletError::Mesh`] / [`PelletError::Physics`] for meshes or a problem that cannot be
@@ -69,6 +70,20 @@ pub fn coupled_problem<ML: ConstraintLaw>(
     scene: &PelletScene,
     law: ML,
 ) -> Result<GapThermoMechanics<MechanicalGapConductance, ML>, PelletError> {
+    coupled_problem_with(scene, thermal_law(scene)?, law)
+}
+
+/// Builds the coupled problem of `scene` with any thermal law `thermal` (heat flux against
+/// temperature jump; it sees the mechanical gap, contact and gas pressures of each point) and
+/// contact law `contact` (contact pressure in excess of the gas pressure against the gap).
+///
+/// # Errors
+/// As [`coupled_problem`].
+pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
+    scene: &PelletScene,
+    thermal: TL,
+    contact: ML,
+) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
     scene.check()?;
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
@@ -193,11 +208,10 @@ pub fn coupled_problem<ML: ConstraintLaw>(
         pl.fill_pressure,
         pl.fill_temperature,
     )?;
-    let thermal = thermal_law(scene)?;
     let options = ThermoMechOptions {
         nominal_gap: Some(gap),
         gas: GasPressure::Plenum(plenum),
-        flux_unit: 1.0 / thermal.reference_resistance,
+        flux_unit: 1.0 / GapConductance::DEFAULT_REFERENCE_RESISTANCE,
         ..ThermoMechOptions::default()
     };
     Ok(GapThermoMechanics::new(
@@ -216,7 +230,7 @@ pub fn coupled_problem<ML: ConstraintLaw>(
         &CouplingOptions::default().dual(),
         tolerances,
         thermal,
-        law,
+        contact,
         &options,
     )?)
 }
@@ -233,13 +247,54 @@ pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
                 scene.contact.onset_gap,
             )?;
             let onset = law.onset();
-            run_with(scene, law, "exponential", Some(onset), out, progress)
+            let names = (
+                "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
+                "exponential",
+            );
+            run_with(
+                scene,
+                (thermal_law(scene)?, law),
+                names,
+                Some(onset),
+                out,
+                progress,
+            )
         }
         ContactLawName::Exact => {
             let law = ContactComplementarity::try_new(complementarity(scene))?;
-            run_with(scene, law, "exact", None, out, progress)
+            let names = (
+                "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
+                "exact",
+            );
+            run_with(
+                scene,
+                (thermal_law(scene)?, law),
+                names,
+                None,
+                out,
+                progress,
+            )
         }
     }
+}
+
+/// Runs the coupled scene with a program's own interface laws in place of the scene's
+/// (`[gap]` and `[contact]` then serve only the gap's search radius): everything else, the
+/// solver, the report, the VTU and plots, as [`run_coupled`]. The report names the laws by
+/// their Rust types; the gap counts as closed once the mean contact pressure exceeds a
+/// millionth of the gas pressure.
+///
+/// # Errors
+/// As [`run`](super::run).
+pub fn run_coupled_with<TL: ConstraintLaw, ML: ConstraintLaw>(
+    scene: &PelletScene,
+    thermal: TL,
+    contact: ML,
+    out: &Path,
+    progress: bool,
+) -> Result<Value, PelletError> {
+    let names = (std::any::type_name::<TL>(), std::any::type_name::<ML>());
+    run_with(scene, (thermal, contact), names, None, out, progress)
 }
 
 /// The quantities of one state, for the history.
@@ -257,8 +312,8 @@ struct Summary {
     displacement: f64,
 }
 
-fn summary<ML: ConstraintLaw>(
-    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
     x: &[f64],
     centre: usize,
 ) -> Summary {
@@ -301,16 +356,16 @@ fn summary<ML: ConstraintLaw>(
 
 /// The time stepping, reports and outputs of the coupled scene with contact law `law`
 /// (`onset`: the exponential law's `xi`, for the closure time).
-fn run_with<ML: ConstraintLaw>(
+fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     scene: &PelletScene,
-    law: ML,
-    law_name: &str,
+    laws: (TL, ML),
+    names: (&str, &str),
     onset: Option<f64>,
     out: &Path,
     progress: bool,
 ) -> Result<Value, PelletError> {
     let start = Instant::now();
-    let problem = coupled_problem(scene, law)?;
+    let problem = coupled_problem_with(scene, laws.0, laws.1)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let c = &scene.cladding;
     let method = match scene.solver.method {
@@ -491,8 +546,8 @@ fn run_with<ML: ConstraintLaw>(
             "heat": true,
             "mechanics": true,
             "geometry": scene.model.geometry,
-            "contact_law": law_name,
-            "gap_conductance": "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
+            "contact_law": names.1,
+            "gap_conductance": names.0,
             "plenum": "ideal gas, fixed moles",
             "contact_engaged": closure.is_some(),
         },
@@ -556,8 +611,8 @@ fn run_with<ML: ConstraintLaw>(
 /// The heat leaving through the cladding's outer surface (W/m): the reaction of its
 /// prescribed temperatures, `sum over them of int k grad T . grad N_a` (the conduction rows
 /// of the prescribed nodes, which the residual replaces by their conditions).
-fn outer_heat_flow<ML: ConstraintLaw>(
-    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+fn outer_heat_flow<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
     x: &[f64],
 ) -> Result<f64, PelletError> {
     let cladding = &problem.heat().bodies()[1];
@@ -657,9 +712,9 @@ fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)
 /// The VTU files of the state `x` at `time`: the bodies (temperature, displacement vector,
 /// von Mises stress) in `pellet_NNNN.vtu`, the interface (the pellet's surface: gap, heat
 /// flux, contact and interface pressure) in `interface_NNNN.vtu`.
-fn write_snapshot<ML: ConstraintLaw>(
+fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
     out: &Path,
-    problem: &GapThermoMechanics<MechanicalGapConductance, ML>,
+    problem: &GapThermoMechanics<TL, ML>,
     x: &[f64],
     time: f64,
     files: &mut Vec<(String, f64)>,

@@ -89,7 +89,10 @@ mod mesh;
 mod run;
 
 pub use closed_form::{closed_form, ClosedForm};
-pub use coupled::{coupled_problem, run_coupled, thermal_law, MAX_STEP_CUTS};
+pub use coupled::{
+    coupled_problem, coupled_problem_with, run_coupled, run_coupled_with, thermal_law,
+    MAX_STEP_CUTS,
+};
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use run::{run, run_builtin, run_from_toml, run_thermal};
 

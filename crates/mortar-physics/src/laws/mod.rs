@@ -22,7 +22,8 @@
 //! - [`ContactComplementarity`]: `C = lambda - max(0, lambda - c g)` (semi-smooth Newton).
 //!
 //! [`evaluate`] is the checked evaluation: value and partial derivatives, or a [`LawError`]
-//! for NaN input or a non-finite result.
+//! for NaN input or a non-finite result; [`check_tangent`] compares that tangent with finite
+//! differences, for a law of one's own.
 //!
 //! A new law, in a few lines (the tangent comes for free):
 //!
@@ -45,11 +46,13 @@
 //! assert!(evaluate(&Radiation { s: 1.0 }, LawPoint::new(f64::NAN, 0.0, 1.0)).is_err());
 //! ```
 
+mod check;
 mod complementarity;
 mod dual;
 mod gap;
 mod pressure;
 
+pub use check::{check_tangent, TangentCheck};
 pub use complementarity::ContactComplementarity;
 pub use dual::Dual;
 pub use gap::{GapConductance, GasConductivity, MechanicalGapConductance};
