@@ -5,6 +5,7 @@
 //! assembly. Meshes are small so that the binary runs in seconds in the test profile.
 
 mod convergence {
+    mod axisymmetric_coupling;
     mod blocks;
     mod components;
     mod contact;

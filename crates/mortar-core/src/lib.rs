@@ -54,6 +54,7 @@ pub mod tolerances;
 
 pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning};
 pub use error::{MortarError, Result, Side};
+pub use geometry::ModelGeometry;
 pub use interface::{Interface, SpatialDim};
 pub use mesh::{SurfaceMesh, VolumeMesh};
 pub use tolerances::{SearchRadius, Tolerances};
