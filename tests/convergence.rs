@@ -6,6 +6,7 @@
 
 mod convergence {
     mod axisymmetric_coupling;
+    mod axisymmetric_elastic;
     mod axisymmetric_heat;
     mod blocks;
     mod components;

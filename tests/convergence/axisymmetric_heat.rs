@@ -86,6 +86,12 @@ fn square_cells(r0: f64, r1: f64, h: f64, n: usize, shape: CellShape) -> VolumeM
     section(r0, r1, h, n, m, shape)
 }
 
+/// Values in scientific notation, for the printed tables.
+pub(super) fn sci(v: &[f64]) -> String {
+    let s: Vec<String> = v.iter().map(|x| format!("{x:.2e}")).collect();
+    format!("[{}]", s.join(", "))
+}
+
 /// `log2` of successive ratios.
 pub(super) fn rates(errors: &[f64]) -> Vec<f64> {
     errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect()
@@ -124,9 +130,11 @@ fn annulus_reproduces_the_logarithmic_profile_at_second_order() {
             }
         }
         println!(
-            "annulus {shape:?}: L2 {l2:.3?}, nodal {nodal:.3?}, rates L2 {:.3?} nodal {:.3?}",
+            "annulus {shape:?}: L2 {sci_l2}, nodal {sci_nodal}, rates L2 {:.3?} nodal {:.3?}",
             rates(&l2),
-            rates(&nodal)
+            rates(&nodal),
+            sci_l2 = sci(&l2),
+            sci_nodal = sci(&nodal)
         );
         for r in rates(&l2) {
             assert!(r > 1.9, "{shape:?}: L2 rates {:?}", rates(&l2));
@@ -160,7 +168,11 @@ fn annulus_with_a_neumann_flux_at_second_order() {
         let t = solve_steady(&body, &axisymmetric());
         l2.push(error_norms(&body.mesh, &t, &exact, &grad, None).unwrap().l2);
     }
-    println!("annulus with flux: L2 {l2:.3?}, rates {:.3?}", rates(&l2));
+    println!(
+        "annulus with flux: L2 {sci_l2}, rates {:.3?}",
+        rates(&l2),
+        sci_l2 = sci(&l2)
+    );
     for r in rates(&l2) {
         assert!(r > 1.9, "rates {:?}", rates(&l2));
     }
@@ -201,8 +213,10 @@ fn solid_cylinder_with_a_source_has_the_parabolic_profile() {
             l2.push(error_norms(&body.mesh, &t, &exact, &grad, None).unwrap().l2);
         }
         println!(
-        "solid cylinder {shape:?}: relative error of T0 - Ts {errors:.3?}, rates {:.3?}; L2 {l2:.3?}, rates {:.3?}",
+        "solid cylinder {shape:?}: relative error of T0 - Ts {}, rates {:.3?}; L2 {}, rates {:.3?}",
+        sci(&errors),
         rates(&errors),
+        sci(&l2),
         rates(&l2)
     );
         assert!(errors[4] < 1e-3, "{shape:?}: {errors:?}");
@@ -295,7 +309,7 @@ pub(super) fn matvec(a: &SparseMatrix, v: &[f64]) -> Vec<f64> {
 }
 
 /// The same cells on moved node coordinates.
-fn rebuild(mesh: &VolumeMesh, coords: &[[f64; 3]]) -> VolumeMesh {
+pub(super) fn rebuild(mesh: &VolumeMesh, coords: &[[f64; 3]]) -> VolumeMesh {
     let mut m = VolumeMesh::new();
     for (tag, x) in mesh.node_tags().iter().zip(coords) {
         m.add_node(*tag, *x).unwrap();
@@ -440,7 +454,11 @@ fn temperature_dependent_conductivity_in_r_z() {
             assert!(d < 1e-12 * k, "Picard vs stiffness {d:e}");
         }
     }
-    println!("k(T) annulus: L2 {l2:.3?}, rates {:.3?}", rates(&l2));
+    println!(
+        "k(T) annulus: L2 {sci_l2}, rates {:.3?}",
+        rates(&l2),
+        sci_l2 = sci(&l2)
+    );
     for r in rates(&l2) {
         assert!(r > 1.9, "rates {:?}", rates(&l2));
     }
