@@ -8,6 +8,7 @@ mod convergence {
     mod axisymmetric_coupling;
     mod axisymmetric_elastic;
     mod axisymmetric_heat;
+    mod axisymmetric_tied;
     mod blocks;
     mod components;
     mod contact;
