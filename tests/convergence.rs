@@ -5,6 +5,10 @@
 //! assembly. Meshes are small so that the binary runs in seconds in the test profile.
 
 mod convergence {
+    mod axisymmetric_coupling;
+    mod axisymmetric_elastic;
+    mod axisymmetric_heat;
+    mod axisymmetric_tied;
     mod blocks;
     mod components;
     mod contact;

@@ -144,6 +144,24 @@ pub enum MortarError {
     /// ([`CouplingOptions::require_full_coverage`](crate::CouplingOptions::require_full_coverage)).
     #[error("{0} (full coverage was required)")]
     IncompleteCoverage(Box<crate::assembly::CouplingWarning>),
+    /// The axisymmetric (r-z) geometry was asked of a 3D interface
+    /// ([`CouplingOptions::geometry`](crate::CouplingOptions::geometry)).
+    #[error("the axisymmetric (r-z) geometry needs a 2D interface of lines in the plane z = 0 (x the radius, y the axis); this interface is 3D ({slave_faces} slave faces)")]
+    AxisymmetricNeeds2D {
+        /// Slave face count of the 3D interface.
+        slave_faces: usize,
+    },
+    /// A node of an axisymmetric (r-z) interface lies at a negative radius: x is the radius
+    /// and must be at least zero.
+    #[error("{side} node {node} lies at the negative radius x = {radius:e}: an axisymmetric (r-z) model needs x = r >= 0")]
+    NegativeRadius {
+        /// The surface.
+        side: Side,
+        /// The node's tag.
+        node: u64,
+        /// Its x coordinate.
+        radius: f64,
+    },
     /// A multiplier space could not be built on a face (a singular local mass matrix).
     #[error("multiplier space {space} cannot be built on {face}: {reason}")]
     MultiplierSpace {

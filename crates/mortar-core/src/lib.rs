@@ -22,6 +22,9 @@
 //! - Rows follow the slave interface nodes, columns the slave (D) or master (M) interface
 //!   nodes, each by ascending node tag.
 //! - All coordinates are 3D; a 2D problem lives in the plane `z = 0` and uses line elements.
+//!   It is a slice of unit thickness, or, with the axisymmetric [`ModelGeometry`] in
+//!   [`CouplingOptions::geometry`], the r-z section of a body of revolution (`x = r >= 0`,
+//!   `y = z`): D and M are then integrals over the revolved surface (weight `2 pi r`).
 //!
 //! Beside the interface, the core has what the physics of the bodies needs: volume elements
 //! ([`element::volume`]: trait, reference domains, [`element::volume::CellValues`]), volume
@@ -54,6 +57,7 @@ pub mod tolerances;
 
 pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning};
 pub use error::{MortarError, Result, Side};
+pub use geometry::ModelGeometry;
 pub use interface::{Interface, SpatialDim};
 pub use mesh::{SurfaceMesh, VolumeMesh};
 pub use tolerances::{SearchRadius, Tolerances};

@@ -43,6 +43,26 @@ pub enum PhysicsError {
         /// What is wrong.
         what: String,
     },
+    /// A node of an axisymmetric (r-z) body lies at a negative radius (x < 0).
+    #[error("body {body:?}: node {node} lies at the negative radius x = {radius:e}: an axisymmetric (r-z) model needs x = r >= 0")]
+    NegativeRadius {
+        /// The body.
+        body: String,
+        /// The node tag.
+        node: u64,
+        /// Its x coordinate.
+        radius: f64,
+    },
+    /// A node on the axis (r = 0) of an axisymmetric elastic body has no prescribed radial
+    /// displacement: a point of the axis cannot move radially, `u_r = 0` must be prescribed
+    /// there (component x).
+    #[error("body {body:?}: node {node} lies on the axis (r = 0) of the axisymmetric model and needs u_r = 0 prescribed (a displacement condition on component x)")]
+    AxisNodeFree {
+        /// The body.
+        body: String,
+        /// The node tag.
+        node: u64,
+    },
     /// An interface surface names a node its body's mesh does not have.
     #[error("the {side} interface surface refers to node {tag}, which the {side} body's mesh does not have")]
     InterfaceNodeNotInBody {

@@ -9,7 +9,7 @@ use super::key_index::KeyIndex;
 use super::local::{integrate_face_into, LocalBlocks};
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
-use crate::error::{MortarError, Result};
+use crate::error::{MortarError, Result, Side};
 use crate::integration::{PairedRule, SegmentContext};
 use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
@@ -61,7 +61,8 @@ pub struct CouplingStats {
     /// Candidate pairs dropped because a point could not be mapped between the faces (see
     /// [`CouplingWarning::SkippedPairs`]).
     pub skipped_pairs: usize,
-    /// Slave area (length in 2D) with no master face within the search radius (see
+    /// Slave area (length in 2D, also with the axisymmetric measure: the length of the
+    /// meridian) with no master face within the search radius (see
     /// [`CouplingWarning::UncoveredSlaveArea`]).
     pub uncovered_area: f64,
     /// Slave faces with no master face at all.
@@ -74,7 +75,8 @@ pub struct CouplingStats {
     pub d_roundoff_dropped: usize,
     /// The largest of them, relative to its diagonal entry.
     pub d_roundoff_largest: f64,
-    /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D).
+    /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D,
+    /// the area of the revolved surface, `int 2 pi r ds`, with the axisymmetric measure).
     pub area: f64,
     /// Threads used.
     pub threads: usize,
@@ -313,8 +315,34 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// [`MortarError::InvalidOption`] for a thread count of zero or above
 /// [`MAX_THREADS_PER_CORE`] per core, or a pool that cannot start.
 pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Result<Coupling> {
+    check_geometry(interface, options)?;
     let pool = build_pool(options.threads)?;
     pool.install(|| assemble_on_pool(interface, options, pool.current_num_threads()))
+}
+
+/// Refuses the axisymmetric measure on a 3D interface or with a node at a negative radius.
+fn check_geometry(interface: &Interface, options: &CouplingOptions) -> Result<()> {
+    if !options.geometry.is_axisymmetric() {
+        return Ok(());
+    }
+    if interface.dim() == SpatialDim::Three {
+        return Err(MortarError::AxisymmetricNeeds2D {
+            slave_faces: interface.slave().face_count(),
+        });
+    }
+    for (mesh, side) in [
+        (interface.slave(), Side::Slave),
+        (interface.master(), Side::Master),
+    ] {
+        if let Some((i, radius)) = options.geometry.first_negative_radius(mesh.coords()) {
+            return Err(MortarError::NegativeRadius {
+                side,
+                node: mesh.node_tags()[i],
+                radius,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The most worker threads per core [`assemble_coupling`] accepts: more only costs thread
@@ -643,7 +671,14 @@ fn chunk(
         if rule.points.is_empty() {
             continue;
         }
-        let basis = options.multipliers.basis(face, tol)?;
+        if options.geometry.is_axisymmetric() {
+            // The measure of the revolved surface, 2 pi r at the slave point (after the
+            // coverage, which compares lengths of the meridian).
+            for p in rule.points.iter_mut() {
+                p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
+            }
+        }
+        let basis = options.multipliers.basis_for(face, tol, options.geometry)?;
         integrate_face_into(interface, ctx.masters, face, &basis, &rule.points, blocks);
         let rows = &face_rows[i][..face.node_count()];
         for (j, &r) in rows.iter().enumerate() {

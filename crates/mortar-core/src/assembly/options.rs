@@ -1,14 +1,17 @@
 use std::sync::Arc;
 
 use crate::error::Result;
+use crate::geometry::ModelGeometry;
 use crate::integration::{ElementBased, IntegrationStrategy, SegmentBased};
 use crate::multiplier::{DualMultipliers, MultiplierSpace, StandardMultipliers};
 use crate::projector::{NodalNormalField, Projector};
 
-/// How to compute the coupling: multiplier space, integration strategy, projector, threads.
+/// How to compute the coupling: multiplier space, integration strategy, projector, threads,
+/// and the measure of the interface.
 ///
 /// The default is standard multipliers, segment-based integration of automatic degree (exact
-/// on affine faces), the averaged nodal normal field, and rayon's default thread count.
+/// on affine faces), the averaged nodal normal field, rayon's default thread count, and the
+/// Cartesian measure.
 #[derive(Debug, Clone)]
 pub struct CouplingOptions {
     /// The multiplier space.
@@ -22,6 +25,21 @@ pub struct CouplingOptions {
     /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area, skipped
     /// pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).
     pub require_full_coverage: bool,
+    /// The measure of the interface: [`ModelGeometry::Cartesian`] (the default: area in 3D,
+    /// length in 2D), or [`ModelGeometry::Axisymmetric`] for a 2D interface in the r-z plane
+    /// (`x = r >= 0`): every point of the paired rule is weighted by `2 pi r` at its slave
+    /// position, so that `D[j,k] = int Phi_j N_k^s 2 pi r ds` and
+    /// `M[j,l] = int Phi_j N_l^m 2 pi r ds` are integrals over the revolved surface, and the
+    /// multiplier space is built for that measure (the dual basis is biorthogonal with respect
+    /// to `2 pi r ds`: its coefficients come from the face's r-weighted mass matrix). The
+    /// automatic degree stays exact for straight lines: the Gauss rule of degree 2 is exact to
+    /// degree 3, the degree of `r Phi_j N_k`. Refused for a 3D interface
+    /// ([`MortarError::AxisymmetricNeeds2D`](crate::MortarError::AxisymmetricNeeds2D)) and for
+    /// a node at a negative radius ([`MortarError::NegativeRadius`](crate::MortarError::NegativeRadius)).
+    ///
+    /// The body assemblies of `mortar-physics` take the same setting in their options; give
+    /// both the same.
+    pub geometry: ModelGeometry,
 }
 
 impl Default for CouplingOptions {
@@ -32,6 +50,7 @@ impl Default for CouplingOptions {
             projector: Arc::new(NodalNormalField),
             threads: None,
             require_full_coverage: false,
+            geometry: ModelGeometry::Cartesian,
         }
     }
 }
@@ -80,14 +99,30 @@ impl CouplingOptions {
         self
     }
 
+    /// The axisymmetric (r-z) measure `2 pi r ds` (see [`geometry`](Self::geometry)).
+    pub fn axisymmetric(self) -> Self {
+        self.with_geometry(ModelGeometry::Axisymmetric)
+    }
+
+    /// The measure of the interface (see [`geometry`](Self::geometry)).
+    pub fn with_geometry(mut self, geometry: ModelGeometry) -> Self {
+        self.geometry = geometry;
+        self
+    }
+
     /// A one-line description of the formulation, e.g.
-    /// `"standard multipliers, segment-based, degree auto, nodal-normal-field projection"`.
+    /// `"standard multipliers, segment-based, degree auto, nodal-normal-field projection"`
+    /// (followed by `", axisymmetric (2 pi r)"` for the axisymmetric measure).
     pub fn describe(&self) -> String {
-        format!(
+        let mut s = format!(
             "{} multipliers, {}, {} projection",
             self.multipliers.name(),
             self.integration.name(),
             self.projector.name()
-        )
+        );
+        if self.geometry.is_axisymmetric() {
+            s.push_str(", axisymmetric (2 pi r)");
+        }
+        s
     }
 }

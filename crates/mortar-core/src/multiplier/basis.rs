@@ -1,5 +1,6 @@
 use crate::element::MAX_FACE_NODES;
-use crate::error::Result;
+use crate::error::{MortarError, Result};
+use crate::geometry::ModelGeometry;
 use crate::interface::FaceGeometry;
 use crate::tolerances::Tolerances;
 
@@ -60,6 +61,39 @@ pub trait MultiplierSpace: Send + Sync + std::fmt::Debug {
     /// [`MortarError::MultiplierSpace`](crate::error::MortarError::MultiplierSpace) when the
     /// space cannot be built on the face.
     fn basis(&self, face: &FaceGeometry, tol: &Tolerances) -> Result<LmBasis>;
+
+    /// The basis on one slave face for the interface measure `geometry` (see
+    /// [`CouplingOptions::geometry`](crate::CouplingOptions::geometry)); the coupling calls
+    /// this one. A space whose basis depends on the measure (a biorthogonal one) must
+    /// override it.
+    ///
+    /// The default gives [`basis`](MultiplierSpace::basis) for the Cartesian measure, and for
+    /// the axisymmetric one too unless the space claims a diagonal D
+    /// ([`diagonal_d`](MultiplierSpace::diagonal_d)): such a space is biorthogonal with
+    /// respect to a measure, which the default cannot know, so it is refused rather than
+    /// silently giving a D that is not diagonal.
+    ///
+    /// # Errors
+    /// As [`basis`](MultiplierSpace::basis);
+    /// [`MortarError::MultiplierSpace`] for a space with a diagonal D that does not override
+    /// this method, asked for the axisymmetric measure.
+    fn basis_for(
+        &self,
+        face: &FaceGeometry,
+        tol: &Tolerances,
+        geometry: ModelGeometry,
+    ) -> Result<LmBasis> {
+        if geometry.is_axisymmetric() && self.diagonal_d() {
+            return Err(MortarError::MultiplierSpace {
+                space: self.name(),
+                face: face.location(),
+                reason: "the space does not implement the axisymmetric measure 2 pi r \
+                         (MultiplierSpace::basis_for)"
+                    .into(),
+            });
+        }
+        self.basis(face, tol)
+    }
 
     /// Whether D is diagonal for this space on a fully covered interface (so that the slave
     /// unknowns condense out cheaply).

@@ -1,5 +1,6 @@
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::ModelGeometry;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -20,9 +21,32 @@ pub struct ElasticOptions {
     /// (Tri3, Tet4, parallelogram Quad4, parallelepiped Hex8) and, for Quad4 and Hex8, more
     /// than the usual full (2 x 2, 2 x 2 x 2) Gauss integration.
     pub quadrature_degree: Option<u32>,
+    /// What the mesh models ([`ModelGeometry`]): [`Cartesian`](ModelGeometry::Cartesian) (the
+    /// default: a 3D body, or a 2D plane-strain slice of unit thickness) or
+    /// [`Axisymmetric`](ModelGeometry::Axisymmetric): a 2D mesh in the plane `z = 0` is the
+    /// r-z section of a body of revolution (`x = r >= 0`, `y = z`, torsionless), with the
+    /// unknowns `(u_r, u_z)` as components `(x, y)`. The strains are
+    /// `eps_rr = du_r/dr`, `eps_zz = du_z/dz`, the hoop strain `eps_tt = u_r / r` and
+    /// `gamma_rz = du_r/dz + du_z/dr`, with the 4 x 4 isotropic `C`; the thermal strain
+    /// `alpha (T - T_ref)` in all three normal components; every integral (stiffness, body
+    /// force, thermal load, tractions) takes the weight `2 pi r` (forces over the full
+    /// revolution, tractions per unit area of the revolved surface). Quadrature points lie
+    /// inside the cells, so `1 / r` is finite; a node on the axis (`x = 0`, within
+    /// [`ModelGeometry::axis_tolerance`]) must have `u_r = 0` prescribed (a condition on
+    /// component x), or the assemblies refuse the body
+    /// ([`PhysicsError::AxisNodeFree`](crate::PhysicsError::AxisNodeFree)).
+    /// [`recover_stress`](super::recover_stress) puts the hoop stress `sigma_tt` in the `zz`
+    /// slot of the Voigt order (r -> x, z -> y, theta -> z).
+    pub geometry: ModelGeometry,
 }
 
 impl ElasticOptions {
+    /// These options with the geometry `geometry`.
+    pub fn with_geometry(mut self, geometry: ModelGeometry) -> Self {
+        self.geometry = geometry;
+        self
+    }
+
     /// The degree for shape functions of degree `p`.
     pub(crate) fn degree(&self, p: u32) -> u32 {
         self.quadrature_degree.unwrap_or(2 * p)
@@ -45,21 +69,31 @@ impl ElasticOptions {
 /// slender part loaded in bending. The constant-strain Tri3 and Tet4 are stiffer still, and
 /// every cell here locks volumetrically as nu approaches 0.5. Refine through the thickness.
 ///
+/// In the axisymmetric geometry ([`ElasticOptions::geometry`]) the hoop strain adds, for the
+/// radial components (`i = 0`, `h_a = N_a / r`), `lambda (dN_a/dx_i h_b + h_a dN_b/dx_j)
+/// + (lambda + 2 mu) h_a h_b` to the integrand (the terms of `h` present only for a radial
+/// component), and the measure is `2 pi r dr dz`.
+///
 /// # Errors
-/// [`PhysicsError::InvalidInput`] for bad material data or a quadrature degree out of range,
-/// [`PhysicsError::InvertedCell`] for a cell with a non-positive Jacobian determinant (the
-/// first in cell order); see also [`ElasticBody::check`].
+/// [`PhysicsError::InvalidInput`] for bad material data, a quadrature degree out of range or
+/// an axisymmetric 3D mesh, [`PhysicsError::NegativeRadius`] and
+/// [`PhysicsError::AxisNodeFree`] for an axisymmetric mesh with a node at `x < 0`, or on the
+/// axis without a prescribed `u_r`, [`PhysicsError::InvertedCell`] for a cell with a
+/// non-positive Jacobian determinant (the first in cell order); see also
+/// [`ElasticBody::check`].
 pub fn assemble_elastic_stiffness(
     body: &ElasticBody,
     options: &ElasticOptions,
 ) -> Result<SparseMatrix, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let dim = body.layout().components;
     let (lambda, mu) = body.material.lame();
+    let axi = options.geometry.is_axisymmetric();
     assemble_cell_matrix(body, options, dim, dim, |cv, nn, ke| {
         let m = nn * dim;
         for q in 0..cv.len() {
-            let (g, w) = (cv.gradients(q), cv.jxw(q));
+            let (g, w) = (cv.gradients(q), cells::weight(cv, q, options.geometry));
+            let (n, inv_r) = (cv.shape(q), hoop_factor(cv, q, axi));
             for a in 0..nn {
                 for b in 0..nn {
                     // Each product is formed symmetrically in (a, i) <-> (b, j), so that the
@@ -71,6 +105,13 @@ pub fn assemble_elastic_stiffness(
                             let mut v = lambda * (g[a][i] * g[b][j]) + mu * (g[a][j] * g[b][i]);
                             if i == j {
                                 v += gab;
+                            }
+                            if axi {
+                                // The hoop strains of (a, i) and (b, j).
+                                let ha = if i == 0 { n[a] * inv_r } else { 0.0 };
+                                let hb = if j == 0 { n[b] * inv_r } else { 0.0 };
+                                v += lambda * (g[a][i] * hb + ha * g[b][j])
+                                    + (lambda + 2.0 * mu) * (ha * hb);
                             }
                             ke[row + j] += v * w;
                         }
@@ -87,8 +128,13 @@ pub fn assemble_elastic_stiffness(
 /// - the thermal strain `eps_th = alpha (T - T_ref) I` of the body's temperature field,
 ///   `f[(a,i)] += int (C eps_th) : (e_i grad N_a) = int 3 K alpha (T - T_ref) dN_a/dx_i`
 ///   (`3 K = E / (1 - 2 nu)`; in plane strain the constrained `eps_zz` makes the in-plane
-///   free expansion `(1 + nu) alpha dT`);
-/// - the tractions, `f[(a,i)] += int_faces t_i N_a` (per unit length in 2D).
+///   free expansion `(1 + nu) alpha dT`; in the axisymmetric geometry the radial component
+///   gains the hoop term, `int 3 K alpha (T - T_ref) (dN_a/dr + N_a / r)`);
+/// - the tractions, `f[(a,i)] += int_faces t_i N_a` (per unit length in 2D; per unit area of
+///   the revolved surface, with the weight `2 pi r`, in the axisymmetric geometry).
+///
+/// Every cell integral takes the weight `2 pi r` in the axisymmetric geometry
+/// ([`ElasticOptions::geometry`]).
 ///
 /// The cell terms are computed in parallel over fixed chunks of cells and summed in order
 /// (bit-for-bit the same for any thread count).
@@ -99,7 +145,7 @@ pub fn assemble_elastic_load(
     body: &ElasticBody,
     options: &ElasticOptions,
 ) -> Result<Vec<f64>, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let mesh = &body.mesh;
     let layout = body.layout();
     let dim = layout.components;
@@ -107,6 +153,7 @@ pub fn assemble_elastic_load(
     let beta = body.material.thermal_stress_coefficient();
     let t_ref = body.material.reference_temperature;
     let thermal = body.temperature.as_deref().filter(|_| beta != 0.0);
+    let axi = options.geometry.is_axisymmetric();
     if body.body_force.is_some() || thermal.is_some() {
         let cells = mesh.cell_count();
         let chunks: Vec<Result<Vec<(u32, f64)>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
@@ -127,7 +174,7 @@ pub fn assemble_elastic_load(
                         }
                     }
                     for q in 0..cv.len() {
-                        let (n, w) = (cv.shape(q), cv.jxw(q));
+                        let (n, w) = (cv.shape(q), cells::weight(&cv, q, options.geometry));
                         if let Some(force) = &body.body_force {
                             let b = force(&cv.point(q)) * w;
                             for a in 0..nn {
@@ -142,6 +189,12 @@ pub fn assemble_elastic_load(
                             for a in 0..nn {
                                 for i in 0..dim {
                                     fe[a * dim + i] += s * g[a][i];
+                                }
+                            }
+                            if axi {
+                                let inv_r = hoop_factor(&cv, q, axi);
+                                for a in 0..nn {
+                                    fe[a * dim] += s * n[a] * inv_r;
                                 }
                             }
                         }
@@ -168,7 +221,7 @@ pub fn assemble_elastic_load(
                 face,
                 |p| options.degree(p),
                 |xp, w, jac, nodes, na| {
-                    let t = (cond.traction)(xp) * (w * jac);
+                    let t = (cond.traction)(xp) * (w * jac * options.geometry.weight(xp));
                     for (&n, a) in nodes.iter().zip(na) {
                         for i in 0..dim {
                             f[layout.dof(n, i) as usize] += t[i] * a;
@@ -190,7 +243,9 @@ pub fn assemble_elastic_load(
 
 /// Assembles the matrix `G` of the thermal load, linear in the nodal temperatures:
 /// `f_th = G (T - T_ref)` with `G[(a,i), b] = int 3 K alpha N_b dN_a/dx_i` (rows numbered by
-/// the body's [`layout`](ElasticBody::layout), a column per mesh node): the thermal term of
+/// the body's [`layout`](ElasticBody::layout), a column per mesh node; in the axisymmetric
+/// geometry `int 3 K alpha N_b (dN_a/dr + N_a / r) 2 pi r` for the radial rows and
+/// `int 3 K alpha N_b dN_a/dz 2 pi r` for the axial ones): the thermal term of
 /// [`assemble_elastic_load`] as an operator, for problems in which the temperature is an
 /// unknown (thermoelasticity: its Jacobian block is `-G`). The body's own temperature field
 /// is not used. Parallel over fixed chunks of cells merged in order (bit for bit whatever
@@ -202,17 +257,27 @@ pub fn assemble_thermal_load_matrix(
     body: &ElasticBody,
     options: &ElasticOptions,
 ) -> Result<SparseMatrix, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let dim = body.layout().components;
     let beta = body.material.thermal_stress_coefficient();
+    let axi = options.geometry.is_axisymmetric();
     assemble_cell_matrix(body, options, dim, 1, |cv, nn, ge| {
         for q in 0..cv.len() {
-            let (n, g, w) = (cv.shape(q), cv.gradients(q), beta * cv.jxw(q));
+            let (n, g) = (cv.shape(q), cv.gradients(q));
+            let w = beta * cells::weight(cv, q, options.geometry);
+            let inv_r = hoop_factor(cv, q, axi);
             for a in 0..nn {
                 for i in 0..dim {
                     let row = (a * dim + i) * nn;
+                    // The divergence of the test function (a, i): with its hoop strain for a
+                    // radial component in the axisymmetric geometry.
+                    let div = if axi && i == 0 {
+                        g[a][i] + n[a] * inv_r
+                    } else {
+                        g[a][i]
+                    };
                     for b in 0..nn {
-                        ge[row + b] += w * g[a][i] * n[b];
+                        ge[row + b] += w * div * n[b];
                     }
                 }
             }
@@ -269,6 +334,44 @@ fn assemble_cell_matrix(
     }
     let n = mesh.node_count();
     Ok(Triplets::to_csr_from_parts(parts, n * rc, n * cc))
+}
+
+/// `1 / r` at point `q` of `cv` in the axisymmetric geometry (the factor of the hoop strain
+/// `u_r / r`), zero otherwise. Gauss points lie inside the cells, so `r > 0` there.
+#[inline]
+pub(crate) fn hoop_factor(cv: &CellValues, q: usize, axisymmetric: bool) -> f64 {
+    if axisymmetric {
+        1.0 / cv.point(q).x
+    } else {
+        0.0
+    }
+}
+
+/// Checks the body's data and that it fits the options' geometry: in the axisymmetric one, a
+/// 2D mesh, no node at a negative radius, and `u_r` prescribed at every node on the axis.
+///
+/// # Errors
+/// See [`assemble_elastic_stiffness`].
+pub(crate) fn check(body: &ElasticBody, options: &ElasticOptions) -> Result<(), PhysicsError> {
+    body.check()?;
+    cells::check_geometry(&body.name, &body.mesh, options.geometry)?;
+    if options.geometry.is_axisymmetric() {
+        let coords = body.mesh.coords();
+        let tol = ModelGeometry::axis_tolerance(coords);
+        let mut radial_held = vec![false; coords.len()];
+        for d in body.dirichlet.iter().filter(|d| d.components.contains(0)) {
+            for &n in &d.nodes {
+                radial_held[n as usize] = true;
+            }
+        }
+        if let Some(i) = (0..coords.len()).find(|&i| coords[i].x <= tol && !radial_held[i]) {
+            return Err(PhysicsError::AxisNodeFree {
+                body: body.name.clone(),
+                node: body.mesh.node_tags()[i],
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).

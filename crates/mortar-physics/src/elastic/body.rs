@@ -40,7 +40,10 @@ pub struct TractionCondition {
 /// The unknowns are the nodal displacements, [`DofLayout`] with `components = dim`,
 /// interleaved: `dof = node * dim + component`. A 2D mesh (Tri3, Quad4 in the plane `z = 0`)
 /// is a plane-strain slice of unit thickness (`eps_zz = eps_xz = eps_yz = 0`, `sigma_zz` is
-/// not an unknown but follows from the in-plane strain); a 3D mesh uses Tet4 or Hex8.
+/// not an unknown but follows from the in-plane strain), or, assembled with the axisymmetric
+/// [`ElasticOptions::geometry`](super::ElasticOptions::geometry), the r-z section of a body
+/// of revolution (components `(u_r, u_z)`; `u_r = 0` must be prescribed on the axis); a 3D
+/// mesh uses Tet4 or Hex8.
 ///
 /// Boundary faces without a condition are traction free. Where Dirichlet conditions overlap
 /// (a node and component set by two conditions), the one added last wins.

@@ -1,6 +1,8 @@
 //! Small-strain isotropic linear elasticity, `-div sigma = b`, `sigma = C : (eps(u) - eps_th)`,
 //! `eps(u) = sym(grad u)`, `eps_th = alpha (T - T_ref) I`, on 2D plane-strain (Tri3, Quad4 in
-//! the plane `z = 0`, unit thickness) and 3D (Tet4, Hex8) volume meshes.
+//! the plane `z = 0`, unit thickness) and 3D (Tet4, Hex8) volume meshes, and on 2D meshes as
+//! the r-z section of a body of revolution (axisymmetric, `x = r`, `y = z`, the hoop strain
+//! `u_r / r`, weight `2 pi r`: [`ElasticOptions::geometry`]).
 //!
 //! - [`ElasticBody`]: mesh, [`ElasticMaterial`] (E, nu, alpha, T_ref), body force, nodal
 //!   temperature field, displacement conditions per component ([`ComponentSet`]) and
@@ -13,8 +15,9 @@
 //! - [`recover_stress`]: the Cauchy stress (Voigt `[xx, yy, zz, yz, xz, xy]`) per cell and
 //!   averaged at the nodes, with the von Mises stress ([`StressField`]).
 //!
-//! - [`solve_elastic`]: the static solve of one body held by its own displacement
-//!   conditions (sparse Cholesky on the free unknowns), with a compiled example.
+//! - [`solve_elastic`] ([`solve_elastic_with`] for given options): the static solve of one
+//!   body held by its own displacement conditions (sparse Cholesky on the free unknowns), with
+//!   compiled examples.
 //!
 //! Weak form: `int eps(v) : C eps(u) = int v . b + int_Gamma_t v . t + int eps(v) : C eps_th`
 //! for every `v` vanishing on the prescribed components. The Dirichlet unknowns and values
@@ -35,5 +38,5 @@ pub use assembly::{
 };
 pub use body::{DisplacementCondition, ElasticBody, TractionCondition, VectorField};
 pub use material::{von_mises, ElasticMaterial};
-pub use solve::solve_elastic;
+pub use solve::{solve_elastic, solve_elastic_with};
 pub use stress::{recover_stress, StressField};

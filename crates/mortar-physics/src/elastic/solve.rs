@@ -39,9 +39,48 @@ use crate::PhysicsError;
 /// against rigid motion (the stiffness of the free unknowns is not positive definite, or its
 /// solution has no correct digit: [`well_conditioned`]).
 pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
-    let options = ElasticOptions::default();
-    let k = assemble_elastic_stiffness(body, &options)?;
-    let f = assemble_elastic_load(body, &options)?;
+    solve_elastic_with(body, &ElasticOptions::default())
+}
+
+/// [`solve_elastic`] with the assembly options `options` (a quadrature degree, the
+/// axisymmetric geometry).
+///
+/// ```
+/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_core::ModelGeometry;
+/// use mortar_elements::volume::QUAD4;
+/// use mortar_physics::elastic::{
+///     solve_elastic_with, ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
+/// };
+/// use nalgebra::Vector3;
+/// // A solid cylinder of radius 1 and height 1 as one r-z Quad4, heated by 100 K, its axis
+/// // held radially (u_r = 0 at r = 0, as every axis node needs) and its bottom axially: it
+/// // expands freely, u = alpha dT (r, z).
+/// let mut mesh = VolumeMesh::new();
+/// for (tag, x) in [(1, [0.0, 0.0, 0.0]), (2, [1.0, 0.0, 0.0]), (3, [1.0, 1.0, 0.0]), (4, [0.0, 1.0, 0.0])] {
+///     mesh.add_node(tag, x)?;
+/// }
+/// mesh.add_cell(&QUAD4, &[1, 2, 3, 4])?;
+/// let material = ElasticMaterial::new(200e9, 0.3).with_expansion(1e-5, 300.0);
+/// let body = ElasticBody::new("pellet", mesh, material)
+///     .with_temperature(vec![400.0; 4])?
+///     .with_dirichlet_nodes(vec![0, 3], ComponentSet::One(0), |_| Vector3::zeros())
+///     .with_dirichlet_nodes(vec![0, 1], ComponentSet::One(1), |_| Vector3::zeros());
+/// let options = ElasticOptions::default().with_geometry(ModelGeometry::Axisymmetric);
+/// let u = solve_elastic_with(&body, &options)?;
+/// let expected = 1e-5 * 100.0;
+/// assert!((u[2] - expected).abs() < 1e-12 * expected); // node 2 = (1, 0): u_r
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+///
+/// # Errors
+/// As [`solve_elastic`].
+pub fn solve_elastic_with(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+) -> Result<Vec<f64>, PhysicsError> {
+    let k = assemble_elastic_stiffness(body, options)?;
+    let f = assemble_elastic_load(body, options)?;
     let (fixed, values) = body.dirichlet_dofs();
     let (free, m) = free_numbering(f.len(), &fixed);
     let mut u = vec![0.0; f.len()];

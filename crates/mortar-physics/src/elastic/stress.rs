@@ -2,16 +2,18 @@ use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::assembly::{reinit_cell, ElasticOptions, CELL_CHUNK};
+use super::assembly::{check, hoop_factor, reinit_cell, ElasticOptions, CELL_CHUNK};
 use super::body::ElasticBody;
 use super::material::von_mises;
 use crate::error::PhysicsError;
+use crate::field::cells;
 
 /// A cell's mean stress and its volume.
 type CellMean = ([f64; 6], f64);
 
 /// Recovered Cauchy stresses, in Voigt order `[xx, yy, zz, yz, xz, xy]` (tensor components,
-/// Pa).
+/// Pa). In the axisymmetric geometry (r -> x, z -> y, theta -> z) the order reads
+/// `[rr, zz, tt, 0, 0, rz]`: the hoop stress `sigma_tt` is in the `zz` slot (index 2).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StressField {
     /// Per mesh node: the average of the mean stresses of the cells around it, weighted by
@@ -30,7 +32,11 @@ pub struct StressField {
 /// of every cell, with `eps = sym(grad u)` and `T` the body's temperature field
 /// interpolated (no thermal term without one). In 2D (plane strain) `eps_zz = 0`, so
 /// `sigma_zz = lambda (eps_xx + eps_yy) - 3 K alpha (T - T_ref)` and
-/// `sigma_xz = sigma_yz = 0`.
+/// `sigma_xz = sigma_yz = 0`. In the axisymmetric geometry ([`ElasticOptions::geometry`]) the
+/// strain is `[eps_rr, eps_zz, eps_tt = u_r / r, 0, 0, gamma_rz]` in the Voigt slots
+/// `[xx, yy, zz, yz, xz, xy]`, so the hoop stress `sigma_tt` lands in the `zz` slot, and the
+/// von Mises stress includes it; the cell means and volumes are those of the revolved cells
+/// (weight `2 pi r`).
 ///
 /// The cell mean is the quadrature-weighted mean over the cell (`int sigma / |cell|`); the
 /// nodal value is the mean of the cell means of the cells around the node weighted by the
@@ -47,7 +53,7 @@ pub fn recover_stress(
     displacement: &[f64],
     options: &ElasticOptions,
 ) -> Result<StressField, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let mesh = &body.mesh;
     let layout = body.layout();
     let dim = layout.components;
@@ -60,6 +66,7 @@ pub fn recover_stress(
     }
     let material = body.material;
     let t_ref = material.reference_temperature;
+    let axi = options.geometry.is_axisymmetric();
     let cells = mesh.cell_count();
     let chunks: Vec<Result<Vec<CellMean>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
@@ -88,7 +95,7 @@ pub fn recover_stress(
                 let mut sum = [0.0; 6];
                 let mut volume = 0.0;
                 for q in 0..cv.len() {
-                    let (g, w) = (cv.gradients(q), cv.jxw(q));
+                    let (g, w) = (cv.gradients(q), cells::weight(&cv, q, options.geometry));
                     // The displacement gradient h[i][j] = du_i/dx_j (zero third row and
                     // column in 2D).
                     let mut h = [[0.0; 3]; 3];
@@ -98,6 +105,16 @@ pub fn recover_stress(
                                 h[i][j] += u[i] * ga[j];
                             }
                         }
+                    }
+                    if axi {
+                        // The hoop strain u_r / r, in the zz slot.
+                        let ur: f64 = cv
+                            .shape(q)
+                            .iter()
+                            .zip(&ue[..nn])
+                            .map(|(n, u)| n * u.x)
+                            .sum();
+                        h[2][2] = ur * hoop_factor(&cv, q, axi);
                     }
                     let strain = [
                         h[0][0],

@@ -564,7 +564,8 @@ fn other_bad_input_is_refused() {
         assemble_elastic_stiffness(
             &body,
             &ElasticOptions {
-                quadrature_degree: Some(99)
+                quadrature_degree: Some(99),
+                ..Default::default()
             }
         ),
         Err(PhysicsError::InvalidInput { .. })

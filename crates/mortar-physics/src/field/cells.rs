@@ -6,7 +6,7 @@ use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::quadrature::{
     max_volume_degree, Quadrature, QuadratureRule, VolumeQuadratureRule,
 };
-use mortar_core::MortarError;
+use mortar_core::{ModelGeometry, MortarError};
 use nalgebra::{Vector2, Vector3};
 
 use crate::error::PhysicsError;
@@ -14,6 +14,71 @@ use crate::error::PhysicsError;
 /// Cells per work chunk of the parallel assemblies. Fixed, so that the summation order (and
 /// every bit of the result) does not depend on the thread count.
 pub(crate) const CELL_CHUNK: usize = 512;
+
+/// The weight of point `q` of `cv` in the measure of `geometry`: `jxw(q)` (Cartesian) or
+/// `jxw(q) 2 pi r(x_q)` (axisymmetric).
+#[inline]
+pub(crate) fn weight(cv: &CellValues, q: usize, geometry: ModelGeometry) -> f64 {
+    match geometry {
+        ModelGeometry::Cartesian => cv.jxw(q),
+        ModelGeometry::Axisymmetric => cv.jxw(q) * geometry.weight(&cv.point(q)),
+    }
+}
+
+/// Checks that the mesh of body `body` can be integrated in `geometry`: the axisymmetric
+/// geometry needs a 2D mesh whose nodes lie at radii `x >= 0` (within
+/// [`ModelGeometry::axis_tolerance`]).
+///
+/// # Errors
+/// [`PhysicsError::InvalidInput`] for an axisymmetric 3D mesh,
+/// [`PhysicsError::NegativeRadius`] for a node at a negative radius (the first).
+pub(crate) fn check_geometry(
+    body: &str,
+    mesh: &VolumeMesh,
+    geometry: ModelGeometry,
+) -> Result<(), PhysicsError> {
+    if !geometry.is_axisymmetric() {
+        return Ok(());
+    }
+    if let Some(dim) = mesh.dim().filter(|&d| d != 2) {
+        return Err(PhysicsError::InvalidInput {
+            body: body.to_string(),
+            what: format!(
+                "the axisymmetric (r-z) geometry needs a 2D mesh in the plane z = 0 (x the \
+                 radius, y the axis); this mesh is {dim}D"
+            ),
+        });
+    }
+    if let Some((i, radius)) = geometry.first_negative_radius(mesh.coords()) {
+        return Err(PhysicsError::NegativeRadius {
+            body: body.to_string(),
+            node: mesh.node_tags()[i],
+            radius,
+        });
+    }
+    Ok(())
+}
+
+/// Checks that a coupling and the bodies it couples integrate in the same geometry (an r-z
+/// coupling of Cartesian bodies, or the reverse, would mix W with W/m).
+///
+/// # Errors
+/// [`PhysicsError::InvalidInput`] (body `"options"`) naming both geometries.
+pub(crate) fn check_same_geometry(
+    coupling: ModelGeometry,
+    bodies: ModelGeometry,
+) -> Result<(), PhysicsError> {
+    if coupling == bodies {
+        return Ok(());
+    }
+    Err(PhysicsError::InvalidInput {
+        body: "options".into(),
+        what: format!(
+            "the coupling options' geometry ({coupling}) differs from the body options' \
+             ({bodies}): give both the same"
+        ),
+    })
+}
 
 /// Sets `cv` up on cell `c` of the mesh of body `body` (the rule of degree `degree(p)` for
 /// its shape degree `p`, its node coordinates copied into `x`) and returns the node count.
@@ -62,8 +127,9 @@ fn cell_rule(
 
 /// Calls `f(x, w, jac, nodes, shape)` at each point of the degree-`degree(p)` rule on a
 /// boundary face of `mesh` (`p` its shape degree): the point `x`, the rule's weight `w`, the
-/// face's Jacobian `jac`, the face's node indices and its shape values there. The face loads of every field
-/// (heat flux, traction) are sums of `w * value(x) * shape` over these points.
+/// face's Jacobian `jac`, the face's node indices and its shape values there. The face loads
+/// of every field (heat flux, traction) are sums of `w * jac * value(x) * shape` over these
+/// points (times the measure factor [`ModelGeometry::weight`] of `x`).
 ///
 /// # Errors
 /// The core's error for a degree no cached rule reaches.

@@ -1,5 +1,6 @@
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::ModelGeometry;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -14,11 +15,29 @@ pub(crate) use crate::field::cells::CELL_CHUNK;
 pub struct HeatOptions {
     /// The quadrature degree on the cells and Neumann faces; `None` uses `2 p + 1` for each
     /// cell's (face's) shape functions of degree `p` (exact for the stiffness and capacity of
-    /// affine cells, and one more for the source).
+    /// affine cells, and one more for the source; with the axisymmetric weight `r` the
+    /// stiffness of affine cells is exact too, the capacity of degree `2 p + 1` also).
     pub quadrature_degree: Option<u32>,
+    /// What the mesh models ([`ModelGeometry`]): [`Cartesian`](ModelGeometry::Cartesian) (the
+    /// default: a 3D body, or a 2D slice of unit thickness, heat flows in W/m) or
+    /// [`Axisymmetric`](ModelGeometry::Axisymmetric): a 2D mesh in the plane `z = 0` is the
+    /// r-z section of a body of revolution (`x = r >= 0`, `y = z`), and every integral
+    /// (conduction, also the `k(T)` one of [`assemble_conduction`](super::assemble_conduction),
+    /// capacity, source, Neumann faces) takes the weight `2 pi r`: heat flows in W over the
+    /// full revolution, sources stay W/m^3 and Neumann fluxes W/m^2. Give a coupling the same
+    /// ([`CouplingOptions::geometry`](mortar_core::CouplingOptions::geometry));
+    /// [`TiedHeat`](super::TiedHeat) and [`GapHeat`](super::GapHeat) refuse a mismatch. Nodes
+    /// on the axis need no condition (the symmetry makes `dT/dr = 0` there naturally).
+    pub geometry: ModelGeometry,
 }
 
 impl HeatOptions {
+    /// These options with the geometry `geometry`.
+    pub fn with_geometry(mut self, geometry: ModelGeometry) -> Self {
+        self.geometry = geometry;
+        self
+    }
+
     /// The degree for shape functions of degree `p`.
     pub(crate) fn degree(&self, p: u32) -> u32 {
         self.quadrature_degree.unwrap_or(2 * p + 1)
@@ -68,17 +87,19 @@ struct ChunkMatrices {
 }
 
 /// Assembles the stiffness K and capacity C of a body, in parallel over fixed chunks of cells
-/// merged in order (bit-for-bit the same for any thread count).
+/// merged in order (bit-for-bit the same for any thread count). With the axisymmetric
+/// geometry the integrals take the weight `2 pi r` ([`HeatOptions::geometry`]).
 ///
 /// # Errors
-/// [`PhysicsError::InvalidInput`] for bad material data or a quadrature degree out of range,
-/// [`PhysicsError::InvertedCell`] for a cell with a non-positive Jacobian determinant (the
-/// first in cell order).
+/// [`PhysicsError::InvalidInput`] for bad material data, a quadrature degree out of range or
+/// an axisymmetric 3D mesh, [`PhysicsError::NegativeRadius`] for an axisymmetric mesh with a
+/// node at `x < 0`, [`PhysicsError::InvertedCell`] for a cell with a non-positive Jacobian
+/// determinant (the first in cell order).
 pub fn assemble_heat_matrices(
     body: &HeatBody,
     options: &HeatOptions,
 ) -> Result<HeatMatrices, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let mesh = &body.mesh;
     let (k, rho_cp) = (body.material.conductivity, body.material.capacity);
     let cells = mesh.cell_count();
@@ -98,7 +119,8 @@ pub fn assemble_heat_matrices(
                     ce[a][..nn].fill(0.0);
                 }
                 for q in 0..cv.len() {
-                    let (g, n, w) = (cv.gradients(q), cv.shape(q), cv.jxw(q));
+                    let (g, n) = (cv.gradients(q), cv.shape(q));
+                    let w = cells::weight(&cv, q, options.geometry);
                     for a in 0..nn {
                         for b in 0..nn {
                             ke[a][b] += k * g[a].dot(&g[b]) * w;
@@ -131,8 +153,9 @@ pub fn assemble_heat_matrices(
 }
 
 /// Assembles the load vector of a body at time `t`: the source, `int Q(x, t) N_a`, plus the
-/// Neumann fluxes, `int_faces q(x, t) N_a`. Parallel over fixed chunks of cells, summed in
-/// order (bit-for-bit the same for any thread count).
+/// Neumann fluxes, `int_faces q(x, t) N_a` (each with the weight `2 pi r` in the
+/// axisymmetric geometry). Parallel over fixed chunks of cells, summed in order (bit-for-bit
+/// the same for any thread count).
 ///
 /// # Errors
 /// As [`assemble_heat_matrices`].
@@ -141,7 +164,7 @@ pub fn assemble_heat_load(
     t: f64,
     options: &HeatOptions,
 ) -> Result<Vec<f64>, PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     let mesh = &body.mesh;
     let mut f = vec![0.0; mesh.node_count()];
     if let Some(source) = &body.source {
@@ -158,7 +181,7 @@ pub fn assemble_heat_load(
                     let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
                     fe[..nn].fill(0.0);
                     for q in 0..cv.len() {
-                        let s = source(&cv.point(q), t) * cv.jxw(q);
+                        let s = source(&cv.point(q), t) * cells::weight(&cv, q, options.geometry);
                         for (fa, na) in fe.iter_mut().zip(cv.shape(q)) {
                             *fa += s * na;
                         }
@@ -181,7 +204,7 @@ pub fn assemble_heat_load(
                 face,
                 |p| options.degree(p),
                 |xp, w, jac, nodes, na| {
-                    let s = (cond.flux)(xp, t) * w * jac;
+                    let s = (cond.flux)(xp, t) * w * jac * options.geometry.weight(xp);
                     for (&n, a) in nodes.iter().zip(na) {
                         f[n as usize] += s * a;
                     }
@@ -190,6 +213,12 @@ pub fn assemble_heat_load(
         }
     }
     Ok(f)
+}
+
+/// Checks the body's data and that its mesh fits the options' geometry.
+pub(crate) fn check(body: &HeatBody, options: &HeatOptions) -> Result<(), PhysicsError> {
+    body.check()?;
+    cells::check_geometry(&body.name, &body.mesh, options.geometry)
 }
 
 /// Sets `cv` up on cell `c` of the body (see [`cells::reinit_cell`]).

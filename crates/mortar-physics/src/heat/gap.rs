@@ -103,10 +103,15 @@ impl<L: ConstraintLaw> GapHeat<L> {
     /// (whose node tags are the bodies' node tags) with the given tolerances (for an open gap,
     /// a `search_distance` above the gap width), and the law.
     ///
+    /// The coupling and the assembly must use the same geometry
+    /// ([`CouplingOptions::geometry`], [`HeatOptions::geometry`]): with both axisymmetric the
+    /// law's terms `d_j C(...)` take the revolved areas `d_j = sum_k D_jk` of the r-z coupling,
+    /// and the problem is the r-z one (heat flows in W, fluxes in W/m^2).
+    ///
     /// # Errors
     /// [`PhysicsError::Mortar`] for a bad interface, [`PhysicsError::InvalidInput`] for a
-    /// conductivity law out of range or a slave interface node without coupling, and the
-    /// errors of the assembly.
+    /// conductivity law out of range, a slave interface node without coupling, or a coupling
+    /// geometry other than the heat options', and the errors of the assembly.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         slave: (HeatBody, Conductivity),
@@ -118,6 +123,7 @@ impl<L: ConstraintLaw> GapHeat<L> {
         law: L,
         options: &HeatOptions,
     ) -> Result<Self, PhysicsError> {
+        crate::field::cells::check_same_geometry(coupling.geometry, options.geometry)?;
         let (slave, ks) = slave;
         let (master, km) = master;
         ks.check(&slave.name)?;

@@ -1,5 +1,7 @@
 //! Heat conduction: `rho c_p T_t - div(k grad T) = Q` on 2D (Tri3, Quad4 in the plane
-//! `z = 0`) and 3D (Tet4, Hex8) volume meshes.
+//! `z = 0`) and 3D (Tet4, Hex8) volume meshes; a 2D mesh is a slice of unit thickness, or
+//! with [`HeatOptions::geometry`] axisymmetric the r-z section of a body of revolution (`x = r`,
+//! `y = z`, every integral weighted by `2 pi r`).
 //!
 //! - [`HeatBody`]: mesh, [`HeatMaterial`], source, Dirichlet and Neumann data (fields of
 //!   space and time).

@@ -6,9 +6,10 @@ use mortar_core::linalg::{SparseMatrix, Triplets};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::assembly::{reinit_cell, HeatOptions, CELL_CHUNK};
+use super::assembly::{check, reinit_cell, HeatOptions, CELL_CHUNK};
 use super::body::HeatBody;
 use crate::error::PhysicsError;
+use crate::field::cells;
 
 /// A conductivity law `k(T)` (W/m/K, T in K).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,7 +77,8 @@ pub enum Linearization {
 
 /// The internal heat flow `f_a = int k(T) grad T . grad N_a` of `body` at the nodal
 /// temperatures `t` (by mesh node index) and, if asked, its linearisation (same sparsity
-/// pattern whichever is asked, whatever `t`). Parallel over fixed chunks of cells merged in
+/// pattern whichever is asked, whatever `t`); every integral with the weight `2 pi r` in the
+/// axisymmetric geometry ([`HeatOptions::geometry`]). Parallel over fixed chunks of cells merged in
 /// order, so bit-for-bit the same for any thread count.
 ///
 /// # Errors
@@ -89,7 +91,7 @@ pub fn assemble_conduction(
     options: &HeatOptions,
     matrix: Option<Linearization>,
 ) -> Result<(Vec<f64>, Option<SparseMatrix>), PhysicsError> {
-    body.check()?;
+    check(body, options)?;
     conductivity.check(&body.name)?;
     let mesh = &body.mesh;
     if t.len() != mesh.node_count() {
@@ -118,7 +120,8 @@ pub fn assemble_conduction(
                     row[..nn].fill(0.0);
                 }
                 for q in 0..cv.len() {
-                    let (g, n, w) = (cv.gradients(q), cv.shape(q), cv.jxw(q));
+                    let (g, n) = (cv.gradients(q), cv.shape(q));
+                    let w = cells::weight(&cv, q, options.geometry);
                     let mut tq = 0.0;
                     let mut grad = Vector3::zeros();
                     for (a, &node) in cell.nodes.iter().enumerate() {

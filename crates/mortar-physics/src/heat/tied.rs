@@ -70,9 +70,14 @@ impl TiedHeat {
     /// bodies' node tags (as [`boundary_surface`](mortar_core::VolumeMesh::boundary_surface)
     /// gives them).
     ///
+    /// The coupling and the assembly must use the same geometry
+    /// ([`CouplingOptions::geometry`], [`HeatOptions::geometry`]): with both axisymmetric the
+    /// problem is the r-z one, heat flows in W over the full revolution.
+    ///
     /// # Errors
     /// The errors of the assembly ([`PhysicsError::InvalidInput`],
-    /// [`PhysicsError::InvertedCell`]) and of [`Tie::new`].
+    /// [`PhysicsError::InvertedCell`]) and of [`Tie::new`]; [`PhysicsError::InvalidInput`]
+    /// if the coupling's geometry is not the heat options'.
     pub fn new(
         slave: HeatBody,
         master: HeatBody,
@@ -81,6 +86,7 @@ impl TiedHeat {
         coupling: &CouplingOptions,
         options: &HeatOptions,
     ) -> Result<Self, PhysicsError> {
+        crate::field::cells::check_same_geometry(coupling.geometry, options.geometry)?;
         let t0 = Instant::now();
         let matrices = [
             assemble_heat_matrices(&slave, options)?,
