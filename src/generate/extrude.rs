@@ -11,7 +11,7 @@ use mortar_elements::volume::HEX8;
 ///
 /// ```
 /// use mortar::generate::{extrude_mesh, rectangle_mesh, CellShape};
-/// let square = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [2, 2], CellShape::Hypercube, 1)?;
+/// let square = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [2, 2], CellShape::Tensor, 1)?;
 /// let cube = extrude_mesh(&square, &[0.0, 0.5, 1.0], 1)?;
 /// assert_eq!((cube.node_count(), cube.cell_count()), (27, 8));
 /// # Ok::<(), mortar::core::mesh::VolumeMeshError>(())
