@@ -83,6 +83,7 @@ fn print_coupled(report: &Value, out: &Path) {
     let law = m["contact_law"].as_str().unwrap_or("?");
     let elasticity = match m["geometry"].as_str() {
         Some("3d") => "3D thermoelasticity (a segment, ends held in z)",
+        Some("axisymmetric") => "r-z thermoelasticity (a segment, ends held in z)",
         _ => "plane-strain thermoelasticity",
     };
     say!(

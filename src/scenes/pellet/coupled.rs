@@ -6,9 +6,13 @@ use std::path::Path;
 use std::time::Instant;
 
 use mortar_core::mesh::{BoundaryFace, VolumeMesh};
-use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
-use mortar_physics::elastic::{recover_stress, ComponentSet, ElasticBody, ElasticMaterial};
-use mortar_physics::heat::{assemble_conduction, Conductivity, HeatBody, HeatMaterial};
+use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
+use mortar_physics::elastic::{
+    recover_stress, ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
+};
+use mortar_physics::heat::{
+    assemble_conduction, Conductivity, HeatBody, HeatMaterial, HeatOptions,
+};
 use mortar_physics::laws::{
     ConstraintLaw, ContactComplementarity, ExponentialContact, GapConductance, GasConductivity,
     MechanicalGapConductance,
@@ -26,7 +30,7 @@ use super::run::{mesh_area, nearest_node, progress_bar, pvd};
 use super::{
     annulus_mesh, pellet_mesh, ContactLawName, Geometry, PelletError, PelletScene, SolverMethod,
 };
-use crate::generate::extrude_mesh;
+use crate::generate::{extrude_mesh, rectangle_mesh, CellShape};
 use crate::io::plot::{line_chart_png, Chart, Curve};
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
 use crate::io::write_outputs;
@@ -87,27 +91,70 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     scene.check()?;
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
-    // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not match
-    // (they share the four nodes on the axes, which hold the rigid motions). In 3D both
-    // cross-sections are swept along z through `axial_layers` layers of Hex8.
-    let mut pellet_mesh = pellet_mesh(p.radius, 4 * r, 2 * r)?;
-    let mut cladding_mesh = annulus_mesh(c.inner_radius, c.outer_radius, 20 * r, 2 * r, 0.0)?;
-    let area = mesh_area(&pellet_mesh);
-    let three_d = scene.model.geometry == Geometry::ThreeD;
+    let geometry = scene.model.geometry;
     let height = scene.model.segment_height;
-    if three_d {
-        let layers = scene.mesh.axial_layers;
-        let levels: Vec<f64> = (0..=layers)
-            .map(|k| height * k as f64 / layers as f64)
-            .collect();
-        pellet_mesh = extrude_mesh(&pellet_mesh, &levels, 1)?;
-        cladding_mesh = extrude_mesh(&cladding_mesh, &levels, 1)?;
-    }
-    // Faces: lateral unless on the end planes z = 0, H (3D); the radius in the xy plane.
+    let (a, b) = (p.radius, c.inner_radius);
     let tol = 1e-9 * c.outer_radius;
-    let lateral =
-        move |f: &BoundaryFace| !three_d || (f.centroid.z > tol && f.centroid.z < height - tol);
-    let radius = |x: &Vector3<f64>| x.xy().norm();
+    // Meshes, the pellet's cross-section area (the heat source is q'(t) / area), and the
+    // axial component (held on the end planes in 3D and r-z: plane strain).
+    let (pellet_mesh, cladding_mesh, area, axial) = match geometry {
+        Geometry::PlaneStrain | Geometry::ThreeD => {
+            // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not
+            // match (they share the four nodes on the axes, which hold the rigid motions). In
+            // 3D both cross-sections are swept along z through `axial_layers` layers of Hex8.
+            let pm = pellet_mesh(a, 4 * r, 2 * r)?;
+            let cm = annulus_mesh(b, c.outer_radius, 20 * r, 2 * r, 0.0)?;
+            let area = mesh_area(&pm);
+            if geometry == Geometry::ThreeD {
+                let layers = scene.mesh.axial_layers;
+                let levels: Vec<f64> = (0..=layers)
+                    .map(|k| height * k as f64 / layers as f64)
+                    .collect();
+                (
+                    extrude_mesh(&pm, &levels, 1)?,
+                    extrude_mesh(&cm, &levels, 1)?,
+                    area,
+                    2,
+                )
+            } else {
+                (pm, cm, area, usize::MAX)
+            }
+        }
+        Geometry::Axisymmetric => {
+            // The r-z section (x = r, y = z) of a pellet segment: 8 r x 2 cells in the pellet,
+            // 2 r x 3 in the cladding, so that the interface r = a does not match; the revolved
+            // pellet is exactly pi a^2 H.
+            let layers = scene.mesh.axial_layers;
+            let pm = rectangle_mesh(
+                [0.0, 0.0],
+                [a, height],
+                [8 * r, layers],
+                CellShape::Tensor,
+                1,
+            )?;
+            let cm = rectangle_mesh(
+                [b, 0.0],
+                [c.outer_radius, height],
+                [2 * r, layers + 1],
+                CellShape::Tensor,
+                1,
+            )?;
+            (pm, cm, PI * a * a, 1)
+        }
+    };
+    let end_coordinate = move |x: &Vector3<f64>| match geometry {
+        Geometry::ThreeD => Some(x.z),
+        Geometry::Axisymmetric => Some(x.y),
+        Geometry::PlaneStrain => None,
+    };
+    // Faces: lateral unless on an end plane; the radius: in the xy plane, or x in r-z.
+    let lateral = move |f: &BoundaryFace| {
+        end_coordinate(&f.centroid).is_none_or(|z| z > tol && z < height - tol)
+    };
+    let radius = move |x: &Vector3<f64>| match geometry {
+        Geometry::Axisymmetric => x.x,
+        _ => x.xy().norm(),
+    };
     let power = scene.power;
     let power = move |t: f64| power.at(t);
     let k_pellet = Conductivity::InverseLinear {
@@ -124,12 +171,12 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             .filter(|&i| (mesh.coords()[i as usize].xy() - xy).norm() < tol)
             .collect()
     };
-    // Plane strain in 3D: no axial displacement on the end planes.
+    // Plane strain in 3D and r-z: no axial displacement on the end planes.
     let ends = move |body: ElasticBody| -> Result<ElasticBody, PelletError> {
-        if three_d {
-            Ok(body.with_dirichlet_where(|f| !lateral(f), ComponentSet::One(2), zero)?)
-        } else {
+        if axial == usize::MAX {
             Ok(body)
+        } else {
+            Ok(body.with_dirichlet_where(|f| !lateral(f), ComponentSet::One(axial), zero)?)
         }
     };
 
@@ -139,23 +186,27 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         HeatMaterial::new(k_pellet.at(t_co).0, p.heat_capacity),
     )
     .with_source(move |_x, t| power(t) / area);
-    // Rigid motions: the axis held in x and y, the line through (a, 0) held in y; the exact
-    // field is radial, so none of them loads the body.
-    let (centre, east) = (
-        at(&pellet_mesh, [0.0, 0.0]),
-        at(&pellet_mesh, [p.radius, 0.0]),
+    let pellet_elastic = ElasticBody::new(
+        "pellet",
+        pellet_mesh.clone(),
+        ElasticMaterial::new(p.youngs_modulus, p.poisson_ratio)
+            .with_expansion(p.thermal_expansion, t_ref),
     );
-    let pellet_elastic = ends(
-        ElasticBody::new(
-            "pellet",
-            pellet_mesh,
-            ElasticMaterial::new(p.youngs_modulus, p.poisson_ratio)
-                .with_expansion(p.thermal_expansion, t_ref),
-        )
-        .with_dirichlet_nodes(centre.clone(), ComponentSet::One(0), zero)
-        .with_dirichlet_nodes(centre, ComponentSet::One(1), zero)
-        .with_dirichlet_nodes(east, ComponentSet::One(1), zero),
-    )?;
+    let pellet_elastic = ends(if geometry == Geometry::Axisymmetric {
+        // u_r = 0 on the axis.
+        let axis = (0..pellet_mesh.node_count() as u32)
+            .filter(|&i| pellet_mesh.coords()[i as usize].x.abs() < tol)
+            .collect();
+        pellet_elastic.with_dirichlet_nodes(axis, ComponentSet::One(0), zero)
+    } else {
+        // Rigid motions: the axis held in x and y, the line through (a, 0) held in y; the
+        // exact field is radial, so none of them loads the body.
+        let (centre, east) = (at(&pellet_mesh, [0.0, 0.0]), at(&pellet_mesh, [a, 0.0]));
+        pellet_elastic
+            .with_dirichlet_nodes(centre.clone(), ComponentSet::One(0), zero)
+            .with_dirichlet_nodes(centre, ComponentSet::One(1), zero)
+            .with_dirichlet_nodes(east, ComponentSet::One(1), zero)
+    })?;
 
     let mid = 0.5 * (c.inner_radius + c.outer_radius);
     let cladding_heat = HeatBody::new(
@@ -167,30 +218,38 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         |f| radius(&f.centroid) > mid && lateral(f),
         move |_x, _t| t_co,
     )?;
-    // Rigid motions: the inner lines on the axes held in their tangential direction.
-    let b = c.inner_radius;
-    let (e, w) = (at(&cladding_mesh, [b, 0.0]), at(&cladding_mesh, [-b, 0.0]));
-    let n = at(&cladding_mesh, [0.0, b]);
     let p_cool = c.coolant_pressure;
-    let cladding_elastic = ends(
-        ElasticBody::new(
-            "cladding",
-            cladding_mesh,
-            ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
-                .with_expansion(c.thermal_expansion, t_ref),
-        )
-        .with_dirichlet_nodes([e, w].concat(), ComponentSet::One(1), zero)
-        .with_dirichlet_nodes(n, ComponentSet::One(0), zero)
-        .with_traction_where(
-            |f| radius(&f.centroid) > mid && lateral(f),
-            move |x| {
-                let r = x.xy().norm();
-                Vector3::new(-p_cool * x.x / r, -p_cool * x.y / r, 0.0)
-            },
-        )?,
+    let cladding_elastic = ElasticBody::new(
+        "cladding",
+        cladding_mesh.clone(),
+        ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
+            .with_expansion(c.thermal_expansion, t_ref),
+    )
+    .with_traction_where(
+        |f| radius(&f.centroid) > mid && lateral(f),
+        move |x| {
+            // The coolant presses along the inward radius.
+            let r = radius(x);
+            match geometry {
+                Geometry::Axisymmetric => Vector3::new(-p_cool, 0.0, 0.0),
+                _ => Vector3::new(-p_cool * x.x / r, -p_cool * x.y / r, 0.0),
+            }
+        },
     )?;
+    let cladding_elastic = ends(if geometry == Geometry::Axisymmetric {
+        cladding_elastic
+    } else {
+        // Rigid motions: the inner lines on the axes held in their tangential direction.
+        let (e, w) = (at(&cladding_mesh, [b, 0.0]), at(&cladding_mesh, [-b, 0.0]));
+        let n = at(&cladding_mesh, [0.0, b]);
+        cladding_elastic
+            .with_dirichlet_nodes([e, w].concat(), ComponentSet::One(1), zero)
+            .with_dirichlet_nodes(n, ComponentSet::One(0), zero)
+    })?;
 
-    let slave_surface = pellet_heat.mesh.boundary_surface(lateral)?;
+    let slave_surface = pellet_heat
+        .mesh
+        .boundary_surface(|f| radius(&f.centroid) > 0.5 * a && lateral(f))?;
     let master_surface = cladding_heat
         .mesh
         .boundary_surface(|f| radius(&f.centroid) < mid && lateral(f))?;
@@ -200,15 +259,26 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         ..Tolerances::default()
     };
     let pl = &scene.plenum;
-    // Per unit length in 2D; the segment's share of the plenum in 3D.
-    let length = if three_d { height } else { 1.0 };
+    // Per unit length in 2D; the segment's share of the plenum in 3D and r-z.
+    let length = if geometry == Geometry::PlaneStrain {
+        1.0
+    } else {
+        height
+    };
     let plenum = Plenum::from_fill(
         pl.volume * length,
         PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
         pl.fill_pressure,
         pl.fill_temperature,
     )?;
+    let model = if geometry == Geometry::Axisymmetric {
+        ModelGeometry::Axisymmetric
+    } else {
+        ModelGeometry::Cartesian
+    };
     let options = ThermoMechOptions {
+        heat: HeatOptions::default().with_geometry(model),
+        elastic: ElasticOptions::default().with_geometry(model),
         nominal_gap: Some(gap),
         gas: GasPressure::Plenum(plenum),
         flux_unit: 1.0 / GapConductance::DEFAULT_REFERENCE_RESISTANCE,
@@ -227,7 +297,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         },
         slave_surface,
         master_surface,
-        &CouplingOptions::default().dual(),
+        &CouplingOptions::default().dual().with_geometry(model),
         tolerances,
         thermal,
         contact,
@@ -332,11 +402,16 @@ fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
     let coords = problem.heat().bodies()[0].mesh.coords();
     let sn = tie.slave_nodes();
     let dim = problem.elastic_bodies()[0].components();
+    let rz = problem.options().elastic.geometry.is_axisymmetric();
     let radial: f64 = sn
         .iter()
         .map(|&n| {
             let (n, x) = (n as usize, coords[n as usize]);
-            (u[dim * n] * x.x + u[dim * n + 1] * x.y) / x.xy().norm()
+            if rz {
+                u[dim * n]
+            } else {
+                (u[dim * n] * x.x + u[dim * n + 1] * x.y) / x.xy().norm()
+            }
         })
         .sum::<f64>()
         / sn.len() as f64;
@@ -505,8 +580,8 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let heat_out = outer_heat_flow(&problem, &x)?;
     // Per unit length in 2D, over the segment in 3D.
     let length = match scene.model.geometry {
-        Geometry::ThreeD => scene.model.segment_height,
-        _ => 1.0,
+        Geometry::PlaneStrain => 1.0,
+        _ => scene.model.segment_height,
     };
     let power_in = scene.power.at(t_steady) * length;
     outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
@@ -618,7 +693,7 @@ fn outer_heat_flow<TL: ConstraintLaw, ML: ConstraintLaw>(
     let cladding = &problem.heat().bodies()[1];
     let t = problem.fields(x).temperature[1];
     let k = Conductivity::Constant(cladding.material.conductivity);
-    let (f, _) = assemble_conduction(cladding, &k, t, &Default::default(), None)?;
+    let (f, _) = assemble_conduction(cladding, &k, t, &problem.options().heat, None)?;
     let (nodes, _) = cladding.dirichlet_nodes();
     Ok(nodes.iter().map(|&n| -f[n as usize]).sum())
 }
@@ -729,7 +804,7 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
         let body = elastic[b]
             .clone()
             .with_temperature(f.temperature[b].to_vec())?;
-        von_mises.push(recover_stress(&body, &u, &Default::default())?.von_mises);
+        von_mises.push(recover_stress(&body, &u, &problem.options().elastic)?.von_mises);
         let dim = body.components();
         displacement.push(
             u.chunks(dim)

@@ -54,9 +54,9 @@
 //! volume = 2e-6              # m^3 per metre of rod
 //! [model]
 //! mechanics = true           # false: heat only, the gap held open
-//! geometry = "plane_strain"  # or "3d" (a segment, plane strain); "axisymmetric" is refused
+//! geometry = "plane_strain"  # or "axisymmetric" (r-z) or "3d": a segment, ends held in z
 //! reference_temperature = 293.0
-//! segment_height = 1e-3      # m, the 3D segment (its share of the plenum: volume x height)
+//! segment_height = 1e-3      # m, the r-z and 3D segment (its plenum share: volume x height)
 //! [power]
 //! linear_power = 20e3        # W/m
 //! ramp_time = 10.0           # s, from zero
@@ -69,7 +69,7 @@
 //! relative_tolerance = 1e-10
 //! [mesh]
 //! refinement = 3
-//! axial_layers = 2           # Hex8 layers of the 3D segment
+//! axial_layers = 2           # cells along z of the r-z (pellet; cladding one more) and 3D models
 //! ```
 //!
 //! Outputs: `report.json` (what was modelled, the closure time, the histories, the steady
@@ -380,7 +380,8 @@ pub enum Geometry {
     /// The 2D plane-strain cross-section.
     #[default]
     PlaneStrain,
-    /// An axisymmetric r-z model (not available yet: refused with a message).
+    /// An axisymmetric r-z model of a pellet segment (no axial variation: its end planes held
+    /// in z, plane strain, as the 2D model).
     Axisymmetric,
     /// A 3D pellet segment: the cross-section swept along z, its end planes held in z.
     #[serde(rename = "3d")]
@@ -631,16 +632,12 @@ impl PelletScene {
                 ct.onset_gap
             ));
         }
-        if m.geometry == Geometry::Axisymmetric {
-            return bad(
-                "model.geometry = \"axisymmetric\": the r-z model is not available yet".into(),
-            );
-        }
-        if m.geometry == Geometry::ThreeD && !m.mechanics {
-            return bad(
-                "model.geometry = \"3d\" with model.mechanics = false: the thermal scene is 2D"
-                    .into(),
-            );
+        if m.geometry != Geometry::PlaneStrain && !m.mechanics {
+            return bad(format!(
+                "model.geometry = {:?} with model.mechanics = false: the thermal scene is the 2D \
+                 cross-section",
+                m.geometry
+            ));
         }
         if !(m.segment_height > 0.0 && m.segment_height.is_finite()) {
             return bad(format!(

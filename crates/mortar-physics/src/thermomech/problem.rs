@@ -2,7 +2,7 @@ use mortar_core::element::{ReferenceDomain, MAX_FACE_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::quadrature::{Quadrature, QuadratureRule};
-use mortar_core::{CouplingOptions, Side, Tolerances};
+use mortar_core::{CouplingOptions, ModelGeometry, Side, Tolerances};
 use nalgebra::{Vector2, Vector3};
 
 use super::plenum::GasPressure;
@@ -140,7 +140,9 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
     ///
     /// # Errors
     /// [`PhysicsError::InvalidInput`] for bodies whose heat and elastic meshes differ in
-    /// size, units that are not positive and finite, a nominal gap that is not finite, and
+    /// size, a coupling, heat and elastic geometry that differ ([`ModelGeometry`]: give all
+    /// three the axisymmetric one for an r-z model), units that are not positive and finite,
+    /// a nominal gap that is not finite, and
     /// the errors of [`GapHeat::new`], of the elastic assembly and of [`NormalGap::new`].
     #[allow(clippy::too_many_arguments)]
     pub fn new(
@@ -171,6 +173,9 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             }
             b.elastic.check()?;
         }
+        // Heat, elasticity and the coupling on one geometry (r-z: all three axisymmetric).
+        crate::field::cells::check_same_geometry(coupling.geometry, options.heat.geometry)?;
+        crate::field::cells::check_same_geometry(coupling.geometry, options.elastic.geometry)?;
         for (what, v) in [
             ("displacement unit", options.displacement_unit),
             ("pressure unit", options.pressure_unit),
@@ -239,8 +244,20 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let mut gap = NormalGap::new(heat.tie(), dim, ns, nm)?;
         let interface = heat.tie().interface();
         let gas_load = [
-            surface_load(interface.slave(), &es, Side::Slave, dim)?,
-            surface_load(interface.master(), &em, Side::Master, dim)?,
+            surface_load(
+                interface.slave(),
+                &es,
+                Side::Slave,
+                dim,
+                options.elastic.geometry,
+            )?,
+            surface_load(
+                interface.master(),
+                &em,
+                Side::Master,
+                dim,
+                options.elastic.geometry,
+            )?,
         ];
         if let Some(g) = options.nominal_gap {
             for (g0, w) in gap.initial.iter_mut().zip(&gap.weights) {
@@ -607,12 +624,14 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
 
 /// `int N_a n` over the faces of `surface` (a surface of `body`'s mesh, by node tags), `n`
 /// the unit normal pointing out of the body (each face's own orientation is checked against
-/// the cell it bounds), numbered `node * dim + k`.
+/// the cell it bounds), numbered `node * dim + k`; over the revolved surface (weight
+/// `2 pi r`) in the axisymmetric geometry.
 fn surface_load(
     surface: &SurfaceMesh,
     body: &ElasticBody,
     side: Side,
     dim: usize,
+    geometry: ModelGeometry,
 ) -> Result<Vec<f64>, PhysicsError> {
     let mesh = &body.mesh;
     let mut cells_of: Vec<Vec<u32>> = vec![Vec::new(); mesh.node_count()];
@@ -671,7 +690,8 @@ fn surface_load(
         };
         let rule = QuadratureRule::cached(e.domain(), 2 * e.shape_degree() + 1)?;
         for (xi, w) in rule.points().iter().zip(rule.weights()) {
-            let normal = e.scaled_normal(&x[..nn], xi) * (sign * w);
+            let weight = geometry.weight(&e.map(&x[..nn], xi));
+            let normal = e.scaled_normal(&x[..nn], xi) * (sign * w * weight);
             e.shape_values_into(xi, &mut shape[..nn]);
             for a in 0..nn {
                 for k in 0..dim {
