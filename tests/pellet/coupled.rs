@@ -365,7 +365,10 @@ fn non_physical_values_are_refused() {
         ),
         ("[model]\nsegment_height = 0.0", "model.segment_height"),
         ("[mesh]\naxial_layers = 0", "mesh.axial_layers"),
-        ("[model]\ngeometry = \"axisymmetric\"", "model.geometry"),
+        (
+            "[model]\ngeometry = \"axisymmetric\"\nmechanics = false",
+            "model.geometry",
+        ),
     ] {
         match PelletScene::from_toml(toml) {
             Err(PelletError::Invalid(m)) => assert!(m.contains(key), "{toml}: {m}"),
