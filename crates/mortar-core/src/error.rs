@@ -96,8 +96,11 @@ pub enum MortarError {
     /// more than two faces (three lines at a node in 2D), or a one-sided piece.
     #[error("{face}: {reason}")]
     Topology {
-        /// A face involved.
+        /// A face involved (the repeat, the last of a fin's faces in face order).
         face: FaceLocation,
+        /// The tags of every face involved, `face` among them: a reader that knows where each
+        /// face came from (a file and line) can say so for all of them.
+        faces: Box<[u64]>,
         /// What is wrong, naming the faces and nodes.
         reason: String,
     },
