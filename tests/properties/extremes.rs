@@ -1,10 +1,17 @@
 //! No false diagnosis (issue 14, item 8): coarse closed surfaces whose neighbouring faces turn
-//! by 120 degrees are valid.
+//! by 120 degrees are valid, and a valid interface stays valid, with D and M scaled by the
+//! scale's power, from 1e-100 to 1e100; beyond what double precision carries, a typed error
+//! names the range.
 
 use mortar::core::element::ElementRef;
+use mortar::core::mesh::orient::face_each_other;
 use mortar::elements::{LINE2, QUAD4, TRI3};
-use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
+use mortar::testing::MeshPair;
+use mortar::{assemble_coupling, CouplingOptions, Interface, MortarError, SurfaceMesh};
 use nalgebra::Vector3;
+
+use super::common::{by_tags, compare_mapped};
 
 /// A regular `k`-gon of circumradius 1 in the plane `z = 0`, its first corner at angle
 /// `phase`, each side cut into `cuts` Line2. Counter-clockwise (outward normals), or clockwise
@@ -115,5 +122,130 @@ fn coarse_closed_surfaces_turning_by_120_degrees_are_valid() {
                 );
             }
         }
+    }
+}
+
+/// The pairs the scale tests couple: 2D lines, and 3D triangles and quads.
+fn pairs() -> Vec<(&'static str, MeshPair)> {
+    vec![
+        (
+            "lines",
+            MeshPair {
+                slave: line_mesh(5, false, 1).unwrap(),
+                master: line_mesh(7, true, 100).unwrap(),
+            },
+        ),
+        (
+            "triangles",
+            MeshPair {
+                slave: square_triangles(3, Diagonal::Main, 0.0, false, 1).unwrap(),
+                master: square_triangles(4, Diagonal::Anti, 0.0, true, 100).unwrap(),
+            },
+        ),
+        (
+            "quads",
+            MeshPair {
+                slave: square_quads(3, 0.0, false, 1).unwrap(),
+                master: square_triangles(4, Diagonal::Anti, 0.0, true, 100).unwrap(),
+            },
+        ),
+        (
+            "triangular prism",
+            MeshPair {
+                slave: prism_surface(3, 0.0, true, false, 1),
+                master: prism_surface(3, 0.0, false, true, 100),
+            },
+        ),
+    ]
+}
+
+/// Regression: a valid interface scaled by 1e-100 or 1e100 was called degenerate or inverted
+/// (products of the coordinates' squares, 1e-400 or 1e400, under- or overflowed). At every
+/// scale `s` from 1e-100 to 1e100, D and M are `s` (2D) or `s^2` (3D) times those at scale 1,
+/// to 1e-12 relative, with standard and dual multipliers, segment- and element-based.
+#[test]
+fn scaling_by_1e100_either_way_scales_d_and_m() {
+    let options = [
+        CouplingOptions::default(),
+        CouplingOptions::default().dual(),
+        CouplingOptions::default().element_based(None).unwrap(),
+    ];
+    for (name, pair) in pairs() {
+        let planar = name == "lines";
+        for options in &options {
+            let unit = assemble_coupling(&pair.interface().unwrap(), options).unwrap();
+            let d0 = by_tags(&unit.d, &unit.slave_nodes, &unit.slave_nodes);
+            let m0 = by_tags(&unit.m, &unit.slave_nodes, &unit.master_nodes);
+            for s in [1e-135, 1e-100, 1e-50, 1e-20, 1e20, 1e50, 1e100, 1e145] {
+                let moved = pair.transformed(|x| x * s).unwrap();
+                let interface = moved
+                    .interface()
+                    .unwrap_or_else(|e| panic!("{name} at scale {s:e}: {e}"));
+                let c = assemble_coupling(&interface, options)
+                    .unwrap_or_else(|e| panic!("{name} at scale {s:e}: {e}"));
+                let factor = if planar { s } else { s * s };
+                let d1 = by_tags(&c.d, &c.slave_nodes, &c.slave_nodes);
+                let m1 = by_tags(&c.m, &c.slave_nodes, &c.master_nodes);
+                let dev_d = compare_mapped(&d0, &d1, |t| t, |t| t, factor);
+                let dev_m = compare_mapped(&m0, &m1, |t| t, |t| t, factor);
+                assert!(
+                    dev_d <= 1e-12 && dev_m <= 1e-12,
+                    "{name}, {}, scale {s:e}: D deviates by {dev_d:e}, M by {dev_m:e}",
+                    c.formulation
+                );
+                assert_eq!(c.stats.pairs, unit.stats.pairs, "{name} at scale {s:e}");
+            }
+        }
+    }
+}
+
+/// Coordinates whose products overflow (1e200: areas of 1e400) or underflow (1e-200) are
+/// refused with a typed error that names the range, not coupled into infinite or zero
+/// operators, nor called degenerate.
+#[test]
+fn scales_beyond_double_precision_are_a_typed_error_naming_the_range() {
+    for (name, pair) in pairs() {
+        for s in [1e-200, 1e200, 1e-300, 1e300] {
+            let moved = pair.transformed(|x| x * s).unwrap();
+            let err = moved.interface().unwrap_err();
+            assert!(
+                matches!(err, MortarError::CoordinateRange { .. }),
+                "{name} at scale {s:e}: {err:?}"
+            );
+            let text = err.to_string();
+            assert!(
+                text.contains("e200")
+                    || text.contains("e-200")
+                    || text.contains("e300")
+                    || text.contains("e-300"),
+                "{text}"
+            );
+        }
+    }
+}
+
+/// Regression: the orientation step of `mortar couple` (surfaces made consistent, then turned
+/// to face each other) measured the faces' normals by their squared length, a product of four
+/// lengths: at 1e-100 every normal was zero and nothing was turned. A master given the same
+/// way round as the slave is turned to face it at every scale, and the coupling is the same.
+#[test]
+fn surfaces_are_turned_to_face_each_other_at_any_scale() {
+    for s in [1e-100, 1.0, 1e100] {
+        let mut slave = square_triangles(3, Diagonal::Main, 0.0, false, 1).unwrap();
+        let mut master = square_quads(4, 0.0, false, 100).unwrap();
+        slave.transform(|x| x * s).unwrap();
+        master.transform(|x| x * s).unwrap();
+        let [rs, rm] = face_each_other(&mut slave, &mut master, 2.0, false, false).unwrap();
+        assert_eq!((rs.flipped, rm.flipped), (0, 16), "scale {s:e}");
+        let c = assemble_coupling(
+            &Interface::new(slave, master).unwrap(),
+            &CouplingOptions::default(),
+        )
+        .unwrap();
+        assert!(
+            (c.stats.area / (s * s) - 1.0).abs() < 1e-12,
+            "scale {s:e}: {}",
+            c.stats.area
+        );
     }
 }

@@ -104,6 +104,22 @@ pub enum MortarError {
         /// What is wrong, naming the faces and nodes.
         reason: String,
     },
+    /// The coordinates are beyond what double precision carries through the coupling:
+    /// products of two lengths (areas, the entries of D and M) would overflow (coordinates
+    /// beyond [`MAX_COORDINATE`](crate::tolerances::MAX_COORDINATE) in magnitude) or underflow
+    /// (an interface less than [`MIN_EXTENT`](crate::tolerances::MIN_EXTENT) across). Rescale
+    /// the meshes (change their units): the coupling is the same at every scale in between.
+    #[error(
+        "the interface's coordinates reach {largest:e} in magnitude and span {extent:e}: {reason}"
+    )]
+    CoordinateRange {
+        /// The largest magnitude of a coordinate, over both surfaces.
+        largest: f64,
+        /// The extent of the interface: the longest side of the box of both surfaces' nodes.
+        extent: f64,
+        /// What would overflow or underflow, and the range supported.
+        reason: String,
+    },
     /// Faces of different reference dimension (lines and triangles) in one interface, or a
     /// 2D interface with a node off the xy-plane.
     #[error("dimension mismatch: {0}")]

@@ -5,9 +5,50 @@ use nalgebra::{Vector2, Vector3};
 use super::SpatialDim;
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
+use crate::geometry::stable_norm;
 use crate::mesh::orient::{consistent_flips, EdgeNeighbours};
 use crate::mesh::SurfaceMesh;
-use crate::tolerances::Tolerances;
+use crate::tolerances::{Tolerances, MAX_COORDINATE, MIN_EXTENT};
+
+/// The coordinates must be within what double precision carries through the coupling:
+/// magnitudes up to [`MAX_COORDINATE`] (products of two below 1e300) and an interface at least
+/// [`MIN_EXTENT`] across (areas of its non-degenerate faces above 1e-300). An interface whose
+/// nodes all coincide is left to [`check_faces`] (degenerate faces).
+pub(super) fn check_range(slave: &SurfaceMesh, master: &SurfaceMesh) -> Result<()> {
+    let (lo, hi) = match (slave.bounding_box(), master.bounding_box()) {
+        (Some((a, b)), Some((c, d))) => (a.inf(&c), b.sup(&d)),
+        (Some(x), None) | (None, Some(x)) => x,
+        (None, None) => return Ok(()),
+    };
+    let largest = lo.abs().max().max(hi.abs().max());
+    // Sides, not the diagonal: no squares, so no overflow before the test.
+    let extent = (hi - lo).amax();
+    let refuse = |reason: String| MortarError::CoordinateRange {
+        largest,
+        extent,
+        reason,
+    };
+    let power = |x: f64| (2.0 * x.log10()).round();
+    let supported = format!(
+        "coordinates up to {MAX_COORDINATE:e} in magnitude, on an interface at least \
+         {MIN_EXTENT:e} across, are supported: rescale the meshes (change their units)"
+    );
+    if largest > MAX_COORDINATE {
+        return Err(refuse(format!(
+            "products of two (areas, the entries of D and M) of about 1e{} would overflow \
+             double precision; {supported}",
+            power(largest)
+        )));
+    }
+    if extent > 0.0 && extent < MIN_EXTENT {
+        return Err(refuse(format!(
+            "products of two of its lengths (areas, the entries of D and M) of about 1e{} \
+             would underflow double precision; {supported}",
+            power(extent)
+        )));
+    }
+    Ok(())
+}
 
 /// All faces of both sides must share one reference dimension; lines make a 2D problem whose
 /// nodes must lie in the plane `z = 0`.
@@ -140,7 +181,7 @@ pub(super) fn check_faces(
         let mut diameter: f64 = 0.0;
         for i in 0..corners {
             for j in i + 1..corners {
-                diameter = diameter.max((nodes[i] - nodes[j]).norm());
+                diameter = diameter.max(stable_norm(&(nodes[i] - nodes[j])));
             }
         }
         if diameter <= tol.degenerate * scale {
@@ -151,17 +192,20 @@ pub(super) fn check_faces(
         if el.domain() == ReferenceDomain::Line {
             continue;
         }
+        // Scaled normals are products of two lengths and their dot products of four: they are
+        // compared in units of the face's size squared, so that no scale (1e-100, 1e100)
+        // underflows or overflows them.
         let area_scale = diameter * diameter;
         // Jacobians at the nodes: a sign change between two of them means the face folds over
         // itself (a bow-tie), whatever its centre looks like.
         let node_normals: Vec<Vector3<f64>> = el
             .node_reference_coords()
             .iter()
-            .map(|xi| el.scaled_normal(&nodes, &Vector2::new(xi[0], xi[1])))
+            .map(|xi| el.scaled_normal(&nodes, &Vector2::new(xi[0], xi[1])) / area_scale)
             .collect();
         for (a, na) in node_normals.iter().enumerate() {
             for (b, nb) in node_normals.iter().enumerate().skip(a + 1) {
-                if na.dot(nb) < -(tol.degenerate * area_scale).powi(2) {
+                if na.dot(nb) < -tol.degenerate.powi(2) {
                     return Err(MortarError::InvertedFace {
                         face: loc,
                         reason: format!(
@@ -173,14 +217,14 @@ pub(super) fn check_faces(
                 }
             }
         }
-        let centre = el.scaled_normal(&nodes, &el.domain().centre());
-        if centre.norm() * el.domain().measure() <= tol.degenerate * area_scale {
+        let centre = el.scaled_normal(&nodes, &el.domain().centre()) / area_scale;
+        if centre.norm() * el.domain().measure() <= tol.degenerate {
             return Err(degenerate(format!(
                 "its area is negligible against its size {diameter:e} squared (collinear corners)"
             )));
         }
         for (c, n) in node_normals.iter().enumerate() {
-            if n.dot(&centre) <= tol.degenerate * area_scale * centre.norm() {
+            if n.dot(&centre) <= tol.degenerate * centre.norm() {
                 return Err(MortarError::InvertedFace {
                     face: loc,
                     reason: format!(

@@ -18,6 +18,7 @@ use nalgebra::Vector3;
 use super::SurfaceMesh;
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
+use crate::geometry::{stable_norm, stable_normalize};
 
 /// What orienting a surface did.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -43,9 +44,9 @@ fn face_frames(mesh: &SurfaceMesh) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
             let n = el.scaled_normal(&x[..k], &c);
             let centre = el.map(&x[..k], &c);
             (
-                n.try_normalize(0.0).unwrap_or_default(),
+                stable_normalize(&n).unwrap_or_default(),
                 centre,
-                n.norm() * el.domain().measure(),
+                stable_norm(&n) * el.domain().measure(),
             )
         })
         .collect()
