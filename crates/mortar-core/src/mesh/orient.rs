@@ -100,27 +100,46 @@ impl EdgeNeighbours {
     /// surface is not a manifold there), or a node shared by more than two lines (a T
     /// junction), naming the faces, the last of them (in face order) as the location.
     pub(crate) fn build(mesh: &SurfaceMesh, side: Option<Side>) -> Result<Self> {
-        use rayon::prelude::*;
         let n = mesh.face_count();
         // Undirected edge key -> (face, direction) incidences; a line's "edge" is a node.
-        let mut incidences: Vec<((u32, u32), u32, bool)> = Vec::with_capacity(4 * n);
+        let key = |(a, b): (u32, u32)| {
+            if a == u32::MAX {
+                ((b, b), false)
+            } else if b == u32::MAX {
+                ((a, a), true)
+            } else if a < b {
+                ((a, b), true)
+            } else {
+                ((b, a), false)
+            }
+        };
+        // Sorted by key: bucketed by the key's lower node (a counting sort, linear), then each
+        // bucket (the few edges at one node) sorted on its own.
+        let mut start = vec![0u32; mesh.node_count() + 1];
         let mut edges = Vec::new();
         for f in 0..n {
             directed_edges(mesh, f, &mut edges);
-            for &(a, b) in &edges {
-                let (key, forward) = if a == u32::MAX {
-                    ((b, b), false)
-                } else if b == u32::MAX {
-                    ((a, a), true)
-                } else if a < b {
-                    ((a, b), true)
-                } else {
-                    ((b, a), false)
-                };
-                incidences.push((key, f as u32, forward));
+            for &e in &edges {
+                start[key(e).0 .0 as usize + 1] += 1;
             }
         }
-        incidences.par_sort_unstable();
+        for i in 0..mesh.node_count() {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut incidences = vec![((0u32, 0u32), 0u32, false); start[mesh.node_count()] as usize];
+        for f in 0..n {
+            directed_edges(mesh, f, &mut edges);
+            for &e in &edges {
+                let (k, forward) = key(e);
+                let slot = &mut fill[k.0 as usize];
+                incidences[*slot as usize] = (k, f as u32, forward);
+                *slot += 1;
+            }
+        }
+        for w in start.windows(2) {
+            incidences[w[0] as usize..w[1] as usize].sort_unstable();
+        }
         let mut count = vec![0u32; n + 1];
         for group in incidences.chunk_by(|a, b| a.0 == b.0) {
             match group {
