@@ -125,6 +125,52 @@ fn coarse_closed_surfaces_turning_by_120_degrees_are_valid() {
     }
 }
 
+/// Regression: `mortar couple` orients surfaces given alone (`face_each_other`) by where the
+/// master lies along each slave face's normal. On the triangle and the triangular prism, master
+/// faces of the neighbouring facets (turned by 120 degrees, their centres within reach), and
+/// of the prism's far cap, voted the slave inward: the slave was turned, a third of it left
+/// uncovered. Each slave face heeds only the nearest master faces along its normal now (here
+/// the coincident ones, which leave the slave as given); a master given the same way round as
+/// the slave is turned, and the coupling covers the whole surface.
+#[test]
+fn coarse_closed_surfaces_are_turned_to_face_each_other() {
+    let cases = [
+        (
+            polygon_loop(3, 1, 0.0, false, 1),
+            polygon_loop(3, 2, 0.0, false, 1000),
+        ),
+        (
+            prism_surface(3, 0.0, false, false, 1),
+            prism_surface(3, 0.0, true, false, 1000),
+        ),
+        (
+            prism_surface(3, 0.0, true, false, 1),
+            prism_surface(3, 0.0, false, false, 1000),
+        ),
+    ];
+    for (mut slave, mut master) in cases {
+        let measure = if slave.face(0).element.domain().dim() == 1 {
+            3.0 * 3f64.sqrt()
+        } else {
+            3.0 * 3f64.sqrt() * 1.5
+        };
+        let (ns, nm) = (slave.face_count(), master.face_count());
+        let [rs, rm] = face_each_other(&mut slave, &mut master, 2.0, false, false).unwrap();
+        assert_eq!((rs.flipped, rm.flipped), (0, nm), "{ns} slave faces");
+        let c = assemble_coupling(
+            &Interface::new(slave, master).unwrap(),
+            &CouplingOptions::default(),
+        )
+        .unwrap();
+        assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+        assert!(
+            (c.stats.area - measure).abs() < 1e-12 * measure,
+            "{}",
+            c.stats.area
+        );
+    }
+}
+
 /// The pairs the scale tests couple: 2D lines, and 3D triangles and quads.
 fn pairs() -> Vec<(&'static str, MeshPair)> {
     vec![

@@ -314,7 +314,8 @@ pub fn orient_consistently(
 /// documentation): each made consistent piece by piece, each slave piece turned to point at
 /// the master across the gap, each master piece turned against the slave. Pairs of faces are
 /// those whose centres lie within `reach` times the slave face's size of each other along the
-/// slave normal and within its size across it. `keep_slave` and `keep_master` keep the sense
+/// slave normal and within its size across it; of those, each slave face heeds the nearest
+/// along its normal. `keep_slave` and `keep_master` keep the sense
 /// of a side already oriented (from its bodies, say): it is made consistent but not turned.
 ///
 /// # Errors
@@ -384,6 +385,22 @@ pub fn face_each_other(
             }
         }
     }
+    // Each slave face heeds the nearest master faces along its normal only (within a
+    // thousandth of its size of the nearest): where the surfaces touch, the faces behind them
+    // must not decide, neither those of the next facet of a coarse closed surface (a
+    // triangle's sides turn by 120 degrees: the master faces near a corner lie behind the
+    // next side) nor those of the far side of a thin body within reach (a short prism's caps).
+    let mut nearest: Vec<(u32, u32, f64)> = Vec::with_capacity(near.len());
+    for group in near.chunk_by(|a, b| a.0 == b.0) {
+        let s = group[0].0 as usize;
+        let closest = group
+            .iter()
+            .map(|p| p.2.abs())
+            .fold(f64::INFINITY, f64::min);
+        let tol = 1e-3 * sizes[s];
+        nearest.extend(group.iter().filter(|p| p.2.abs() <= closest + tol));
+    }
+    let near = nearest;
     // Slave pieces: the master on the normal's side (a positive gap) or the other.
     let mut votes = vec![(0.0f64, 0.0f64); ns];
     for &(s, _, along) in &near {
