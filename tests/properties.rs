@@ -13,6 +13,7 @@ mod properties {
     mod dual;
     mod element_based;
     mod errors;
+    mod extremes;
     mod facing;
     mod invariance;
     mod patch;

@@ -28,9 +28,27 @@ pub(super) fn core_error(
             } else {
                 slave
             };
+            // The other faces a topology error names, where the file has them.
+            let others: Vec<String> = match e {
+                MortarError::Topology { faces, .. } => faces
+                    .iter()
+                    .filter(|&&t| t != face.tag)
+                    .filter_map(|&t| {
+                        surface
+                            .face_location(t)
+                            .map(|at| format!("face {t} at {at}"))
+                    })
+                    .collect(),
+                _ => Vec::new(),
+            };
+            let also = if others.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", others.join(", "))
+            };
             match surface.face_location(face.tag) {
-                Some(at) => format!("{}, {at}: {e}", surface.label()),
-                None => format!("{}: {e}", surface.label()),
+                Some(at) => format!("{}, {at}: {e}{also}", surface.label()),
+                None => format!("{}: {e}{also}", surface.label()),
             }
         }
         None => format!("slave {} and master {}: {e}", slave.label(), master.label()),

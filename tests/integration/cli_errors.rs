@@ -1,8 +1,8 @@
 //! Every bad input: a non-zero exit, one line on stderr naming the thing and where, and no
 //! output (not even the output directory).
 
-use mortar::elements::{QUAD4, TRI3};
-use mortar::generate::{square_quads, square_triangles, Diagonal};
+use mortar::elements::{LINE2, QUAD4, TRI3};
+use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::io::{msh41_bytes, Endianness, MshFormat};
 use mortar::SurfaceMesh;
 
@@ -385,4 +385,91 @@ fn bad_options_and_unwritable_outputs() {
     // A usage error is clap's (exit code 2).
     let run = mortar(&["couple", "--slave", &s]);
     assert_eq!(run.status.code(), Some(2));
+}
+
+/// Issue 14, item 6: a fin (a third face on an edge) and a T junction (a third line at a node)
+/// are refused, whether the surfaces are oriented by the program or kept as given, naming
+/// every face involved with its line in the file.
+#[test]
+fn a_fin_and_a_t_junction_name_their_faces_and_lines() {
+    let dir = TempDir::new("e-topology");
+    let m = master(&dir);
+    // The unit square's two triangles, and a fin standing on their shared diagonal.
+    let mut fin = SurfaceMesh::new();
+    for (t, x) in [
+        (1, [0.0, 0.0, 0.0]),
+        (2, [1.0, 0.0, 0.0]),
+        (3, [1.0, 1.0, 0.0]),
+        (4, [0.0, 1.0, 0.0]),
+        (7, [0.5, 0.5, 0.5]),
+    ] {
+        fin.add_node(t, x).unwrap();
+    }
+    fin.add_face_with_tag(11, &TRI3, &[1, 2, 3]).unwrap();
+    fin.add_face_with_tag(12, &TRI3, &[1, 3, 4]).unwrap();
+    fin.add_face_with_tag(13, &TRI3, &[1, 3, 7]).unwrap();
+    let text = ascii_text(&fin, "top");
+    let lines: Vec<String> = ["11 1 2 3", "12 1 3 4", "13 1 3 7"]
+        .iter()
+        .map(|l| format!("line {}", line_number(&text, l)))
+        .collect();
+    let s = dir.file("fin.msh", &text);
+    for extra in [&[][..], &["--keep-orientation"][..]] {
+        assert_fails_with(
+            &dir,
+            &s,
+            &m,
+            extra,
+            &[
+                "fin.msh",
+                "face 13",
+                &lines[2],
+                &format!("face 11 at {}", lines[0]),
+                &format!("face 12 at {}", lines[1]),
+                "shared by 3",
+                "fin",
+            ],
+        );
+    }
+
+    // A segment in two lines and a third line up from its middle node.
+    let mut t = SurfaceMesh::new();
+    for (tag, x) in [
+        (1, [0.0, 0.0, 0.0]),
+        (2, [0.5, 0.0, 0.0]),
+        (3, [1.0, 0.0, 0.0]),
+        (4, [0.5, 0.5, 0.0]),
+    ] {
+        t.add_node(tag, x).unwrap();
+    }
+    t.add_face_with_tag(11, &LINE2, &[1, 2]).unwrap();
+    t.add_face_with_tag(12, &LINE2, &[2, 3]).unwrap();
+    t.add_face_with_tag(13, &LINE2, &[2, 4]).unwrap();
+    let text = ascii_text(&t, "top");
+    let lines: Vec<String> = ["11 1 2", "12 2 3", "13 2 4"]
+        .iter()
+        .map(|l| format!("line {}", line_number(&text, l)))
+        .collect();
+    let s = dir.file("t.msh", &text);
+    let m = dir.file(
+        "master2d.msh",
+        ascii_text(&line_mesh(3, true, 1000).unwrap(), "bottom"),
+    );
+    for extra in [&[][..], &["--keep-orientation"][..]] {
+        assert_fails_with(
+            &dir,
+            &s,
+            &m,
+            extra,
+            &[
+                "t.msh",
+                "face 13",
+                &lines[2],
+                &format!("face 11 at {}", lines[0]),
+                &format!("face 12 at {}", lines[1]),
+                "node 2",
+                "T junction",
+            ],
+        );
+    }
 }

@@ -218,6 +218,30 @@ fn symmetric_bow_tie_quad_is_inverted_not_degenerate() {
     );
 }
 
+/// Consistently oriented lines that fold back onto each other (a hairpin: the second line
+/// returns along the first): the normals at their shared node cancel, so the averaged normal
+/// there is undefined; an inverted-face error naming the node and both lines.
+#[test]
+fn a_surface_folded_back_onto_itself_is_refused() {
+    let mut hairpin = SurfaceMesh::new();
+    for (tag, x) in [
+        (1, [0.0, 0.0, 0.0]),
+        (2, [1.0, 0.0, 0.0]),
+        (3, [0.0, 0.0, 0.0]),
+    ] {
+        hairpin.add_node(tag, x).unwrap();
+    }
+    hairpin.add_face(&LINE2, &[1, 2]).unwrap();
+    hairpin.add_face(&LINE2, &[2, 3]).unwrap();
+    let err = Interface::new(hairpin, line_mesh(3, true, 10).unwrap()).unwrap_err();
+    assert!(matches!(err, MortarError::InvertedFace { .. }), "{err:?}");
+    let text = err.to_string();
+    assert!(
+        text.contains("folds back") && text.contains("node 2") && text.contains("faces 1, 2"),
+        "{text}"
+    );
+}
+
 #[test]
 fn repeated_node_is_degenerate() {
     let mut mesh = square_quads(1, 0.0, false, 1).unwrap();
@@ -312,6 +336,26 @@ fn empty_surfaces_and_invalid_options_are_refused() {
     assert!(matches!(err, MortarError::InvalidOption(_)), "{err:?}");
 }
 
+/// The edges shared by two faces (node indices, lower first) and those faces.
+fn interior_edges(mesh: &SurfaceMesh) -> Vec<((u32, u32), [usize; 2])> {
+    let mut faces_of: HashMap<(u32, u32), Vec<usize>> = HashMap::new();
+    for f in 0..mesh.face_count() {
+        let nodes = mesh.face(f).nodes;
+        let k = nodes.len();
+        for i in 0..k {
+            let (a, b) = (nodes[i], nodes[(i + 1) % k]);
+            faces_of.entry((a.min(b), a.max(b))).or_default().push(f);
+        }
+    }
+    let mut out: Vec<_> = faces_of
+        .into_iter()
+        .filter(|(_, f)| f.len() == 2)
+        .map(|(e, f)| (e, [f[0], f[1]]))
+        .collect();
+    out.sort_unstable();
+    out
+}
+
 /// `mesh` with face `face` added again, under the tag `tag`, its nodes rotated by `turn`
 /// (the same face, another starting node).
 fn with_duplicate(mesh: &SurfaceMesh, face: usize, tag: u64, turn: usize) -> SurfaceMesh {
@@ -351,6 +395,68 @@ proptest! {
         let text = err.to_string();
         prop_assert!(text.contains(&first.to_string()) && text.contains(&extra.to_string()), "{text}");
         prop_assert!(text.contains("duplicate"), "{text}");
+    }
+
+    /// Regression (issue 14, item 6): a third face on an interior edge (a fin standing out of
+    /// the surface, above or below it) was accepted, its area added to the interface's. It is
+    /// a topology error naming the three faces, on either side.
+    #[test]
+    fn a_fin_on_an_interior_edge_is_a_topology_error_naming_its_faces(
+        (mesh, as_master) in (cell_kind(), 2..=4usize, any::<bool>()).prop_flat_map(|(k, n, m)| {
+            (perturbed_square(k, n..=n, MAX_SQUARE_JITTER, m), Just(m))
+        }),
+        pick in any::<prop::sample::Index>(),
+        height in prop_oneof![-1.0..-0.1f64, 0.1..1.0f64],
+    ) {
+        let edges = interior_edges(&mesh);
+        let ((a, b), faces) = edges[pick.index(edges.len())];
+        let mut bad = mesh.clone();
+        let (xa, xb) = (mesh.coords()[a as usize], mesh.coords()[b as usize]);
+        let apex = 0.5 * (xa + xb) + Vector3::z() * height;
+        let (ta, tb) = (mesh.node_tags()[a as usize], mesh.node_tags()[b as usize]);
+        bad.add_node(8_888_888, apex.into()).unwrap();
+        bad.add_face_with_tag(9_999_999, &TRI3, &[ta, tb, 8_888_888]).unwrap();
+        let err = if as_master {
+            Interface::new(square_quads(2, 0.0, false, 1).unwrap(), bad)
+        } else {
+            Interface::new(bad, master())
+        }
+        .unwrap_err();
+        prop_assert!(matches!(err, MortarError::Topology { .. }), "{err:?}");
+        let text = err.to_string();
+        for f in [mesh.face(faces[0]).tag, mesh.face(faces[1]).tag, 9_999_999] {
+            prop_assert!(text.contains(&f.to_string()), "face {f} not named: {text}");
+        }
+        prop_assert!(text.contains("fin") && text.contains("shared by 3"), "{text}");
+        if let MortarError::Topology { faces: named, .. } = &err {
+            prop_assert_eq!(named.len(), 3);
+        }
+    }
+
+    /// Regression (issue 14, item 6): a third line at an interior node of a 2D interface (a T
+    /// junction) was accepted. It is a topology error naming the three lines.
+    #[test]
+    fn a_t_junction_of_three_lines_is_a_topology_error_naming_them(
+        n in 2..=8usize,
+        pick in any::<prop::sample::Index>(),
+        up in any::<bool>(),
+        outward in any::<bool>(),
+    ) {
+        let slave = line_mesh(n, false, 1).unwrap();
+        // Interior nodes have tags 2..=n; the lines at node t are t - 1 and t.
+        let t = 2 + pick.index(n - 1) as u64;
+        let mut bad = slave.clone();
+        let x = slave.coords()[slave.node_index(t).unwrap() as usize];
+        bad.add_node(500, [x.x, if up { 0.3 } else { -0.3 }, 0.0]).unwrap();
+        let nodes = if outward { [t, 500] } else { [500, t] };
+        bad.add_face_with_tag(777_777, &LINE2, &nodes).unwrap();
+        let err = Interface::new(bad, line_mesh(n + 1, true, 1).unwrap()).unwrap_err();
+        prop_assert!(matches!(err, MortarError::Topology { .. }), "{err:?}");
+        let text = err.to_string();
+        for f in [t - 1, t, 777_777] {
+            prop_assert!(text.contains(&f.to_string()), "line {f} not named: {text}");
+        }
+        prop_assert!(text.contains("T junction") && text.contains(&format!("node {t}")), "{text}");
     }
 
     /// The same in 2D: a line given twice.

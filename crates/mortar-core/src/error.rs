@@ -96,9 +96,28 @@ pub enum MortarError {
     /// more than two faces (three lines at a node in 2D), or a one-sided piece.
     #[error("{face}: {reason}")]
     Topology {
-        /// A face involved.
+        /// A face involved (the repeat, the last of a fin's faces in face order).
         face: FaceLocation,
+        /// The tags of every face involved, `face` among them: a reader that knows where each
+        /// face came from (a file and line) can say so for all of them.
+        faces: Box<[u64]>,
         /// What is wrong, naming the faces and nodes.
+        reason: String,
+    },
+    /// The coordinates are beyond what double precision carries through the coupling:
+    /// products of two lengths (areas, the entries of D and M) would overflow (coordinates
+    /// beyond [`MAX_COORDINATE`](crate::tolerances::MAX_COORDINATE) in magnitude) or underflow
+    /// (an interface less than [`MIN_EXTENT`](crate::tolerances::MIN_EXTENT) across). Rescale
+    /// the meshes (change their units): the coupling is the same at every scale in between.
+    #[error(
+        "the interface's coordinates reach {largest:e} in magnitude and span {extent:e}: {reason}"
+    )]
+    CoordinateRange {
+        /// The largest magnitude of a coordinate, over both surfaces.
+        largest: f64,
+        /// The extent of the interface: the longest side of the box of both surfaces' nodes.
+        extent: f64,
+        /// What would overflow or underflow, and the range supported.
         reason: String,
     },
     /// Faces of different reference dimension (lines and triangles) in one interface, or a

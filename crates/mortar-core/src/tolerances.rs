@@ -1,4 +1,20 @@
-//! Tolerances, relative to element size, gathered in one place.
+//! Tolerances, relative to element size, gathered in one place, and the range of coordinates
+//! within which they make results independent of the scale.
+
+/// The largest coordinate magnitude an interface may have: products of two coordinates
+/// (areas, the entries of D and M, a face's scaled normal) then stay below 1e300, within
+/// double precision with room for sums and quadrature weights. Beyond it,
+/// [`Interface::new`](crate::Interface::new) refuses the meshes with
+/// [`MortarError::CoordinateRange`](crate::MortarError::CoordinateRange). (Products of three,
+/// such as the weighted gap `D x`, stay finite up to about 1e100.)
+pub const MAX_COORDINATE: f64 = 1e150;
+
+/// The smallest extent (largest side of the bounding box of both surfaces) an interface may
+/// have: its faces, unless degenerate at least [`Tolerances::degenerate`] (1e-10) of it
+/// across, then have areas above 1e-300, in double precision's normal range. Below it,
+/// [`Interface::new`](crate::Interface::new) refuses the meshes with
+/// [`MortarError::CoordinateRange`](crate::MortarError::CoordinateRange).
+pub const MIN_EXTENT: f64 = 1e-140;
 
 /// Tolerances used by the geometry, projection and validation code.
 ///

@@ -108,7 +108,9 @@ impl GmshSurface {
             let mut x = [Vector3::zeros(); mortar_core::element::MAX_FACE_NODES];
             let k = self.mesh.face_coords_into(f, &mut x);
             let c = el.domain().centre();
-            let normal = el.scaled_normal(&x[..k], &c);
+            // The unit normal: the scaled one times a length would under- or overflow for
+            // meshes at 1e-120 or 1e120 (a product of three lengths).
+            let normal = el.unit_normal(&x[..k], &c);
             if normal.dot(&(el.map(&x[..k], &c) - cell)) < 0.0 {
                 self.mesh.reverse_face(f)?;
                 flipped += 1;

@@ -111,7 +111,10 @@ pub struct Coupling {
 
 impl Coupling {
     /// The weighted gap vectors `G = D x_s - M x_m`, one per slave node (row order), for slave
-    /// positions `x_s` (row order) and master positions `x_m` (column order).
+    /// positions `x_s` (row order) and master positions `x_m` (column order). Its entries are
+    /// products of three lengths (an area and a position in 3D): finite for coordinates up to
+    /// about 1e100, a narrower range than D and M's
+    /// ([`MAX_COORDINATE`](crate::tolerances::MAX_COORDINATE)).
     ///
     /// # Panics
     /// If the lengths of `x_s` and `x_m` do not match the node counts.

@@ -1,6 +1,7 @@
 use nalgebra::{Vector2, Vector3};
 
 use super::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};
+use crate::geometry::stable_norm;
 
 /// A surface element shared between threads and meshes: element types are zero-sized statics.
 pub type ElementRef = &'static dyn SurfaceElement;
@@ -84,10 +85,12 @@ pub trait SurfaceElement: ReferenceElement {
         }
     }
 
-    /// The unit normal at `xi` (zero if the face is degenerate there).
+    /// The unit normal at `xi` (zero if the face is degenerate there). Its length is taken by
+    /// [`stable_norm`], so it is the same for a face scaled by 1e-100 or 1e100, whose scaled
+    /// normal's squared length would underflow or overflow.
     fn unit_normal(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> Vector3<f64> {
         let n = self.scaled_normal(nodes, xi);
-        let len = n.norm();
+        let len = stable_norm(&n);
         if len > 0.0 {
             n / len
         } else {
@@ -95,8 +98,9 @@ pub trait SurfaceElement: ReferenceElement {
         }
     }
 
-    /// The measure density `|dx/dxi|` (lines) or `|dx/dxi x dx/deta|` (faces) at `xi`.
+    /// The measure density `|dx/dxi|` (lines) or `|dx/dxi x dx/deta|` (faces) at `xi` (by
+    /// [`stable_norm`], like [`unit_normal`](Self::unit_normal)).
     fn jacobian_det(&self, nodes: &[Vector3<f64>], xi: &Vector2<f64>) -> f64 {
-        self.scaled_normal(nodes, xi).norm()
+        stable_norm(&self.scaled_normal(nodes, xi))
     }
 }

@@ -1,6 +1,8 @@
 use arrayvec::ArrayVec;
 use nalgebra::Vector2;
 
+use super::stable_norm;
+
 /// The most vertices a clip polygon can have: two convex polygons of at most 4 corners give at
 /// most 8, and room is left for higher-order faces' corner polygons.
 pub const MAX_POLYGON_VERTICES: usize = 16;
@@ -178,18 +180,19 @@ pub fn clip_convex(subject: &Polygon, clip: &Polygon, tol: f64, out: &mut Polygo
         len[cur] = k;
     }
     out.vertices.clear();
-    let tol2 = tol * tol;
+    // Distances, not their squares: `tol` squared underflows for the smallest faces of a mesh
+    // at 1e-140 (see `stable_norm`).
     for v in &buf[cur][..len[cur]] {
         if out
             .vertices
             .last()
-            .is_none_or(|l: &Vector2<f64>| (v - l).norm_squared() > tol2)
+            .is_none_or(|l: &Vector2<f64>| stable_norm(&(v - l)) > tol)
         {
             out.vertices.push(*v);
         }
     }
     while out.vertices.len() > 1
-        && (out.vertices[0] - out.vertices[out.vertices.len() - 1]).norm_squared() <= tol2
+        && stable_norm(&(out.vertices[0] - out.vertices[out.vertices.len() - 1])) <= tol
     {
         out.vertices.pop();
     }

@@ -2,6 +2,7 @@ use nalgebra::{Vector2, Vector3};
 
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{FaceLocation, Side};
+use crate::geometry::stable_normalize;
 use crate::mesh::SurfaceMesh;
 use crate::quadrature::{Quadrature, QuadratureRule};
 
@@ -117,7 +118,7 @@ impl FaceGeometry {
         let x = self.node_coords();
         let normal = |xi: &Vector2<f64>| {
             let t = el.tangents(x, xi);
-            t[0].cross(&t[1]).normalize()
+            stable_normalize(&t[0].cross(&t[1])).unwrap_or_default()
         };
         let n0 = normal(&el.domain().centre());
         el.node_reference_coords()

@@ -1,6 +1,8 @@
 use nalgebra::Vector3;
 
-use super::validate::{check_dimension, check_duplicates, check_faces, nodal_normals};
+use super::validate::{
+    check_dimension, check_duplicates, check_faces, check_orientation, check_range, nodal_normals,
+};
 use super::FaceGeometry;
 use crate::error::{MortarError, Result, Side};
 use crate::mesh::SurfaceMesh;
@@ -21,11 +23,15 @@ const NOT_ON_INTERFACE: u32 = u32::MAX;
 /// A validated pair of surfaces: the slave (non-mortar, carries the multipliers) and the
 /// master (mortar).
 ///
-/// Construction checks every face (degenerate or inverted faces, faces oriented against their
-/// neighbours, mixed dimensions) and computes the slave's averaged nodal normals: at each node,
-/// the normalised sum of the unit normals of the faces around it. Rows of the coupling operators
-/// are the slave nodes used by a face, in ascending tag order; columns of M the master nodes
-/// likewise.
+/// Construction checks the coordinates' range (products of two must stay within double
+/// precision, see [`MAX_COORDINATE`](crate::tolerances::MAX_COORDINATE)), every face
+/// (degenerate or inverted faces, duplicated faces, mixed dimensions, with tolerances relative
+/// to the faces' and the interface's own size) and the connectivity of each surface (an edge
+/// joins at most two faces, a node at most two lines; neighbouring faces run along their
+/// shared edge in opposite directions), and computes the slave's averaged nodal normals: at
+/// each node, the normalised sum of the unit normals of the faces around it. Rows of the
+/// coupling operators are the slave nodes used by a face, in ascending tag order; columns of M
+/// the master nodes likewise.
 #[derive(Debug, Clone)]
 pub struct Interface {
     slave: SurfaceMesh,
@@ -43,8 +49,10 @@ impl Interface {
     /// Builds and validates an interface with default tolerances.
     ///
     /// # Errors
-    /// [`MortarError::EmptySurface`], [`MortarError::DimensionMismatch`],
-    /// [`MortarError::DegenerateFace`], [`MortarError::InvertedFace`].
+    /// [`MortarError::EmptySurface`], [`MortarError::CoordinateRange`],
+    /// [`MortarError::DimensionMismatch`], [`MortarError::DegenerateFace`],
+    /// [`MortarError::InvertedFace`] (a folded face, or one oriented against its neighbours),
+    /// [`MortarError::Topology`] (a duplicated face, a fin, a T junction, a one-sided piece).
     pub fn new(slave: SurfaceMesh, master: SurfaceMesh) -> Result<Self> {
         Self::with_tolerances(slave, master, Tolerances::default())
     }
@@ -63,12 +71,15 @@ impl Interface {
                 return Err(MortarError::EmptySurface { side });
             }
         }
+        check_range(&slave, &master)?;
         let dim = check_dimension(&slave, &master, &tolerances)?;
         let scale = interface_scale(&slave, &master);
         check_faces(&slave, Side::Slave, scale, &tolerances)?;
         check_faces(&master, Side::Master, scale, &tolerances)?;
         check_duplicates(&slave, Side::Slave)?;
         check_duplicates(&master, Side::Master)?;
+        check_orientation(&slave, Side::Slave)?;
+        check_orientation(&master, Side::Master)?;
         let slave_normals = nodal_normals(&slave, Side::Slave)?;
         nodal_normals(&master, Side::Master)?;
         let (slave_nodes, slave_rows) = node_map(&slave);

@@ -18,6 +18,7 @@ use nalgebra::Vector3;
 use super::SurfaceMesh;
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
+use crate::geometry::{stable_norm, stable_normalize};
 
 /// What orienting a surface did.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -43,9 +44,9 @@ fn face_frames(mesh: &SurfaceMesh) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
             let n = el.scaled_normal(&x[..k], &c);
             let centre = el.map(&x[..k], &c);
             (
-                n.try_normalize(0.0).unwrap_or_default(),
+                stable_normalize(&n).unwrap_or_default(),
                 centre,
-                n.norm() * el.domain().measure(),
+                stable_norm(&n) * el.domain().measure(),
             )
         })
         .collect()
@@ -69,26 +70,40 @@ fn directed_edges(mesh: &SurfaceMesh, f: usize, out: &mut Vec<(u32, u32)>) {
     }
 }
 
-/// Makes every connected piece of `mesh` consistently oriented (each face agreeing with the
-/// first face of its piece, in face order) and returns each face's piece (numbered in order of
-/// first face) and whether it was reversed.
-///
-/// # Errors
-/// [`MortarError::Topology`] for an edge shared by more than two faces (three lines at a
-/// node in 2D), or a piece that cannot be oriented (a Moebius strip); the error of
-/// [`SurfaceMesh::reverse_face`] for an element that cannot be reversed.
-pub fn orient_consistently(
-    mesh: &mut SurfaceMesh,
-    side: Option<Side>,
-) -> Result<(Vec<u32>, Vec<bool>)> {
-    let n = mesh.face_count();
-    // Undirected edge key -> (face, direction) incidences; a line's "edge" is a node.
-    let mut incidences: Vec<((u32, u32), u32, bool)> = Vec::new();
-    let mut edges = Vec::new();
-    for f in 0..n {
-        directed_edges(mesh, f, &mut edges);
-        for &(a, b) in &edges {
-            let (key, forward) = if a == u32::MAX {
+/// A face across an edge of another (see [`EdgeNeighbours`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Neighbour {
+    /// The neighbouring face.
+    pub face: u32,
+    /// Whether both faces traverse the shared edge the same way (both lines start, or both
+    /// end, at the shared node): then they are oriented against each other.
+    pub same_direction: bool,
+    /// The shared edge's nodes, lower index first (a line's shared node twice).
+    pub edge: (u32, u32),
+}
+
+/// The faces that share an edge with each face (lines: a node), in compressed rows: the
+/// connectivity that orientation follows. Two faces sharing an edge are consistently oriented
+/// if and only if they traverse it in opposite directions; two lines sharing a node if and
+/// only if one ends where the other starts.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct EdgeNeighbours {
+    offsets: Vec<u32>,
+    entries: Vec<Neighbour>,
+}
+
+impl EdgeNeighbours {
+    /// The neighbours of every face of `mesh`.
+    ///
+    /// # Errors
+    /// [`MortarError::Topology`] for an edge shared by more than two faces (a fin: the
+    /// surface is not a manifold there), or a node shared by more than two lines (a T
+    /// junction), naming the faces, the last of them (in face order) as the location.
+    pub(crate) fn build(mesh: &SurfaceMesh, side: Option<Side>) -> Result<Self> {
+        let n = mesh.face_count();
+        // Undirected edge key -> (face, direction) incidences; a line's "edge" is a node.
+        let key = |(a, b): (u32, u32)| {
+            if a == u32::MAX {
                 ((b, b), false)
             } else if b == u32::MAX {
                 ((a, a), true)
@@ -96,55 +111,146 @@ pub fn orient_consistently(
                 ((a, b), true)
             } else {
                 ((b, a), false)
-            };
-            incidences.push((key, f as u32, forward));
+            }
+        };
+        // Sorted by key: bucketed by the key's lower node (a counting sort, linear), then each
+        // bucket (the few edges at one node) sorted on its own.
+        let mut start = vec![0u32; mesh.node_count() + 1];
+        let mut edges = Vec::new();
+        for f in 0..n {
+            directed_edges(mesh, f, &mut edges);
+            for &e in &edges {
+                start[key(e).0 .0 as usize + 1] += 1;
+            }
         }
-    }
-    incidences.sort_unstable();
-    let tags = mesh.node_tags().to_vec();
-    let face_tag = |f: u32| mesh.face(f as usize).tag;
-    // Neighbours across each edge: (face, other face, same direction?).
-    let mut adjacency: Vec<Vec<(u32, bool)>> = vec![Vec::new(); n];
-    for group in incidences.chunk_by(|a, b| a.0 == b.0) {
-        match group {
-            [_] => {}
-            [(_, f, df), (_, g, dg)] => {
-                if f != g {
-                    adjacency[*f as usize].push((*g, df == dg));
-                    adjacency[*g as usize].push((*f, df == dg));
+        for i in 0..mesh.node_count() {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut incidences = vec![((0u32, 0u32), 0u32, false); start[mesh.node_count()] as usize];
+        for f in 0..n {
+            directed_edges(mesh, f, &mut edges);
+            for &e in &edges {
+                let (k, forward) = key(e);
+                let slot = &mut fill[k.0 as usize];
+                incidences[*slot as usize] = (k, f as u32, forward);
+                *slot += 1;
+            }
+        }
+        for w in start.windows(2) {
+            incidences[w[0] as usize..w[1] as usize].sort_unstable();
+        }
+        let mut count = vec![0u32; n + 1];
+        for group in incidences.chunk_by(|a, b| a.0 == b.0) {
+            match group {
+                [_] => {}
+                [(_, f, _), (_, g, _)] => {
+                    if f != g {
+                        count[*f as usize] += 1;
+                        count[*g as usize] += 1;
+                    }
+                }
+                _ => return Err(non_manifold(mesh, side, group)),
+            }
+        }
+        let mut offsets = vec![0u32; n + 1];
+        for f in 0..n {
+            offsets[f + 1] = offsets[f] + count[f];
+        }
+        let mut fill = offsets.clone();
+        let mut entries = vec![
+            Neighbour {
+                face: 0,
+                same_direction: false,
+                edge: (0, 0),
+            };
+            offsets[n] as usize
+        ];
+        for group in incidences.chunk_by(|a, b| a.0 == b.0) {
+            if let [(edge, f, df), (_, g, dg)] = group {
+                if f == g {
+                    continue;
+                }
+                for (a, b) in [(*f, *g), (*g, *f)] {
+                    entries[fill[a as usize] as usize] = Neighbour {
+                        face: b,
+                        same_direction: df == dg,
+                        edge: *edge,
+                    };
+                    fill[a as usize] += 1;
                 }
             }
-            _ => {
-                let (a, b) = group[0].0;
-                let faces: Vec<String> = group
-                    .iter()
-                    .map(|(_, f, _)| face_tag(*f).to_string())
-                    .collect();
-                let what = if a == b {
-                    format!(
-                        "node {} is shared by {} lines ({}): a T junction",
-                        tags[a as usize],
-                        group.len(),
-                        faces.join(", ")
-                    )
-                } else {
-                    format!(
-                        "the edge between nodes {} and {} is shared by {} faces ({}): the surface is not a manifold",
-                        tags[a as usize], tags[b as usize], group.len(), faces.join(", ")
-                    )
-                };
-                return Err(MortarError::Topology {
-                    face: FaceLocation {
-                        side,
-                        tag: face_tag(group[0].1),
-                    },
-                    reason: what,
-                });
-            }
         }
+        Ok(Self { offsets, entries })
     }
-    // Breadth-first over each piece: a neighbour across an edge traversed the same way must
-    // be turned relative to its parent.
+
+    /// The neighbours of face `f`.
+    pub(crate) fn of(&self, f: usize) -> &[Neighbour] {
+        &self.entries[self.offsets[f] as usize..self.offsets[f + 1] as usize]
+    }
+}
+
+/// The topology error of more than two faces on one edge (lines on one node): `group` holds
+/// their incidences.
+fn non_manifold(
+    mesh: &SurfaceMesh,
+    side: Option<Side>,
+    group: &[((u32, u32), u32, bool)],
+) -> MortarError {
+    let tags = mesh.node_tags();
+    let (a, b) = group[0].0;
+    let mut faces: Vec<u32> = group.iter().map(|(_, f, _)| *f).collect();
+    faces.sort_unstable();
+    let names: Vec<String> = faces
+        .iter()
+        .map(|&f| mesh.face(f as usize).tag.to_string())
+        .collect();
+    let last = faces.last().copied().unwrap_or(group[0].1);
+    let prefix = side.map(|s| format!("{s} ")).unwrap_or_default();
+    let reason = if a == b {
+        format!(
+            "node {} is shared by {} {prefix}lines ({}): a T junction (a line interface is a \
+             chain, each node joining at most two lines); split the interface there or remove \
+             the extra line",
+            tags[a as usize],
+            group.len(),
+            names.join(", ")
+        )
+    } else {
+        format!(
+            "the edge between nodes {} and {} is shared by {} {prefix}faces ({}): a fin, the \
+             surface is not a manifold there (each edge joins at most two faces); remove the \
+             extra face",
+            tags[a as usize],
+            tags[b as usize],
+            group.len(),
+            names.join(", ")
+        )
+    };
+    MortarError::Topology {
+        face: FaceLocation {
+            side,
+            tag: mesh.face(last as usize).tag,
+        },
+        faces: faces.iter().map(|&f| mesh.face(f as usize).tag).collect(),
+        reason,
+    }
+}
+
+/// Each face's connected piece (faces joined across shared edges, numbered in order of their
+/// first face) and whether it must be reversed to agree with the first face of its piece:
+/// breadth-first over each piece, a neighbour across an edge traversed the same way is turned
+/// relative to its parent.
+///
+/// # Errors
+/// [`MortarError::Topology`] for a piece that cannot be oriented (a Moebius strip).
+pub(crate) fn consistent_flips(
+    mesh: &SurfaceMesh,
+    side: Option<Side>,
+    neighbours: &EdgeNeighbours,
+) -> Result<(Vec<u32>, Vec<bool>)> {
+    let n = mesh.face_count();
+    let face_tag = |f: u32| mesh.face(f as usize).tag;
     const UNSEEN: u32 = u32::MAX;
     let mut component = vec![UNSEEN; n];
     let mut flip = vec![false; n];
@@ -157,8 +263,9 @@ pub fn orient_consistently(
         component[start] = pieces;
         queue.push_back(start as u32);
         while let Some(f) = queue.pop_front() {
-            for &(g, same) in &adjacency[f as usize] {
-                let want = flip[f as usize] ^ same;
+            for nb in neighbours.of(f as usize) {
+                let g = nb.face;
+                let want = flip[f as usize] ^ nb.same_direction;
                 if component[g as usize] == UNSEEN {
                     component[g as usize] = pieces;
                     flip[g as usize] = want;
@@ -166,6 +273,7 @@ pub fn orient_consistently(
                 } else if flip[g as usize] != want {
                     return Err(MortarError::Topology {
                         face: FaceLocation { side, tag: face_tag(g) },
+                        faces: Box::new([face_tag(f), face_tag(g)]),
                         reason: format!(
                             "the connected surface through faces {} and {} cannot be oriented (it is one-sided, like a Moebius strip)",
                             face_tag(f),
@@ -177,8 +285,25 @@ pub fn orient_consistently(
         }
         pieces += 1;
     }
-    for f in 0..n {
-        if flip[f] {
+    Ok((component, flip))
+}
+
+/// Makes every connected piece of `mesh` consistently oriented (each face agreeing with the
+/// first face of its piece, in face order) and returns each face's piece (numbered in order of
+/// first face) and whether it was reversed.
+///
+/// # Errors
+/// [`MortarError::Topology`] for an edge shared by more than two faces (three lines at a
+/// node in 2D), or a piece that cannot be oriented (a Moebius strip); the error of
+/// [`SurfaceMesh::reverse_face`] for an element that cannot be reversed.
+pub fn orient_consistently(
+    mesh: &mut SurfaceMesh,
+    side: Option<Side>,
+) -> Result<(Vec<u32>, Vec<bool>)> {
+    let neighbours = EdgeNeighbours::build(mesh, side)?;
+    let (component, flip) = consistent_flips(mesh, side, &neighbours)?;
+    for (f, &turn) in flip.iter().enumerate() {
+        if turn {
             mesh.reverse_face(f)?;
         }
     }
@@ -189,7 +314,8 @@ pub fn orient_consistently(
 /// documentation): each made consistent piece by piece, each slave piece turned to point at
 /// the master across the gap, each master piece turned against the slave. Pairs of faces are
 /// those whose centres lie within `reach` times the slave face's size of each other along the
-/// slave normal and within its size across it. `keep_slave` and `keep_master` keep the sense
+/// slave normal and within its size across it; of those, each slave face heeds the nearest
+/// along its normal. `keep_slave` and `keep_master` keep the sense
 /// of a side already oriented (from its bodies, say): it is made consistent but not turned.
 ///
 /// # Errors
@@ -259,6 +385,22 @@ pub fn face_each_other(
             }
         }
     }
+    // Each slave face heeds the nearest master faces along its normal only (within a
+    // thousandth of its size of the nearest): where the surfaces touch, the faces behind them
+    // must not decide, neither those of the next facet of a coarse closed surface (a
+    // triangle's sides turn by 120 degrees: the master faces near a corner lie behind the
+    // next side) nor those of the far side of a thin body within reach (a short prism's caps).
+    let mut nearest: Vec<(u32, u32, f64)> = Vec::with_capacity(near.len());
+    for group in near.chunk_by(|a, b| a.0 == b.0) {
+        let s = group[0].0 as usize;
+        let closest = group
+            .iter()
+            .map(|p| p.2.abs())
+            .fold(f64::INFINITY, f64::min);
+        let tol = 1e-3 * sizes[s];
+        nearest.extend(group.iter().filter(|p| p.2.abs() <= closest + tol));
+    }
+    let near = nearest;
     // Slave pieces: the master on the normal's side (a positive gap) or the other.
     let mut votes = vec![(0.0f64, 0.0f64); ns];
     for &(s, _, along) in &near {

@@ -55,8 +55,50 @@ struct Slab {
     first_slot: u32,
     /// The boxes of the slab's faces (slots `first_slot..`; leaf `l` holds the faces
     /// `LEAF_FACES * l..`, up to `LEAF_FACES`), in `f32` rounded outward (conservative, half
-    /// the memory): the per-face test of a hit leaf reads them instead of the mesh.
+    /// the memory), in the slab's `frame`: the per-face test of a hit leaf reads them instead
+    /// of the mesh.
     boxes: Vec<[f32; 6]>,
+    /// The frame of `boxes`.
+    frame: Frame,
+}
+
+/// The frame of a slab's `f32` boxes: coordinates relative to the slab's lower corner, in
+/// units of the power of two at or above its size. `f32` then keeps a resolution of 1e-7 of
+/// the slab whatever the mesh's scale or position: absolute coordinates at 1e100 or 1e-100
+/// leave `f32`'s range (every box would become infinite or round to zero, and every face of a
+/// hit leaf a candidate). The map is monotone (a subtraction, then an exact product), so a
+/// query box taken to the frame meets a face's box there whenever it meets it in space.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    origin: Vector3<f64>,
+    inverse_unit: f64,
+}
+
+impl Frame {
+    fn of(bounds: &Box3) -> Self {
+        let size = (bounds.1 - bounds.0).amax();
+        let inverse_unit = if size > 0.0 && size.is_finite() {
+            // 2^-ceil(log2(size)), exact (`powi` of 2 multiplies powers of two).
+            2f64.powi(-(size.log2().ceil() as i32))
+        } else {
+            1.0
+        };
+        Self {
+            origin: bounds.0,
+            inverse_unit: if inverse_unit.is_normal() {
+                inverse_unit
+            } else {
+                1.0
+            },
+        }
+    }
+
+    fn apply(&self, b: &Box3) -> Box3 {
+        (
+            (b.0 - self.origin) * self.inverse_unit,
+            (b.1 - self.origin) * self.inverse_unit,
+        )
+    }
 }
 
 /// `b` in `f32`, rounded outward.
@@ -192,11 +234,13 @@ impl MasterTree {
                     .map(|(l, group)| (l as u32, group.iter().fold(EMPTY, |acc, b| union(&acc, b))))
                     .collect();
                 let bounds = leaves.iter().fold(EMPTY, |acc, (_, b)| union(&acc, b));
+                let frame = Frame::of(&bounds);
                 Slab {
                     tree: BoxTree::build(&leaves, planar),
                     bounds,
                     first_slot,
-                    boxes: boxes.iter().map(box_f32).collect(),
+                    boxes: boxes.iter().map(|b| box_f32(&frame.apply(b))).collect(),
+                    frame,
                 }
             })
             .collect();
@@ -224,11 +268,12 @@ impl MasterTree {
             let start = out.len();
             slab.tree.append_intersecting(&b, out);
             let end = out.len();
+            let local = slab.frame.apply(&b);
             for i in start..end {
                 let first = out[i] as usize * LEAF_FACES;
                 let last = (first + LEAF_FACES).min(slab.boxes.len());
                 for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
-                    if overlaps_f32(&b, fb, self.planar) {
+                    if overlaps_f32(&local, fb, self.planar) {
                         out.push(slab.first_slot + k as u32);
                     }
                 }
