@@ -22,6 +22,7 @@
 //! ```
 
 pub mod generate;
+pub mod interrupt;
 pub mod io;
 pub mod scenes;
 #[cfg(feature = "proptest-support")]

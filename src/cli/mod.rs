@@ -184,6 +184,9 @@ impl CoupleArgs {
 /// Parses the command line, runs, and turns a failure into one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Err(e) = mortar::interrupt::install_handler() {
+        eprintln!("mortar: warning: {e}; Ctrl-C will end the run without its outputs");
+    }
     let result = match &cli.command {
         None => run::default_job(std::path::Path::new("out/pellet"), cli.json),
         Some(Command::Demo) => scene::run(cli.json),
@@ -198,7 +201,12 @@ pub fn main() -> ExitCode {
                 .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
                 .collect();
             eprintln!("mortar: error: {line}");
-            ExitCode::FAILURE
+            if mortar::interrupt::requested() {
+                // 128 + SIGINT, as a shell reports an interrupted command.
+                ExitCode::from(130)
+            } else {
+                ExitCode::FAILURE
+            }
         }
     }
 }

@@ -333,3 +333,40 @@ fn a_closed_standard_output_ends_quietly() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.code(), Some(141), "{stderr}");
 }
+
+/// Issue 14, item 5: a long transient stops cleanly on Ctrl-C. A pellet scene of 10^5 steps
+/// (the r-z model, about half a millisecond a step) gets SIGINT after a second: the process
+/// ends with status 130 (128 + SIGINT), says it was interrupted, and leaves report.json with
+/// `"status": "interrupted"`, the steps that are valid and their history.
+#[test]
+fn ctrl_c_stops_a_long_run_cleanly() {
+    let dir = TempDir::new("ctrl-c");
+    let scene = dir.file(
+        "long.toml",
+        "kind = \"pellet\"\n[model]\ngeometry = \"axisymmetric\"\n[mesh]\nrefinement = 1\n\
+         [time]\nstep = 1.0\nend = 1e5\nsnapshots = 0\n",
+    );
+    let out = dir.join("out");
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_mortar"))
+        .args(["run", &scene, "--out", out.to_str().unwrap()])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run the mortar binary");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("run kill");
+    assert!(kill.success());
+    let done = child.wait_with_output().expect("wait for mortar");
+    let stderr = String::from_utf8_lossy(&done.stderr);
+    assert_eq!(done.status.code(), Some(130), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    let report = json(&out.join("report.json"));
+    assert_eq!(report["status"], "interrupted");
+    let valid = report["valid_steps"].as_u64().unwrap();
+    assert!(valid > 1 && valid < 100_001, "{valid} steps");
+    let times = report["history"]["time"].as_array().unwrap();
+    assert_eq!(times.len() as u64, valid);
+}

@@ -50,6 +50,16 @@ pub enum SceneError {
         /// The physics error (naming the body and cell where it applies).
         source: Box<PhysicsError>,
     },
+    /// The transient solve was interrupted (Ctrl-C, [`crate::interrupt`]); nothing written.
+    #[error("{}: interrupted after {done} of {steps} time steps", path.display())]
+    Interrupted {
+        /// The scene file.
+        path: PathBuf,
+        /// Steps completed.
+        done: usize,
+        /// Steps asked for.
+        steps: usize,
+    },
     /// The scene file cannot be read, or the scene kind is unknown.
     #[error("{0}")]
     Other(String),

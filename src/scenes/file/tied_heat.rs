@@ -551,7 +551,14 @@ impl TiedHeatSpec {
                     .map_err(physics)?;
                 let mut seconds = stepper.solution().seconds;
                 let (mut loads, mut solve) = (0.0, 0.0);
-                for _ in 0..steps {
+                for done in 0..steps {
+                    if crate::interrupt::requested() {
+                        return Err(SceneError::Interrupted {
+                            path: path.to_path_buf(),
+                            done,
+                            steps,
+                        });
+                    }
                     let s = stepper.step().map_err(physics)?;
                     loads += s.seconds.loads;
                     solve += s.seconds.solve;

@@ -484,9 +484,14 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             PelletError::Physics(PhysicsError::Newton(f)) => f.residual_history.clone(),
             _ => Vec::new(),
         };
+        let status = if matches!(e, PelletError::Interrupted { .. }) {
+            "interrupted"
+        } else {
+            "failed"
+        };
         let report = json!({
             "scene": "pellet",
-            "status": "failed",
+            "status": status,
             "error": e.to_string(),
             "residual_history": history,
             "valid_steps": rows.len(),
@@ -528,6 +533,11 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     ));
     write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
     for k in 1..=steps {
+        if crate::interrupt::requested() {
+            bar.finish_and_clear();
+            let e = PelletError::Interrupted { time, steps: k - 1 };
+            return Err(failure(e, &rows, outputs, &files));
+        }
         let target = (k as f64 * scene.time.step).min(scene.time.end);
         let before = solver.stats;
         let mut cuts = 0;

@@ -126,6 +126,15 @@ pub enum PelletError {
     /// An output could not be written.
     #[error(transparent)]
     Io(#[from] crate::io::IoError),
+    /// The run was interrupted (Ctrl-C, [`crate::interrupt`]) before the step at `time`; the
+    /// coupled scene has written what it had, with `"status": "interrupted"`.
+    #[error("interrupted at t = {time} s after {steps} time steps")]
+    Interrupted {
+        /// The time reached (s).
+        time: f64,
+        /// The steps completed.
+        steps: usize,
+    },
     /// An output file or directory could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

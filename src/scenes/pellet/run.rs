@@ -184,6 +184,11 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
     let mut time = 0.0;
     write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
     for k in 1..=steps {
+        if crate::interrupt::requested() {
+            bar.finish_and_clear();
+            // All or none: an interrupted thermal run writes nothing.
+            return Err(PelletError::Interrupted { time, steps: k - 1 });
+        }
         let dt = scene.time.step.min(scene.time.end - time);
         let old = x.clone();
         let rep = problem.solve(&mut x, time + dt, Some((&old, dt)), &mut solver, &newton)?;
