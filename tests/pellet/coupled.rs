@@ -486,3 +486,51 @@ fn free_expansion_error(r: usize) -> f64 {
     }
     worst
 }
+
+/// Run-time choice of laws (issue 11, item 2): the scene run with its laws made by name from
+/// the registry (`DynLaw`, through `run_coupled_with`) gives the built-in run's history bit
+/// for bit.
+#[test]
+fn laws_chosen_by_name_run_the_scene_as_the_built_in_ones() {
+    use mortar::physics::laws::{LawParameters, LawRegistry};
+    use mortar::scenes::pellet::run_coupled_with;
+    let mut s = scene(ContactLawName::Exponential);
+    s.mesh.refinement = 1;
+    s.time.snapshots = 1;
+    let built_in = run_scene(&s, "builtin-laws");
+    let registry = LawRegistry::with_shipped();
+    let params = |kv: &[(&str, f64)]| -> LawParameters {
+        kv.iter().map(|(k, v)| (k.to_string(), *v)).collect()
+    };
+    let thermal = registry
+        .make(
+            "mechanical_gap_conductance",
+            &params(&[
+                ("roughness_fuel", s.gap.roughness_pellet),
+                ("roughness_cladding", s.gap.roughness_cladding),
+                ("jump_distance", s.gap.jump_distance),
+                ("contact_conductance", s.gap.contact_conductance),
+            ]),
+        )
+        .unwrap();
+    let contact = registry
+        .make(
+            "exponential_contact",
+            &params(&[
+                ("stiffness", s.contact.stiffness_exponent),
+                ("onset", s.contact.onset_gap),
+            ]),
+        )
+        .unwrap();
+    let dir = out("dyn-laws");
+    let by_name = run_coupled_with(&s, thermal, contact, &dir, false).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    for key in [
+        "center_temperature",
+        "gap",
+        "interface_pressure",
+        "plenum_pressure",
+    ] {
+        assert_eq!(series(&built_in, key), series(&by_name, key), "{key}");
+    }
+}

@@ -21,6 +21,9 @@
 //!   multiplier.
 //! - [`ContactComplementarity`]: `C = lambda - max(0, lambda - c g)` (semi-smooth Newton).
 //!
+//! [`DynLaw`] is any law behind one type, chosen at run time; a [`LawRegistry`] makes the
+//! shipped laws (and a program's own) by name from their parameters.
+//!
 //! [`evaluate`] is the checked evaluation: value and partial derivatives, or a [`LawError`]
 //! for NaN input or a non-finite result; [`check_tangent`] compares that tangent with finite
 //! differences, for a law of one's own.
@@ -49,12 +52,14 @@
 mod check;
 mod complementarity;
 mod dual;
+mod dynamic;
 mod gap;
 mod pressure;
 
 pub use check::{check_tangent, TangentCheck};
 pub use complementarity::ContactComplementarity;
 pub use dual::Dual;
+pub use dynamic::{DynLaw, LawParameters, LawRegistry, ObjectLaw};
 pub use gap::{GapConductance, GasConductivity, MechanicalGapConductance};
 pub use pressure::{ExponentialContact, ExponentialPressure};
 
@@ -117,6 +122,13 @@ impl<S: num_traits::Zero> LawPoint<S> {
 pub trait ConstraintLaw {
     /// The residual `C` at `p`.
     fn residual<S: Float>(&self, p: LawPoint<S>) -> S;
+
+    /// The residual in the dual numbers that [`evaluate`] uses (value and the six partial
+    /// derivatives). Provided: `residual` at `Dual<6>`; only a wrapper that cannot be generic
+    /// ([`DynLaw`]) overrides it.
+    fn residual_dual(&self, p: LawPoint<Dual<6>>) -> Dual<6> {
+        self.residual(p)
+    }
 }
 
 /// A law's value and its partial derivatives at a point.
@@ -193,7 +205,7 @@ pub fn evaluate<L: ConstraintLaw + ?Sized>(
             return Err(LawError::NanInput { argument });
         }
     }
-    let c = law.residual(LawPoint {
+    let c = law.residual_dual(LawPoint {
         gap: Dual::<6>::variable(p.gap, 0),
         multiplier: Dual::variable(p.multiplier, 1),
         temperature: Dual::variable(p.temperature, 2),
