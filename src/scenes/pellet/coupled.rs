@@ -15,7 +15,7 @@ use mortar_physics::heat::{
 };
 use mortar_physics::laws::{
     ConstraintLaw, ContactComplementarity, ExponentialContact, GapConductance, GasConductivity,
-    MechanicalGapConductance,
+    LawParameters, LawRegistry, MechanicalGapConductance,
 };
 use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
 use mortar_physics::thermomech::{
@@ -310,6 +310,9 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
 /// # Errors
 /// As [`run`](super::run).
 pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    if scene.laws.thermal.is_some() || scene.laws.contact.is_some() {
+        return run_with_registry(scene, &LawRegistry::with_shipped(), out, progress);
+    }
     match scene.contact.law {
         ContactLawName::Exponential => {
             let law = ExponentialContact::try_new(
@@ -346,6 +349,81 @@ pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
             )
         }
     }
+}
+
+/// Runs the coupled scene with the laws of its `[laws]` tables made by `registry` (the shipped
+/// laws and a program's own; see [`LawsData`](super::LawsData)); a law not named there is the
+/// scene's built-in one, made by name too (`mechanical_gap_conductance` from `[gap]`,
+/// `exponential_contact` or `contact_complementarity` from `[contact]`).
+///
+/// # Errors
+/// [`PelletError::Law`] for an unknown name (listing the known ones), a missing parameter or
+/// a value the law refuses; otherwise as [`run`](super::run).
+pub fn run_with_registry(
+    scene: &PelletScene,
+    registry: &LawRegistry,
+    out: &Path,
+    progress: bool,
+) -> Result<Value, PelletError> {
+    let params = |kv: &[(&str, f64)]| -> LawParameters {
+        kv.iter().map(|(k, v)| (k.to_string(), *v)).collect()
+    };
+    let (g, ct) = (&scene.gap, &scene.contact);
+    let thermal = match &scene.laws.thermal {
+        Some(spec) => registry.make(&spec.name, &spec.parameters)?,
+        None => {
+            let mut p = params(&[
+                ("roughness_fuel", g.roughness_pellet),
+                ("roughness_cladding", g.roughness_cladding),
+                ("jump_distance", g.jump_distance),
+                ("contact_conductance", g.contact_conductance),
+            ]);
+            if let Some(k) = g.gas_conductivity {
+                p.insert("gas_conductivity".into(), k);
+            }
+            LawRegistry::with_shipped().make("mechanical_gap_conductance", &p)?
+        }
+    };
+    let (contact, onset) = match &scene.laws.contact {
+        Some(spec) => {
+            let law = registry.make(&spec.name, &spec.parameters)?;
+            let onset = (spec.name == "exponential_contact")
+                .then(|| spec.parameters.get("onset").copied())
+                .flatten();
+            (law, onset)
+        }
+        None => {
+            let shipped = LawRegistry::with_shipped();
+            match ct.law {
+                ContactLawName::Exponential => (
+                    shipped.make(
+                        "exponential_contact",
+                        &params(&[
+                            ("stiffness", ct.stiffness_exponent),
+                            ("onset", ct.onset_gap),
+                        ]),
+                    )?,
+                    Some(ct.onset_gap),
+                ),
+                ContactLawName::Exact => (
+                    shipped.make(
+                        "contact_complementarity",
+                        &params(&[("c", complementarity(scene))]),
+                    )?,
+                    None,
+                ),
+            }
+        }
+    };
+    let names = (thermal.name().to_string(), contact.name().to_string());
+    run_with(
+        scene,
+        (thermal, contact),
+        (&names.0, &names.1),
+        onset,
+        out,
+        progress,
+    )
 }
 
 /// Runs the coupled scene with a program's own interface laws in place of the scene's

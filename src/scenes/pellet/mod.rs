@@ -90,8 +90,8 @@ mod run;
 
 pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{
-    coupled_problem, coupled_problem_with, run_coupled, run_coupled_with, thermal_law,
-    MAX_STEP_CUTS,
+    coupled_problem, coupled_problem_with, run_coupled, run_coupled_with, run_with_registry,
+    thermal_law, MAX_STEP_CUTS,
 };
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use run::{run, run_builtin, run_from_toml, run_thermal};
@@ -508,6 +508,44 @@ pub struct PelletScene {
     pub plenum: PlenumData,
     /// `[model]`.
     pub model: ModelData,
+    /// `[laws]`: interface laws by name, in place of the `[gap]` and `[contact]` ones.
+    pub laws: LawsData,
+}
+
+/// A law named in a scene file: `name` and its parameters (numbers, SI), as a
+/// [`LawRegistry`](mortar_physics::laws::LawRegistry) makes it.
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
+pub struct LawSpec {
+    /// The registry's name of the law.
+    pub name: String,
+    /// Its parameters.
+    #[serde(flatten)]
+    pub parameters: std::collections::BTreeMap<String, f64>,
+}
+
+/// `[laws]`: the coupled scene's interface laws by name (each optional; both built-in when
+/// absent). `[laws.thermal]` replaces the gap conductance of `[gap]`, `[laws.contact]` the
+/// pressure law of `[contact]`:
+///
+/// ```toml
+/// [laws.thermal]
+/// name = "mechanical_gap_conductance"
+/// roughness_fuel = 2e-6
+/// roughness_cladding = 1e-6
+/// jump_distance = 10e-6
+/// contact_conductance = 1e-4
+/// [laws.contact]
+/// name = "exponential_contact"
+/// stiffness = 1e12
+/// onset = 5e-6
+/// ```
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct LawsData {
+    /// The thermal law (heat flux against temperature jump).
+    pub thermal: Option<LawSpec>,
+    /// The contact law (contact pressure against gap).
+    pub contact: Option<LawSpec>,
 }
 
 impl PelletScene {

@@ -63,7 +63,9 @@ pub use dynamic::{DynLaw, LawParameters, LawRegistry, ObjectLaw};
 pub use gap::{GapConductance, GasConductivity, MechanicalGapConductance};
 pub use pressure::{ExponentialContact, ExponentialPressure};
 
-use num_traits::Float;
+/// The scalar trait of [`ConstraintLaw::residual`], re-exported so that a law of one's own
+/// needs no direct dependency on `num-traits`.
+pub use num_traits::Float;
 
 /// The arguments of a law at one point (one slave node).
 ///
