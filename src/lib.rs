@@ -20,12 +20,15 @@
 //! assert!((coupling.stats.area - 1.0).abs() < 1e-12);
 //! # Ok(()) }
 //! ```
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
+pub mod extend;
 pub mod generate;
 pub mod interrupt;
 pub mod io;
 pub mod scenes;
 #[cfg(feature = "proptest-support")]
+#[cfg_attr(docsrs, doc(cfg(feature = "proptest-support")))]
 pub mod testing;
 
 pub use mortar_core::{
