@@ -51,6 +51,18 @@ fn series(rep: &Value, key: &str) -> Vec<f64> {
         .collect()
 }
 
+/// Two runs' histories are the same bit for bit.
+fn assert_same_history(a: &Value, b: &Value) {
+    for key in [
+        "center_temperature",
+        "gap",
+        "interface_pressure",
+        "plenum_pressure",
+    ] {
+        assert_eq!(series(a, key), series(b, key), "{key}");
+    }
+}
+
 /// The default scene with a contact conductance (so that its term is exercised).
 fn scene(law: ContactLawName) -> PelletScene {
     let mut s = PelletScene::default();
@@ -525,14 +537,7 @@ fn laws_chosen_by_name_run_the_scene_as_the_built_in_ones() {
     let dir = out("dyn-laws");
     let by_name = run_coupled_with(&s, thermal, contact, &dir, false).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
-    for key in [
-        "center_temperature",
-        "gap",
-        "interface_pressure",
-        "plenum_pressure",
-    ] {
-        assert_eq!(series(&built_in, key), series(&by_name, key), "{key}");
-    }
+    assert_same_history(&built_in, &by_name);
 }
 
 /// Scene files naming laws (issue 11, item 2): `[laws.thermal]` and `[laws.contact]` with the
@@ -553,14 +558,7 @@ fn scene_files_name_their_laws() {
     );
     let built_in = run_scene(&PelletScene::from_toml(base).unwrap(), "laws-builtin");
     let by_name = run_scene(&PelletScene::from_toml(&named).unwrap(), "laws-named");
-    for key in [
-        "center_temperature",
-        "gap",
-        "interface_pressure",
-        "plenum_pressure",
-    ] {
-        assert_eq!(series(&built_in, key), series(&by_name, key), "{key}");
-    }
+    assert_same_history(&built_in, &by_name);
     assert_eq!(by_name["models"]["contact_law"], "exponential_contact");
     assert_eq!(built_in["gap_closure_time"], by_name["gap_closure_time"]);
 

@@ -17,7 +17,6 @@ use mortar_physics::laws::{
     ConstraintLaw, ContactComplementarity, ExponentialContact, GapConductance, GasConductivity,
     LawParameters, LawRegistry, MechanicalGapConductance,
 };
-use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
 use mortar_physics::thermomech::{
     GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
     ThermoMechSolver, ThermoMechSolverState,
@@ -523,20 +522,10 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let c = &scene.cladding;
     let method = match scene.solver.method {
         SolverMethod::Newton => ThermoMechSolver::Newton,
-        SolverMethod::Jfnk => ThermoMechSolver::Jfnk(JfnkOptions {
-            restart: scene.solver.gmres_restart,
-            ..JfnkOptions::default()
-        }),
+        SolverMethod::Jfnk => ThermoMechSolver::Jfnk(scene.solver.jfnk_options()),
     };
     let mut solver = ThermoMechSolverState::new(method);
-    let newton = NewtonOptions {
-        relative_tolerance: scene.solver.relative_tolerance,
-        // The rows are heat flows (W/m) and forces scaled to them: far below any physical
-        // one, so that a step near the steady state does not chase round-off.
-        absolute_tolerance: 1e-12 * scene.power.linear_power.max(1.0),
-        max_iterations: scene.solver.max_iterations,
-        ..NewtonOptions::default()
-    };
+    let newton = scene.solver.newton_options(scene.power.linear_power);
     let bodies = problem.heat().bodies();
     let centre = nearest_node(&bodies[0].mesh, Vector3::zeros());
     let t0 = vec![c.outer_temperature; bodies[0].mesh.node_count()];

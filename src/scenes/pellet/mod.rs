@@ -449,6 +449,28 @@ pub struct SolverData {
     pub gmres_restart: usize,
 }
 
+impl SolverData {
+    /// The GMRES settings of JFNK.
+    pub fn jfnk_options(&self) -> mortar_physics::nonlinear::JfnkOptions {
+        mortar_physics::nonlinear::JfnkOptions {
+            restart: self.gmres_restart,
+            ..Default::default()
+        }
+    }
+
+    /// Newton's settings, with an absolute floor of `1e-12 q'` (the residual rows are heat
+    /// flows in W/m, and forces scaled to them: far below any physical one, so that a step
+    /// near the steady state does not chase round-off).
+    pub fn newton_options(&self, linear_power: f64) -> mortar_physics::nonlinear::NewtonOptions {
+        mortar_physics::nonlinear::NewtonOptions {
+            relative_tolerance: self.relative_tolerance,
+            absolute_tolerance: 1e-12 * linear_power.max(1.0),
+            max_iterations: self.max_iterations,
+            ..Default::default()
+        }
+    }
+}
+
 impl Default for SolverData {
     fn default() -> Self {
         Self {

@@ -9,7 +9,6 @@ use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
 use mortar_physics::heat::{
     Conductivity, GapHeat, GapSolver, GapSolverState, HeatBody, HeatMaterial,
 };
-use mortar_physics::nonlinear::{JfnkOptions, NewtonOptions};
 use serde_json::{json, Value};
 
 use super::{annulus_mesh, pellet_mesh, PelletError, PelletScene, SolverMethod};
@@ -153,19 +152,10 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
 
     let method = match scene.solver.method {
         SolverMethod::Newton => GapSolver::Newton,
-        SolverMethod::Jfnk => GapSolver::Jfnk(JfnkOptions {
-            restart: scene.solver.gmres_restart,
-            ..JfnkOptions::default()
-        }),
+        SolverMethod::Jfnk => GapSolver::Jfnk(scene.solver.jfnk_options()),
     };
     let mut solver = GapSolverState::new(method);
-    let newton = NewtonOptions {
-        relative_tolerance: scene.solver.relative_tolerance,
-        // The residual rows are heat flows (W/m): far below any physical one.
-        absolute_tolerance: 1e-12 * q.max(1.0),
-        max_iterations: scene.solver.max_iterations,
-        ..NewtonOptions::default()
-    };
+    let newton = scene.solver.newton_options(q);
 
     let [pellet, cladding] = problem.bodies();
     let centre = nearest_node(&pellet.mesh, nalgebra::Vector3::zeros());
