@@ -17,7 +17,10 @@
 //! - [`relabelled`]: a copy of a mesh with new node tags, nodes and faces stored in another
 //!   order and each face's corner list rotated, with the map from old to new tags;
 //!   [`shuffled`]: a copy with nodes and faces in a seeded random order (the benchmark's
-//!   worst-case file order).
+//!   worst-case file order);
+//! - [`patch_test`]: the checks, with their exact answers: constants and linear fields
+//!   reproduced (`D 1 = M 1`, `D x_s = M x_m`), row sums of D against the slave nodal areas
+//!   computed independently ([`nodal_areas`]), biorthogonality of a dual D.
 //!
 //! ```
 //! use mortar::testing::{covered_pair_3d, rigid_motion_3d};
@@ -44,11 +47,13 @@
 //!     .unwrap();
 //! ```
 
+mod checks;
 mod mesh;
 mod motion;
 mod pair;
 mod relabel;
 
+pub use checks::{nodal_areas, patch_test, PatchReport};
 pub use mesh::{
     cell_kind, perturbed_line, perturbed_square, CellKind, MAX_LINE_JITTER, MAX_SQUARE_JITTER,
 };

@@ -3,12 +3,10 @@
 
 use std::collections::HashMap;
 
-use mortar::core::element::ReferenceDomain;
 use mortar::core::linalg::SparseMatrix;
-use mortar::core::quadrature::{Quadrature, QuadratureRule};
 use mortar::testing::MeshPair;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use proptest::prelude::*;
 use proptest::test_runner::Config;
 
@@ -118,46 +116,9 @@ pub fn compare_mapped(
     worst
 }
 
-/// `int N_j` over the slave surface for every node `j` used by a face, keyed by node tag:
-/// computed face by face with a quadrature exact for `N_j` times the Jacobian of a flat
-/// Tri3 or Quad4 (degree 4 >= 2 + 1), the Jacobian from the shape gradients directly (not
-/// through the coupling code).
-pub fn nodal_areas(mesh: &SurfaceMesh) -> HashMap<u64, f64> {
-    let mut out = HashMap::new();
-    let tags = mesh.node_tags();
-    for f in 0..mesh.face_count() {
-        let face = mesh.face(f);
-        let el = face.element;
-        let k = el.node_count();
-        let x: Vec<Vector3<f64>> = face
-            .nodes
-            .iter()
-            .map(|&n| mesh.coords()[n as usize])
-            .collect();
-        let rule = QuadratureRule::for_domain(el.domain(), 20).expect("degree 20 exists");
-        let mut n = vec![0.0; k];
-        let mut g = vec![[0.0; 2]; k];
-        for (xi, w) in rule.points().iter().zip(rule.weights()) {
-            el.shape_values_into(&Vector2::new(xi.x, xi.y), &mut n);
-            el.shape_gradients_into(&Vector2::new(xi.x, xi.y), &mut g);
-            let mut t1 = Vector3::zeros();
-            let mut t2 = Vector3::zeros();
-            for i in 0..k {
-                t1 += x[i] * g[i][0];
-                t2 += x[i] * g[i][1];
-            }
-            let det = if el.domain() == ReferenceDomain::Line {
-                t1.norm()
-            } else {
-                t1.cross(&t2).norm()
-            };
-            for i in 0..k {
-                *out.entry(tags[face.nodes[i] as usize]).or_insert(0.0) += w * det * n[i];
-            }
-        }
-    }
-    out
-}
+/// `int N_j` over the slave surface for every node `j` used by a face, keyed by node tag
+/// (the public checks' own, independent of the coupling code).
+pub use mortar::testing::nodal_areas;
 
 /// The measure of a surface: the sum of its nodal areas.
 pub fn surface_measure(mesh: &SurfaceMesh) -> f64 {
