@@ -52,7 +52,7 @@ pub use gmsh::{
     PhysicalGroup,
 };
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
-pub use output::{write_coupling, write_outputs};
+pub use output::{remove_stale_outputs, write_coupling, write_outputs};
 pub use summary::{
     CouplingSettings, CouplingSummary, Integration, Multipliers, OrientationMethod,
     OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary, WarningSummary,

@@ -138,3 +138,38 @@ fn write_all(dir: &Path, files: &[(&str, Vec<u8>)]) -> Result<(), IoError> {
     }
     Ok(())
 }
+
+/// Removes from `dir` the files that an earlier run of the same scene wrote and this one did
+/// not: those whose name `ours` recognises (the scene's own output patterns) and that are not
+/// in `written`. Other files are left alone. Returns the names removed.
+///
+/// A run of 4 snapshots after a run of 30 would otherwise leave `pellet_0005.vtu` and on,
+/// which a ParaView user would take for this run's.
+///
+/// # Errors
+/// [`IoError::Write`] naming a file that could not be removed, or the directory that could not
+/// be listed.
+pub fn remove_stale_outputs(
+    dir: impl AsRef<Path>,
+    written: &[&str],
+    ours: impl Fn(&str) -> bool,
+) -> Result<Vec<String>, IoError> {
+    let dir = dir.as_ref();
+    let entries = std::fs::read_dir(dir).map_err(|source| IoError::Write {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut removed = Vec::new();
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if ours(&name) && !written.contains(&name.as_str()) && entry.path().is_file() {
+            std::fs::remove_file(entry.path()).map_err(|source| IoError::Write {
+                path: entry.path(),
+                source,
+            })?;
+            removed.push(name);
+        }
+    }
+    removed.sort();
+    Ok(removed)
+}

@@ -650,3 +650,39 @@ fn scene_files_name_their_laws() {
         "radiation carries heat: {t_rad} vs {t_cond}"
     );
 }
+
+/// Regression: a run into the folder of an earlier run left the earlier run's extra
+/// snapshots (`pellet_0004.vtu` of a 4-snapshot run beside a 1-snapshot run's files, or the
+/// thermal run's `pellet_steady.vtu`), which a ParaView user takes for this run's. The
+/// pellet outputs this run did not write are now removed; other files stay.
+#[test]
+fn a_second_run_leaves_no_stale_snapshots() {
+    let dir = out("stale");
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut s = scene(ContactLawName::Exponential);
+    s.mesh.refinement = 1;
+    s.time.snapshots = 4;
+    run(&s, &dir, false).unwrap();
+    assert!(dir.join("pellet_0004.vtu").exists());
+    std::fs::write(dir.join("notes.txt"), "mine").unwrap();
+    std::fs::write(dir.join("pellet_steady.vtu"), "an old thermal run's").unwrap();
+    s.time.snapshots = 1;
+    let rep = run(&s, &dir, false).unwrap();
+    let vtu: Vec<&str> = rep["vtu"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    assert_eq!(vtu, ["pellet_0000.vtu", "pellet_0001.vtu"]);
+    for stale in [
+        "pellet_0002.vtu",
+        "pellet_0004.vtu",
+        "interface_0003.vtu",
+        "pellet_steady.vtu",
+    ] {
+        assert!(!dir.join(stale).exists(), "{stale} left behind");
+    }
+    assert!(dir.join("notes.txt").exists(), "a user's file is kept");
+    let _ = std::fs::remove_dir_all(&dir);
+}

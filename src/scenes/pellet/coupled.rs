@@ -25,14 +25,13 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 use serde_json::{json, Value};
 
-use super::run::{mesh_area, nearest_node, progress_bar, pvd};
+use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
     annulus_mesh, pellet_mesh, ContactLawName, Geometry, PelletError, PelletScene, SolverMethod,
 };
 use crate::generate::{extrude_mesh, rectangle_mesh, CellShape};
 use crate::io::plot::{line_chart_png, Chart, Curve};
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
-use crate::io::write_outputs;
 
 /// The most times a failing time step is halved before the run stops.
 pub const MAX_STEP_CUTS: usize = 4;
@@ -578,11 +577,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                 .expect("JSON values serialise")
                 .into_bytes(),
         ));
-        let named: Vec<(&str, Vec<u8>)> = outputs
-            .iter()
-            .map(|(n, b)| (n.as_str(), b.clone()))
-            .collect();
-        match write_outputs(out, &named) {
+        match write_scene_outputs(out, outputs) {
             Ok(()) => e,
             Err(w) => PelletError::Invalid(format!("{e}; and the outputs of the failure: {w}")),
         }
@@ -752,11 +747,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     outputs.extend(history_plots(&rows)?);
     let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
     outputs.push(("report.json".to_string(), text.into_bytes()));
-    let named: Vec<(&str, Vec<u8>)> = outputs
-        .iter()
-        .map(|(n, b)| (n.as_str(), b.clone()))
-        .collect();
-    write_outputs(out, &named)?;
+    write_scene_outputs(out, outputs)?;
     Ok(report)
 }
 

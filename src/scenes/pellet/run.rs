@@ -13,7 +13,7 @@ use serde_json::{json, Value};
 
 use super::{annulus_mesh, pellet_mesh, PelletError, PelletScene, SolverMethod};
 use crate::io::vtu::{vtu_string, VtuPiece};
-use crate::io::write_outputs;
+use crate::io::{remove_stale_outputs, write_outputs};
 
 /// Parses the scene file `text` (see the [module documentation](super)) and runs it,
 /// writing VTU snapshots and `report.json` into `out` (created if needed). Shows a progress
@@ -264,10 +264,43 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
     });
     let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
     outputs.push(("report.json".to_string(), text.into_bytes()));
+    write_scene_outputs(out, outputs)?;
+    Ok(report)
+}
+
+/// Whether `name` is one of the pellet scenes' own output files.
+fn is_pellet_output(name: &str) -> bool {
+    let numbered = |prefix: &str| {
+        name.strip_prefix(prefix)
+            .and_then(|rest| rest.strip_suffix(".vtu"))
+            .is_some_and(|n| n.len() == 4 && n.bytes().all(|b| b.is_ascii_digit()))
+    };
+    numbered("pellet_")
+        || numbered("interface_")
+        || [
+            "pellet_steady.vtu",
+            "pellet.pvd",
+            "interface.pvd",
+            "temperatures.png",
+            "gap.png",
+            "pressures.png",
+            "report.json",
+        ]
+        .contains(&name)
+}
+
+/// Writes a pellet run's `outputs` into `out`, all or none, then removes the pellet outputs of
+/// an earlier run that this one did not write (so that the folder holds one run).
+pub(super) fn write_scene_outputs(
+    out: &Path,
+    outputs: Vec<(String, Vec<u8>)>,
+) -> Result<(), PelletError> {
     let (names, bytes): (Vec<String>, Vec<Vec<u8>>) = outputs.into_iter().unzip();
     let files: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(bytes).collect();
     write_outputs(out, &files)?;
-    Ok(report)
+    let written: Vec<&str> = names.iter().map(String::as_str).collect();
+    remove_stale_outputs(out, &written, is_pellet_output)?;
+    Ok(())
 }
 
 /// The progress bar: drawn on stderr only when asked and stderr is a terminal.
