@@ -1,8 +1,10 @@
 //! Ready-made problems of the seed, built in code: meshes, data and solver settings in one
 //! place, for the examples, the tests and the command line.
 //!
-//! - [`pellet`]: the fuel pellet in its cladding, thermal only, helium gap conductance across
-//!   the open gap, nonlinear `k(T)`, Newton or JFNK, checked against the closed form.
+//! - [`pellet`]: the fuel pellet in its cladding, thermomechanical (2D, r-z or 3D: expansion,
+//!   gap closure, gap conductance on the mechanical gap, contact, plenum pressure; Newton or
+//!   JFNK, checked against an independent radial model), or thermal only against the closed
+//!   form.
 //! - [`tied_heat`]: heat conduction in two bodies tied by mortar across a straight or curved
 //!   non-conforming interface, with a manufactured solution.
 //! - [`hertz`]: the Hertz contact of a cylinder (2D, plane strain) or a sphere (3D) pressed
@@ -14,6 +16,9 @@
 
 pub mod file;
 pub mod hertz;
+mod named_law;
 pub mod pellet;
 pub mod shrink_fit;
 pub mod tied_heat;
+
+pub use named_law::NamedLaw;

@@ -409,3 +409,42 @@ fn scene_warnings_are_printed_and_reported() {
         "{warnings:?}"
     );
 }
+
+/// Scene files name their contact law (issue 11, item 2): `named_law = { name = ... }` with a
+/// law of the registry runs as the built-in `law` key does (exact contact: the uniform
+/// pressure to 1e-8); an unknown name is refused naming the key and the known laws; `law` and
+/// `named_law` together are refused.
+#[test]
+fn contact_scenes_name_their_law() {
+    let dir = TempDir::new("contact-named");
+    let scene = setup(&dir);
+    let path = Path::new(&scene);
+    let named = SCENE.replace(
+        "law = \"exact\"",
+        "named_law = { name = \"contact_complementarity\", c = 1e12 }",
+    );
+    assert_ne!(named, SCENE);
+    let spec = ContactSpec::parse(&named, path).unwrap();
+    let solved = spec
+        .solve(path, path.parent().unwrap(), &FileSystem)
+        .unwrap();
+    let worst = solved
+        .solution
+        .pressure
+        .iter()
+        .map(|p| (p - SIGMA).abs() / SIGMA)
+        .fold(0.0f64, f64::max);
+    assert!(worst < 1e-8, "pressure off by {worst:e}");
+    assert_fails(
+        &dir,
+        "unknown_law.toml",
+        &named.replace("contact_complementarity", "coulomb"),
+        &["contact.named_law", "coulomb", "exponential_contact"],
+    );
+    assert_fails(
+        &dir,
+        "both_laws.toml",
+        &named.replace("named_law =", "law = \"exponential\"\nnamed_law ="),
+        &["contact.named_law", "not both"],
+    );
+}

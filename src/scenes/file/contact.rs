@@ -34,7 +34,9 @@ use mortar_physics::elastic::{
     assemble_elastic_load, assemble_elastic_stiffness, recover_stress, ComponentSet, ElasticBody,
     ElasticMaterial, ElasticOptions, TractionCondition,
 };
-use mortar_physics::laws::{ContactComplementarity, ExponentialPressure};
+use mortar_physics::laws::{ContactComplementarity, ExponentialPressure, LawRegistry};
+
+use crate::scenes::NamedLaw;
 use mortar_physics::tied::Tie;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
@@ -152,6 +154,12 @@ pub struct ContactInterfaceSpec {
     /// The law.
     #[serde(default)]
     pub law: LawSpec,
+    /// A law by name from the shipped [`LawRegistry`] (or a program's own, through
+    /// [`ContactScene::solve_with_registry`]), with its parameters, in place of `law`:
+    /// `named_law = { name = "exponential_pressure", base_pressure = 1e5, stiffness = 1e12,
+    /// onset = 1e-6 }`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub named_law: Option<NamedLaw>,
     /// `P_o` of the exponential law.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub base_pressure: Option<f64>,
@@ -346,7 +354,21 @@ impl ContactSpec {
             ));
         }
         let c = &self.contact;
+        if let Some(named) = &c.named_law {
+            if c.law != LawSpec::default() {
+                return Err(invalid(
+                    "contact.named_law",
+                    "give either law or named_law, not both".into(),
+                ));
+            }
+            // Unknown names and parameters are checked against the shipped laws when the
+            // scene runs with them (a program's registry may know more).
+            if named.name.is_empty() {
+                return Err(invalid("contact.named_law", "the name is empty".into()));
+            }
+        }
         match c.law {
+            _ if c.named_law.is_some() => {}
             LawSpec::Exact => {
                 for (k, v) in [
                     ("base_pressure", c.base_pressure),
@@ -434,6 +456,22 @@ impl ContactSpec {
         path: &Path,
         base: &Path,
         source: &dyn SceneSource,
+    ) -> Result<SolvedContact, SceneError> {
+        self.solve_with_registry(path, base, source, &LawRegistry::with_shipped())
+    }
+
+    /// [`solve`](Self::solve), with a `named_law` made by `laws` (the shipped laws and a
+    /// program's own).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run); [`SceneError::Invalid`] (key `contact.named_law`) for a law the
+    /// registry does not know or whose parameters it refuses.
+    pub fn solve_with_registry(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+        laws: &LawRegistry,
     ) -> Result<SolvedContact, SceneError> {
         let t_start = Instant::now();
         let registry = VolumeRegistry::new();
@@ -613,6 +651,16 @@ impl ContactSpec {
         };
         let c = &self.contact;
         let (solution, law_description) = match c.law {
+            _ if c.named_law.is_some() => {
+                let named = c.named_law.as_ref().expect("checked by the guard");
+                let law = named
+                    .make(laws)
+                    .map_err(|e| invalid("contact.named_law".into(), e.to_string()))?;
+                (
+                    solve_steps(&stiffness, &load, &dirichlet, &gap, &law, &contact_options),
+                    format!("{} (by name) {:?}", named.name, named.parameters),
+                )
+            }
             LawSpec::Exact => {
                 let cc = automatic_complementarity(&stiffness[0], &tie, &gap, dim);
                 let law = ContactComplementarity::try_new(cc)

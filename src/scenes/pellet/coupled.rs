@@ -368,7 +368,7 @@ pub fn run_with_registry(
     };
     let (g, ct) = (&scene.gap, &scene.contact);
     let thermal = match &scene.laws.thermal {
-        Some(spec) => registry.make(&spec.name, &spec.parameters)?,
+        Some(spec) => spec.make(registry)?,
         None => {
             let mut p = params(&[
                 ("roughness_fuel", g.roughness_pellet),
@@ -384,7 +384,7 @@ pub fn run_with_registry(
     };
     let (contact, onset) = match &scene.laws.contact {
         Some(spec) => {
-            let law = registry.make(&spec.name, &spec.parameters)?;
+            let law = spec.make(registry)?;
             let onset = (spec.name == "exponential_contact")
                 .then(|| spec.parameters.get("onset").copied())
                 .flatten();

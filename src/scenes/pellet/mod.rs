@@ -534,16 +534,8 @@ pub struct PelletScene {
     pub laws: LawsData,
 }
 
-/// A law named in a scene file: `name` and its parameters (numbers, SI), as a
-/// [`LawRegistry`](mortar_physics::laws::LawRegistry) makes it.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-pub struct LawSpec {
-    /// The registry's name of the law.
-    pub name: String,
-    /// Its parameters.
-    #[serde(flatten)]
-    pub parameters: std::collections::BTreeMap<String, f64>,
-}
+/// A law named in a scene file (see [`NamedLaw`](crate::scenes::NamedLaw)).
+pub type LawSpec = crate::scenes::NamedLaw;
 
 /// `[laws]`: the coupled scene's interface laws by name (each optional; both built-in when
 /// absent). `[laws.thermal]` replaces the gap conductance of `[gap]`, `[laws.contact]` the
