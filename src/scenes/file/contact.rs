@@ -155,7 +155,7 @@ pub struct ContactInterfaceSpec {
     #[serde(default)]
     pub law: LawSpec,
     /// A law by name from the shipped [`LawRegistry`] (or a program's own, through
-    /// [`ContactScene::solve_with_registry`]), with its parameters, in place of `law`:
+    /// [`ContactSpec::solve_with_registry`]), with its parameters, in place of `law`:
     /// `named_law = { name = "exponential_pressure", base_pressure = 1e5, stiffness = 1e12,
     /// onset = 1e-6 }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
