@@ -13,6 +13,7 @@ mod convergence {
     mod components;
     mod contact;
     mod contact_laws;
+    mod contrast;
     mod determinism;
     mod patch;
     mod paths;

@@ -37,4 +37,7 @@ pub(crate) use gap::StepData;
 pub use gap::{GapHeat, GapSolver, GapSolverState, GapSolverStats};
 pub use nonlinear::{assemble_conduction, Conductivity, Linearization};
 pub use norms::{error_norms, ErrorNorms};
-pub use tied::{BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution};
+pub use tied::{
+    BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution, MAX_CONDUCTIVITY_CONTRAST,
+    MAX_STIFFER_SLAVE_CONTRAST,
+};

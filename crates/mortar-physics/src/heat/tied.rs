@@ -64,6 +64,62 @@ pub struct TiedHeat {
     seconds: HeatSeconds,
 }
 
+/// The largest conductivity contrast `max(k) / min(k)` of the two bodies that [`TiedHeat::new`]
+/// accepts: about `1 / eps` (eps = 2.2e-16, double precision). Beyond it the stiffer body's
+/// temperature drop is below one unit in the last place of the temperature span, so its
+/// gradient and its heat flux are not carried by its nodal temperatures.
+///
+/// Measured on two bodies tied along a non-matching interface (tests/convergence/contrast.rs:
+/// 2D with and without Dirichlet slave crosspoints, 3D; both formulations): the nodal
+/// temperatures stay within 2e-14 of the span of the exact piecewise-linear field at every
+/// contrast up to 1e15 (and beyond: 5e-15 at 1e300), and the interface flux within 2e-14
+/// when the slave body is the softer one. When the slave body is the stiffer one, its
+/// multipliers come from its own rows, `(b - A T) / D`, whose terms are `contrast` times the
+/// flux: their relative error is about `100 eps contrast` (1e-8 at 1e6, 1.3e-2 at 1e12, 9.5
+/// at 1e15), hence the lower limit [`MAX_STIFFER_SLAVE_CONTRAST`].
+pub const MAX_CONDUCTIVITY_CONTRAST: f64 = 1e15;
+
+/// The largest ratio `k_slave / k_master` that [`TiedHeat::new`] accepts when the slave body
+/// is the stiffer one: the interface flux (the slave's multipliers) then carries a relative
+/// error of about `100 eps k_slave / k_master`, measured 1.3e-2 at this limit (see
+/// [`MAX_CONDUCTIVITY_CONTRAST`]). With the softer body as the slave side the flux is exact to
+/// round-off up to [`MAX_CONDUCTIVITY_CONTRAST`].
+pub const MAX_STIFFER_SLAVE_CONTRAST: f64 = 1e12;
+
+/// Refuses conductivity contrasts beyond [`MAX_CONDUCTIVITY_CONTRAST`], and a slave body
+/// stiffer than its master beyond [`MAX_STIFFER_SLAVE_CONTRAST`], naming both bodies.
+fn check_contrast(slave: &HeatBody, master: &HeatBody) -> Result<(), PhysicsError> {
+    let (ks, km) = (slave.material.conductivity, master.material.conductivity);
+    let contrast = ks.max(km) / ks.min(km);
+    let names = format!(
+        "the conductivities {ks:e} (slave body {:?}) and {km:e} (master body {:?}) are \
+         {contrast:.1e} apart",
+        slave.name, master.name
+    );
+    let what = if contrast > MAX_CONDUCTIVITY_CONTRAST {
+        format!(
+            "{names}, beyond the contrast of {MAX_CONDUCTIVITY_CONTRAST:.0e} that double \
+             precision carries (the stiffer body's temperature drop would be below one unit \
+             in the last place of the temperature span); treat the stiffer body as \
+             isothermal instead"
+        )
+    } else if ks / km > MAX_STIFFER_SLAVE_CONTRAST {
+        format!(
+            "{names}, and the slave body is the stiffer one: beyond a contrast of \
+             {MAX_STIFFER_SLAVE_CONTRAST:.0e} its multipliers (the interface heat flux, from \
+             its own stiff rows) would lose more than a percent to round-off; make {:?} the \
+             slave side and {:?} the master side",
+            master.name, slave.name
+        )
+    } else {
+        return Ok(());
+    };
+    Err(PhysicsError::InvalidInput {
+        body: format!("{} and {}", slave.name, master.name),
+        what,
+    })
+}
+
 impl TiedHeat {
     /// Assembles both bodies and couples them along `slave_surface` (faces of the slave
     /// body's boundary) and `master_surface` (of the master body's), whose node tags are the
@@ -77,7 +133,9 @@ impl TiedHeat {
     /// # Errors
     /// The errors of the assembly ([`PhysicsError::InvalidInput`],
     /// [`PhysicsError::InvertedCell`]) and of [`Tie::new`]; [`PhysicsError::InvalidInput`]
-    /// if the coupling's geometry is not the heat options'.
+    /// if the coupling's geometry is not the heat options', if the conductivities are more
+    /// than [`MAX_CONDUCTIVITY_CONTRAST`] apart, or if the slave body's is more than
+    /// [`MAX_STIFFER_SLAVE_CONTRAST`] times the master body's.
     pub fn new(
         slave: HeatBody,
         master: HeatBody,
@@ -92,6 +150,7 @@ impl TiedHeat {
             assemble_heat_matrices(&slave, options)?,
             assemble_heat_matrices(&master, options)?,
         ];
+        check_contrast(&slave, &master)?;
         let t1 = Instant::now();
         let tie = Tie::new(
             &slave.mesh,
