@@ -63,16 +63,17 @@ fn check_same(
 
 /// Moving every node by `motion` rounds each coordinate to a relative `eps` of its new size:
 /// an absolute error of about `eps |t|`, which moves a face by `eps |t| / h` of its size. The
-/// tolerance allows four times that, on top of `1e-12`.
+/// tolerance allows `factor` times that, on top of `1e-12`.
 fn check_rigid(
     pair: &MeshPair,
     motion: &RigidMotion,
     options: &CouplingOptions,
+    factor: f64,
 ) -> Result<(), TestCaseError> {
     let moved = pair.transformed(|x| motion.apply(x)).unwrap();
     let h = min_edge(&pair.slave).min(min_edge(&pair.master));
     let reach = motion.translation.norm() + 2.0;
-    let tol = 1e-12 + 4.0 * f64::EPSILON * reach / h;
+    let tol = 1e-12 + factor * f64::EPSILON * reach / h;
     check_same(pair, &moved, options, |t| t, |t| t, 1.0, tol)
 }
 
@@ -96,14 +97,16 @@ proptest! {
         motion in rigid_motion_3d(),
         dual in any::<bool>(),
     ) {
-        check_rigid(&pair, &motion, &segment_options(dual))?;
+        check_rigid(&pair, &motion, &segment_options(dual), 4.0)?;
     }
 
     /// Any cell kinds. On a jittered Quad4 the integrands are not polynomials on the clip
     /// triangles, so the result depends on the quadrature error, which depends on how the
     /// clip polygon is triangulated; round-off far from the origin may add a near-duplicate
-    /// vertex that changes the fan. Degree 16 makes that error negligible, so this checks the
-    /// geometry alone.
+    /// vertex that changes the fan. Degree 16 makes that error small but not below the
+    /// round-off of the motion: a saved case (a jittered Quad4 slave, translation 3,800, shortest
+    /// edge 0.2) deviates by 8 `eps |t| / h` in M (3.9e-11), found by a clean-clone CI run;
+    /// the tolerance allows 16 (the triangle-only test above keeps 4).
     #[test]
     fn rigid_motion_3d_leaves_d_and_m_unchanged_any_cells(
         pair in covered_pair_3d(),
@@ -111,7 +114,7 @@ proptest! {
         dual in any::<bool>(),
     ) {
         let options = segment_options(dual).segment_based(Some(16)).unwrap();
-        check_rigid(&pair, &motion, &options)?;
+        check_rigid(&pair, &motion, &options, 16.0)?;
     }
 
     #[test]
@@ -120,7 +123,7 @@ proptest! {
         motion in rigid_motion_2d(),
         dual in any::<bool>(),
     ) {
-        check_rigid(&pair, &motion, &segment_options(dual))?;
+        check_rigid(&pair, &motion, &segment_options(dual), 4.0)?;
     }
 
     /// Scaling by `s` scales areas by `s^2` (3D) and lengths by `s` (2D).
