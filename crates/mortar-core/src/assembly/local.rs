@@ -152,7 +152,12 @@ fn kernel<const KS: usize, const KM: usize>(
         while i < points.len() && points[i].master == master {
             let p = &points[i];
             slave.element.shape_values_into(&p.xi_slave, &mut ns[..KS]);
-            basis.eval_into(&ns, &mut phi);
+            if basis.identity {
+                // A copy of KS values known at compile time (not a call to memcpy).
+                phi[..KS].copy_from_slice(&ns[..KS]);
+            } else {
+                basis.eval_into(&ns, &mut phi);
+            }
             mel.shape_values_into(&p.xi_master, &mut nm[..KM]);
             for j in 0..KS {
                 let wp = p.weight * phi[j];
