@@ -194,7 +194,10 @@ struct ChunkWorkspace {
     scratch: Vec<u32>,
     rule: PairedRule,
     blocks: LocalBlocks,
-    cols: Vec<(u32, [f64; MAX_FACE_NODES])>,
+    /// The master columns a slave face meets, in the order first met.
+    cols: Vec<u32>,
+    /// Their M values, `ks` per column (one per node of the face).
+    col_vals: Vec<f64>,
     /// Where each column is in `cols`.
     col_index: KeyIndex,
     d: Triplets,
@@ -584,6 +587,7 @@ fn chunk(
         rule,
         blocks,
         cols,
+        col_vals,
         col_index,
         d,
         m,
@@ -648,7 +652,9 @@ fn chunk(
         let rows = &face_rows[i][..face.node_count()];
         blocks.start_face(face.node_count());
         cols.clear();
+        col_vals.clear();
         col_index.clear();
+        let ks = rows.len();
         let mut basis = None;
         let mut any_points = false;
         // The covered fraction, summed over batches (`None` if a batch did not measure
@@ -699,16 +705,18 @@ fn chunk(
                 let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
                 debug_assert_eq!(kc, km);
                 for (l, &c) in mcols[..kc].iter().enumerate() {
-                    let at = match col_index.find(cols.len(), |i| cols[i].0, c) {
+                    let at = match col_index.find(cols.len(), |i| cols[i], c) {
                         Some(at) => at,
                         None => {
-                            cols.push((c, [0.0; MAX_FACE_NODES]));
+                            cols.push(c);
+                            col_vals.resize(col_vals.len() + ks, 0.0);
                             col_index.pushed(c, cols.len() - 1);
                             cols.len() - 1
                         }
                     };
-                    for j in 0..rows.len() {
-                        cols[at].1[j] += block[j * km + l];
+                    let vals = &mut col_vals[at * ks..(at + 1) * ks];
+                    for (j, v) in vals.iter_mut().enumerate() {
+                        *v += block[j * km + l];
                     }
                 }
             }
@@ -742,9 +750,9 @@ fn chunk(
                 d.push(r, c, blocks.d[j][k]);
             }
         }
-        for (c, vals) in cols.iter() {
-            for (j, &r) in rows.iter().enumerate() {
-                m.push(r, *c, vals[j]);
+        for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
+            for (&r, &v) in rows.iter().zip(vals) {
+                m.push(r, c, v);
             }
         }
     }
