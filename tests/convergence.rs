@@ -14,6 +14,7 @@ mod convergence {
     mod contact;
     mod contact_laws;
     mod determinism;
+    mod mesh_ratio;
     mod patch;
     mod paths;
     mod rates;
