@@ -6,11 +6,11 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::key_index::KeyIndex;
-use super::local::{integrate_face_into, LocalBlocks};
+use super::local::{integrate_batch_into, LocalBlocks};
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
-use crate::integration::{PairedRule, SegmentContext};
+use crate::integration::{PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::{spatial_order, MasterTree};
@@ -194,7 +194,10 @@ struct ChunkWorkspace {
     scratch: Vec<u32>,
     rule: PairedRule,
     blocks: LocalBlocks,
-    cols: Vec<(u32, [f64; MAX_FACE_NODES])>,
+    /// The master columns a slave face meets, in the order first met.
+    cols: Vec<u32>,
+    /// Their M values, `ks` per column (one per node of the face).
+    col_vals: Vec<f64>,
     /// Where each column is in `cols`.
     col_index: KeyIndex,
     d: Triplets,
@@ -584,6 +587,7 @@ fn chunk(
         rule,
         blocks,
         cols,
+        col_vals,
         col_index,
         d,
         m,
@@ -635,16 +639,90 @@ fn chunk(
             note_uncovered(face.tag);
             continue;
         }
-        let ta = Instant::now();
-        options
-            .integration
-            .paired_rule_into(ctx, face, cands, rule)?;
-        out.pairs += rule.pairs as usize;
-        out.segments += rule.cells as usize;
-        out.back_facing += rule.back_facing as usize;
-        out.skipped += rule.skipped as usize;
-        out.degrees |= rule.degrees;
-        if let Some(e) = rule.first_skipped.take() {
+        // A strategy that splits over candidates gets them a batch at a time: each batch is
+        // segmented, integrated (D summed on, point after point, across batches) and its M
+        // blocks merged by master node before the next, so that the memory of a face's
+        // points stays bounded however many partners it has. Every bit of D and M is the
+        // one of the face done at once: the same sums in the same order.
+        let batch = if options.integration.splits_over_candidates() {
+            CANDIDATE_BATCH
+        } else {
+            cands.len()
+        };
+        let rows = &face_rows[i][..face.node_count()];
+        blocks.start_face(face.node_count());
+        cols.clear();
+        col_vals.clear();
+        col_index.clear();
+        let ks = rows.len();
+        let mut basis = None;
+        let mut any_points = false;
+        // The covered fraction, summed over batches (`None` if a batch did not measure
+        // it), and the sum of the weights, for when it is `None`.
+        let mut covered = Some(0.0);
+        let mut weights = 0.0;
+        let mut first_skipped = None;
+        for part in cands.chunks(batch) {
+            let ta = Instant::now();
+            options
+                .integration
+                .paired_rule_into(ctx, face, part, rule)?;
+            out.pairs += rule.pairs as usize;
+            out.segments += rule.cells as usize;
+            out.back_facing += rule.back_facing as usize;
+            out.skipped += rule.skipped as usize;
+            out.degrees |= rule.degrees;
+            if first_skipped.is_none() {
+                first_skipped = rule.first_skipped.take();
+            }
+            covered = covered.zip(rule.covered).map(|(a, c)| a + c);
+            if covered.is_none() {
+                weights += rule.points.iter().map(|p| p.weight).sum::<f64>();
+            }
+            out.seconds_segments += ta.elapsed().as_secs_f64();
+            if rule.points.is_empty() {
+                continue;
+            }
+            any_points = true;
+            if options.geometry.is_axisymmetric() {
+                // The measure of the revolved surface, 2 pi r at the slave point (after the
+                // coverage, which compares lengths of the meridian).
+                for p in rule.points.iter_mut() {
+                    p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
+                }
+            }
+            let basis = match &basis {
+                Some(b) => b,
+                None => basis.insert(options.multipliers.basis_for(face, tol, options.geometry)?),
+            };
+            integrate_batch_into(interface, ctx.masters, face, basis, &rule.points, blocks);
+            // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
+            // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
+            // first met (found through `col_index`), so the sums are the same whatever the
+            // count.
+            let mut mcols = [0u32; MAX_FACE_NODES];
+            for (mf, km, block) in blocks.m_blocks() {
+                let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
+                debug_assert_eq!(kc, km);
+                for (l, &c) in mcols[..kc].iter().enumerate() {
+                    let at = match col_index.find(cols.len(), |i| cols[i], c) {
+                        Some(at) => at,
+                        None => {
+                            cols.push(c);
+                            col_vals.resize(col_vals.len() + ks, 0.0);
+                            col_index.pushed(c, cols.len() - 1);
+                            cols.len() - 1
+                        }
+                    };
+                    let vals = &mut col_vals[at * ks..(at + 1) * ks];
+                    for (j, v) in vals.iter_mut().enumerate() {
+                        *v += block[j * km + l];
+                    }
+                }
+            }
+            blocks.clear_m_blocks();
+        }
+        if let Some(e) = first_skipped {
             acc.first_skipped = acc
                 .first_skipped
                 .take()
@@ -653,68 +731,28 @@ fn chunk(
         }
         // How much of the face the points cover: as the strategy measured it, or the sum of
         // the weights against the face's measure.
-        let missing = match rule.covered {
+        let missing = match covered {
             Some(c) => 1.0 - c,
-            None => {
-                let w: f64 = rule.points.iter().map(|p| p.weight).sum();
-                1.0 - w / face.measure()
-            }
+            None => 1.0 - weights / face.measure(),
         };
-        if rule.points.is_empty() {
+        if !any_points {
             out.without_partner += 1;
             out.uncovered_area += face.measure();
             note_uncovered(face.tag);
+            continue;
         } else if missing > coverage {
             out.partly_covered += 1;
             out.uncovered_area += missing * face.measure();
             note_uncovered(face.tag);
         }
-        let tb = Instant::now();
-        out.seconds_segments += (tb - ta).as_secs_f64();
-        if rule.points.is_empty() {
-            continue;
-        }
-        if options.geometry.is_axisymmetric() {
-            // The measure of the revolved surface, 2 pi r at the slave point (after the
-            // coverage, which compares lengths of the meridian).
-            for p in rule.points.iter_mut() {
-                p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
-            }
-        }
-        let basis = options.multipliers.basis_for(face, tol, options.geometry)?;
-        integrate_face_into(interface, ctx.masters, face, &basis, &rule.points, blocks);
-        let rows = &face_rows[i][..face.node_count()];
         for (j, &r) in rows.iter().enumerate() {
             for (k, &c) in rows.iter().enumerate() {
                 d.push(r, c, blocks.d[j][k]);
             }
         }
-        // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
-        // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
-        // first met (found through `col_index`), so the sums are the same whatever the count.
-        cols.clear();
-        col_index.clear();
-        let mut mcols = [0u32; MAX_FACE_NODES];
-        for (mf, km, block) in blocks.m_blocks() {
-            let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
-            debug_assert_eq!(kc, km);
-            for (l, &c) in mcols[..kc].iter().enumerate() {
-                let at = match col_index.find(cols.len(), |i| cols[i].0, c) {
-                    Some(at) => at,
-                    None => {
-                        cols.push((c, [0.0; MAX_FACE_NODES]));
-                        col_index.pushed(c, cols.len() - 1);
-                        cols.len() - 1
-                    }
-                };
-                for j in 0..rows.len() {
-                    cols[at].1[j] += block[j * km + l];
-                }
-            }
-        }
-        for (c, vals) in cols.iter() {
-            for (j, &r) in rows.iter().enumerate() {
-                m.push(r, *c, vals[j]);
+        for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
+            for (&r, &v) in rows.iter().zip(vals) {
+                m.push(r, c, v);
             }
         }
     }

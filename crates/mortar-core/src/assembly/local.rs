@@ -21,12 +21,19 @@ pub struct LocalBlocks {
 }
 
 impl LocalBlocks {
-    fn clear(&mut self, ks: usize) {
+    /// Starts a slave face with `ks` nodes: D and the M blocks zero.
+    pub fn start_face(&mut self, ks: usize) {
         self.d = [[0.0; MAX_FACE_NODES]; MAX_FACE_NODES];
+        self.ks = ks;
+        self.clear_m_blocks();
+    }
+
+    /// Forgets the M blocks (once they have been scattered), keeping D: the next batch of
+    /// the same face's points then adds to D and starts new M blocks.
+    pub fn clear_m_blocks(&mut self) {
         self.masters.clear();
         self.vals.clear();
         self.index.clear();
-        self.ks = ks;
     }
 
     /// The offset of the block of `master` (with `km` nodes), created zero if new.
@@ -64,7 +71,25 @@ pub fn integrate_face_into(
     points: &[PairedPoint],
     out: &mut LocalBlocks,
 ) {
-    out.clear(slave.node_count());
+    out.start_face(slave.node_count());
+    integrate_batch_into(interface, masters, slave, basis, points, out);
+}
+
+/// Adds one batch of a slave face's paired points to `out` (started with
+/// [`LocalBlocks::start_face`]): D goes on summing point after point, in the order of the
+/// batches (so a face integrated in batches gets the bits of the face integrated at once),
+/// and each master face of the batch gets a new M block, or adds to its block if `out`
+/// still holds it. The points of one master face must all be in one batch for its M block
+/// to be complete.
+pub fn integrate_batch_into(
+    interface: &Interface,
+    masters: &MasterFaces,
+    slave: &FaceGeometry,
+    basis: &LmBasis,
+    points: &[PairedPoint],
+    out: &mut LocalBlocks,
+) {
+    debug_assert_eq!(out.ks, slave.node_count(), "start_face first");
     // Fixed-size kernels for the common node counts let the compiler unroll the products.
     match (
         slave.node_count(),
@@ -108,7 +133,13 @@ fn kernel<const KS: usize, const KM: usize>(
     points: &[PairedPoint],
     out: &mut LocalBlocks,
 ) {
+    // D goes on from the earlier batches of the face (zero for the first).
     let mut d = [[0.0; KS]; KS];
+    for j in 0..KS {
+        for k in 0..KS {
+            d[j][k] = out.d[j][k];
+        }
+    }
     let mut ns = [0.0; MAX_FACE_NODES];
     let mut phi = [0.0; MAX_FACE_NODES];
     let mut nm = [0.0; MAX_FACE_NODES];
@@ -121,7 +152,12 @@ fn kernel<const KS: usize, const KM: usize>(
         while i < points.len() && points[i].master == master {
             let p = &points[i];
             slave.element.shape_values_into(&p.xi_slave, &mut ns[..KS]);
-            basis.eval_into(&ns, &mut phi);
+            if basis.identity {
+                // A copy of KS values known at compile time (not a call to memcpy).
+                phi[..KS].copy_from_slice(&ns[..KS]);
+            } else {
+                basis.eval_into(&ns, &mut phi);
+            }
             mel.shape_values_into(&p.xi_master, &mut nm[..KM]);
             for j in 0..KS {
                 let wp = p.weight * phi[j];

@@ -18,6 +18,6 @@ mod warning;
 pub use coupling::{
     assemble_coupling, Coupling, CouplingStats, PhaseSeconds, ThreadSeconds, MAX_THREADS_PER_CORE,
 };
-pub use local::{integrate_face_into, LocalBlocks};
+pub use local::{integrate_batch_into, integrate_face_into, LocalBlocks};
 pub use options::CouplingOptions;
 pub use warning::CouplingWarning;

@@ -153,4 +153,22 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
         candidates: &[u32],
         out: &mut PairedRule,
     ) -> Result<()>;
+
+    /// Whether the rule of a slave face against its candidates may be built from parts of
+    /// the candidate list: true when the points of each candidate depend on that candidate
+    /// and the slave face alone, so that the rules of consecutive parts, concatenated, are
+    /// the rule of the whole list (their counts added, their `covered` fractions summed).
+    /// The coupling then asks for [`CANDIDATE_BATCH`] candidates at a time and integrates
+    /// each part before the next, so that a coarse slave face against a million master
+    /// faces needs the memory of one batch of points, not of all of them. The default,
+    /// false, passes every candidate of a face in one call.
+    fn splits_over_candidates(&self) -> bool {
+        false
+    }
 }
+
+/// Candidates per call of [`IntegrationStrategy::paired_rule_into`] for a strategy that
+/// [splits over candidates](IntegrationStrategy::splits_over_candidates): far more than a
+/// slave face meets at ordinary mesh ratios (about ten), so that only a face much coarser
+/// than its master is split.
+pub const CANDIDATE_BATCH: usize = 4096;

@@ -55,4 +55,10 @@ impl IntegrationStrategy for SegmentBased {
             }
         }
     }
+
+    /// True: the points of each master face come from that face and the slave alone (its
+    /// overlap segment or clip polygon).
+    fn splits_over_candidates(&self) -> bool {
+        true
+    }
 }

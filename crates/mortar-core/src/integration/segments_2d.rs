@@ -36,6 +36,7 @@ pub(super) fn segments_into(
     // `orientation` is positive.
     let [t, _] = slave.element.tangents(slave.node_coords(), &centre);
     let orientation = -cross2(&t, &n_s).signum();
+    let mut line = SlaveLine::new(ctx, slave, orientation);
     let mut covered = 0.0;
     for &m in candidates {
         let master = ctx.master_face(m);
@@ -47,7 +48,7 @@ pub(super) fn segments_into(
             continue;
         }
         let pushed = out.points.len();
-        match pair_points(ctx, slave, &master, m, orientation, degree, out) {
+        match pair_points(ctx, &mut line, &master, m, degree, out) {
             Ok(Some(length)) => covered += length,
             Ok(None) => continue,
             Err(e) => {
@@ -64,17 +65,17 @@ pub(super) fn segments_into(
 /// the slave's reference coordinates; `Ok(None)` when they do not overlap.
 fn pair_points(
     ctx: &SegmentContext<'_>,
-    slave: &FaceGeometry,
+    line: &mut SlaveLine<'_>,
     master: &FaceGeometry,
     m: u32,
-    orientation: f64,
     degree: Option<u32>,
     out: &mut PairedRule,
 ) -> Result<Option<f64>> {
+    let slave = line.face;
     let tol = ctx.interface.tolerances();
     // The master's end nodes, projected onto the slave line along the direction field.
-    let a = project_onto_slave(ctx, slave, &master.nodes[0], orientation)?;
-    let b = project_onto_slave(ctx, slave, &master.nodes[1], orientation)?;
+    let a = line.project(ctx, &master.nodes[0])?;
+    let b = line.project(ctx, &master.nodes[1])?;
     let lo = a.min(b);
     let hi = a.max(b);
     if hi - lo <= tol.clip_area * 2.0 {
@@ -142,20 +143,18 @@ fn pair_points(
 /// turns faster than the face: the projection is not one-to-one there).
 fn project_onto_slave(
     ctx: &SegmentContext<'_>,
-    slave: &FaceGeometry,
+    line: &SlaveLine<'_>,
     y: &Vector3<f64>,
-    orientation: f64,
 ) -> Result<f64> {
-    let el = slave.element;
+    let slave = line.face;
     let g = |xi: f64| {
-        let xi = Vector2::new(xi, 0.0);
-        let x = slave.map(&xi);
-        let [t, _] = el.tangents(slave.node_coords(), &xi);
-        let (d, dd) = ctx.projector.direction(slave, &xi);
-        let r = y - x;
-        let f = cross2(&r, &d);
-        let df = -cross2(&t, &d) + cross2(&r, &dd[0]);
-        (orientation * f, orientation * df)
+        if xi == -1.0 {
+            line.ends[0].g(y, line.orientation)
+        } else if xi == 1.0 {
+            line.ends[1].g(y, line.orientation)
+        } else {
+            LinePoint::at(ctx, slave, xi).g(y, line.orientation)
+        }
     };
     let (ga, _) = g(-1.0);
     let (gb, _) = g(1.0);
@@ -175,4 +174,76 @@ fn project_onto_slave(
         return Ok(1.0);
     }
     bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS).ok_or_else(failed)
+}
+
+/// What `F` needs at one point of the slave line: position, tangent, direction and its
+/// derivative.
+#[derive(Debug, Clone, Copy)]
+struct LinePoint {
+    x: Vector3<f64>,
+    t: Vector3<f64>,
+    d: Vector3<f64>,
+    dd: Vector3<f64>,
+}
+
+impl LinePoint {
+    fn at(ctx: &SegmentContext<'_>, slave: &FaceGeometry, xi: f64) -> Self {
+        let xi = Vector2::new(xi, 0.0);
+        let x = slave.map(&xi);
+        let [t, _] = slave.element.tangents(slave.node_coords(), &xi);
+        let (d, dd) = ctx.projector.direction(slave, &xi);
+        Self { x, t, d, dd: dd[0] }
+    }
+
+    /// `orientation F` at this point for the point `y`, and its derivative.
+    #[inline]
+    fn g(&self, y: &Vector3<f64>, orientation: f64) -> (f64, f64) {
+        let r = y - self.x;
+        let f = cross2(&r, &self.d);
+        let df = -cross2(&self.t, &self.d) + cross2(&r, &self.dd);
+        (orientation * f, orientation * df)
+    }
+}
+
+/// Master nodes remembered per slave face: neighbouring master lines share a node, so
+/// each node is projected once rather than twice.
+const REMEMBERED: usize = 4;
+
+/// A slave line set up for projecting master nodes onto it: its ends evaluated once (every
+/// projection starts there) and the last few projections remembered. Both give the bits of
+/// the projection done from scratch.
+struct SlaveLine<'a> {
+    face: &'a FaceGeometry,
+    orientation: f64,
+    ends: [LinePoint; 2],
+    last: arrayvec::ArrayVec<([u64; 3], f64), REMEMBERED>,
+}
+
+impl<'a> SlaveLine<'a> {
+    fn new(ctx: &SegmentContext<'_>, face: &'a FaceGeometry, orientation: f64) -> Self {
+        Self {
+            face,
+            orientation,
+            ends: [
+                LinePoint::at(ctx, face, -1.0),
+                LinePoint::at(ctx, face, 1.0),
+            ],
+            last: Default::default(),
+        }
+    }
+
+    /// [`project_onto_slave`], remembered for the last few points (by the bits of their
+    /// coordinates).
+    fn project(&mut self, ctx: &SegmentContext<'_>, y: &Vector3<f64>) -> Result<f64> {
+        let key = [y.x.to_bits(), y.y.to_bits(), y.z.to_bits()];
+        if let Some(&(_, xi)) = self.last.iter().find(|(k, _)| *k == key) {
+            return Ok(xi);
+        }
+        let xi = project_onto_slave(ctx, self, y)?;
+        if self.last.is_full() {
+            self.last.remove(0);
+        }
+        self.last.push((key, xi));
+        Ok(xi)
+    }
 }
