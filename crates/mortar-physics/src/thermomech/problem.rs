@@ -1,9 +1,11 @@
-use mortar_core::element::{ReferenceDomain, MAX_FACE_NODES};
+use std::collections::HashSet;
+
+use mortar_core::element::MAX_FACE_NODES;
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{CouplingOptions, ModelGeometry, Side, Tolerances};
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 
 use super::plenum::GasPressure;
 use crate::contact::NormalGap;
@@ -623,9 +625,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
 }
 
 /// `int N_a n` over the faces of `surface` (a surface of `body`'s mesh, by node tags), `n`
-/// the unit normal pointing out of the body (each face's own orientation is checked against
-/// the cell it bounds), numbered `node * dim + k`; over the revolved surface (weight
-/// `2 pi r`) in the axisymmetric geometry.
+/// the unit normal pointing out of the body, numbered `node * dim + k`; over the revolved
+/// surface (weight `2 pi r`) in the axisymmetric geometry. The faces integrated are the
+/// body's own boundary faces ([`VolumeMesh::boundary_faces`](mortar_core::mesh::VolumeMesh::boundary_faces),
+/// outward by construction) whose nodes are those of a face of `surface`, so the orientation
+/// the interface was given does not matter.
 fn surface_load(
     surface: &SurfaceMesh,
     body: &ElasticBody,
@@ -634,68 +638,40 @@ fn surface_load(
     geometry: ModelGeometry,
 ) -> Result<Vec<f64>, PhysicsError> {
     let mesh = &body.mesh;
-    let mut cells_of: Vec<Vec<u32>> = vec![Vec::new(); mesh.node_count()];
-    for c in 0..mesh.cell_count() {
-        for &n in mesh.cell(c).nodes {
-            cells_of[n as usize].push(c as u32);
+    let mut faces = HashSet::new();
+    for f in 0..surface.face_count() {
+        let mut nodes = Vec::with_capacity(MAX_FACE_NODES);
+        for &i in surface.face(f).nodes {
+            let tag = surface.node_tags()[i as usize];
+            nodes.push(
+                mesh.node_index(tag)
+                    .ok_or(PhysicsError::InterfaceNodeNotInBody { side, tag })?,
+            );
         }
+        nodes.sort_unstable();
+        faces.insert(nodes);
     }
     let mut f = vec![0.0; mesh.node_count() * dim];
     let mut x = [Vector3::zeros(); MAX_FACE_NODES];
     let mut shape = [0.0; MAX_FACE_NODES];
-    let mut nodes = [0u32; MAX_FACE_NODES];
-    for face in 0..surface.face_count() {
-        let view = surface.face(face);
-        let nn = surface.face_coords_into(face, &mut x);
-        for (k, &i) in view.nodes.iter().enumerate() {
-            let tag = surface.node_tags()[i as usize];
-            nodes[k] = mesh
-                .node_index(tag)
-                .ok_or(PhysicsError::InterfaceNodeNotInBody { side, tag })?;
+    for face in mesh.boundary_faces()? {
+        let mut key = face.nodes.to_vec();
+        key.sort_unstable();
+        if !faces.contains(&key) {
+            continue;
         }
-        let cell = cells_of[nodes[0] as usize]
-            .iter()
-            .find(|&&c| {
-                nodes[1..nn]
-                    .iter()
-                    .all(|n| cells_of[*n as usize].contains(&c))
-            })
-            .ok_or_else(|| {
-                body.invalid(format!(
-                    "interface face {} does not bound a cell of the body",
-                    view.tag
-                ))
-            })?;
-        let cell_nodes = mesh.cell(*cell as usize).nodes;
-        let centroid = cell_nodes
-            .iter()
-            .map(|&n| mesh.coords()[n as usize])
-            .sum::<Vector3<f64>>()
-            / cell_nodes.len() as f64;
-        let e = view.element;
-        let face_centroid = x[..nn].iter().sum::<Vector3<f64>>() / nn as f64;
-        let mid = match e.domain() {
-            ReferenceDomain::Line => Vector2::new(0.0, 0.0),
-            ReferenceDomain::Triangle => Vector2::new(1.0 / 3.0, 1.0 / 3.0),
-            ReferenceDomain::Quadrilateral => Vector2::new(0.0, 0.0),
-        };
-        let sign = if e
-            .scaled_normal(&x[..nn], &mid)
-            .dot(&(face_centroid - centroid))
-            < 0.0
-        {
-            -1.0
-        } else {
-            1.0
-        };
+        let (e, nn) = (face.element, face.nodes.len());
+        for (xk, &n) in x.iter_mut().zip(&face.nodes) {
+            *xk = mesh.coords()[n as usize];
+        }
         let rule = QuadratureRule::cached(e.domain(), 2 * e.shape_degree() + 1)?;
         for (xi, w) in rule.points().iter().zip(rule.weights()) {
             let weight = geometry.weight(&e.map(&x[..nn], xi));
-            let normal = e.scaled_normal(&x[..nn], xi) * (sign * w * weight);
+            let normal = e.scaled_normal(&x[..nn], xi) * (w * weight);
             e.shape_values_into(xi, &mut shape[..nn]);
-            for a in 0..nn {
+            for (a, &node) in face.nodes.iter().enumerate() {
                 for k in 0..dim {
-                    f[nodes[a] as usize * dim + k] += shape[a] * normal[k];
+                    f[node as usize * dim + k] += shape[a] * normal[k];
                 }
             }
         }
