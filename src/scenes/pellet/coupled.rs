@@ -14,8 +14,8 @@ use mortar_physics::heat::{
     assemble_conduction, Conductivity, HeatBody, HeatMaterial, HeatOptions,
 };
 use mortar_physics::laws::{
-    ConstraintLaw, ContactComplementarity, ExponentialContact, GapConductance, GasConductivity,
-    LawParameters, LawRegistry, MechanicalGapConductance,
+    ConstraintLaw, ContactComplementarity, DynLaw, ExponentialContact, GapConductance,
+    GasConductivity, LawRegistry, MechanicalGapConductance,
 };
 use mortar_physics::thermomech::{
     GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
@@ -363,24 +363,10 @@ pub fn run_with_registry(
     out: &Path,
     progress: bool,
 ) -> Result<Value, PelletError> {
-    let params = |kv: &[(&str, f64)]| -> LawParameters {
-        kv.iter().map(|(k, v)| (k.to_string(), *v)).collect()
-    };
-    let (g, ct) = (&scene.gap, &scene.contact);
+    // A law the scene does not name is its built-in one, under its registry name.
     let thermal = match &scene.laws.thermal {
         Some(spec) => spec.make(registry)?,
-        None => {
-            let mut p = params(&[
-                ("roughness_fuel", g.roughness_pellet),
-                ("roughness_cladding", g.roughness_cladding),
-                ("jump_distance", g.jump_distance),
-                ("contact_conductance", g.contact_conductance),
-            ]);
-            if let Some(k) = g.gas_conductivity {
-                p.insert("gas_conductivity".into(), k);
-            }
-            LawRegistry::with_shipped().make("mechanical_gap_conductance", &p)?
-        }
+        None => DynLaw::new("mechanical_gap_conductance", thermal_law(scene)?),
     };
     let (contact, onset) = match &scene.laws.contact {
         Some(spec) => {
@@ -391,23 +377,20 @@ pub fn run_with_registry(
             (law, onset)
         }
         None => {
-            let shipped = LawRegistry::with_shipped();
+            let ct = &scene.contact;
             match ct.law {
                 ContactLawName::Exponential => (
-                    shipped.make(
+                    DynLaw::new(
                         "exponential_contact",
-                        &params(&[
-                            ("stiffness", ct.stiffness_exponent),
-                            ("onset", ct.onset_gap),
-                        ]),
-                    )?,
+                        ExponentialContact::try_new(ct.stiffness_exponent, ct.onset_gap)?,
+                    ),
                     Some(ct.onset_gap),
                 ),
                 ContactLawName::Exact => (
-                    shipped.make(
+                    DynLaw::new(
                         "contact_complementarity",
-                        &params(&[("c", complementarity(scene))]),
-                    )?,
+                        ContactComplementarity::try_new(complementarity(scene))?,
+                    ),
                     None,
                 ),
             }
