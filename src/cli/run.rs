@@ -134,6 +134,9 @@ fn print_coupled(report: &Value, out: &Path) {
         f(&st["center_temperature"]),
         f(&st["relative_imbalance"])
     );
+    for w in report["coupling_warnings"].as_array().into_iter().flatten() {
+        eprintln!("mortar: warning: {}", w.as_str().unwrap_or_default());
+    }
     let solver = &report["solver"];
     say!(
         "{:<28} {} Newton steps, {} linear iterations, {} factorisations, {} step cuts",

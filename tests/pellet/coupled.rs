@@ -26,6 +26,12 @@ fn out(name: &str) -> std::path::PathBuf {
 fn run_scene(scene: &PelletScene, name: &str) -> Value {
     let dir = out(name);
     let rep = run(scene, &dir, false).unwrap_or_else(|e| panic!("{name}: {e}"));
+    // The coupling's warnings are reported (none: the pellet covers the cladding's inside).
+    assert_eq!(
+        rep["coupling_warnings"].as_array().map(Vec::len),
+        Some(0),
+        "{name}"
+    );
     for file in [
         "report.json",
         "pellet.pvd",

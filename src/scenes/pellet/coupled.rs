@@ -689,6 +689,13 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         "plenum_pressure": last.plenum,
         "interface_pressure": last.interface_pressure,
         "history": history_json(scene, &rows),
+        // Uncovered slave area or skipped pairs of the coupling, named (none on these meshes).
+        "coupling_warnings": problem.heat().tie()
+            .coupling()
+            .warnings
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>(),
         "steady": {
             "time": t_steady,
             "center_temperature": steady.center,

@@ -258,6 +258,13 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
             "unknowns": problem.dimension(),
         },
         "transient": history,
+        // Uncovered slave area or skipped pairs of the coupling, named (none on these meshes).
+        "coupling_warnings": problem.tie()
+            .coupling()
+            .warnings
+            .iter()
+            .map(ToString::to_string)
+            .collect::<Vec<_>>(),
         "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
         "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
         "scene_data": scene,
