@@ -94,6 +94,18 @@ impl Polygon {
         }
     }
 
+    /// Triangulates a convex polygon by the fan from its first vertex: `n - 2` triangles
+    /// instead of the `n` of [`for_each_triangle`](Self::for_each_triangle), so that a
+    /// quadrature on the triangles needs fewer points. Calls `f` with each triangle's vertices
+    /// (counter-clockwise if the polygon is). On a polygon that is not convex some of the
+    /// triangles overlap or turn clockwise: use `for_each_triangle` there.
+    pub fn for_each_fan_triangle(&self, mut f: impl FnMut([Vector2<f64>; 3])) {
+        let v = &self.vertices;
+        for i in 1..v.len().saturating_sub(1) {
+            f([v[0], v[i], v[i + 1]]);
+        }
+    }
+
     /// Number of triangles [`for_each_triangle`](Self::for_each_triangle) produces.
     pub fn triangle_count(&self) -> usize {
         match self.vertices.len() {

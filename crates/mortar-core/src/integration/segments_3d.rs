@@ -191,7 +191,15 @@ pub(super) fn segments_into(
                         xi_poly.vertices.push(xi);
                     }
                     xi_poly.for_each_triangle(|t| tris.push(t));
+                } else if master_map.is_affine() && deg >= default_degree(el, mel) {
+                    // Both maps affine and the degree at least the integrands': they are
+                    // integrated exactly on any triangulation, so the cheapest serves: the fan from a
+                    // vertex of the (convex) clip polygon, n - 2 triangles instead of n.
+                    clip.for_each_fan_triangle(|t| tris.push(t));
                 } else {
+                    // The quadrature is not exact: the fan from the centroid, whose triangles
+                    // do not depend on which vertex the polygon starts at (so that relabelling
+                    // the faces permutes D and M to round-off).
                     clip.for_each_triangle(|t| tris.push(t));
                 }
                 for t in &tris {

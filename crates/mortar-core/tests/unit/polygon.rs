@@ -42,6 +42,20 @@ proptest! {
     }
 
     #[test]
+    fn vertex_fan_triangles_cover_the_convex_polygon(p in convex_polygon(12)) {
+        let mut count = 0;
+        let mut sum = 0.0;
+        p.for_each_fan_triangle(|t| {
+            count += 1;
+            let a = shoelace(&t);
+            assert!(a >= 0.0, "a vertex-fan triangle of a convex CCW polygon is not clockwise");
+            sum += a;
+        });
+        prop_assert_eq!(count, p.vertices.len() - 2);
+        prop_assert!((sum - p.signed_area()).abs() <= 1e-13 * p.signed_area().max(1.0));
+    }
+
+    #[test]
     fn diameter_is_the_largest_vertex_distance(p in convex_polygon(12)) {
         let d = p.diameter();
         for a in &p.vertices {
