@@ -15,6 +15,7 @@ mod convergence {
     mod contact_laws;
     mod contrast;
     mod determinism;
+    mod law_ranges;
     mod mesh_ratio;
     mod patch;
     mod paths;

@@ -129,4 +129,18 @@ impl NormalGap {
             })
             .collect()
     }
+
+    /// The rounding error of each nodal gap [`nodal`](Self::nodal) computes at `u`: 8 ulps of
+    /// the magnitudes it sums, `(|g~_0j| + sum_k |N_jk u_k|) / w_j`. A law residual that
+    /// changes by less than its gap derivative times this is at round-off.
+    pub fn nodal_rounding(&self, u: &[f64]) -> Vec<f64> {
+        self.matrix
+            .outer_iterator()
+            .enumerate()
+            .map(|(j, row)| {
+                let nu: f64 = row.iter().map(|(k, v)| (v * u[k]).abs()).sum();
+                8.0 * f64::EPSILON * (self.initial[j].abs() + nu) / self.weights[j].abs()
+            })
+            .collect()
+    }
 }
