@@ -1,7 +1,8 @@
 //! Benchmark (not a test): a 2D tied heat problem with about 10^6 unknowns, end to end
 //! (assembly, coupling, system build and factorisation, solve; mesh generation excluded),
 //! solved both ways: the dual-condensed SPD system (sparse Cholesky) and the saddle-point
-//! system (sparse LU). Time and peak memory per phase.
+//! system (sparse LDL^T in an order that needs no pivoting, LU if refused). Time and peak
+//! memory per phase.
 //!
 //! ```text
 //! cargo run --release --example bench_tied_heat -- --json docs/bench_tied_heat.json
@@ -239,6 +240,7 @@ fn run_path(path: &str, n: usize) -> Res<Value> {
     Ok(json!({
         "path": path,
         "formulation": report.formulation.describe(),
+        "factorisation": report.factorisation,
         "reason": report.reason,
         "unknowns": slave.mesh.node_count() + master.mesh.node_count(),
         "system_unknowns": report.unknowns,

@@ -3,7 +3,7 @@
 
 use mortar_core::linalg::{
     gmres, CholeskyFactorization, GmresOptions, IdentityPreconditioner, LinearOperator,
-    LuFactorization, SolverError, SparseMatrix, Triplets,
+    LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix, Triplets,
 };
 
 /// The 2D five-point Laplacian on an `n x n` grid plus a convection term `c` (non-symmetric
@@ -111,6 +111,83 @@ fn cholesky_solves_and_refactors_and_refuses_indefinite_matrices() {
     assert!(matches!(
         CholeskyFactorization::try_new(&neg),
         Err(SolverError::NotPositiveDefinite { .. })
+    ));
+}
+
+/// `[[K, B^T], [B, 0]]`: `K` the Laplacian of an `n x n` grid scaled by `scale`, `B` one row
+/// per constraint tying unknown `i` to unknown `n^2 - 1 - i` (`i < constraints`) and a last
+/// row fixing the mean if `mean`.
+fn saddle(n: usize, scale: f64, constraints: usize, mean: bool) -> (SparseMatrix, usize) {
+    let k = convection_diffusion(n, 0.0, scale);
+    let nk = k.rows();
+    let mut t = Triplets::default();
+    for (r, row) in k.outer_iterator().enumerate() {
+        for (c, v) in row.iter() {
+            t.push(r as u32, c as u32, *v);
+        }
+    }
+    let mut rows = 0;
+    for i in 0..constraints {
+        let r = (nk + rows) as u32;
+        for (c, v) in [(i, 1.0), (nk - 1 - i, -1.0)] {
+            t.push(r, c as u32, v);
+            t.push(c as u32, r, v);
+        }
+        rows += 1;
+    }
+    if mean {
+        let r = (nk + rows) as u32;
+        for c in 0..nk {
+            t.push(r, c as u32, 1.0 / nk as f64);
+            t.push(c as u32, r, 1.0 / nk as f64);
+        }
+        rows += 1;
+    }
+    (t.to_csr(nk + rows, nk + rows), rows)
+}
+
+#[test]
+fn saddle_point_ldlt_matches_lu_refactors_and_refuses_a_zero_pivot() {
+    let (a, m) = saddle(15, 1.0, 20, true);
+    let b = rhs(a.rows());
+    let mut ldlt = SaddlePointFactorization::try_new(&a, m).unwrap();
+    assert_eq!(ldlt.dim(), a.rows());
+    let x = ldlt.solve(&b).unwrap();
+    assert!(residual(&a, &x, &b) < 1e-14, "{}", residual(&a, &x, &b));
+    let lu = LuFactorization::try_new(&a).unwrap().solve(&b).unwrap();
+    for (p, q) in x.iter().zip(&lu) {
+        assert!((p - q).abs() < 1e-12 * (1.0 + q.abs()), "{p} vs {q}");
+    }
+    // Same pattern, new values; CSC storage alike.
+    let (a2, _) = saddle(15, 1e6, 20, true);
+    ldlt.refactor(&a2).unwrap();
+    let x2 = ldlt.solve(&b).unwrap();
+    // K at 1e6 beside constraints of 1: the residual's floor is LU's too.
+    let lu2 = LuFactorization::try_new(&a2).unwrap().solve(&b).unwrap();
+    let (r_ldlt, r_lu) = (residual(&a2, &x2, &b), residual(&a2, &lu2, &b));
+    assert!(
+        r_ldlt <= 2.0 * r_lu + 1e-14,
+        "LDL^T {r_ldlt:e}, LU {r_lu:e}"
+    );
+    let x3 = SaddlePointFactorization::try_new(&a2.to_csc(), m)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    for (p, q) in x2.iter().zip(&x3) {
+        assert!((p - q).abs() < 1e-12 * (1.0 + q.abs()));
+    }
+    // [[0, 1], [1, 0]]: the primal pivot is zero; only pivoting (LU) solves it.
+    let mut t = Triplets::default();
+    t.push(0, 1, 1.0);
+    t.push(1, 0, 1.0);
+    let swap = t.to_csr(2, 2);
+    assert!(matches!(
+        SaddlePointFactorization::try_new(&swap, 1),
+        Err(SolverError::Singular { .. })
+    ));
+    assert!(matches!(
+        SaddlePointFactorization::try_new(&swap, 3),
+        Err(SolverError::DimensionMismatch(_))
     ));
 }
 
@@ -249,4 +326,69 @@ fn gmres_reports_non_convergence_and_sizes() {
     .unwrap();
     assert_eq!(r.iterations, 0);
     assert!(w.iter().all(|v| *v == 0.0));
+}
+
+/// The graph Laplacian of an `n x n` grid (each row sums to zero): the stiffness of a body
+/// without Dirichlet condition, singular (constants).
+fn neumann_laplacian(n: usize) -> SparseMatrix {
+    let mut t = Triplets::default();
+    let id = |i: usize, j: usize| (i + n * j) as u32;
+    for j in 0..n {
+        for i in 0..n {
+            let mut deg = 0.0;
+            for (di, dj) in [(-1i64, 0i64), (1, 0), (0, -1), (0, 1)] {
+                let (a, b) = (i as i64 + di, j as i64 + dj);
+                if a >= 0 && b >= 0 && (a as usize) < n && (b as usize) < n {
+                    t.push(id(i, j), id(a as usize, b as usize), -1.0);
+                    deg += 1.0;
+                }
+            }
+            t.push(id(i, j), id(i, j), deg);
+        }
+    }
+    t.to_csr(n * n, n * n)
+}
+
+/// A body held by the constraints alone: `[[K_a, 0, B_a^T], [0, K_b, B_b^T], [B_a, B_b, 0]]`
+/// with `K_a` definite (the 2D Laplacian with Dirichlet sides), `K_b` singular (the graph
+/// Laplacian), `B` tying the first row of nodes of `b` to the first row of `a`. With the
+/// first unknown of `b` marked to go last, the `L D L^T` solves it as LU does.
+#[test]
+fn saddle_point_ldlt_solves_a_floating_body_with_one_unknown_last() {
+    let n = 8;
+    let ka = convection_diffusion(n, 0.0, 1.0);
+    let kb = neumann_laplacian(n);
+    let (na, nb) = (ka.rows(), kb.rows());
+    let mut t = Triplets::default();
+    for (r, row) in ka.outer_iterator().enumerate() {
+        for (c, v) in row.iter() {
+            t.push(r as u32, c as u32, *v);
+        }
+    }
+    for (r, row) in kb.outer_iterator().enumerate() {
+        for (c, v) in row.iter() {
+            t.push((na + r) as u32, (na + c) as u32, *v);
+        }
+    }
+    for i in 0..n {
+        let r = (na + nb + i) as u32;
+        for (c, v) in [(i, 1.0), (na + i, -1.0)] {
+            t.push(r, c as u32, v);
+            t.push(c as u32, r, v);
+        }
+    }
+    let size = na + nb + n;
+    let a = t.to_csr(size, size);
+    let b = rhs(size);
+    let mut last = vec![false; na + nb];
+    last[na] = true;
+    let x = SaddlePointFactorization::try_new_with_last(&a, n, &last)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let lu = LuFactorization::try_new(&a).unwrap().solve(&b).unwrap();
+    assert!(residual(&a, &x, &b) < 1e-13, "{}", residual(&a, &x, &b));
+    for (p, q) in x.iter().zip(&lu) {
+        assert!((p - q).abs() < 1e-10 * (1.0 + q.abs()), "{p} vs {q}");
+    }
 }

@@ -35,7 +35,7 @@
 //! let problem = TiedHeat::new(slave, master, slave_faces, master_faces,
 //!     &CouplingOptions::default().dual(), &Default::default())?;
 //! let solution = problem.solve_steady(&TiedOptions::default(), 0.0)?;
-//! println!("{}", solution.formulation); // dual-condensed SPD, Cholesky (...): D is diagonal ...
+//! println!("{}", solution.formulation); // dual-condensed SPD (...): D is diagonal ...; sparse Cholesky
 //! ```
 
 pub mod contact;

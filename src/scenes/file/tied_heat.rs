@@ -680,6 +680,7 @@ impl SolvedTiedHeat {
             "dofs": dofs,
             "formulation": {
                 "name": f.formulation.describe(),
+                "factorisation": f.factorisation,
                 "reason": f.reason,
                 "unknowns": f.unknowns,
                 "nonzeros": f.nonzeros,

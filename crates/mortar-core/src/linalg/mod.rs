@@ -18,7 +18,7 @@ mod triplets;
 pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
 pub use faer_backend::{
     fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,
-    SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
+    SaddlePointFactorization, SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
 };
 pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,

@@ -12,11 +12,12 @@ pub enum Formulation {
 }
 
 impl Formulation {
-    /// `"dual-condensed SPD, Cholesky"` or `"saddle point, LU"`.
+    /// `"dual-condensed SPD"` or `"saddle point"` (what factorises it:
+    /// [`FormulationReport::factorisation`]).
     pub fn describe(self) -> &'static str {
         match self {
-            Formulation::DualCondensed => "dual-condensed SPD, Cholesky",
-            Formulation::SaddlePoint => "saddle point, LU",
+            Formulation::DualCondensed => "dual-condensed SPD",
+            Formulation::SaddlePoint => "saddle point",
         }
     }
 }
@@ -103,6 +104,10 @@ pub struct FormulationReport {
     pub formulation: Formulation,
     /// Why it was chosen.
     pub reason: String,
+    /// What factorises the system: sparse Cholesky (dual condensed), sparse `L D L^T` in an
+    /// order that needs no pivoting (saddle point), or sparse LU with partial pivoting (a
+    /// saddle point that the `L D L^T` refused).
+    pub factorisation: &'static str,
     /// Unknowns of the factorised system.
     pub unknowns: usize,
     /// Stored entries of the factorised matrix.
@@ -119,8 +124,8 @@ impl fmt::Display for FormulationReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} ({} unknowns, {} multipliers): {}",
-            self.formulation, self.unknowns, self.multipliers, self.reason
+            "{} ({} unknowns, {} multipliers): {}; {}",
+            self.formulation, self.unknowns, self.multipliers, self.reason, self.factorisation
         )
     }
 }

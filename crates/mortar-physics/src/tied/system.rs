@@ -1,7 +1,8 @@
 use std::time::Instant;
 
 use mortar_core::linalg::{
-    CholeskyFactorization, LuFactorization, SolverError, SparseMatrix, Triplets,
+    CholeskyFactorization, LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix,
+    Triplets,
 };
 
 use super::formulation::{
@@ -41,7 +42,36 @@ pub struct SystemSeconds {
 #[derive(Debug, Clone)]
 enum Factor {
     Lu(Box<LuFactorization>),
+    Ldlt(Box<SaddlePointFactorization>),
     Cholesky(CholeskyFactorization),
+}
+
+impl Factor {
+    /// The saddle point: `L D L^T` in an order that needs no pivoting (`last`: the unknowns
+    /// that pin a body without Dirichlet condition, after the multipliers), or, where that
+    /// is refused (a pivot at zero, a failed check), LU with partial pivoting.
+    fn saddle_point(
+        matrix: &SparseMatrix,
+        constraints: usize,
+        last: &[bool],
+    ) -> Result<Self, SolverError> {
+        match SaddlePointFactorization::try_new_with_last(matrix, constraints, last) {
+            Ok(f) => Ok(Factor::Ldlt(Box::new(f))),
+            Err(SolverError::Singular { .. }) => {
+                Ok(Factor::Lu(Box::new(LuFactorization::try_new(matrix)?)))
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// What factorises the system, for the report.
+    fn name(&self) -> &'static str {
+        match self {
+            Factor::Lu(_) => "sparse LU (partial pivoting)",
+            Factor::Ldlt(_) => "sparse LDL^T (nested dissection, multipliers after their rows)",
+            Factor::Cholesky(_) => "sparse Cholesky",
+        }
+    }
 }
 
 /// The linear system of two bodies tied by mortar: per-body matrices `A_1`, `A_2`
@@ -56,7 +86,9 @@ enum Factor {
 /// Dirichlet slave unknowns of [`SlaveDirichlet`].
 ///
 /// - [`Formulation::SaddlePoint`]: `[[A_ff, B_f^T], [B_f, 0]] [T_f; lambda] =
-///   [b_f - A_fd g; -B_d g]` (f free, d Dirichlet), by sparse LU.
+///   [b_f - A_fd g; -B_d g]` (f free, d Dirichlet), by sparse `L D L^T` in an order that
+///   needs no pivoting ([`SaddlePointFactorization`]), or sparse LU where that is refused;
+///   [`FormulationReport::factorisation`] says which.
 /// - [`Formulation::DualCondensed`]: with D diagonal on the slave nodes that carry a row, each
 ///   such node's value is an affine combination of the others,
 ///   `T_s = D_ss^-1 (M T_m - D_sd g)`, i.e. `T = Q T_r`; the system `Q^T A Q` in the remaining
@@ -84,6 +116,8 @@ pub struct TiedSystem {
 struct Layout {
     formulation: Formulation,
     n: [usize; 2],
+    /// Field components per node.
+    comps: usize,
     /// Dirichlet unknowns per body.
     nd: [usize; 2],
     /// Dirichlet unknowns (global index), slave body's list then master body's.
@@ -247,6 +281,7 @@ impl TiedSystem {
         let layout = Layout {
             formulation,
             n,
+            comps: tie.components(),
             nd: [dirichlet[0].len(), dirichlet[1].len()],
             dirichlet: dlist,
             dirichlet_pos,
@@ -265,11 +300,14 @@ impl TiedSystem {
         scale_symmetric(&mut matrix, &scale);
         let t1 = Instant::now();
         let factor = match formulation {
-            Formulation::SaddlePoint => Factor::Lu(Box::new(LuFactorization::try_new(&matrix)?)),
+            Formulation::SaddlePoint => {
+                Factor::saddle_point(&matrix, nrows, &layout.eliminated_last())?
+            }
             Formulation::DualCondensed => {
                 Factor::Cholesky(CholeskyFactorization::try_new(&matrix)?)
             }
         };
+        let factorisation = factor.name();
         Ok(Self {
             layout,
             a,
@@ -278,6 +316,7 @@ impl TiedSystem {
             factor,
             report: FormulationReport {
                 formulation,
+                factorisation,
                 reason,
                 unknowns: matrix.rows(),
                 nonzeros: matrix.nnz(),
@@ -320,8 +359,16 @@ impl TiedSystem {
         let t1 = Instant::now();
         let done = match &mut self.factor {
             Factor::Lu(f) => f.refactor(&matrix),
+            Factor::Ldlt(f) => match f.refactor(&matrix) {
+                // The new matrix needs pivoting: LU from here on.
+                Err(SolverError::Singular { .. }) => LuFactorization::try_new(&matrix).map(|lu| {
+                    self.factor = Factor::Lu(Box::new(lu));
+                }),
+                other => other,
+            },
             Factor::Cholesky(f) => f.refactor(&matrix),
         };
+        self.report.factorisation = self.factor.name();
         if let Err(e) = done {
             self.a = old;
             return Err(e.into());
@@ -403,6 +450,7 @@ impl TiedSystem {
         }
         match &self.factor {
             Factor::Lu(f) => f.solve_in_place(&mut x)?,
+            Factor::Ldlt(f) => f.solve_in_place(&mut x)?,
             Factor::Cholesky(f) => f.solve_in_place(&mut x)?,
         }
         for (xi, si) in x.iter_mut().zip(&self.scale) {
@@ -450,6 +498,37 @@ impl TiedSystem {
 }
 
 impl Layout {
+    /// Per free unknown, whether it is factorised after the multipliers: for a body without
+    /// Dirichlet condition (only the tie holds it; its stiffness alone is singular in a
+    /// steady problem), the unknowns of one node per component (`min(c, 3)` nodes: its first,
+    /// middle and last), enough to pin its constant or rigid modes, so that every other
+    /// pivot of the `L D L^T` is that of a definite block.
+    fn eliminated_last(&self) -> Vec<bool> {
+        let mut out = vec![false; self.nfree];
+        let c = self.comps.max(1);
+        for b in 0..2 {
+            if self.nd[b] != 0 || self.n[b] < c {
+                continue;
+            }
+            let offset = if b == 0 { 0 } else { self.n[0] };
+            let nodes = self.n[b] / c;
+            let picked: &[usize] = match c.min(3) {
+                1 => &[0],
+                2 => &[0, nodes - 1],
+                _ => &[0, nodes / 2, nodes - 1],
+            };
+            for &node in picked {
+                for k in 0..c {
+                    let f = self.free[offset + node * c + k];
+                    if f != NONE {
+                        out[f as usize] = true;
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// The symmetric scaling `S` of the system matrix `K` (factorised as `S K S`), by system
     /// unknown; every factor a power of two, so that the scaling itself is exact.
     ///
