@@ -32,6 +32,10 @@ pub struct CellValues {
     rule_points: Vec<Vector3<f64>>,
     ref_shape: Vec<f64>,
     ref_grads: Vec<[f64; 3]>,
+    /// Whether the reference gradients are the same (bit for bit) at every point of the rule
+    /// (an affine element): the Jacobian and the physical gradients are then computed once
+    /// per cell, with the same bits as at each point.
+    constant_gradients: bool,
     gradients: Vec<Vector3<f64>>,
     jxw: Vec<f64>,
     points: Vec<Vector3<f64>>,
@@ -73,6 +77,8 @@ impl CellValues {
                 element.shape_values_into(xi, &mut self.ref_shape[q * k..(q + 1) * k]);
                 element.shape_gradients_into(xi, &mut self.ref_grads[q * k..(q + 1) * k]);
             }
+            self.constant_gradients =
+                (1..nq).all(|q| self.ref_grads[q * k..(q + 1) * k] == self.ref_grads[..k]);
             self.gradients.resize(nq * k, Vector3::zeros());
             self.jxw.resize(nq, 0.0);
             self.points.resize(nq, Vector3::zeros());
@@ -82,7 +88,19 @@ impl CellValues {
         }
         let dim = element.dim();
         let nodes = &nodes[..k];
+        let mut first_det = 0.0;
         for (q, w) in rule.weights().iter().enumerate() {
+            if q > 0 && self.constant_gradients {
+                // The same Jacobian and gradients as at point 0 (same inputs, same bits).
+                self.gradients.copy_within(..k, q * k);
+                self.jxw[q] = w * first_det;
+                let n = &self.ref_shape[q * k..(q + 1) * k];
+                self.points[q] = nodes
+                    .iter()
+                    .zip(n)
+                    .fold(Vector3::zeros(), |x, (xa, na)| x + xa * *na);
+                continue;
+            }
             let g = &self.ref_grads[q * k..(q + 1) * k];
             let j = jacobian_from_gradients(dim, nodes, g);
             let det = j.determinant();
@@ -101,6 +119,7 @@ impl CellValues {
                 self.gradients[q * k + a] = p;
             }
             self.jxw[q] = w * det;
+            first_det = det;
             let n = &self.ref_shape[q * k..(q + 1) * k];
             self.points[q] = nodes
                 .iter()
