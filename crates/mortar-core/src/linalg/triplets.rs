@@ -244,6 +244,12 @@ fn row_blocks(slices: &[&[Entry]], nrows: usize) -> Vec<RowBlock> {
             // This block's entries, slice after slice (each sorted by row).
             ws.local.clear();
             for e in slices {
+                // Most slices (the entries of a chunk of cells) lie in a few rows: skip those
+                // outside the block without searching them.
+                match (e.first(), e.last()) {
+                    (Some(f), Some(l)) if (l.row as usize) >= r0 && (f.row as usize) < r1 => {}
+                    _ => continue,
+                }
                 let a = e.partition_point(|x| (x.row as usize) < r0);
                 let z = e.partition_point(|x| (x.row as usize) < r1);
                 ws.local.extend_from_slice(&e[a..z]);
