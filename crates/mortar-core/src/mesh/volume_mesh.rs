@@ -311,26 +311,45 @@ impl VolumeMesh {
             k[..nodes.len()].sort_unstable();
             k
         };
-        // Sort the faces by their node set (cheaper than hashing, and without a hash map's
-        // memory): equal keys are the cells sharing a face.
-        let mut keyed: Vec<(Key, u32)> = Vec::with_capacity(4 * self.cell_count());
+        // Group the faces by their node set (cheaper than hashing, and without a hash map's
+        // memory): equal keys are the cells sharing a face. A counting sort by the smallest
+        // node puts the faces that can be equal into one short bucket (the faces around a
+        // node), sorted there by the whole key.
+        let mut keys: Vec<Key> = Vec::with_capacity(4 * self.cell_count());
         let mut local = ArrayVec::<u32, MAX_FACE_NODES>::new();
         for c in 0..self.cell_count() {
             let cell = self.cell(c);
             for f in cell.element.faces() {
                 local.clear();
                 local.extend(f.iter().map(|&i| cell.nodes[i]));
-                keyed.push((key(&local), keyed.len() as u32));
+                keys.push(key(&local));
             }
         }
-        keyed.sort_unstable();
-        let mut count = vec![0u32; keyed.len()];
-        for group in keyed.chunk_by(|a, b| a.0 == b.0) {
-            for (_, id) in group {
-                count[*id as usize] = group.len() as u32;
+        let mut start = vec![0usize; self.node_count() + 1];
+        for k in &keys {
+            start[k[0] as usize + 1] += 1;
+        }
+        for i in 0..self.node_count() {
+            start[i + 1] += start[i];
+        }
+        let mut order = vec![0u32; keys.len()];
+        let mut next = start.clone();
+        for (id, k) in keys.iter().enumerate() {
+            order[next[k[0] as usize]] = id as u32;
+            next[k[0] as usize] += 1;
+        }
+        drop(next);
+        let mut count = vec![0u32; keys.len()];
+        for w in start.windows(2) {
+            let bucket = &mut order[w[0]..w[1]];
+            bucket.sort_unstable_by_key(|&id| (keys[id as usize], id));
+            for group in bucket.chunk_by(|&a, &b| keys[a as usize] == keys[b as usize]) {
+                for &id in group {
+                    count[id as usize] = group.len() as u32;
+                }
             }
         }
-        drop(keyed);
+        drop((keys, order, start));
         let mut out = Vec::new();
         let mut id = 0usize;
         for c in 0..self.cell_count() {
