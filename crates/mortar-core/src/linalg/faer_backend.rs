@@ -556,8 +556,9 @@ const MAX_REFINEMENT: usize = 3;
 /// multipliers, `K` symmetric positive definite on the rest.
 ///
 /// Without pivoting the elimination order alone must keep every pivot away from zero. The
-/// order is the fill-reducing one of the whole matrix (nested dissection, as for
-/// [`CholeskyFactorization`]) with each multiplier moved to just after the last of the
+/// order is the fill-reducing one of the whole matrix ([`fill_reducing_ordering`], as for
+/// [`CholeskyFactorization`]: nested dissection for graphs of 3D character, minimum degree
+/// otherwise) with each multiplier moved to just after the last of the
 /// unknowns its constraint row couples: by then the pivot of the multiplier is the Schur
 /// complement `-(B K^-1 B^T)`, negative, and every pivot of `K` positive. The factors are
 /// checked on a known solution (`x* = 1 + i / n`, error below `1e-8 |x*|` after

@@ -68,7 +68,7 @@ impl Factor {
     fn name(&self) -> &'static str {
         match self {
             Factor::Lu(_) => "sparse LU (partial pivoting)",
-            Factor::Ldlt(_) => "sparse LDL^T (nested dissection, multipliers after their rows)",
+            Factor::Ldlt(_) => "sparse LDL^T (fill-reducing order, multipliers after their rows)",
             Factor::Cholesky(_) => "sparse Cholesky",
         }
     }
