@@ -17,6 +17,7 @@ mod properties {
     mod facing;
     mod invariance;
     mod patch;
+    mod rounding;
     mod strategies;
     mod threads;
 }

@@ -87,16 +87,25 @@ fn pair_points(
     let mut values = [0.0; MAX_FACE_NODES];
     let km = master.node_count();
     let mel = master.element;
+    // The master nodes as offsets from the slave's first node on the affine path (exact for
+    // nodes near the face), as they are otherwise.
+    let origin = line.affine.map_or(Vector3::zeros(), |a| a.x0);
+    let mut rel = [Vector3::zeros(); MAX_FACE_NODES];
+    for (r, y) in rel.iter_mut().zip(&master.nodes[..km]) {
+        *r = y - origin;
+    }
     for (g, w) in rule.points().iter().zip(rule.weights()) {
         let xi = Vector2::new(lo + half * (g.x + 1.0), 0.0);
-        let x = slave.map(&xi);
-        let (d, _) = ctx.projector.direction(slave, &xi);
+        let (x, d) = match &line.affine {
+            Some(a) => a.at(AffineLine::s(xi.x)),
+            None => (slave.map(&xi), ctx.projector.direction(slave, &xi).0),
+        };
         for i in 0..km {
-            values[i] = cross2(&(master.nodes[i] - x), &d);
+            values[i] = cross2(&(rel[i] - x), &d);
         }
         let failed = |iterations, residual| MortarError::ProjectionFailed {
             face: master.location(),
-            point: x.into(),
+            point: (origin + x).into(),
             iterations,
             residual,
         };
@@ -118,7 +127,11 @@ fn pair_points(
             bracketed_root(f, a, b, ROOT_TOL, ROOT_STEPS)
                 .ok_or_else(|| failed(ROOT_STEPS, f64::INFINITY))?
         };
-        let weight = w * half * slave.element.jacobian_det(slave.node_coords(), &xi);
+        let det = match &line.affine {
+            Some(a) => a.det,
+            None => slave.element.jacobian_det(slave.node_coords(), &xi),
+        };
+        let weight = w * half * det;
         out.points.push(PairedPoint {
             master: m,
             xi_slave: xi,
@@ -173,6 +186,13 @@ fn project_onto_slave(
     if gb <= 0.0 {
         return Ok(1.0);
     }
+    if let Some(xi) = line
+        .affine
+        .as_ref()
+        .and_then(|a| a.root(y, line.orientation))
+    {
+        return Ok(xi);
+    }
     bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS).ok_or_else(failed)
 }
 
@@ -216,18 +236,98 @@ struct SlaveLine<'a> {
     face: &'a FaceGeometry,
     orientation: f64,
     ends: [LinePoint; 2],
+    /// The line and the direction as affine functions of `xi`, when both are
+    /// ([`AffineLine`]).
+    affine: Option<AffineLine>,
     last: arrayvec::ArrayVec<([u64; 3], f64), REMEMBERED>,
+}
+
+/// An affine slave line with an affine direction field, written from its first end `x0`:
+/// `x = x0 + s e`, `d = d0 + s dd` with `s = (xi + 1) / 2` in `[0, 1]`. Then
+/// `F = (y - x) x d` is a quadratic in `s`, whose root is found in closed form. Every point is
+/// handled by its offset from `x0` (`y - x0` is exact for a point near the face), so rounding
+/// errors are relative to the face's length, not to the coordinates' magnitude.
+#[derive(Debug, Clone, Copy)]
+struct AffineLine {
+    x0: Vector3<f64>,
+    e: Vector3<f64>,
+    d0: Vector3<f64>,
+    dd: Vector3<f64>,
+    /// The Jacobian determinant (constant).
+    det: f64,
+}
+
+impl AffineLine {
+    fn new(face: &FaceGeometry, ends: &[LinePoint; 2]) -> Self {
+        let [a, b] = ends;
+        Self {
+            x0: a.x,
+            e: b.x - a.x,
+            d0: a.d,
+            dd: b.d - a.d,
+            det: face
+                .element
+                .jacobian_det(face.node_coords(), &Vector2::zeros()),
+        }
+    }
+
+    /// `s` of the reference coordinate `xi`.
+    #[inline]
+    fn s(xi: f64) -> f64 {
+        0.5 * (xi + 1.0)
+    }
+
+    /// The offset from `x0` of the point at `s`, and the direction there.
+    #[inline]
+    fn at(&self, s: f64) -> (Vector3<f64>, Vector3<f64>) {
+        (self.e * s, self.d0 + self.dd * s)
+    }
+
+    /// The root in `[-1, 1]` (as `xi`) of `orientation F` for the point `y`, known to change
+    /// sign from negative at `-1` to positive at `1` (so exactly one root lies between): the
+    /// quadratic `A + B s + C s^2` solved by the cancellation-free formula. `None` if rounding
+    /// put the root out of reach (the caller then iterates).
+    fn root(&self, y: &Vector3<f64>, orientation: f64) -> Option<f64> {
+        let r = y - self.x0;
+        let a = orientation * cross2(&r, &self.d0);
+        let b = orientation * (cross2(&r, &self.dd) - cross2(&self.e, &self.d0));
+        let c = -orientation * cross2(&self.e, &self.dd);
+        let s = if c == 0.0 {
+            -a / b
+        } else {
+            let disc = (b * b - 4.0 * a * c).max(0.0);
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            // The two roots are q / c and a / q; the one sought is where F increases.
+            let (r1, r2) = (q / c, a / q);
+            let slope = |x: f64| b + 2.0 * c * x;
+            let inside = |x: f64| x.is_finite() && (0.0..=1.0).contains(&x);
+            match (inside(r1), inside(r2)) {
+                (true, false) => r1,
+                (false, true) => r2,
+                (true, true) if slope(r1) >= slope(r2) => r1,
+                (true, true) => r2,
+                (false, false) => return None,
+            }
+        };
+        s.is_finite().then(|| (2.0 * s - 1.0).clamp(-1.0, 1.0))
+    }
 }
 
 impl<'a> SlaveLine<'a> {
     fn new(ctx: &SegmentContext<'_>, face: &'a FaceGeometry, orientation: f64) -> Self {
+        let ends = [
+            LinePoint::at(ctx, face, -1.0),
+            LinePoint::at(ctx, face, 1.0),
+        ];
+        let affine = (face.element.is_affine()
+            && face.element.shape_degree() == 1
+            && ctx.projector.direction_is_affine(face))
+        .then(|| AffineLine::new(face, &ends));
         Self {
             face,
             orientation,
-            ends: [
-                LinePoint::at(ctx, face, -1.0),
-                LinePoint::at(ctx, face, 1.0),
-            ],
+            ends,
+            affine,
             last: Default::default(),
         }
     }

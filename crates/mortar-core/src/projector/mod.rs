@@ -21,6 +21,15 @@ pub trait Projector: Send + Sync + std::fmt::Debug {
         slave: &FaceGeometry,
         xi: &Vector2<f64>,
     ) -> (Vector3<f64>, [Vector3<f64>; 2]);
+
+    /// Whether [`direction`](Self::direction) is an affine function of `xi` on `slave` (a
+    /// constant derivative). The 2D segmentation then projects master nodes onto an affine
+    /// slave line by solving a quadratic in closed form instead of iterating. The default,
+    /// `false`, is always correct.
+    fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
+        let _ = slave;
+        false
+    }
 }
 
 /// The slave face's own normal at its centre, constant over the face.
@@ -30,6 +39,11 @@ pub struct ElementNormal;
 impl Projector for ElementNormal {
     fn name(&self) -> &'static str {
         "element-normal"
+    }
+
+    /// Constant over the face.
+    fn direction_is_affine(&self, _slave: &FaceGeometry) -> bool {
+        true
     }
 
     fn direction(
@@ -54,6 +68,12 @@ pub struct NodalNormalField;
 impl Projector for NodalNormalField {
     fn name(&self) -> &'static str {
         "nodal-normal-field"
+    }
+
+    /// On an affine element with shape functions of degree one (Line2, Tri3), the
+    /// interpolated nodal normals are affine in `xi`.
+    fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
+        slave.element.is_affine() && slave.element.shape_degree() == 1
     }
 
     fn direction(
