@@ -31,13 +31,21 @@
 //! compares a SipHash digest of the bit patterns (`f64::to_bits`) of `data`, `indices` and
 //! `indptr` of D and M with the one of the 1-thread run of the same case.
 //!
+//! `--save-reference DIR` keeps D and M of every case, `--reference DIR` compares each case's
+//! with those (largest row-relative difference, and whether it is within 1e-13; see
+//! `reference.rs`): run the previous build with the first and this one with the second.
+//! `--cases line2d,ratio2d` runs only the named cases.
+//!
 //! `--tradeoff` writes `docs/tradeoff.md` and `docs/tradeoff.png` instead (see `tradeoff.rs`).
 
 #[path = "bench_coupling/plot.rs"]
 mod plot;
+#[path = "bench_coupling/reference.rs"]
+mod reference;
 #[path = "bench_coupling/tradeoff.rs"]
 mod tradeoff;
 
+use std::ffi::OsStr;
 use std::hash::Hasher;
 use std::path::PathBuf;
 use std::process::Command;
@@ -76,6 +84,15 @@ struct Args {
     /// Folder of tradeoff.md and tradeoff.png.
     #[arg(long, default_value = "docs")]
     out_dir: PathBuf,
+    /// Save D and M of each case in this folder (for `--reference` of a later build).
+    #[arg(long)]
+    save_reference: Option<PathBuf>,
+    /// Compare D and M of each case with those saved in this folder by `--save-reference`.
+    #[arg(long)]
+    reference: Option<PathBuf>,
+    /// Run only these cases (comma-separated: plane3d, cylinder, line2d, ratio2d, ratio3d).
+    #[arg(long, value_delimiter = ',')]
+    cases: Vec<String>,
     /// Internal: run one case in this process and print one JSON line.
     #[arg(long, num_args = 4, value_names = ["CASE", "N", "THREADS", "ORDER"], hide = true)]
     single: Option<Vec<String>>,
@@ -84,7 +101,7 @@ struct Args {
 fn main() -> Res<()> {
     let args = Args::parse();
     if let Some(s) = &args.single {
-        let record = single(&s[0], s[1].parse()?, s[2].parse()?, &s[3], args.repeats)?;
+        let record = single(&s[0], s[1].parse()?, s[2].parse()?, &s[3], &args)?;
         println!("{record}");
         return Ok(());
     }
@@ -208,7 +225,8 @@ fn repeats_for(case: &str, n: usize, repeats: usize) -> usize {
 }
 
 /// One (case, n, threads), in this process.
-fn single(case: &str, n: usize, threads: usize, order: &str, repeats: usize) -> Res<Value> {
+fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res<Value> {
+    let repeats = args.repeats;
     let baseline = peak_memory();
     let load = load_average();
     let t = Instant::now();
@@ -232,7 +250,17 @@ fn single(case: &str, n: usize, threads: usize, order: &str, repeats: usize) -> 
     let med = runs[by_total[by_total.len() / 2]];
     let s = med.seconds;
     let (mesh, out) = (mesh_bytes(&interface), output_bytes(&c));
+    if let Some(dir) = &args.save_reference {
+        if threads == 1 {
+            reference::save(&reference::file(dir, case, n, order), &c)?;
+        }
+    }
+    let vs_reference = match &args.reference {
+        Some(dir) => reference::compare(&reference::file(dir, case, n, order), &c)?,
+        None => Value::Null,
+    };
     Ok(json!({
+        "vs_reference": vs_reference,
         "case": case, "n": n, "threads": threads, "order": order,
         "slave_faces": interface.slave().face_count(),
         "master_faces": interface.master().face_count(),
@@ -279,6 +307,9 @@ fn bench(args: &Args) -> Res<()> {
             ("ratio3d", vec![316, 1000]),
         ]
     };
+    if !args.cases.is_empty() {
+        sizes.retain(|(case, _)| args.cases.iter().any(|c| c == case));
+    }
     for (case, ns) in &mut sizes {
         if !case.ends_with("2d") {
             ns.retain(|&n| n <= cap);
@@ -303,6 +334,16 @@ fn bench(args: &Args) -> Res<()> {
                             order,
                         ])
                         .args(["--repeats", &repeats.to_string()])
+                        .args(
+                            args.save_reference
+                                .iter()
+                                .flat_map(|d| [OsStr::new("--save-reference"), d.as_os_str()]),
+                        )
+                        .args(
+                            args.reference
+                                .iter()
+                                .flat_map(|d| [OsStr::new("--reference"), d.as_os_str()]),
+                        )
                         .output()?;
                     let line = String::from_utf8_lossy(&out.stdout);
                     let Some(Ok(mut r)) = line
@@ -373,10 +414,10 @@ fn print_table(records: &[Value]) {
     let ts = |r: &Value, k: &str| r["thread_seconds"][k].as_f64().unwrap_or(f64::NAN);
     let u = |r: &Value, k: &str| r[k].as_u64().unwrap_or(0);
     println!(
-        "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>8} {:>10} {:>7} {:>8} {:>5} {:>5} {:>6} {:>6} {:>5}",
+        "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6} {:>7} {:>8} {:>8} {:>7} {:>8} {:>10} {:>7} {:>8} {:>5} {:>5} {:>6} {:>6} {:>5} {:>8}",
         "case", "n", "thr", "order", "slave_f", "master_f", "pairs", "tree", "search*", "segm*",
         "integr*", "assem", "total", "pairs/s/t", "ns/pair", "peak MB", "mem", "rep", "speed",
-        "shuf", "bits"
+        "shuf", "bits", "vs ref"
     );
     for r in records {
         let ratio = f(r, "memory_ratio");
@@ -390,12 +431,24 @@ fn print_table(records: &[Value]) {
                 .and_then(Value::as_f64)
                 .map_or(String::from("-"), |v| format!("{v:.2}x"))
         };
+        let vs_ref = match r["vs_reference"]["within_1e-13"].as_bool() {
+            Some(ok) => {
+                let d = r["vs_reference"]["d_max_row_relative"]
+                    .as_f64()
+                    .unwrap_or(f64::NAN);
+                let m = r["vs_reference"]["m_max_row_relative"]
+                    .as_f64()
+                    .unwrap_or(f64::NAN);
+                format!("{}{:.0e}", if ok { "" } else { "!" }, d.max(m))
+            }
+            None => String::from("-"),
+        };
         let (speed, shuf) = (
             ratio_of("speedup_vs_1_thread"),
             ratio_of("shuffled_vs_sorted"),
         );
         println!(
-            "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6.3} {:>7.3} {:>8.3} {:>8.3} {:>7.3} {:>8.3} {:>10.3e} {:>7.0} {:>8.1} {:>5.2} {:>5} {:>6} {:>6} {:>5}",
+            "{:<8} {:>7} {:>3} {:>5} {:>9} {:>9} {:>9} {:>6.3} {:>7.3} {:>8.3} {:>8.3} {:>7.3} {:>8.3} {:>10.3e} {:>7.0} {:>8.1} {:>5.2} {:>5} {:>6} {:>6} {:>5} {:>8}",
             r["case"].as_str().unwrap_or("?"),
             u(r, "n"),
             u(r, "threads"),
@@ -421,11 +474,35 @@ fn print_table(records: &[Value]) {
             speed,
             shuf,
             bits,
+            vs_ref,
         );
     }
     println!(
         "times in seconds (median total of `rep` runs); * search, segm and integr are \
          thread-seconds (summed over threads); shuf = total of this order (face: faces shuffled; shuf: nodes and faces) / sorted; mem = (peak - baseline) / (meshes + D and M); bits: D and M bit-identical \
-         to the 1-thread run"
+         to the 1-thread run; vs ref: largest row-relative difference of D and M from the \
+         --reference build's (! beyond 1e-13)"
     );
+    let compared: Vec<&Value> = records
+        .iter()
+        .filter(|r| r["vs_reference"].is_object())
+        .collect();
+    if !compared.is_empty() {
+        let worst = compared.iter().fold(0.0f64, |w, r| {
+            let v = &r["vs_reference"];
+            w.max(v["d_max_row_relative"].as_f64().unwrap_or(f64::NAN))
+                .max(v["m_max_row_relative"].as_f64().unwrap_or(f64::NAN))
+        });
+        let bad = compared
+            .iter()
+            .filter(|r| r["vs_reference"]["within_1e-13"].as_bool() != Some(true))
+            .count();
+        println!(
+            "D and M against the reference build: {} of {} runs within {:e} (largest row-relative \
+             difference {worst:.2e})",
+            compared.len() - bad,
+            compared.len(),
+            reference::TOLERANCE
+        );
+    }
 }
