@@ -172,14 +172,23 @@ pub(super) fn segments_into(
             if deg == 2 && !in_reference {
                 // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
                 // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
-                // so an n-gon needs 2n points instead of 3n; still exact for degree 2.
-                fan_midpoints(&clip, |c, weight, cells| {
+                // so an n-gon needs 2n points instead of 3n; still exact for degree 2. Where the
+                // integrands are of degree 2 at most (both maps affine, the degree at least the
+                // default), any triangulation integrates them exactly and the fan from a vertex
+                // serves: n - 2 triangles, 2n - 3 points.
+                let exact = master_map.is_affine() && deg >= default_degree(el, mel);
+                let push = |c, weight, cells| {
                     out.cells += cells;
                     if weight > 0.0 {
                         out.points.push(point_at(c, weight)?);
                     }
                     Ok(())
-                })?;
+                };
+                if exact {
+                    vertex_fan_midpoints(&clip, push)?;
+                } else {
+                    fan_midpoints(&clip, push)?;
+                }
             } else {
                 tris.clear();
                 if in_reference {
@@ -245,10 +254,7 @@ fn fan_midpoints(
 ) -> Result<()> {
     let v = &poly.vertices;
     let n = v.len();
-    let area = |a: &Vector2<f64>, b: &Vector2<f64>, c: &Vector2<f64>| {
-        let (e1, e2) = (b - a, c - a);
-        (0.5 * (e1.x * e2.y - e1.y * e2.x)).max(0.0)
-    };
+    let area = clamped_area;
     if n == 3 {
         let a = area(&v[0], &v[1], &v[2]);
         let cells = u32::from(a > 0.0);
@@ -270,6 +276,49 @@ fn fan_midpoints(
         f(0.5 * (v[i] + v[(i + 1) % n]), this / 3.0, 0)?;
     }
     Ok(())
+}
+
+/// The area of the triangle `a b c`, clamped at zero (a triangle turning the wrong way counts
+/// as degenerate).
+fn clamped_area(a: &Vector2<f64>, b: &Vector2<f64>, c: &Vector2<f64>) -> f64 {
+    let (e1, e2) = (b - a, c - a);
+    (0.5 * (e1.x * e2.y - e1.y * e2.x)).max(0.0)
+}
+
+/// The degree-2 edge-midpoint rule on the fan of `poly` from its first vertex (triangles
+/// `v0 v_i v_i+1`), with the points on the diagonals merged: `2n - 3` points for an n-gon.
+/// Calls `f` as [`fan_midpoints`] does. Exact for degree 2, like the centroid fan, but its
+/// triangles depend on the first vertex: only for integrands the rule integrates exactly, so
+/// that relabelling the faces changes D and M by round-off only.
+fn vertex_fan_midpoints(
+    poly: &Polygon,
+    mut f: impl FnMut(Vector2<f64>, f64, u32) -> Result<()>,
+) -> Result<()> {
+    let v = &poly.vertices;
+    let n = v.len();
+    if n < 4 {
+        return fan_midpoints(poly, f);
+    }
+    // Triangle i (1 <= i <= n - 2) is v0 v_i v_i+1.
+    let tri = |i: usize| clamped_area(&v[0], &v[i], &v[i + 1]);
+    let first = tri(1);
+    f(0.5 * (v[0] + v[1]), first / 3.0, u32::from(first > 0.0))?;
+    let mut prev = first;
+    for i in 1..n - 1 {
+        // The outer edge v_i v_i+1 of triangle i, then the diagonal v0 v_i+1 it shares with
+        // triangle i + 1 (none after the last).
+        f(0.5 * (v[i] + v[i + 1]), prev / 3.0, 0)?;
+        if i + 1 < n - 1 {
+            let next = tri(i + 1);
+            f(
+                0.5 * (v[0] + v[i + 1]),
+                (prev + next) / 3.0,
+                u32::from(next > 0.0),
+            )?;
+            prev = next;
+        }
+    }
+    f(0.5 * (v[n - 1] + v[0]), prev / 3.0, 0)
 }
 
 /// Whether the face's map into space is affine: always for an affine element type (Tri3), and
