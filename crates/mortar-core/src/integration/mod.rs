@@ -6,8 +6,9 @@
 //! - [`SegmentBased`]: exact segmentation. In 2D, the master nodes are projected onto the slave
 //!   line along the projector's field and Gauss points placed on each overlap segment. In 3D,
 //!   both faces are projected onto the auxiliary plane through the slave face centre, clipped,
-//!   the clip polygon triangulated from its centroid, and each triangle's quadrature points
-//!   mapped back to both faces.
+//!   the clip polygon triangulated (the fan from a vertex where the quadrature is exact for the
+//!   integrands, from its centroid otherwise), and each triangle's quadrature points mapped
+//!   back to both faces.
 //!
 //! Only master faces that face the slave count: their normal must oppose the projection
 //! direction (the slave's outward normal), as it does when both surfaces carry their bodies'
