@@ -99,6 +99,31 @@ pub fn assemble_heat_matrices(
     body: &HeatBody,
     options: &HeatOptions,
 ) -> Result<HeatMatrices, PhysicsError> {
+    let (stiffness, capacity) = assemble(body, options, true)?;
+    Ok(HeatMatrices {
+        stiffness,
+        capacity,
+    })
+}
+
+/// Assembles the stiffness K of a body alone, as [`assemble_heat_matrices`] does, for a steady
+/// problem, which needs no capacity: half the triplets, and the same bits of K.
+///
+/// # Errors
+/// As [`assemble_heat_matrices`].
+pub fn assemble_heat_stiffness(
+    body: &HeatBody,
+    options: &HeatOptions,
+) -> Result<SparseMatrix, PhysicsError> {
+    Ok(assemble(body, options, false)?.0)
+}
+
+/// K, and C if `with_capacity` (else C without entries).
+fn assemble(
+    body: &HeatBody,
+    options: &HeatOptions,
+    with_capacity: bool,
+) -> Result<(SparseMatrix, SparseMatrix), PhysicsError> {
     check(body, options)?;
     let mesh = &body.mesh;
     let (k, rho_cp) = (body.material.conductivity, body.material.capacity);
@@ -124,14 +149,22 @@ pub fn assemble_heat_matrices(
                     for a in 0..nn {
                         for b in 0..nn {
                             ke[a][b] += k * g[a].dot(&g[b]) * w;
-                            ce[a][b] += rho_cp * n[a] * n[b] * w;
+                        }
+                    }
+                    if with_capacity {
+                        for a in 0..nn {
+                            for b in 0..nn {
+                                ce[a][b] += rho_cp * n[a] * n[b] * w;
+                            }
                         }
                     }
                 }
                 for (a, &na) in cell.nodes.iter().enumerate() {
                     for (b, &nb) in cell.nodes.iter().enumerate() {
                         out.k.push(na, nb, ke[a][b]);
-                        out.c.push(na, nb, ce[a][b]);
+                        if with_capacity {
+                            out.c.push(na, nb, ce[a][b]);
+                        }
                     }
                 }
             }
@@ -146,10 +179,10 @@ pub fn assemble_heat_matrices(
         cs.push(ch.c);
     }
     let n = mesh.node_count();
-    Ok(HeatMatrices {
-        stiffness: Triplets::to_csr_from_parts(ks, n, n),
-        capacity: Triplets::to_csr_from_parts(cs, n, n),
-    })
+    Ok((
+        Triplets::to_csr_from_parts(ks, n, n),
+        Triplets::to_csr_from_parts(cs, n, n),
+    ))
 }
 
 /// Assembles the load vector of a body at time `t`: the source, `int Q(x, t) N_a`, plus the

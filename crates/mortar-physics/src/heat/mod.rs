@@ -5,7 +5,8 @@
 //!
 //! - [`HeatBody`]: mesh, [`HeatMaterial`], source, Dirichlet and Neumann data (fields of
 //!   space and time).
-//! - [`assemble_heat_matrices`] (stiffness K, capacity C) and [`assemble_heat_load`] (F):
+//! - [`assemble_heat_matrices`] (stiffness K, capacity C; [`assemble_heat_stiffness`] K alone,
+//!   for a steady problem) and [`assemble_heat_load`] (F):
 //!   sparse, in parallel over fixed chunks of cells merged in order, so the result is the
 //!   same bit for bit whatever the thread count.
 //! - [`TiedHeat`]: two bodies tied along a non-conforming interface, steady
@@ -31,7 +32,9 @@ mod nonlinear;
 mod norms;
 mod tied;
 
-pub use assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
+pub use assembly::{
+    assemble_heat_load, assemble_heat_matrices, assemble_heat_stiffness, HeatMatrices, HeatOptions,
+};
 pub use body::{DirichletCondition, Field, HeatBody, HeatMaterial, NeumannCondition};
 pub(crate) use gap::StepData;
 pub use gap::{GapHeat, GapSolver, GapSolverState, GapSolverStats};
