@@ -193,7 +193,7 @@ master = { body = "left", group = "left_x1" }
 "#;
 
 /// Runs the example, writing into `out` (meshes, the scene, the outputs of `couple` and `run`).
-fn run(out: &std::path::Path) -> Res<()> {
+pub fn run(out: &std::path::Path) -> Res<()> {
     std::fs::create_dir_all(out)?;
     // ---- the user's code: registering and using the elements (14 lines) ----
     let mut registries = Registries::default();
