@@ -41,6 +41,7 @@ pub(super) fn segments_into(
     if area_s <= 0.0 {
         return Err(MortarError::InvertedFace {
             face: slave.location(),
+            kind: crate::error::Inversion::AgainstProjection,
             reason: "its normal points against the projection direction at its centre".into(),
         });
     }
