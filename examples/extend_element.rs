@@ -23,7 +23,7 @@ use nalgebra::{Vector2, Vector3};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
-// ---- the user's code: the two elements (42 lines) ----
+// ---- the user's code: the two elements (101 lines as rustfmt lays them out) ----
 /// Three-node line, Gmsh order: the two ends, then the middle.
 #[derive(Debug)]
 struct Line3;
@@ -195,12 +195,12 @@ master = { body = "left", group = "left_x1" }
 /// Runs the example, writing into `out` (meshes, the scene, the outputs of `couple` and `run`).
 pub fn run(out: &std::path::Path) -> Res<()> {
     std::fs::create_dir_all(out)?;
-    // ---- the user's code: registering and using the elements (14 lines) ----
+    // ---- the user's code: registering and using the elements (55 lines) ----
     let mut registries = Registries::default();
     registries.elements.register(&Line3);
     registries.cells.register(&Tri6);
-    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri6: 12 nodes on x = 1
-    write_body(out, "right", 1.0, 4)?; // 4 x 4: 9 nodes on x = 1, none matching but the ends
+    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri6: 3 lines, 7 nodes on x = 1
+    write_body(out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 9 nodes (3 shared: y = 0, 1/2, 1)
     for dual in [false, true] {
         let mut slave = read_gmsh_surface(
             out.join("right.msh"),
