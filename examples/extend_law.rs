@@ -40,7 +40,12 @@ impl ConstraintLaw for RadiatingGap {
 // ---- end of the user's code ----
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = std::env::args().nth(1).unwrap_or_else(|| {
+    run(&std::env::args().skip(1).collect::<Vec<_>>())
+}
+
+/// Runs the example with the arguments `[OUT_DIR]`.
+pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
+    let out = args.first().cloned().unwrap_or_else(|| {
         std::env::temp_dir()
             .join("mortar-extend-law")
             .display()

@@ -39,9 +39,10 @@ use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
+/// 2D Hertz contact against the closed form, three refinement levels.
 #[derive(Parser, Debug)]
 #[command(about = "2D Hertz contact against the closed form, three refinement levels")]
-struct Args {
+pub struct Args {
     /// Write the JSON report here (default: stdout).
     #[arg(long)]
     json: Option<PathBuf>,
@@ -88,7 +89,11 @@ struct Args {
 }
 
 fn main() -> Res<()> {
-    let args = Args::parse();
+    run(Args::parse())
+}
+
+/// Runs the example with the command line `args` (tests run it with a small one).
+pub fn run(args: Args) -> Res<()> {
     let n0 = args.n.unwrap_or(DEFAULT_ARC_CELLS);
     let mut base = HertzScene::new(n0);
     base.radius = args.radius;

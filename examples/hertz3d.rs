@@ -42,9 +42,10 @@ use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
+/// 3D Hertz contact against the closed form.
 #[derive(Parser, Debug)]
 #[command(about = "3D Hertz contact against the closed form")]
-struct Args {
+pub struct Args {
     /// Write the JSON report here (default: stdout).
     #[arg(long)]
     json: Option<PathBuf>,
@@ -90,7 +91,11 @@ struct Args {
 }
 
 fn main() -> Res<()> {
-    let args = Args::parse();
+    run(Args::parse())
+}
+
+/// Runs the example with the command line `args` (tests run it with a small one).
+pub fn run(args: Args) -> Res<()> {
     let n0 = args.n.unwrap_or(DEFAULT_SPHERE_CELLS);
     let mut base = HertzSphereScene::new(n0);
     base.radius = args.radius;

@@ -10,14 +10,19 @@
 
 use std::path::PathBuf;
 
-use mortar::scenes::pellet::{run, PelletScene, SolverMethod};
+use mortar::scenes::pellet::{run as run_scene, PelletScene, SolverMethod};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = std::env::args()
-        .nth(1)
+    run(&std::env::args().skip(1).collect::<Vec<_>>())
+}
+
+/// Runs the example with the arguments `[OUT_DIR [REFINEMENT]]`.
+pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
+    let out = args
+        .first()
         .map(PathBuf::from)
         .unwrap_or_else(|| std::env::temp_dir().join("mortar-pellet"));
-    let refinement = match std::env::args().nth(2) {
+    let refinement = match args.get(1) {
         Some(r) => r.parse()?,
         None => PelletScene::default().mesh.refinement,
     };
@@ -28,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         scene.mesh.refinement = refinement;
         scene.solver.method = method;
         let dir = out.join(format!("{method:?}").to_lowercase());
-        let r = run(&scene, &dir, true)?;
+        let r = run_scene(&scene, &dir, true)?;
         let s = &r["solver"];
         println!("{method:?}: outputs in {}", dir.display());
         println!(
@@ -57,7 +62,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = PelletScene::default();
     scene.mesh.refinement = refinement;
     scene.model.mechanics = false;
-    let r = run(&scene, &out.join("thermal"), true)?;
+    let r = run_scene(&scene, &out.join("thermal"), true)?;
     println!(
         "thermal only: centre {:.3} K, closed form {:.3} K, error {:.2e} of (T_0 - T_co)",
         num(&r["center_temperature"]),

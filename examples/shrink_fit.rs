@@ -121,7 +121,11 @@ fn study(m0: usize, levels: usize, ratio: [usize; 2], ring_slave: bool, delta: f
 }
 
 fn main() -> Res<()> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    run(&std::env::args().skip(1).collect::<Vec<_>>())
+}
+
+/// Runs the example with the arguments `[RING_CELLS LEVELS NUM DEN [SIDE [DELTA]]]`.
+pub fn run(args: &[String]) -> Res<()> {
     let studies = if args.is_empty() {
         let mut v = Vec::new();
         for ring_slave in [false, true] {

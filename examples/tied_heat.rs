@@ -39,9 +39,10 @@ use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
+/// Tied heat conduction: refinement study, patch test, VTU and PNG output.
 #[derive(Parser, Debug)]
 #[command(about = "Tied heat conduction: refinement study, patch test, VTU and PNG output")]
-struct Args {
+pub struct Args {
     /// Spatial dimension, 2 or 3.
     #[arg(long, default_value_t = 2)]
     dim: usize,
@@ -66,7 +67,11 @@ struct Args {
 }
 
 fn main() -> Res<()> {
-    let args = Args::parse();
+    run(Args::parse())
+}
+
+/// Runs the example with the command line `args` (tests run it with a small one).
+pub fn run(args: Args) -> Res<()> {
     let dim = args.dim;
     if dim != 2 && dim != 3 {
         return Err(format!("--dim {dim}: 2 or 3").into());

@@ -14,8 +14,13 @@ use mortar::io::MshFormat;
 use mortar::scenes::file::tied_block;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let dir = std::env::args()
-        .nth(1)
+    run(&std::env::args().skip(1).collect::<Vec<_>>())
+}
+
+/// Runs the example with the arguments `[DIR]`.
+pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
+    let dir = args
+        .first()
         .map(PathBuf::from)
         .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples/scenes"));
     std::fs::create_dir_all(&dir)?;

@@ -130,6 +130,14 @@
 //! assert!((x[0] - 2.0).abs() < 1e-12);
 //! ```
 //!
+//! **Elements and laws of one's own everywhere**: a [`Registries`] gathers the surface
+//! elements, the cells and the laws a program knows; the scene files
+//! ([`TiedHeatSpec::run_with`](crate::scenes::file::tied_heat::TiedHeatSpec::run_with),
+//! [`ContactSpec::run_with`](crate::scenes::file::contact::ContactSpec::run_with), the pellet's
+//! [`run_from_toml_with`](crate::scenes::pellet::run_from_toml_with)) and the whole command line
+//! ([`cli::main_with`](crate::cli::main_with): `couple`, `run`) take it, so a program's own
+//! `main` is `mortar::cli::main_with(registries)` (see `examples/extend_element.rs`).
+//!
 //! The property-test helpers for one's own elements and laws are in `mortar::testing`
 //! (feature `proptest-support`; documented on docs.rs).
 
@@ -140,8 +148,47 @@ pub use mortar_core::linalg::{LinearOperator, Preconditioner};
 pub use mortar_core::multiplier::MultiplierSpace;
 pub use mortar_core::projector::Projector;
 pub use mortar_core::CouplingOptions;
+pub use mortar_elements::volume::VolumeRegistry;
 pub use mortar_elements::ElementRegistry;
 pub use mortar_physics::laws::{
     check_tangent, ConstraintLaw, DynLaw, Float, LawPoint, LawRegistry, ObjectLaw,
 };
 pub use mortar_physics::nonlinear::NewtonProblem;
+
+/// The element types and laws a program knows, by Gmsh type and by name: what the Gmsh
+/// readers, the scene files and the command line ([`crate::cli::main_with`]) look elements and
+/// laws up in. [`Registries::default`] holds the shipped ones; add a program's own with the
+/// registries' `register`.
+///
+/// ```
+/// use mortar::extend::Registries;
+///
+/// let registries = Registries::default();
+/// assert!(registries.elements.by_gmsh_type(2).is_some()); // Tri3 faces
+/// assert!(registries.cells.by_gmsh_type(4, 3).is_some()); // Tet4 cells
+/// assert!(registries.laws.names().contains(&"exponential_contact"));
+/// ```
+#[derive(Debug, Clone)]
+pub struct Registries {
+    /// Surface (interface) elements, for [`read_gmsh_surface`](crate::io::read_gmsh_surface)
+    /// and `mortar couple`.
+    pub elements: ElementRegistry,
+    /// Cells of the bodies, for [`read_gmsh_volume`](crate::io::read_gmsh_volume) and the scene
+    /// files; a cell's boundary faces are the surface elements its
+    /// [`face_element`](VolumeElement::face_element) names.
+    pub cells: VolumeRegistry,
+    /// Interface laws, for the scene files' `[laws]` and `named_law` tables.
+    pub laws: LawRegistry,
+}
+
+impl Default for Registries {
+    /// The shipped elements (Line2, Tri3, Quad4), cells (Tri3, Quad4, Tet4, Hex8) and laws
+    /// ([`LawRegistry::with_shipped`]).
+    fn default() -> Self {
+        Self {
+            elements: ElementRegistry::new(),
+            cells: VolumeRegistry::new(),
+            laws: LawRegistry::with_shipped(),
+        }
+    }
+}

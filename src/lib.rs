@@ -22,6 +22,7 @@
 //! ```
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
+pub mod cli;
 pub mod extend;
 pub mod generate;
 pub mod interrupt;

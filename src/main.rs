@@ -1,4 +1,5 @@
-//! `mortar`: the command-line program of the mortar toolkit.
+//! `mortar`: the command-line program of the mortar toolkit, [`mortar::cli::main`] with the
+//! shipped elements and laws (a program of one's own calls [`mortar::cli::main_with`]).
 //!
 //! - `mortar` (no arguments): runs the built-in thermomechanical pellet scene into
 //!   `out/pellet` with a progress bar and prints what it modelled and its results;
@@ -12,8 +13,6 @@
 //! Errors print one line on stderr and exit with status 1 (2 for a bad command line, 130 for a
 //! run stopped by Ctrl-C, 141 when the reader of the output has gone).
 
-mod cli;
-
 fn main() -> std::process::ExitCode {
-    cli::main()
+    mortar::cli::main()
 }

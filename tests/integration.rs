@@ -30,3 +30,6 @@ mod orient;
 
 #[path = "integration/contact_scene.rs"]
 mod contact_scene;
+
+#[path = "integration/affine_faces.rs"]
+mod affine_faces;

@@ -1,28 +1,29 @@
 //! `mortar couple`: two Gmsh surfaces in, D, M and a summary out.
 
-use mortar::core::mesh::orient::face_each_other;
-use mortar::elements::ElementRegistry;
-use mortar::io::{
+use crate::core::mesh::orient::face_each_other;
+use crate::extend::Registries;
+use crate::io::{
     parse_interface_arg, read_gmsh_surface, write_coupling, CouplingSummary, GmshSurface,
     OrientationMethod, OrientationSummary, SideOrientation,
 };
-use mortar::{assemble_coupling, Interface};
+use crate::{assemble_coupling, Interface};
 
 use super::report::{core_error, print_summary, print_warnings};
 use super::CoupleArgs;
 
-/// Runs the command; the error is the message for the user.
-pub(super) fn run(args: &CoupleArgs, json: bool) -> Result<(), String> {
+/// Runs the command with the surface elements of `registries`; the error is the message for
+/// the user.
+pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Result<(), String> {
     let slave_arg = parse_interface_arg(&args.slave).map_err(|e| format!("--slave: {e}"))?;
     let master_arg = parse_interface_arg(&args.master).map_err(|e| format!("--master: {e}"))?;
     let settings = args.settings();
     let options = settings.options().map_err(|e| e.to_string())?;
     let tolerances = settings.tolerances().map_err(|e| e.to_string())?;
 
-    let registry = ElementRegistry::new();
-    let mut slave = read_gmsh_surface(&slave_arg.path, slave_arg.group.as_deref(), &registry)
+    let registry = &registries.elements;
+    let mut slave = read_gmsh_surface(&slave_arg.path, slave_arg.group.as_deref(), registry)
         .map_err(|e| format!("slave mesh: {e}"))?;
-    let mut master = read_gmsh_surface(&master_arg.path, master_arg.group.as_deref(), &registry)
+    let mut master = read_gmsh_surface(&master_arg.path, master_arg.group.as_deref(), registry)
         .map_err(|e| format!("master mesh: {e}"))?;
     let orientation = if args.keep_orientation {
         None
@@ -59,7 +60,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool) -> Result<(), String> {
 /// Orients both surfaces: outward from the cells of their files where every face bounds one
 /// cell, otherwise consistent piece by piece and turned to face each other.
 fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<OrientationSummary, String> {
-    let flip_error = |e: mortar::MortarError| e.to_string();
+    let flip_error = |e: crate::MortarError| e.to_string();
     let s = slave.orient_outward().map_err(flip_error)?;
     let m = master.orient_outward().map_err(flip_error)?;
     if let (Some(fs), Some(fm)) = (s, m) {
@@ -83,7 +84,7 @@ fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<Orientati
         m.is_some(),
     )
     .map_err(|e| core_error(&e, Some((slave, master))))?;
-    let side = |from_cells: Option<usize>, r: &mortar::core::mesh::orient::OrientationReport| {
+    let side = |from_cells: Option<usize>, r: &crate::core::mesh::orient::OrientationReport| {
         SideOrientation {
             method: if from_cells.is_some() {
                 OrientationMethod::Cells

@@ -1,4 +1,20 @@
-//! Command-line parsing and the commands.
+//! The `mortar` command line as a library function, so that a program of one's own gets the
+//! same commands (`couple`, `run`, `demo`, the default pellet) with its own elements and laws:
+//!
+//! ```no_run
+//! use mortar::extend::Registries;
+//!
+//! fn main() -> std::process::ExitCode {
+//!     let registries = Registries::default(); // ... plus the program's own elements and laws
+//!     mortar::cli::main_with(registries)
+//! }
+//! ```
+//!
+//! These are a program's `main`, not library routines: they parse the command line, install
+//! the Ctrl-C handler, print to standard output and standard error, and end the process with
+//! status 141 when the reader of standard output has gone (`mortar ... | head`). Errors print
+//! one line on stderr and give status 1 (2 for a bad command line, 130 for a run stopped by
+//! Ctrl-C).
 
 /// `say!` for the command's output: a reader that has gone (`mortar ... | head`) ends the
 /// process quietly with the status of a broken pipe, 141, as the Unix tools do, instead of a
@@ -14,12 +30,14 @@ mod report;
 mod run;
 mod scene;
 
+use std::ffi::OsString;
 use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use crate::extend::Registries;
+use crate::io::{CouplingSettings, Integration, Multipliers};
 use clap::{Args, Parser, Subcommand, ValueEnum};
-use mortar::io::{CouplingSettings, Integration, Multipliers};
 
 /// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
 /// conductance.
@@ -181,17 +199,44 @@ impl CoupleArgs {
     }
 }
 
-/// Parses the command line, runs, and turns a failure into one line on stderr.
+/// The `mortar` program with the shipped elements and laws: [`main_with`] of
+/// [`Registries::default`].
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
-    if let Err(e) = mortar::interrupt::install_handler() {
+    main_with(Registries::default())
+}
+
+/// The `mortar` program with the elements and laws of `registries`: parses the process's
+/// command line ([`run_from`]).
+pub fn main_with(registries: Registries) -> ExitCode {
+    run_from(std::env::args_os(), &registries)
+}
+
+/// Runs the `mortar` command line `args` (the program name first, as
+/// [`std::env::args_os`] gives it) with the elements and laws of `registries`: `couple` reads
+/// surfaces of `registries.elements`, `run` reads bodies of `registries.cells` and makes the
+/// laws a scene names by `registries.laws`. Returns the exit status; a failure is one line on
+/// stderr (`mortar: error: ...`), a bad command line clap's message and status 2.
+pub fn run_from<I, T>(args: I, registries: &Registries) -> ExitCode
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with status 0, mistakes to stderr with 2.
+            let _ = e.print();
+            return ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2));
+        }
+    };
+    if let Err(e) = crate::interrupt::install_handler() {
         eprintln!("mortar: warning: {e}; Ctrl-C will end the run without its outputs");
     }
     let result = match &cli.command {
         None => run::default_job(std::path::Path::new("out/pellet"), cli.json),
         Some(Command::Demo) => scene::run(cli.json),
-        Some(Command::Couple(args)) => couple::run(args, cli.json),
-        Some(Command::Run(args)) => run::run(args, cli.json),
+        Some(Command::Couple(args)) => couple::run(args, cli.json, registries),
+        Some(Command::Run(args)) => run::run(args, cli.json, registries),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -201,7 +246,7 @@ pub fn main() -> ExitCode {
                 .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
                 .collect();
             eprintln!("mortar: error: {line}");
-            if mortar::interrupt::requested() {
+            if crate::interrupt::requested() {
                 // 128 + SIGINT, as a shell reports an interrupted command.
                 ExitCode::from(130)
             } else {

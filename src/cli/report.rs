@@ -1,7 +1,7 @@
 //! Messages and summaries for the user.
 
-use mortar::io::{CouplingSummary, GmshSurface};
-use mortar::{MortarError, Side};
+use crate::io::{CouplingSummary, GmshSurface};
+use crate::{MortarError, Side};
 
 /// A core error with the file, group and line of the face it names, or the two surfaces.
 pub(super) fn core_error(
@@ -56,7 +56,7 @@ pub(super) fn core_error(
 }
 
 /// Prints each coupling warning on one line of stderr: `mortar: warning: NAME: ...`.
-pub(super) fn print_warnings(warnings: &[mortar::CouplingWarning]) {
+pub(super) fn print_warnings(warnings: &[crate::CouplingWarning]) {
     for w in warnings {
         eprintln!("mortar: warning: {w}");
     }

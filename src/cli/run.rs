@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use mortar::io::write_outputs;
-use mortar::scenes::file::{
+use crate::io::write_outputs;
+use crate::scenes::file::{
     builtin_scene,
     contact::{run_builtin_contact, ContactSpec},
     scene_kind,
@@ -13,7 +13,8 @@ use mortar::scenes::file::{
     FileSystem, InMemory, SceneOutput, SceneSource, BUILTIN_CONTACT_SCENES,
 };
 
-use mortar::scenes::pellet;
+use crate::extend::Registries;
+use crate::scenes::pellet;
 use serde_json::Value;
 
 use super::RunArgs;
@@ -150,15 +151,16 @@ fn print_coupled(report: &Value, out: &Path) {
     say!("output: {} (report.json, VTU over time)", out.display());
 }
 
-/// Runs the command; the error is the message for the user.
-pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
+/// Runs the command with the cells and laws of `registries`; the error is the message for the
+/// user.
+pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result<(), String> {
     // The pellet writes its own outputs (VTU snapshots over time, report.json).
     match (&args.scene_file, &args.scene) {
         (Some(path), None) => {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
             if scene_kind(&text, path).map_err(|e| e.to_string())? == "pellet" {
-                let report = pellet::run_from_toml(&text, &args.out, !json)
+                let report = pellet::run_from_toml_with(&text, &args.out, !json, &registries.laws)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
                 print_pellet(&report, &args.out, json);
                 return Ok(());
@@ -176,7 +178,10 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
             let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
-            (run_kind(&text, path, &base, &FileSystem)?, Vec::new())
+            (
+                run_kind(&text, path, &base, &FileSystem, registries)?,
+                Vec::new(),
+            )
         }
         (None, Some(name)) if BUILTIN_CONTACT_SCENES.contains(&name.as_str()) => {
             let output = run_builtin_contact(name)
@@ -197,7 +202,7 @@ pub(super) fn run(args: &RunArgs, json: bool) -> Result<(), String> {
                     .map(|(name, bytes)| (base.join(name), bytes.clone()))
                     .collect(),
             };
-            let output = run_kind(&scene.toml, &path, &base, &source)?;
+            let output = run_kind(&scene.toml, &path, &base, &source, registries)?;
             let mut extra = scene.meshes;
             extra.push(("scene.toml".to_string(), scene.toml.into_bytes()));
             (output, extra)
@@ -236,16 +241,19 @@ fn run_kind(
     path: &Path,
     base: &Path,
     source: &dyn SceneSource,
+    registries: &Registries,
 ) -> Result<SceneOutput, String> {
     let kind = scene_kind(text, path).map_err(|e| e.to_string())?;
     match kind.as_str() {
         "tied_heat" => {
             let spec = TiedHeatSpec::parse(text, path).map_err(|e| e.to_string())?;
-            spec.run(path, base, source).map_err(|e| e.to_string())
+            spec.run_with(path, base, source, registries)
+                .map_err(|e| e.to_string())
         }
         "contact" => {
             let spec = ContactSpec::parse(text, path).map_err(|e| e.to_string())?;
-            spec.run(path, base, source).map_err(|e| e.to_string())
+            spec.run_with(path, base, source, registries)
+                .map_err(|e| e.to_string())
         }
         other => Err(format!(
             "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, contact, pellet)",

@@ -55,9 +55,11 @@ impl CouplingSettings {
     /// [`MortarError::InvalidOption`] for a degree out of range or zero threads.
     pub fn options(&self) -> Result<CouplingOptions, MortarError> {
         if self.threads == Some(0) {
-            return Err(MortarError::InvalidOption(
-                "thread count must be at least 1".into(),
-            ));
+            return Err(MortarError::InvalidOption {
+                option: "threads",
+                value: "0".into(),
+                reason: "at least 1".into(),
+            });
         }
         let mut o = CouplingOptions::default();
         o = match self.multipliers {
@@ -83,9 +85,11 @@ impl CouplingSettings {
         if let Some(r) = self.search_radius {
             t.search_radius = SearchRadius::Distance(r);
             if !t.search_radius.is_valid() {
-                return Err(MortarError::InvalidOption(format!(
-                    "search radius {r} is not a non-negative finite distance"
-                )));
+                return Err(MortarError::InvalidOption {
+                    option: "search radius",
+                    value: r.to_string(),
+                    reason: "not a non-negative finite distance".into(),
+                });
             }
         }
         Ok(t)

@@ -5,8 +5,11 @@
 //! from 2021 (its 0.7 has stayed a release candidate) and which brings XML and compression
 //! dependencies this needs none of. Keep all VTK knowledge in this module.
 //!
-//! Cell types: Tri3 -> `VTK_TRIANGLE` (5), Quad4 -> `VTK_QUAD` (9), Tet4 -> `VTK_TETRA` (10),
-//! Hex8 -> `VTK_HEXAHEDRON` (12); the Gmsh node order of these is VTK's.
+//! Cell types, by the cell's Gmsh type (so a program's own cell of one of these types is
+//! written too): Tri3 -> `VTK_TRIANGLE` (5), Quad4 -> `VTK_QUAD` (9), Tet4 -> `VTK_TETRA` (10),
+//! Hex8 -> `VTK_HEXAHEDRON` (12), Tri6 -> `VTK_QUADRATIC_TRIANGLE` (22), Quad9 ->
+//! `VTK_BIQUADRATIC_QUAD` (28), Quad8 -> `VTK_QUADRATIC_QUAD` (23); the Gmsh node order of
+//! these is VTK's.
 //!
 //! ```
 //! use mortar::io::vtu::{write_vtu, VtuPiece};
@@ -39,13 +42,17 @@ pub struct VtuPiece<'a> {
     pub point_data: Vec<(&'a str, &'a [f64])>,
 }
 
-/// The VTK cell type of a volume element, by name.
-fn vtk_type(name: &str) -> Option<u8> {
-    match name {
-        "Tri3" => Some(5),
-        "Quad4" => Some(9),
-        "Tet4" => Some(10),
-        "Hex8" => Some(12),
+/// The VTK cell type of a volume element, by its Gmsh type: those whose Gmsh node order is
+/// VTK's (a program's own cell of one of these types is written too).
+fn vtk_type(gmsh_type: Option<u32>) -> Option<u8> {
+    match gmsh_type? {
+        2 => Some(5),   // Tri3: VTK_TRIANGLE
+        3 => Some(9),   // Quad4: VTK_QUAD
+        4 => Some(10),  // Tet4: VTK_TETRA
+        5 => Some(12),  // Hex8: VTK_HEXAHEDRON
+        9 => Some(22),  // Tri6: VTK_QUADRATIC_TRIANGLE
+        10 => Some(28), // Quad9: VTK_BIQUADRATIC_QUAD
+        16 => Some(23), // Quad8: VTK_QUADRATIC_QUAD
         _ => None,
     }
 }
@@ -193,7 +200,7 @@ pub fn vtu_string_with_vectors(
         let mesh = piece.mesh;
         for c in 0..mesh.cell_count() {
             let cell = mesh.cell(c);
-            let t = vtk_type(cell.element.name()).ok_or_else(|| {
+            let t = vtk_type(cell.element.gmsh_type()).ok_or_else(|| {
                 invalid(format!(
                     "piece {p}: cell {} is a {}, which has no VTK cell type here",
                     cell.tag,

@@ -193,8 +193,10 @@ fn group_errors_name_the_group() {
         _ => panic!("{e:?}"),
     }
     assert!(e.to_string().contains("6-node triangle"), "{e}");
-    // Until quadratic elements land, the message says how to mesh at order one.
+    // Quadratic elements are not shipped: the message says how to mesh at order one, or to
+    // register one's own element.
     assert!(e.to_string().contains("gmsh -order 1"), "{e}");
+    assert!(e.to_string().contains("examples/extend_element.rs"), "{e}");
 }
 
 #[test]

@@ -4,11 +4,13 @@
 
 use std::collections::HashMap;
 
-use mortar::core::error::FaceLocation;
+use mortar::core::error::{FaceLocation, Inversion};
 use mortar::elements::{LINE2, QUAD4, TRI3};
 use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::testing::{cell_kind, perturbed_square, CellKind, MAX_SQUARE_JITTER};
-use mortar::{assemble_coupling, CouplingOptions, Interface, MortarError, Side, SurfaceMesh};
+use mortar::{
+    assemble_coupling, CouplingOptions, Interface, MortarError, Side, SpatialDim, SurfaceMesh,
+};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
@@ -139,7 +141,7 @@ proptest! {
         let bad = with_face(&mesh, f, &[q[0], q[2], q[1], q[3]]);
         let err = Interface::new(bad, master()).unwrap_err();
         prop_assert!(
-            matches!(err, MortarError::InvertedFace { face, .. } if face == slave_face(tag)),
+            matches!(err, MortarError::InvertedFace { face, kind: Inversion::SelfIntersecting, .. } if face == slave_face(tag)),
             "{err:?}"
         );
         prop_assert!(err.to_string().contains(&format!("face {tag}")), "{err}");
@@ -168,7 +170,7 @@ proptest! {
         };
         let err = result.unwrap_err();
         prop_assert!(
-            matches!(err, MortarError::InvertedFace { face, .. } if face == FaceLocation { side: Some(side), tag }),
+            matches!(err, MortarError::InvertedFace { face, kind: Inversion::AgainstNeighbours, .. } if face == FaceLocation { side: Some(side), tag }),
             "{err:?}"
         );
         prop_assert!(err.to_string().contains(&format!("{side} face {tag}")), "{err}");
@@ -213,7 +215,7 @@ fn symmetric_bow_tie_quad_is_inverted_not_degenerate() {
     let bad = with_face(&square, 0, &[1, 4, 2, 3]);
     let err = Interface::new(bad, master()).unwrap_err();
     assert!(
-        matches!(err, MortarError::InvertedFace { face, .. } if face == slave_face(1)),
+        matches!(err, MortarError::InvertedFace { face, kind: Inversion::SelfIntersecting, .. } if face == slave_face(1)),
         "a symmetric bow-tie quad should be an InvertedFace, got {err:?}"
     );
 }
@@ -234,7 +236,16 @@ fn a_surface_folded_back_onto_itself_is_refused() {
     hairpin.add_face(&LINE2, &[1, 2]).unwrap();
     hairpin.add_face(&LINE2, &[2, 3]).unwrap();
     let err = Interface::new(hairpin, line_mesh(3, true, 10).unwrap()).unwrap_err();
-    assert!(matches!(err, MortarError::InvertedFace { .. }), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            MortarError::InvertedFace {
+                kind: Inversion::FoldsBack,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
     let text = err.to_string();
     assert!(
         text.contains("folds back") && text.contains("node 2") && text.contains("faces 1, 2"),
@@ -258,14 +269,34 @@ fn repeated_node_is_degenerate() {
 fn lines_against_triangles_is_a_dimension_mismatch() {
     let lines = line_mesh(3, false, 1).unwrap();
     let err = Interface::new(lines.clone(), master()).unwrap_err();
-    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            MortarError::DimensionMismatch {
+                expected: SpatialDim::Two,
+                found: SpatialDim::Three,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
     assert!(err.to_string().contains("master face 1"), "{err}");
 
     // One mesh with a line and a triangle.
     let mut mixed = square_triangles(1, Diagonal::Main, 0.0, false, 1).unwrap();
     mixed.add_face(&LINE2, &[1, 2]).unwrap();
     let err = Interface::new(mixed, master()).unwrap_err();
-    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            MortarError::DimensionMismatch {
+                expected: SpatialDim::Three,
+                found: SpatialDim::Two,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
     assert!(err.to_string().contains("slave face 3"), "{err}");
 }
 
@@ -283,7 +314,17 @@ fn line_off_the_xy_plane_is_a_dimension_mismatch() {
         })
         .unwrap();
     let err = Interface::new(lines, master).unwrap_err();
-    assert!(matches!(err, MortarError::DimensionMismatch(_)), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            MortarError::DimensionMismatch {
+                expected: SpatialDim::Two,
+                found: SpatialDim::Three,
+                ..
+            }
+        ),
+        "{err:?}"
+    );
     assert!(err.to_string().contains("node 13"), "{err}");
 }
 
@@ -322,18 +363,25 @@ fn empty_surfaces_and_invalid_options_are_refused() {
     assert_eq!(err, MortarError::EmptySurface { side: Side::Master });
 
     for d in [0, 21] {
-        assert!(matches!(
+        for result in [
             CouplingOptions::default().segment_based(Some(d)),
-            Err(MortarError::InvalidOption(_))
-        ));
-        assert!(matches!(
             CouplingOptions::default().element_based(Some(d)),
-            Err(MortarError::InvalidOption(_))
-        ));
+        ] {
+            match result {
+                Err(MortarError::InvalidOption { option, value, .. }) => {
+                    assert_eq!((option, value), ("quadrature degree", d.to_string()));
+                }
+                other => panic!("{other:?}"),
+            }
+        }
     }
     let interface = Interface::new(square_quads(2, 0.0, false, 1).unwrap(), master()).unwrap();
     let err = assemble_coupling(&interface, &CouplingOptions::default().threads(0)).unwrap_err();
-    assert!(matches!(err, MortarError::InvalidOption(_)), "{err:?}");
+    assert!(
+        matches!(err, MortarError::InvalidOption { option: "threads", ref value, .. } if value == "0"),
+        "{err:?}"
+    );
+    assert_eq!(err.to_string(), "invalid option: threads 0: at least 1");
 }
 
 /// The edges shared by two faces (node indices, lower first) and those faces.

@@ -38,6 +38,32 @@ impl fmt::Display for FaceLocation {
     }
 }
 
+/// How a face is inverted ([`MortarError::InvertedFace`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum Inversion {
+    /// The face's Jacobian changes sign or vanishes inside it: self-intersecting (a bow-tie
+    /// quad) or non-convex. Its nodes must be moved or renumbered.
+    SelfIntersecting,
+    /// The face is numbered the other way round from the neighbours around it: reversing its
+    /// node order ([`SurfaceMesh::reverse_face`](crate::SurfaceMesh::reverse_face)) mends it.
+    AgainstNeighbours,
+    /// The surface folds back onto itself at a node (the normals of the faces there cancel),
+    /// so the averaged normal is undefined.
+    FoldsBack,
+    /// The slave face's normal points against the projection direction at its centre.
+    AgainstProjection,
+}
+
+/// Which way a coordinate range is left ([`MortarError::CoordinateRange`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum RangeLimit {
+    /// Products of two coordinates would overflow: scale the meshes down.
+    Overflow,
+    /// Products of two lengths would underflow: scale the meshes up.
+    Underflow,
+}
+
 /// Errors of the mortar core.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -89,7 +115,10 @@ pub enum MortarError {
     InvertedFace {
         /// The face.
         face: FaceLocation,
-        /// What makes it inverted.
+        /// How it is inverted: what a program would act on (a face numbered against its
+        /// neighbours can be reversed; a self-intersecting one must be remeshed).
+        kind: Inversion,
+        /// What makes it inverted, naming the nodes and faces.
         reason: String,
     },
     /// The faces of a surface do not make a surface that can be oriented: an edge shared by
@@ -117,13 +146,24 @@ pub enum MortarError {
         largest: f64,
         /// The extent of the interface: the longest side of the box of both surfaces' nodes.
         extent: f64,
+        /// Which way the range is left: the meshes are to be scaled down (overflow) or up
+        /// (underflow).
+        limit: RangeLimit,
         /// What would overflow or underflow, and the range supported.
         reason: String,
     },
     /// Faces of different reference dimension (lines and triangles) in one interface, or a
     /// 2D interface with a node off the xy-plane.
-    #[error("dimension mismatch: {0}")]
-    DimensionMismatch(String),
+    #[error("dimension mismatch: {what}")]
+    DimensionMismatch {
+        /// The interface's dimension, set by its first slave face (lines: 2D, faces: 3D).
+        expected: crate::interface::SpatialDim,
+        /// The dimension of what disagrees: 3D for a face among lines or a node off the plane
+        /// `z = 0` of a 2D interface, 2D for a line among faces.
+        found: crate::interface::SpatialDim,
+        /// What disagrees and where (the face or node by side and tag), for the message.
+        what: String,
+    },
     /// A surface has no faces.
     #[error("the {side} surface has no faces")]
     EmptySurface {
@@ -155,9 +195,18 @@ pub enum MortarError {
         /// Final residual norm.
         residual: f64,
     },
-    /// An option is out of its range (a quadrature degree no rule reaches, a zero thread count).
-    #[error("invalid option: {0}")]
-    InvalidOption(String),
+    /// An option is out of its range (a quadrature degree no rule reaches, a zero thread count),
+    /// or an operation the input does not allow (reversing a face whose element cannot say how).
+    #[error("invalid option: {option} {value}: {reason}")]
+    InvalidOption {
+        /// The option (`"quadrature degree"`, `"threads"`, `"search radius"`, `"reversing"` a
+        /// face, ...).
+        option: &'static str,
+        /// The value given, as written.
+        value: String,
+        /// Why it is refused (the range allowed).
+        reason: String,
+    },
     /// The coupling met what it would otherwise report as a warning (uncovered slave area,
     /// skipped pairs), and full coverage was required
     /// ([`CouplingOptions::require_full_coverage`](crate::CouplingOptions::require_full_coverage)).

@@ -56,7 +56,7 @@ pub mod search;
 pub mod tolerances;
 
 pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning};
-pub use error::{MortarError, Result, Side};
+pub use error::{Inversion, MortarError, RangeLimit, Result, Side};
 pub use geometry::ModelGeometry;
 pub use interface::{Interface, SpatialDim};
 pub use mesh::{SurfaceMesh, VolumeMesh};

@@ -187,7 +187,11 @@ fn saddle_point_ldlt_matches_lu_refactors_and_refuses_a_zero_pivot() {
     ));
     assert!(matches!(
         SaddlePointFactorization::try_new(&swap, 3),
-        Err(SolverError::DimensionMismatch(_))
+        Err(SolverError::DimensionMismatch {
+            expected: 2,
+            found: 3,
+            ..
+        })
     ));
 }
 
@@ -197,7 +201,11 @@ fn typed_errors() {
     let mut lu = LuFactorization::try_new(&a).unwrap();
     assert!(matches!(
         lu.solve(&[1.0; 3]),
-        Err(SolverError::DimensionMismatch(_))
+        Err(SolverError::DimensionMismatch {
+            expected: 16,
+            found: 3,
+            ..
+        })
     ));
     // Another pattern: one more entry.
     let mut t = Triplets::default();
@@ -232,7 +240,11 @@ fn typed_errors() {
     let rect = Triplets::default().to_csr(2, 3);
     assert!(matches!(
         LuFactorization::try_new(&rect),
-        Err(SolverError::DimensionMismatch(_))
+        Err(SolverError::DimensionMismatch {
+            expected: 2,
+            found: 3,
+            ..
+        })
     ));
 }
 
@@ -312,7 +324,7 @@ fn gmres_reports_non_convergence_and_sizes() {
     let mut short = vec![0.0; 3];
     assert!(matches!(
         gmres(&a, &IdentityPreconditioner, &b, &mut short, &opts),
-        Err(SolverError::DimensionMismatch(_))
+        Err(SolverError::DimensionMismatch { found: 3, .. })
     ));
     // A zero right-hand side gives zero at once.
     let mut w = vec![1.0; b.len()];

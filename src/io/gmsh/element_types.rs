@@ -165,8 +165,9 @@ pub(super) fn is_higher_order(element_type: i32) -> bool {
 /// Advice for an unsupported element type: for a second-order one, how to mesh at order one.
 pub(crate) fn unsupported_hint(element_type: i32) -> String {
     if is_higher_order(element_type) {
-        "; quadratic (second-order) elements are not supported yet: mesh at order one \
-         (`gmsh -order 1`, or Mesh.ElementOrder = 1)"
+        "; quadratic (second-order) elements are not shipped: mesh at order one \
+         (`gmsh -order 1`, or Mesh.ElementOrder = 1), or register your own element \
+         (mortar::extend::Registries, mortar::cli::main_with; see examples/extend_element.rs)"
             .to_string()
     } else {
         String::new()

@@ -26,7 +26,6 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mortar_core::mesh::BoundaryFace;
-use mortar_elements::volume::VolumeRegistry;
 use mortar_physics::contact::{
     automatic_complementarity, solve_contact, ContactOptions, ContactSolution, NormalGap,
 };
@@ -34,7 +33,7 @@ use mortar_physics::elastic::{
     assemble_elastic_load, assemble_elastic_stiffness, recover_stress, ComponentSet, ElasticBody,
     ElasticMaterial, ElasticOptions, TractionCondition,
 };
-use mortar_physics::laws::{ContactComplementarity, ExponentialPressure, LawRegistry};
+use mortar_physics::laws::{ContactComplementarity, ExponentialPressure};
 
 use crate::scenes::NamedLaw;
 use mortar_physics::tied::Tie;
@@ -45,6 +44,7 @@ use serde::{Deserialize, Serialize};
 use super::tied_heat::SideSpec;
 use super::{dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
+use crate::extend::Registries;
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
 use crate::io::{parse_gmsh_volume, CouplingSettings, Integration, Multipliers};
 
@@ -154,8 +154,8 @@ pub struct ContactInterfaceSpec {
     /// The law.
     #[serde(default)]
     pub law: LawSpec,
-    /// A law by name from the shipped [`LawRegistry`] (or a program's own, through
-    /// [`ContactSpec::solve_with_registry`]), with its parameters, in place of `law`:
+    /// A law by name from the shipped [`LawRegistry`](mortar_physics::laws::LawRegistry) (or a program's own, through
+    /// [`ContactSpec::solve_with`]), with its parameters, in place of `law`:
     /// `named_law = { name = "exponential_pressure", base_pressure = 1e5, stiffness = 1e12,
     /// onset = 1e-6 }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -457,24 +457,40 @@ impl ContactSpec {
         base: &Path,
         source: &dyn SceneSource,
     ) -> Result<SolvedContact, SceneError> {
-        self.solve_with_registry(path, base, source, &LawRegistry::with_shipped())
+        self.solve_with(path, base, source, &Registries::default())
     }
 
-    /// [`solve`](Self::solve), with a `named_law` made by `laws` (the shipped laws and a
+    /// [`run`](Self::run) with the cells and laws of `registries` (the shipped ones and a
     /// program's own).
     ///
     /// # Errors
-    /// As [`run`](Self::run); [`SceneError::Invalid`] (key `contact.named_law`) for a law the
-    /// registry does not know or whose parameters it refuses.
-    pub fn solve_with_registry(
+    /// As [`solve_with`](Self::solve_with).
+    pub fn run_with(
         &self,
         path: &Path,
         base: &Path,
         source: &dyn SceneSource,
-        laws: &LawRegistry,
+        registries: &Registries,
+    ) -> Result<SceneOutput, SceneError> {
+        self.solve_with(path, base, source, registries)?.output()
+    }
+
+    /// [`solve`](Self::solve), with the bodies' cells looked up in `registries.cells` and a
+    /// `named_law` made by `registries.laws` (the shipped ones and a program's own).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run); [`SceneError::Invalid`] (key `contact.named_law`) for a law the
+    /// registry does not know or whose parameters it refuses.
+    pub fn solve_with(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+        registries: &Registries,
     ) -> Result<SolvedContact, SceneError> {
         let t_start = Instant::now();
-        let registry = VolumeRegistry::new();
+        let registry = &registries.cells;
+        let laws = &registries.laws;
         let mesh_error = |context: String, source| SceneError::Mesh {
             path: path.to_path_buf(),
             context,
@@ -498,7 +514,7 @@ impl ContactSpec {
             let bytes = source
                 .read(&file)
                 .map_err(|e| mesh_error(format!("bodies.{name}.mesh"), e))?;
-            let v = parse_gmsh_volume(bytes, &file, &b.group, &registry)
+            let v = parse_gmsh_volume(bytes, &file, &b.group, registry)
                 .map_err(|e| mesh_error(format!("bodies.{name}.group"), e))?;
             volumes.push((name.clone(), v));
         }

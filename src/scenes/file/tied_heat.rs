@@ -30,7 +30,6 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use mortar_elements::volume::VolumeRegistry;
 use mortar_physics::heat::{
     HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, TiedHeatSolution,
 };
@@ -39,6 +38,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
+use crate::extend::Registries;
 
 /// The most time steps a transient tied-heat scene may ask for (the pellet scene's limit too):
 /// beyond it a step count is refused rather than run without end.
@@ -407,8 +407,38 @@ impl TiedHeatSpec {
         base: &Path,
         source: &dyn SceneSource,
     ) -> Result<SolvedTiedHeat, SceneError> {
+        self.solve_with(path, base, source, &Registries::default())
+    }
+
+    /// [`run`](Self::run) with the bodies' cells looked up in `registries.cells` (the shipped
+    /// cells and a program's own; the interface faces are the surface elements of their
+    /// faces).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_with(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+        registries: &Registries,
+    ) -> Result<SceneOutput, SceneError> {
+        self.solve_with(path, base, source, registries)?.output()
+    }
+
+    /// [`solve`](Self::solve) with the cells of `registries` (see [`run_with`](Self::run_with)).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn solve_with(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+        registries: &Registries,
+    ) -> Result<SolvedTiedHeat, SceneError> {
         let t_start = Instant::now();
-        let registry = VolumeRegistry::new();
+        let registry = &registries.cells;
         let mesh_error = |context: String, source| SceneError::Mesh {
             path: path.to_path_buf(),
             context,
@@ -429,7 +459,7 @@ impl TiedHeatSpec {
             let bytes = source
                 .read(&file)
                 .map_err(|e| mesh_error(format!("bodies.{name}.mesh"), e))?;
-            let v = parse_gmsh_volume(bytes, &file, &b.group, &registry)
+            let v = parse_gmsh_volume(bytes, &file, &b.group, registry)
                 .map_err(|e| mesh_error(format!("bodies.{name}.group"), e))?;
             volumes.push((name.clone(), v));
         }

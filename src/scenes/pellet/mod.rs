@@ -94,7 +94,7 @@ pub use coupled::{
     thermal_law, MAX_STEP_CUTS,
 };
 pub use mesh::{annulus_mesh, pellet_mesh};
-pub use run::{run, run_builtin, run_from_toml, run_thermal};
+pub use run::{run, run_builtin, run_from_toml, run_from_toml_with, run_thermal};
 
 use mortar_core::mesh::VolumeMeshError;
 use mortar_physics::laws::{GapConductance, GasConductivity, LawError};

@@ -28,6 +28,26 @@ pub fn run_from_toml(text: &str, out: &Path, progress: bool) -> Result<Value, Pe
     run(&PelletScene::from_toml(text)?, out, progress)
 }
 
+/// [`run_from_toml`] with the laws a scene's `[laws]` tables name made by `laws` (the shipped
+/// laws and a program's own; see [`run_with_registry`](super::run_with_registry)).
+///
+/// # Errors
+/// As [`run_from_toml`]; [`PelletError::Law`] for a law `laws` cannot make.
+pub fn run_from_toml_with(
+    text: &str,
+    out: &Path,
+    progress: bool,
+    laws: &mortar_physics::laws::LawRegistry,
+) -> Result<Value, PelletError> {
+    let scene = PelletScene::from_toml(text)?;
+    scene.check()?;
+    if scene.model.mechanics {
+        super::run_with_registry(&scene, laws, out, progress)
+    } else {
+        run_thermal(&scene, out, progress)
+    }
+}
+
 /// Runs the built-in scene (the defaults of [`PelletScene`]), as [`run_from_toml`].
 ///
 /// # Errors

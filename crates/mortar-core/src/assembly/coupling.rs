@@ -357,24 +357,32 @@ pub const MAX_THREADS_PER_CORE: usize = 16;
 
 fn build_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
     if threads == Some(0) {
-        return Err(MortarError::InvalidOption(
-            "thread count must be at least 1".into(),
-        ));
+        return Err(MortarError::InvalidOption {
+            option: "threads",
+            value: "0".into(),
+            reason: "at least 1".into(),
+        });
     }
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     if let Some(t) = threads.filter(|&t| t > MAX_THREADS_PER_CORE * cores) {
-        return Err(MortarError::InvalidOption(format!(
-            "{t} threads on {cores} cores: at most {} ({MAX_THREADS_PER_CORE} per core)",
-            MAX_THREADS_PER_CORE * cores
-        )));
+        return Err(MortarError::InvalidOption {
+            option: "threads",
+            value: t.to_string(),
+            reason: format!(
+                "at most {} on {cores} cores ({MAX_THREADS_PER_CORE} per core)",
+                MAX_THREADS_PER_CORE * cores
+            ),
+        });
     }
     let mut builder = rayon::ThreadPoolBuilder::new();
     if let Some(t) = threads {
         builder = builder.num_threads(t);
     }
-    builder
-        .build()
-        .map_err(|e| MortarError::InvalidOption(format!("cannot start a thread pool: {e}")))
+    builder.build().map_err(|e| MortarError::InvalidOption {
+        option: "threads",
+        value: threads.map_or("default".into(), |t| t.to_string()),
+        reason: format!("cannot start a thread pool: {e}"),
+    })
 }
 
 fn assemble_on_pool(

@@ -18,7 +18,10 @@ pub type ElementRef = &'static dyn SurfaceElement;
 /// `n = (dx/dxi x dx/deta) / |.|` (right-hand rule on the node order).
 pub trait SurfaceElement: ReferenceElement {
     /// Whether the geometric map is affine for every placement of the nodes (Line2, Tri3):
-    /// then its inverse is found in one Newton step and its Jacobian is constant.
+    /// then its inverse is found in one Newton step and its Jacobian is constant. An element
+    /// that is affine only for some placements (a straight Line3 with its middle node at the
+    /// centre, a parallelogram Quad4) need not say so: the coupling decides per face from the
+    /// node positions ([`FaceGeometry::is_affine`](crate::interface::FaceGeometry::is_affine)).
     fn is_affine(&self) -> bool {
         false
     }

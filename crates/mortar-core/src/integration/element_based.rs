@@ -111,9 +111,11 @@ fn find_master(
                     let r = master.nodes[i] - x;
                     s[i] = r.x * d.y - r.y * d.x;
                 }
+                // Affine from the type or from the node positions (a straight Line3 with its
+                // middle node at the centre; see `FaceGeometry::is_affine`).
                 invert_line_map(
                     el,
-                    el.is_affine(),
+                    master.is_affine(),
                     &s[..k],
                     0.0,
                     tol.newton,

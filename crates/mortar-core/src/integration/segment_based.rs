@@ -25,9 +25,11 @@ impl SegmentBased {
 
 pub(super) fn check_degree(degree: Option<u32>) -> Result<()> {
     match degree {
-        Some(d) if d == 0 || d > 20 => Err(MortarError::InvalidOption(format!(
-            "quadrature degree {d} is out of range 1..=20"
-        ))),
+        Some(d) if d == 0 || d > 20 => Err(MortarError::InvalidOption {
+            option: "quadrature degree",
+            value: d.to_string(),
+            reason: "out of range 1..=20".into(),
+        }),
         _ => Ok(()),
     }
 }

@@ -94,6 +94,9 @@ fn pair_points(
     for (r, y) in rel.iter_mut().zip(&master.nodes[..km]) {
         *r = y - origin;
     }
+    // Affine from the type or from the node positions (a straight Line3 with its middle node
+    // at the centre): then a point maps back in one exact step.
+    let master_affine = master.is_affine();
     for (g, w) in rule.points().iter().zip(rule.weights()) {
         let xi = Vector2::new(lo + half * (g.x + 1.0), 0.0);
         let (x, d) = match &line.affine {
@@ -109,7 +112,7 @@ fn pair_points(
             iterations,
             residual,
         };
-        let eta = if mel.is_affine() {
+        let eta = if master_affine {
             invert_line_map(mel, true, &values[..km], 0.0, tol.newton, 1)
                 .map_err(|f| failed(f.iterations, f.residual))?
         } else {

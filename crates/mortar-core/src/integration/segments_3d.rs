@@ -41,6 +41,7 @@ pub(super) fn segments_into(
     if area_s <= 0.0 {
         return Err(MortarError::InvertedFace {
             face: slave.location(),
+            kind: crate::error::Inversion::AgainstProjection,
             reason: "its normal points against the projection direction at its centre".into(),
         });
     }
@@ -51,7 +52,7 @@ pub(super) fn segments_into(
     // Jacobian to its projection's (1 when the face lies in the plane; `1 / cos` of the tilt
     // on a curved surface, where the plane follows the averaged nodal normals). Any other slave
     // face is integrated in its reference coordinates with its own Jacobian.
-    let in_reference = !(slave_map.is_affine() && is_affine_in_space(slave));
+    let in_reference = !(slave_map.is_affine() && slave.is_affine());
     // The degree added to the integrands' for a slave face integrated in its reference
     // coordinates: one for a flat face (its Jacobian a polynomial), WARPED_EXTRA_DEGREE for a
     // warped or curved one (its Jacobian the norm of a polynomial vector).
@@ -319,21 +320,4 @@ fn vertex_fan_midpoints(
         }
     }
     f(0.5 * (v[n - 1] + v[0]), prev / 3.0, 0)
-}
-
-/// Whether the face's map into space is affine: always for an affine element type (Tri3), and
-/// for a face whose tangents are the same at every node as at the centre (a flat
-/// parallelogram Quad4), to round-off of its size.
-fn is_affine_in_space(face: &FaceGeometry) -> bool {
-    let el = face.element;
-    if el.is_affine() {
-        return true;
-    }
-    let x = face.node_coords();
-    let t0 = el.tangents(x, &el.domain().centre());
-    let scale = t0[0].norm().max(t0[1].norm());
-    el.node_reference_coords().iter().all(|xi| {
-        let t = el.tangents(x, &Vector2::new(xi[0], xi[1]));
-        (t[0] - t0[0]).amax().max((t[1] - t0[1]).amax()) <= 1e-13 * scale
-    })
 }

@@ -106,6 +106,27 @@ impl FaceGeometry {
         }
     }
 
+    /// Whether this face's map into space is affine (constant tangents, so a point is mapped
+    /// back in one exact step and the measure density is constant): always for an element type
+    /// that says so ([`SurfaceElement::is_affine`](crate::element::SurfaceElement::is_affine):
+    /// Line2, Tri3), and otherwise decided from the node positions, in 2D as in 3D: when the
+    /// tangents are the same at every node as at the centre, to round-off of the face's size (a
+    /// straight Line3 with its middle node at the centre, a flat parallelogram Quad4, a flat
+    /// Tri6 with its middle nodes at the centres of its edges).
+    pub fn is_affine(&self) -> bool {
+        let el = self.element;
+        if el.is_affine() {
+            return true;
+        }
+        let x = self.node_coords();
+        let t0 = el.tangents(x, &el.domain().centre());
+        let scale = t0[0].norm().max(t0[1].norm());
+        el.node_reference_coords().iter().all(|xi| {
+            let t = el.tangents(x, &Vector2::new(xi[0], xi[1]));
+            (t[0] - t0[0]).amax().max((t[1] - t0[1]).amax()) <= 1e-13 * scale
+        })
+    }
+
     /// Whether the face lies in one plane (its unit normal the same at every node, to 1e-12):
     /// its Jacobian is then a polynomial; otherwise (a warped bilinear quad, a curved face)
     /// it is the norm of a polynomial vector, and its integrals need

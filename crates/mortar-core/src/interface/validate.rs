@@ -4,7 +4,7 @@ use nalgebra::{Vector2, Vector3};
 
 use super::SpatialDim;
 use crate::element::{ReferenceDomain, MAX_FACE_NODES};
-use crate::error::{FaceLocation, MortarError, Result, Side};
+use crate::error::{FaceLocation, Inversion, MortarError, RangeLimit, Result, Side};
 use crate::geometry::stable_norm;
 use crate::mesh::orient::{consistent_flips, EdgeNeighbours};
 use crate::mesh::SurfaceMesh;
@@ -23,9 +23,10 @@ pub(super) fn check_range(slave: &SurfaceMesh, master: &SurfaceMesh) -> Result<(
     let largest = lo.abs().max().max(hi.abs().max());
     // Sides, not the diagonal: no squares, so no overflow before the test.
     let extent = (hi - lo).amax();
-    let refuse = |reason: String| MortarError::CoordinateRange {
+    let refuse = |limit: RangeLimit, reason: String| MortarError::CoordinateRange {
         largest,
         extent,
+        limit,
         reason,
     };
     let power = |x: f64| (2.0 * x.log10()).round();
@@ -34,18 +35,24 @@ pub(super) fn check_range(slave: &SurfaceMesh, master: &SurfaceMesh) -> Result<(
          {MIN_EXTENT:e} across, are supported: rescale the meshes (change their units)"
     );
     if largest > MAX_COORDINATE {
-        return Err(refuse(format!(
-            "products of two (areas, the entries of D and M) of about 1e{} would overflow \
+        return Err(refuse(
+            RangeLimit::Overflow,
+            format!(
+                "products of two (areas, the entries of D and M) of about 1e{} would overflow \
              double precision; {supported}",
-            power(largest)
-        )));
+                power(largest)
+            ),
+        ));
     }
     if extent > 0.0 && extent < MIN_EXTENT {
-        return Err(refuse(format!(
-            "products of two of its lengths (areas, the entries of D and M) of about 1e{} \
+        return Err(refuse(
+            RangeLimit::Underflow,
+            format!(
+                "products of two of its lengths (areas, the entries of D and M) of about 1e{} \
              would underflow double precision; {supported}",
-            power(extent)
-        )));
+                power(extent)
+            ),
+        ));
     }
     Ok(())
 }
@@ -62,13 +69,24 @@ pub(super) fn check_dimension(
         for f in 0..mesh.face_count() {
             let view = mesh.face(f);
             if view.element.domain().dim() != first {
-                return Err(MortarError::DimensionMismatch(format!(
-                    "{side} face {} is a {} but slave face {} is a {}: an interface is all lines (2D) or all faces (3D)",
-                    view.tag,
-                    view.element.name(),
-                    slave.face(0).tag,
-                    slave.face(0).element.name()
-                )));
+                let dim = |d: usize| {
+                    if d == 1 {
+                        SpatialDim::Two
+                    } else {
+                        SpatialDim::Three
+                    }
+                };
+                return Err(MortarError::DimensionMismatch {
+                    expected: dim(first),
+                    found: dim(view.element.domain().dim()),
+                    what: format!(
+                        "{side} face {} is a {} but slave face {} is a {}: an interface is all lines (2D) or all faces (3D)",
+                        view.tag,
+                        view.element.name(),
+                        slave.face(0).tag,
+                        slave.face(0).element.name()
+                    ),
+                });
             }
         }
     }
@@ -82,11 +100,15 @@ pub(super) fn check_dimension(
         let scale = (hi - lo).norm().max(lo.abs().max().max(hi.abs().max()));
         for (i, x) in mesh.coords().iter().enumerate() {
             if x.z.abs() > tol.degenerate * scale.max(f64::MIN_POSITIVE) {
-                return Err(MortarError::DimensionMismatch(format!(
-                    "{side} node {} has z = {:e}: line elements make a 2D problem in the plane z = 0",
-                    mesh.node_tags()[i],
-                    x.z
-                )));
+                return Err(MortarError::DimensionMismatch {
+                    expected: SpatialDim::Two,
+                    found: SpatialDim::Three,
+                    what: format!(
+                        "{side} node {} has z = {:e}: line elements make a 2D problem in the plane z = 0",
+                        mesh.node_tags()[i],
+                        x.z
+                    ),
+                });
             }
         }
     }
@@ -208,6 +230,7 @@ pub(super) fn check_faces(
                 if na.dot(nb) < -tol.degenerate.powi(2) {
                     return Err(MortarError::InvertedFace {
                         face: loc,
+                        kind: Inversion::SelfIntersecting,
                         reason: format!(
                             "its Jacobian changes sign between nodes {} and {} (self-intersecting or non-convex)",
                             mesh.node_tags()[view.nodes[a] as usize],
@@ -227,6 +250,7 @@ pub(super) fn check_faces(
             if n.dot(&centre) <= tol.degenerate * centre.norm() {
                 return Err(MortarError::InvertedFace {
                     face: loc,
+                    kind: Inversion::SelfIntersecting,
                     reason: format!(
                         "its Jacobian vanishes or changes sign at node {} (self-intersecting or non-convex)",
                         mesh.node_tags()[view.nodes[c] as usize]
@@ -287,6 +311,7 @@ pub(super) fn check_orientation(mesh: &SurfaceMesh, side: Side) -> Result<()> {
             side: Some(side),
             tag: mesh.face(f).tag,
         },
+        kind: Inversion::AgainstNeighbours,
         reason: format!(
             "it is oriented against its neighbours: {how}; check the node order of the faces \
              around it"
@@ -351,6 +376,7 @@ pub(super) fn nodal_normals(mesh: &SurfaceMesh, side: Side) -> Result<Vec<Vector
                 side: Some(side),
                 tag: mesh.face(first).tag,
             },
+            kind: Inversion::FoldsBack,
             reason: format!(
                 "the surface folds back onto itself at node {}: the normals of faces {} cancel, \
                  so the averaged normal there is undefined",

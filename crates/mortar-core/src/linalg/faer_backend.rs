@@ -29,9 +29,18 @@ use super::SparseMatrix;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum SolverError {
-    /// The matrix is not square, or a vector does not match its size.
-    #[error("dimension mismatch: {0}")]
-    DimensionMismatch(String),
+    /// The matrix is not square, or a vector, an ordering or a constraint count does not match
+    /// its size.
+    #[error("dimension mismatch: {what}: expected {expected}, found {found}")]
+    DimensionMismatch {
+        /// The size expected (the matrix's number of rows, or at most that many constraints).
+        expected: usize,
+        /// The size found.
+        found: usize,
+        /// What has the wrong size (`"columns of a square matrix"`, `"entries of the
+        /// right-hand side"`, ...).
+        what: &'static str,
+    },
     /// The matrix is singular: no pivot could be found at `pivot`, or the solve produced
     /// non-finite values (`pivot` is then `None`).
     #[error("the matrix is singular{}", match .pivot { Some(p) => format!(" (no pivot at step {p})"), None => " (the solve produced non-finite values)".to_string() })]
@@ -82,9 +91,11 @@ impl<'a> CscView<'a> {
     fn of(a: &'a SparseMatrix) -> Result<Self, SolverError> {
         let (n, m) = a.shape();
         if n != m {
-            return Err(SolverError::DimensionMismatch(format!(
-                "a {n}x{m} matrix is not square"
-            )));
+            return Err(SolverError::DimensionMismatch {
+                expected: n,
+                found: m,
+                what: "columns of a square matrix (as many as its rows)",
+            });
         }
         Ok(Self {
             n,
@@ -159,9 +170,11 @@ impl Pattern {
 
 fn check_rhs(n: usize, len: usize) -> Result<(), SolverError> {
     if n != len {
-        return Err(SolverError::DimensionMismatch(format!(
-            "a {n}x{n} matrix cannot be solved against a vector of {len}"
-        )));
+        return Err(SolverError::DimensionMismatch {
+            expected: n,
+            found: len,
+            what: "entries of the right-hand side (the matrix's size)",
+        });
     }
     Ok(())
 }
@@ -446,11 +459,10 @@ impl CholeskyFactorization {
 
 /// The inverse of the permutation `fwd` of `0..n`.
 fn inverse(fwd: &[usize], n: usize) -> Result<Vec<usize>, SolverError> {
-    let bad = || {
-        SolverError::DimensionMismatch(format!(
-            "an ordering of {} entries is not a permutation of {n} unknowns",
-            fwd.len()
-        ))
+    let bad = || SolverError::DimensionMismatch {
+        expected: n,
+        found: fwd.len(),
+        what: "entries of an ordering that is a permutation of the unknowns",
     };
     if fwd.len() != n {
         return Err(bad());
@@ -609,9 +621,11 @@ impl SaddlePointFactorization {
         let view = CscView::of(a)?;
         let n = view.n;
         if constraints > n {
-            return Err(SolverError::DimensionMismatch(format!(
-                "{constraints} constraints in a {n}x{n} matrix"
-            )));
+            return Err(SolverError::DimensionMismatch {
+                expected: n,
+                found: constraints,
+                what: "constraints (at most the matrix's size)",
+            });
         }
         let primal = n - constraints;
         let (nd, _) = fill_reducing_ordering(a)?;

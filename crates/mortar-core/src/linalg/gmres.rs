@@ -125,12 +125,17 @@ pub fn gmres(
     options: &GmresOptions,
 ) -> Result<GmresReport, SolverError> {
     let n = a.dim();
-    if b.len() != n || x.len() != n {
-        return Err(SolverError::DimensionMismatch(format!(
-            "GMRES on a {n}x{n} operator with b of {} and x of {}",
-            b.len(),
-            x.len()
-        )));
+    for (len, what) in [
+        (b.len(), "entries of b in GMRES (the operator's size)"),
+        (x.len(), "entries of x in GMRES (the operator's size)"),
+    ] {
+        if len != n {
+            return Err(SolverError::DimensionMismatch {
+                expected: n,
+                found: len,
+                what,
+            });
+        }
     }
     let restart = options.restart.max(1).min(n.max(1));
     let tol = options.relative_tolerance;

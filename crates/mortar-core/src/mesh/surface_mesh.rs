@@ -128,10 +128,11 @@ impl SurfaceMesh {
             }
             None => {
                 self.face_nodes.truncate(start);
-                return Err(MortarError::InvalidOption(format!(
-                    "a surface mesh holds at most {} element types",
-                    u8::MAX
-                )));
+                return Err(MortarError::InvalidOption {
+                    option: "element types of a surface mesh",
+                    value: (self.element_types.len() + 1).to_string(),
+                    reason: format!("a surface mesh holds at most {}", u8::MAX),
+                });
             }
         };
         self.face_offsets.push(self.face_nodes.len() as u32);
@@ -210,11 +211,11 @@ impl SurfaceMesh {
         if element.reverse_nodes(&mut self.face_nodes[a..b]) {
             Ok(())
         } else {
-            Err(MortarError::InvalidOption(format!(
-                "face {} ({}) cannot be reversed: the element does not say how",
-                self.face_tags[face],
-                element.name()
-            )))
+            Err(MortarError::InvalidOption {
+                option: "reversing",
+                value: format!("face {} ({})", self.face_tags[face], element.name()),
+                reason: "the element does not say how (SurfaceElement::reverse_nodes)".into(),
+            })
         }
     }
 

@@ -47,9 +47,11 @@ impl QuadratureRule {
     /// [`MortarError::InvalidOption`] for degrees above 199.
     pub fn line(degree: u32) -> Result<Self> {
         if degree > 199 {
-            return Err(MortarError::InvalidOption(format!(
-                "no line quadrature of degree {degree} (at most 199)"
-            )));
+            return Err(MortarError::InvalidOption {
+                option: "quadrature degree",
+                value: degree.to_string(),
+                reason: "no line quadrature of that degree (at most 199)".into(),
+            });
         }
         let n = degree as usize / 2 + 1;
         let (weights, points) = fenris_quadrature::univariate::gauss(n);
@@ -99,12 +101,16 @@ impl QuadratureRule {
         rule: fn(usize) -> Result<fenris_quadrature::Rule<2>, fenris_quadrature::Error>,
     ) -> Result<fenris_quadrature::Rule<2>> {
         if degree > MAX_DEGREE_2D {
-            return Err(MortarError::InvalidOption(format!(
-                "no 2D quadrature of degree {degree} (at most {MAX_DEGREE_2D})"
-            )));
+            return Err(MortarError::InvalidOption {
+                option: "quadrature degree",
+                value: degree.to_string(),
+                reason: format!("no 2D quadrature of that degree (at most {MAX_DEGREE_2D})"),
+            });
         }
-        rule(degree.max(1) as usize).map_err(|e| {
-            MortarError::InvalidOption(format!("no 2D quadrature of degree {degree}: {e}"))
+        rule(degree.max(1) as usize).map_err(|e| MortarError::InvalidOption {
+            option: "quadrature degree",
+            value: degree.to_string(),
+            reason: format!("no 2D quadrature of that degree: {e}"),
         })
     }
 
@@ -149,9 +155,11 @@ impl QuadratureRule {
     /// [`MortarError::InvalidOption`] for degrees above 20.
     pub fn cached(domain: ReferenceDomain, degree: u32) -> Result<&'static QuadratureRule> {
         if degree as usize >= CACHED_DEGREES {
-            return Err(MortarError::InvalidOption(format!(
-                "no cached quadrature of degree {degree} (at most {MAX_DEGREE_2D})"
-            )));
+            return Err(MortarError::InvalidOption {
+                option: "quadrature degree",
+                value: degree.to_string(),
+                reason: format!("no cached quadrature of that degree (at most {MAX_DEGREE_2D})"),
+            });
         }
         let slot = &CACHE[domain as usize][degree as usize];
         if let Some(rule) = slot.get() {

@@ -55,10 +55,10 @@ impl VolumeQuadratureRule {
                 weights: rule.weights().to_vec(),
             })
         };
-        let fail = |e: fenris_quadrature::Error| {
-            MortarError::InvalidOption(format!(
-                "no {domain:?} quadrature of degree {degree}: {e:?}"
-            ))
+        let fail = |e: fenris_quadrature::Error| MortarError::InvalidOption {
+            option: "quadrature degree",
+            value: degree.to_string(),
+            reason: format!("no {domain:?} quadrature of that degree: {e:?}"),
         };
         match domain {
             VolumeDomain::Triangle => planar(ReferenceDomain::Triangle),
@@ -137,10 +137,14 @@ impl VolumeQuadratureRule {
 }
 
 fn too_high(domain: VolumeDomain, degree: u32) -> MortarError {
-    MortarError::InvalidOption(format!(
-        "no {domain:?} quadrature of degree {degree} (at most {})",
-        max_volume_degree(domain)
-    ))
+    MortarError::InvalidOption {
+        option: "quadrature degree",
+        value: degree.to_string(),
+        reason: format!(
+            "no {domain:?} quadrature of that degree (at most {})",
+            max_volume_degree(domain)
+        ),
+    }
 }
 
 /// Rules cached per domain and degree (degrees 0 to 20).

@@ -1,0 +1,293 @@
+//! An element of one's own, end to end (issue 11): the library ships Line2, Tri3 and Quad4
+//! faces and Tri3, Quad4, Tet4 and Hex8 cells; here a program adds the quadratic pair Gmsh
+//! writes with `-order 2` in 2D, the six-node triangle (Gmsh type 9) and its three-node edges
+//! (Gmsh type 8), and uses them through the library's own doors: two bodies meshed
+//! independently are written as Gmsh files, their interface lines are read back by the Gmsh
+//! reader, tied by `Interface` and the coupling (sum(D) = the interface's length, D 1 = M 1,
+//! standard and dual multipliers), then coupled again by `mortar couple` and solved as a
+//! tied-heat scene file by `mortar run`, both from `mortar::cli::run_from` with the program's
+//! registries (a program's `main` would be `mortar::cli::main_with(registries)`).
+//!
+//! ```sh
+//! cargo run --release --example extend_element [OUT_DIR]
+//! ```
+
+use std::process::ExitCode;
+
+use mortar::core::element::volume::{VolumeDomain, VolumeElement};
+use mortar::core::element::{ElementRef, ReferenceDomain, ReferenceElement, SurfaceElement};
+use mortar::extend::Registries;
+use mortar::io::{msh41_volume_bytes, read_gmsh_surface, MshFormat};
+use mortar::{assemble_coupling, CouplingOptions, Interface, VolumeMesh};
+use nalgebra::{Vector2, Vector3};
+
+type Res<T> = Result<T, Box<dyn std::error::Error>>;
+
+// ---- the user's code: the two elements (101 lines as rustfmt lays them out) ----
+/// Three-node line, Gmsh order: the two ends, then the middle.
+#[derive(Debug)]
+struct Line3;
+impl ReferenceElement for Line3 {
+    fn name(&self) -> &'static str {
+        "Line3"
+    }
+    fn domain(&self) -> ReferenceDomain {
+        ReferenceDomain::Line
+    }
+    fn node_count(&self) -> usize {
+        3
+    }
+    fn corner_count(&self) -> usize {
+        2
+    }
+    fn shape_degree(&self) -> u32 {
+        2
+    }
+    fn node_reference_coords(&self) -> &'static [[f64; 2]] {
+        &[[-1.0, 0.0], [1.0, 0.0], [0.0, 0.0]]
+    }
+    fn shape_values_into(&self, xi: &Vector2<f64>, out: &mut [f64]) {
+        let x = xi.x;
+        out[..3].copy_from_slice(&[0.5 * x * (x - 1.0), 0.5 * x * (x + 1.0), 1.0 - x * x]);
+    }
+    fn shape_gradients_into(&self, xi: &Vector2<f64>, out: &mut [[f64; 2]]) {
+        let x = xi.x;
+        out[..3].copy_from_slice(&[[x - 0.5, 0.0], [x + 0.5, 0.0], [-2.0 * x, 0.0]]);
+    }
+}
+impl SurfaceElement for Line3 {
+    fn gmsh_type(&self) -> Option<u32> {
+        Some(8)
+    }
+    // Reversed: the ends swap, the middle stays.
+    fn reverse_nodes(&self, nodes: &mut [u32]) -> bool {
+        nodes.len() == 3 && {
+            nodes.swap(0, 1);
+            true
+        }
+    }
+}
+
+/// Six-node triangle, Gmsh order: corners, then the middles of edges 1-2, 2-3, 3-1.
+#[derive(Debug)]
+struct Tri6;
+impl VolumeElement for Tri6 {
+    fn name(&self) -> &'static str {
+        "Tri6"
+    }
+    fn domain(&self) -> VolumeDomain {
+        VolumeDomain::Triangle
+    }
+    fn node_count(&self) -> usize {
+        6
+    }
+    fn shape_degree(&self) -> u32 {
+        2
+    }
+    fn node_reference_coords(&self) -> &'static [[f64; 3]] {
+        &[
+            [0., 0., 0.],
+            [1., 0., 0.],
+            [0., 1., 0.],
+            [0.5, 0., 0.],
+            [0.5, 0.5, 0.],
+            [0., 0.5, 0.],
+        ]
+    }
+    fn shape_values_into(&self, xi: &Vector3<f64>, out: &mut [f64]) {
+        let l = [1.0 - xi.x - xi.y, xi.x, xi.y]; // barycentric coordinates
+        for i in 0..3 {
+            out[i] = l[i] * (2.0 * l[i] - 1.0);
+            out[i + 3] = 4.0 * l[i] * l[(i + 1) % 3];
+        }
+    }
+    fn shape_gradients_into(&self, xi: &Vector3<f64>, out: &mut [[f64; 3]]) {
+        let (l, d) = (
+            [1.0 - xi.x - xi.y, xi.x, xi.y],
+            [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]],
+        );
+        for (i, j) in [(0, 1), (1, 2), (2, 0)] {
+            out[i] = [
+                (4.0 * l[i] - 1.0) * d[i][0],
+                (4.0 * l[i] - 1.0) * d[i][1],
+                0.0,
+            ];
+            out[i + 3] = [
+                4.0 * (l[i] * d[j][0] + l[j] * d[i][0]),
+                4.0 * (l[i] * d[j][1] + l[j] * d[i][1]),
+                0.0,
+            ];
+        }
+    }
+    fn gmsh_type(&self) -> Option<u32> {
+        Some(9)
+    }
+    fn faces(&self) -> &'static [&'static [usize]] {
+        &[&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]]
+    }
+    fn face_element(&self, _face: usize) -> ElementRef {
+        &Line3
+    }
+}
+// ---- end of the elements ----
+
+/// The unit square `[x0, x0 + 1] x [0, 1]` in `2 n^2` Tri6 cells.
+fn tri6_square(x0: f64, n: usize) -> Res<VolumeMesh> {
+    let (m, mut mesh) = (2 * n + 1, VolumeMesh::new());
+    let tag = |i: usize, j: usize| (j * m + i + 1) as u64;
+    for (i, j) in (0..m).flat_map(|j| (0..m).map(move |i| (i, j))) {
+        let h = 1.0 / (m - 1) as f64;
+        mesh.add_node(tag(i, j), [x0 + i as f64 * h, j as f64 * h, 0.0])?;
+    }
+    for (a, b) in (0..n).flat_map(|b| (0..n).map(move |a| (2 * a, 2 * b))) {
+        let t = |di, dj| tag(a + di, b + dj);
+        mesh.add_cell(
+            &Tri6,
+            &[t(0, 0), t(2, 0), t(2, 2), t(1, 0), t(2, 1), t(1, 1)],
+        )?;
+        mesh.add_cell(
+            &Tri6,
+            &[t(0, 0), t(2, 2), t(0, 2), t(1, 1), t(1, 2), t(0, 1)],
+        )?;
+    }
+    Ok(mesh)
+}
+
+/// Writes body `name` on `[x0, x0 + 1] x [0, 1]` as `dir/name.msh`, with its faces at
+/// `x = x0` (group `name_x0`) and `x = x0 + 1` (`name_x1`).
+fn write_body(dir: &std::path::Path, name: &str, x0: f64, n: usize) -> Res<()> {
+    let mesh = tri6_square(x0, n)?;
+    let faces = mesh.boundary_faces()?;
+    let at = |x: f64| {
+        faces
+            .iter()
+            .filter(|f| (f.centroid.x - x).abs() < 1e-12)
+            .cloned()
+            .collect::<Vec<_>>()
+    };
+    let (g0, g1) = (format!("{name}_x0"), format!("{name}_x1"));
+    let groups = [(&at(x0)[..], g0.as_str()), (&at(x0 + 1.0)[..], g1.as_str())];
+    std::fs::write(
+        dir.join(format!("{name}.msh")),
+        msh41_volume_bytes((&mesh, name), &groups, MshFormat::Ascii)?,
+    )?;
+    Ok(())
+}
+
+/// The scene: `T = 0` at `x = 0`, heat flux 2 entering at `x = 2`, `k` 1 on the left and 2 on
+/// the right: `T = 2 x` on the left, `2 + (x - 1)` on the right, exact for these elements.
+const SCENE: &str = r#"kind = "tied_heat"
+[bodies.left]
+mesh = "left.msh"
+group = "left"
+conductivity = 1.0
+dirichlet = [{ group = "left_x0", value = 0.0 }]
+[bodies.right]
+mesh = "right.msh"
+group = "right"
+conductivity = 2.0
+neumann = [{ group = "right_x1", flux = 2.0 }]
+[interface]
+slave = { body = "right", group = "right_x0" }
+master = { body = "left", group = "left_x1" }
+"#;
+
+/// Runs the example, writing into `out` (meshes, the scene, the outputs of `couple` and `run`).
+pub fn run(out: &std::path::Path) -> Res<()> {
+    std::fs::create_dir_all(out)?;
+    // ---- the user's code: registering and using the elements (46 lines) ----
+    let mut registries = Registries::default();
+    registries.elements.register(&Line3);
+    registries.cells.register(&Tri6);
+    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri6: 3 lines, 7 nodes on x = 1
+    write_body(out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 9 nodes (3 shared: y = 0, 1/2, 1)
+    let read =
+        |file: &str, group| read_gmsh_surface(out.join(file), Some(group), &registries.elements);
+    for options in [
+        CouplingOptions::default(),
+        CouplingOptions::default().dual(),
+    ] {
+        let (mut slave, mut master) =
+            (read("right.msh", "right_x0")?, read("left.msh", "left_x1")?);
+        slave.orient_outward()?; // outward from their Tri6 cells: facing each other
+        master.orient_outward()?;
+        let c = assemble_coupling(&Interface::new(slave.mesh, master.mesh)?, &options)?;
+        let worst = row_sums(&c.d)
+            .into_iter()
+            .zip(row_sums(&c.m))
+            .fold(0.0, |w, (d, m)| f64::max(w, (d - m).abs()));
+        println!(
+            "{}: sum(D) = {:.15} (length 1), max |D 1 - M 1| = {worst:.1e}",
+            c.formulation, c.stats.area
+        );
+        if (c.stats.area - 1.0).abs() > 1e-12 || worst > 1e-12 {
+            return Err("D and M fail the patch test".into());
+        }
+    }
+    std::fs::write(out.join("scene.toml"), SCENE)?;
+    let (o, scene) = (out.display(), out.join("scene.toml").display().to_string());
+    let couple = [
+        "mortar",
+        "couple",
+        "--slave",
+        &format!("{o}/right.msh#right_x0"),
+        "--master",
+        &format!("{o}/left.msh#left_x1"),
+        "--out",
+        &format!("{o}/couple"),
+    ];
+    let run = ["mortar", "run", &scene, "--out", &format!("{o}/scene")];
+    for args in [&couple[..], &run[..]] {
+        if mortar::cli::run_from(args, &registries) != ExitCode::SUCCESS {
+            return Err(format!("`{}` failed", args.join(" ")).into());
+        }
+    }
+    // ---- end of the user's code ----
+    check_scene(out, &registries)
+}
+
+/// The row sums of a sparse matrix.
+fn row_sums(a: &sprs::CsMat<f64>) -> Vec<f64> {
+    a.outer_iterator()
+        .map(|row| row.data().iter().sum())
+        .collect()
+}
+
+/// Solves the scene file through the library with the same registries and checks the
+/// temperature against the exact one.
+fn check_scene(out: &std::path::Path, registries: &Registries) -> Res<()> {
+    use mortar::scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    let path = out.join("scene.toml");
+    let solved =
+        TiedHeatSpec::parse(SCENE, &path)?.solve_with(&path, out, &FileSystem, registries)?;
+    let mut worst: f64 = 0.0;
+    for (body, t) in solved
+        .problem
+        .bodies()
+        .iter()
+        .zip(&solved.solution.temperatures)
+    {
+        for (x, t) in body.mesh.coords().iter().zip(t) {
+            let exact = if x.x <= 1.0 { 2.0 * x.x } else { 1.0 + x.x };
+            worst = worst.max((t - exact).abs());
+        }
+    }
+    println!(
+        "tied heat on Tri6 bodies: max |T - T_exact| = {worst:.1e} ({})",
+        solved.solution.formulation.formulation.describe()
+    );
+    if worst > 1e-10 {
+        return Err(format!("temperature off by {worst:e}").into());
+    }
+    Ok(())
+}
+
+fn main() -> Res<()> {
+    let out = std::env::args().nth(1).map_or_else(
+        || std::env::temp_dir().join("mortar-extend-element"),
+        Into::into,
+    );
+    run(&out)?;
+    println!("outputs in {}", out.display());
+    Ok(())
+}
