@@ -4,15 +4,14 @@
 //! library's `check_tangent`, then run in the built-in thermomechanical scene as it is, with
 //! its VTU, plots and report.
 //!
-//! ```text
+//! ```sh
 //! cargo run --release --example extend_law [OUT_DIR]
 //! ```
 
 use mortar::physics::laws::{
-    check_tangent, ConstraintLaw, ExponentialContact, Float, GasConductivity, LawPoint,
-    MechanicalGapConductance,
+    check_tangent, ConstraintLaw, Float, LawPoint, MechanicalGapConductance,
 };
-use mortar::scenes::pellet::{run_coupled_with, PelletScene};
+use mortar::scenes::pellet::{exponential_contact_law, run_coupled_with, thermal_law, PelletScene};
 
 // ---- the user's code: the law (25 lines) ----
 /// Ross-Stoute on the mechanical gap plus grey-body radiation of emissivity `eps`.
@@ -52,16 +51,8 @@ pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
             .to_string()
     });
     let scene = PelletScene::default();
-    let g = &scene.gap;
-    let gas = MechanicalGapConductance::try_new(
-        g.roughness_pellet,
-        g.roughness_cladding,
-        g.jump_distance,
-        GasConductivity::HELIUM,
-        g.contact_conductance,
-    )?;
     let law = RadiatingGap {
-        gas,
+        gas: thermal_law(&scene)?,
         emissivity: 0.8,
     };
     // The tangent by dual numbers against central differences, at an open and a closed gap.
@@ -77,8 +68,7 @@ pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
             return Err(format!("tangent off: {check:?}").into());
         }
     }
-    let contact =
-        ExponentialContact::try_new(scene.contact.stiffness_exponent, scene.contact.onset_gap)?;
+    let contact = exponential_contact_law(&scene)?;
     let report = run_coupled_with(&scene, law, contact, std::path::Path::new(&out), true)?;
     println!(
         "with radiation: centre {:.3} K, gap closed at {} s, outputs in {out}",

@@ -55,6 +55,17 @@ pub fn thermal_law(scene: &PelletScene) -> Result<MechanicalGapConductance, Pell
     )?)
 }
 
+/// The scene's exponential contact law (`[contact]` stiffness exponent and onset gap).
+///
+/// # Errors
+/// [`PelletError::Law`] for parameters out of range.
+pub fn exponential_contact_law(scene: &PelletScene) -> Result<ExponentialContact, PelletError> {
+    Ok(ExponentialContact::try_new(
+        scene.contact.stiffness_exponent,
+        scene.contact.onset_gap,
+    )?)
+}
+
 /// The complementarity parameter `c` (Pa/m) of the exact law: the pellet's radial stiffness
 /// `E / (a (1 + nu)(1 - 2 nu))` (any positive value gives the same solution).
 fn complementarity(scene: &PelletScene) -> f64 {
@@ -313,10 +324,7 @@ pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
     }
     match scene.contact.law {
         ContactLawName::Exponential => {
-            let law = ExponentialContact::try_new(
-                scene.contact.stiffness_exponent,
-                scene.contact.onset_gap,
-            )?;
+            let law = exponential_contact_law(scene)?;
             let onset = law.onset();
             let names = (
                 "Ross-Stoute on the mechanical gap, plus h_contact p_contact",
@@ -380,10 +388,7 @@ pub fn run_with_registry(
             let ct = &scene.contact;
             match ct.law {
                 ContactLawName::Exponential => (
-                    DynLaw::new(
-                        "exponential_contact",
-                        ExponentialContact::try_new(ct.stiffness_exponent, ct.onset_gap)?,
-                    ),
+                    DynLaw::new("exponential_contact", exponential_contact_law(scene)?),
                     Some(ct.onset_gap),
                 ),
                 ContactLawName::Exact => (

@@ -90,8 +90,8 @@ mod run;
 
 pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{
-    coupled_problem, coupled_problem_with, run_coupled, run_coupled_with, run_with_registry,
-    thermal_law, MAX_STEP_CUTS,
+    coupled_problem, coupled_problem_with, exponential_contact_law, run_coupled, run_coupled_with,
+    run_with_registry, thermal_law, MAX_STEP_CUTS,
 };
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use run::{run, run_builtin, run_from_toml, run_from_toml_with, run_thermal};
