@@ -1,8 +1,9 @@
 //! # mortar-elements
 //!
-//! Concrete surface elements for the mortar toolkit: [`Line2`] (2D), [`Tri3`] and [`Quad4`]
-//! (3D), and an [`ElementRegistry`] that maps Gmsh element types to them; and, in
-//! [`volume`], the cells of the bodies: Tri3 and Quad4 (2D), Tet4 and Hex8 (3D).
+//! Concrete surface elements for the mortar toolkit: [`Line2`] and [`Line3`] (2D), [`Tri3`],
+//! [`Quad4`], [`Tri6`], [`Quad8`] and [`Quad9`] (3D), and an [`ElementRegistry`] that maps Gmsh
+//! element types to them; and, in [`volume`], the cells of the bodies: Tri3, Quad4, Tri6,
+//! Quad8 and Quad9 (2D), Tet4, Hex8, Tet10, Hex20 and Hex27 (3D).
 //!
 //! Reference domains: line `[-1, 1]`; triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`.
 //! Node order follows Gmsh.
@@ -55,12 +56,21 @@
 //! ```
 
 mod line2;
+mod line3;
 mod quad4;
+mod quad8;
+mod quad9;
 mod registry;
+mod shape;
 mod tri3;
+mod tri6;
 pub mod volume;
 
 pub use line2::{Line2, LINE2};
+pub use line3::{Line3, LINE3};
 pub use quad4::{Quad4, QUAD4};
+pub use quad8::{Quad8, QUAD8};
+pub use quad9::{Quad9, QUAD9};
 pub use registry::ElementRegistry;
 pub use tri3::{Tri3, TRI3};
+pub use tri6::{Tri6, TRI6};

@@ -1,6 +1,6 @@
 use mortar_core::element::ElementRef;
 
-use crate::{LINE2, QUAD4, TRI3};
+use crate::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 
 /// Maps Gmsh element type numbers to surface elements. Starts with the built-in elements;
 /// register your own with [`ElementRegistry::register`].
@@ -12,13 +12,13 @@ pub struct ElementRegistry {
 impl Default for ElementRegistry {
     fn default() -> Self {
         Self {
-            elements: vec![&LINE2, &TRI3, &QUAD4],
+            elements: vec![&LINE2, &TRI3, &QUAD4, &LINE3, &TRI6, &QUAD8, &QUAD9],
         }
     }
 }
 
 impl ElementRegistry {
-    /// A registry of the built-in elements (Line2, Tri3, Quad4).
+    /// A registry of the built-in elements (Line2, Tri3, Quad4, Line3, Tri6, Quad8, Quad9).
     pub fn new() -> Self {
         Self::default()
     }

@@ -2,14 +2,16 @@
 //! finite differences, reference measure, outward faces, and boundary extraction of small
 //! meshes. One generic check per property, called once per element type (listed by hand).
 
-use mortar_core::element::volume::{CellValues, VolumeElementRef};
+use mortar_core::element::volume::{CellValues, VolumeDomain, VolumeElementRef};
 use mortar_core::element::MAX_FACE_NODES;
 use mortar_core::mesh::VolumeMesh;
 use mortar_core::quadrature::VolumeQuadratureRule;
-use mortar_elements::volume::{HEX8, QUAD4, TET4, TRI3};
+use mortar_elements::volume::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
 use nalgebra::{Matrix3, Vector2, Vector3};
 
-const ELEMENTS: [VolumeElementRef; 4] = [&TRI3, &QUAD4, &TET4, &HEX8];
+const ELEMENTS: [VolumeElementRef; 10] = [
+    &TRI3, &QUAD4, &TET4, &HEX8, &TRI6, &QUAD8, &QUAD9, &TET10, &HEX20, &HEX27,
+];
 
 /// Reference points inside the domain (a fixed, irregular set).
 fn sample_points(e: VolumeElementRef) -> Vec<Vector3<f64>> {
@@ -27,9 +29,9 @@ fn sample_points(e: VolumeElementRef) -> Vec<Vector3<f64>> {
                 2 => Vector3::new(v.x, v.y, 0.0),
                 _ => v,
             };
-            match e.name() {
+            match e.domain() {
                 // [-1, 1] domains: stretch.
-                "Quad4" | "Hex8" => v.map(|c| 2.0 * c - 0.9),
+                VolumeDomain::Quadrilateral | VolumeDomain::Hexahedron => v.map(|c| 2.0 * c - 0.9),
                 _ => v,
             }
         })
@@ -132,12 +134,8 @@ fn check_reference_volume_and_physical_gradients(e: VolumeElementRef) {
         let x = cv.point(q);
         assert!((cv.value(q, &u) - (3.0 + b.dot(&x))).abs() < 1e-12);
     }
-    // Swapping two nodes inverts the cell.
-    let mut bad = nodes.clone();
-    bad.swap(1, 2);
-    if e.name() == "Hex8" {
-        bad.swap(5, 6);
-    }
+    // The mirror image of the cell (x -> -x, same node order) is inverted everywhere.
+    let bad: Vec<Vector3<f64>> = nodes.iter().map(|p| Vector3::new(-p.x, p.y, p.z)).collect();
     assert!(cv.reinit(e, rule, &bad).is_err(), "{}", e.name());
 }
 
@@ -163,6 +161,71 @@ fn check_faces_point_outwards(e: VolumeElementRef) {
             "{} face {f}: normal {n:?} points inwards",
             e.name()
         );
+    }
+}
+
+/// Each face's nodes are where the face's linear element (Line2, Tri3, Quad4) of its corners
+/// puts them, in the reference coordinates of the cell: the middle nodes of a face are the
+/// middles of its own edges (and the centre its centre), in the face element's node order.
+fn check_face_nodes_follow_their_corners(e: VolumeElementRef) {
+    let coords = e.node_reference_coords();
+    for (f, local) in e.faces().iter().enumerate() {
+        let fe = e.face_element(f);
+        let c = fe.corner_count();
+        let linear: &dyn mortar_core::element::SurfaceElement = match c {
+            2 => &mortar_elements::LINE2,
+            3 => &mortar_elements::TRI3,
+            _ => &mortar_elements::QUAD4,
+        };
+        let corners: Vec<Vector3<f64>> = local[..c]
+            .iter()
+            .map(|&i| Vector3::from(coords[i]))
+            .collect();
+        for (j, r) in fe.node_reference_coords().iter().enumerate() {
+            let want = linear.map(&corners, &Vector2::new(r[0], r[1]));
+            let got = Vector3::from(coords[local[j]]);
+            assert!(
+                (want - got).norm() < 1e-15,
+                "{} face {f} node {j} (cell node {}): at {got:?}, its corners put it at {want:?}",
+                e.name(),
+                local[j]
+            );
+        }
+    }
+}
+
+/// Quadratic completeness of the second-order cells: `sum_i N_i(xi) m(xi_i) = m(xi)` for the
+/// quadratic monomials `m` of the reference coordinates.
+fn check_quadratic_completeness(e: VolumeElementRef) {
+    if matches!(e.name(), "Tri3" | "Quad4" | "Tet4" | "Hex8") {
+        return;
+    }
+    let coords = e.node_reference_coords();
+    let mut n = vec![0.0; e.node_count()];
+    for xi in sample_points(e) {
+        e.shape_values_into(&xi, &mut n);
+        for a in 0..e.dim() {
+            for b in a..e.dim() {
+                let m = |p: &[f64; 3]| p[a] * p[b];
+                let sum: f64 = coords.iter().zip(&n).map(|(x, v)| m(x) * v).sum();
+                let want = xi[a] * xi[b];
+                assert!((sum - want).abs() < 1e-14, "{}: {sum} vs {want}", e.name());
+            }
+        }
+    }
+}
+
+#[test]
+fn face_nodes_follow_their_corners() {
+    for e in ELEMENTS {
+        check_face_nodes_follow_their_corners(e);
+    }
+}
+
+#[test]
+fn quadratic_completeness() {
+    for e in ELEMENTS {
+        check_quadratic_completeness(e);
     }
 }
 

@@ -1,6 +1,6 @@
-//! Volume elements (the cells of the bodies): [`Tri3`] and [`Quad4`] for 2D bodies in the
-//! plane `z = 0`, [`Tet4`] and [`Hex8`] for 3D bodies, and a [`VolumeRegistry`] of them by
-//! Gmsh type and dimension.
+//! Volume elements (the cells of the bodies): [`Tri3`], [`Quad4`], [`Tri6`], [`Quad8`] and
+//! [`Quad9`] for 2D bodies in the plane `z = 0`, [`Tet4`], [`Hex8`], [`Tet10`], [`Hex20`] and
+//! [`Hex27`] for 3D bodies, and a [`VolumeRegistry`] of them by Gmsh type and dimension.
 //!
 //! Reference domains: triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`; tetrahedron
 //! `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`; hexahedron `[-1, 1]^3`. Node order follows Gmsh, and
@@ -20,14 +20,22 @@
 //! assert_eq!(HEX8.faces().len(), 6);
 //! ```
 
+mod hex20;
+mod hex27;
 mod hex8;
 mod quad4;
+mod quadratic2d;
 mod registry;
+mod tet10;
 mod tet4;
 mod tri3;
 
+pub use hex20::{Hex20, HEX20};
+pub use hex27::{Hex27, HEX27};
 pub use hex8::{Hex8, HEX8};
 pub use quad4::{Quad4, QUAD4};
+pub use quadratic2d::{Quad8, Quad9, Tri6, QUAD8, QUAD9, TRI6};
 pub use registry::VolumeRegistry;
+pub use tet10::{Tet10, TET10};
 pub use tet4::{Tet4, TET4};
 pub use tri3::{Tri3, TRI3};

@@ -1,6 +1,6 @@
 use mortar_core::element::volume::VolumeElementRef;
 
-use super::{HEX8, QUAD4, TET4, TRI3};
+use super::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
 
 /// Maps Gmsh element types to volume elements, per reference dimension (Gmsh type 2 is a
 /// triangle cell in a 2D mesh and an interface face in a 3D one). Starts with the built-in
@@ -13,13 +13,16 @@ pub struct VolumeRegistry {
 impl Default for VolumeRegistry {
     fn default() -> Self {
         Self {
-            elements: vec![&TRI3, &QUAD4, &TET4, &HEX8],
+            elements: vec![
+                &TRI3, &QUAD4, &TET4, &HEX8, &TRI6, &QUAD8, &QUAD9, &TET10, &HEX20, &HEX27,
+            ],
         }
     }
 }
 
 impl VolumeRegistry {
-    /// A registry of the built-in cells (Tri3, Quad4, Tet4, Hex8).
+    /// A registry of the built-in cells (Tri3, Quad4, Tet4, Hex8, Tri6, Quad8, Quad9, Tet10,
+    /// Hex20, Hex27).
     pub fn new() -> Self {
         Self::default()
     }

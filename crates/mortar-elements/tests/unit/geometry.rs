@@ -6,7 +6,9 @@ use std::f64::consts::TAU;
 use mortar_core::element::{ReferenceDomain, SurfaceElement};
 use mortar_core::geometry::{invert_line_map, invert_surface_map};
 use mortar_core::quadrature::{Quadrature, QuadratureRule};
-use mortar_elements::{Line2, Quad4, Tri3, LINE2, QUAD4, TRI3};
+use mortar_elements::{
+    Line2, Line3, Quad4, Quad8, Quad9, Tri3, Tri6, LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6,
+};
 use nalgebra::{Rotation3, Vector2, Vector3};
 use proptest::prelude::*;
 
@@ -77,7 +79,7 @@ fn check_map_and_measure<E: SurfaceElement + ?Sized>(e: &E, x: &[Vector3<f64>], 
         .zip(rule.weights())
         .map(|(p, w)| w * e.jacobian_det(x, p))
         .sum();
-    let want = exact_measure(x);
+    let want = exact_measure(&x[..e.corner_count()]);
     assert!(
         (measure - want).abs() < 1e-12 * want,
         "{}: measure {measure}, want {want}",
@@ -194,6 +196,55 @@ fn check_surface_element<E: SurfaceElement + ?Sized>(
     check_inverse_map(e, x, &xi);
 }
 
+/// The nodes of a second-order face with straight edges and centred middle nodes on the
+/// corners `corners` (each node where the linear element of the corners puts it).
+fn second_order_nodes<E: SurfaceElement + ?Sized>(
+    e: &E,
+    corners: &[Vector3<f64>],
+) -> Vec<Vector3<f64>> {
+    let linear: &dyn SurfaceElement = match corners.len() {
+        2 => &LINE2,
+        3 => &TRI3,
+        _ => &QUAD4,
+    };
+    e.node_reference_coords()
+        .iter()
+        .map(|r| linear.map(corners, &Vector2::new(r[0], r[1])))
+        .collect()
+}
+
+/// Reversing a face's nodes keeps its geometry and turns its normal round.
+fn check_reversal<E: SurfaceElement + ?Sized>(e: &E, x: &[Vector3<f64>]) {
+    let mut order: Vec<u32> = (0..e.node_count() as u32).collect();
+    assert!(e.reverse_nodes(&mut order), "{}", e.name());
+    let y: Vec<Vector3<f64>> = order.iter().map(|&i| x[i as usize]).collect();
+    // The corners are still the first nodes, and each node is where the reversed map puts it.
+    let c = e.domain().centre();
+    let (n0, n1) = (e.unit_normal(x, &c), e.unit_normal(&y, &c));
+    assert!((n0 + n1).norm() < 1e-12, "{}: {n0:?} {n1:?}", e.name());
+    let rule = QuadratureRule::for_domain(e.domain(), 6).unwrap();
+    let area = |z: &[Vector3<f64>]| -> f64 {
+        rule.points()
+            .iter()
+            .zip(rule.weights())
+            .map(|(p, w)| w * e.jacobian_det(z, p))
+            .sum()
+    };
+    assert!((area(x) - area(&y)).abs() < 1e-12 * area(x), "{}", e.name());
+    for (j, r) in e.node_reference_coords().iter().enumerate() {
+        let p = e.map(&y, &Vector2::new(r[0], r[1]));
+        assert!((p - y[j]).norm() < 1e-12 * (1.0 + p.norm()), "{}", e.name());
+    }
+    // Reversing twice gives the original order.
+    assert!(e.reverse_nodes(&mut order));
+    assert_eq!(
+        order,
+        (0..e.node_count() as u32).collect::<Vec<_>>(),
+        "{}",
+        e.name()
+    );
+}
+
 fn axis() -> impl Strategy<Value = Vector3<f64>> {
     prop::array::uniform3(-1.0..1.0f64)
         .prop_filter("non-zero", |a| a.iter().map(|c| c * c).sum::<f64>() > 1e-2)
@@ -217,6 +268,47 @@ proptest! {
     fn quad4_geometry(x in planar_face(4), uv in (0.0..=1.0f64, 0.0..=1.0f64), axis in axis(), angle in 0.0..TAU) {
         check_surface_element(&Quad4, &x, uv, axis, angle);
     }
+
+    /// The second-order elements with straight edges and centred middle nodes: the same
+    /// checks (their map is then that of the linear element, so the exact measure holds),
+    /// and reversal.
+    #[test]
+    fn second_order_geometry(
+        x2 in planar_face(2), x3 in planar_face(3), x4 in planar_face(4),
+        uv in (0.0..=1.0f64, 0.0..=1.0f64), axis in axis(), angle in 0.0..TAU,
+    ) {
+        let faces: [(&dyn SurfaceElement, &[Vector3<f64>]); 4] =
+            [(&Line3, &x2), (&Tri6, &x3), (&Quad8, &x4), (&Quad9, &x4)];
+        for (e, corners) in faces {
+            let x = second_order_nodes(e, corners);
+            check_surface_element(e, &x, uv, axis, angle);
+            check_reversal(e, &x);
+        }
+    }
+}
+
+/// A curved Line3 (middle node off the chord) measures the arc of its parabola: the chord
+/// `(0,0)-(2,0)` with the middle node at `(1, h)` is `y = h (1 - (x-1)^2)`, of length
+/// `int_0^2 sqrt(1 + 4 h^2 (x - 1)^2) dx` (closed form below).
+#[test]
+fn curved_line3_measures_its_parabola() {
+    let h = 0.3f64;
+    let x = [
+        Vector3::zeros(),
+        Vector3::new(2.0, 0.0, 0.0),
+        Vector3::new(1.0, h, 0.0),
+    ];
+    let rule = QuadratureRule::for_domain(ReferenceDomain::Line, 20).unwrap();
+    let len: f64 = rule
+        .points()
+        .iter()
+        .zip(rule.weights())
+        .map(|(p, w)| w * LINE3.jacobian_det(&x, p))
+        .sum();
+    // int_-1^1 sqrt(1 + a^2 t^2) dt = sqrt(1 + a^2) + asinh(a) / a, a = 2 h.
+    let a = 2.0 * h;
+    let want = (1.0 + a * a).sqrt() + a.asinh() / a;
+    assert!((len - want).abs() < 1e-10, "{len} vs {want}");
 }
 
 #[test]
@@ -225,6 +317,15 @@ fn affinity_and_gmsh_types() {
     assert_eq!(LINE2.gmsh_type(), Some(1));
     assert_eq!(TRI3.gmsh_type(), Some(2));
     assert_eq!(QUAD4.gmsh_type(), Some(3));
+    // Second-order faces are affine or not by their node positions, never by type.
+    assert!(!LINE3.is_affine() && !TRI6.is_affine() && !QUAD8.is_affine() && !QUAD9.is_affine());
+    let types = [
+        LINE3.gmsh_type(),
+        TRI6.gmsh_type(),
+        QUAD8.gmsh_type(),
+        QUAD9.gmsh_type(),
+    ];
+    assert_eq!(types, [Some(8), Some(9), Some(16), Some(10)]);
 }
 
 #[test]

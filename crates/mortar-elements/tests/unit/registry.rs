@@ -8,13 +8,21 @@ use nalgebra::Vector2;
 #[test]
 fn built_in_elements_are_found_by_type_and_name() {
     let r = ElementRegistry::new();
-    assert_eq!(r.elements().len(), 3);
-    for (t, name) in [(1, "Line2"), (2, "Tri3"), (3, "Quad4")] {
+    assert_eq!(r.elements().len(), 7);
+    for (t, name) in [
+        (1, "Line2"),
+        (2, "Tri3"),
+        (3, "Quad4"),
+        (8, "Line3"),
+        (9, "Tri6"),
+        (16, "Quad8"),
+        (10, "Quad9"),
+    ] {
         assert_eq!(r.by_gmsh_type(t).unwrap().name(), name);
         assert_eq!(r.by_name(name).unwrap().gmsh_type(), Some(t));
     }
-    assert!(r.by_gmsh_type(9).is_none());
-    assert!(r.by_name("Tri6").is_none());
+    assert!(r.by_gmsh_type(21).is_none());
+    assert!(r.by_name("Tri10").is_none());
 }
 
 /// A Quad4 under another name, to check replacement by Gmsh type.
@@ -60,7 +68,7 @@ static MY_QUAD: MyQuad = MyQuad;
 fn registering_replaces_the_same_gmsh_type() {
     let mut r = ElementRegistry::new();
     r.register(&MY_QUAD);
-    assert_eq!(r.elements().len(), 3);
+    assert_eq!(r.elements().len(), 7);
     assert_eq!(r.by_gmsh_type(3).unwrap().name(), "MyQuad");
     assert!(r.by_name("Quad4").is_none());
     assert_eq!(r.by_gmsh_type(2).unwrap().name(), "Tri3");

@@ -1,7 +1,9 @@
 //! Shape functions on the reference element.
 
 use mortar_core::element::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};
-use mortar_elements::{Line2, Quad4, Tri3, LINE2, QUAD4, TRI3};
+use mortar_elements::{
+    Line2, Line3, Quad4, Quad8, Quad9, Tri3, Tri6, LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6,
+};
 use nalgebra::{Matrix2, Vector2};
 use proptest::prelude::*;
 
@@ -247,6 +249,26 @@ fn check_edge_conformity<E: ReferenceElement + ?Sized>(e: &E) {
     }
 }
 
+/// Quadratic completeness of the second-order elements: the shape functions reproduce the
+/// quadratic monomials of the reference coordinates, `sum_i N_i(xi) m(xi_i) = m(xi)` for
+/// `m` in `xi^2, xi eta, eta^2` (lines: `xi^2`).
+fn check_quadratic_completeness<E: ReferenceElement + ?Sized>(e: &E, points: &[Vector2<f64>]) {
+    let x = nodes(e);
+    let monomials: [fn(&Vector2<f64>) -> f64; 3] = [|p| p.x * p.x, |p| p.x * p.y, |p| p.y * p.y];
+    for xi in points {
+        let n = values(e, xi);
+        for m in monomials {
+            let p: f64 = x.iter().zip(&n).map(|(xj, nj)| m(xj) * nj).sum();
+            assert!(
+                (p - m(xi)).abs() < 1e-14,
+                "{} at {xi:?}: {p} vs {}",
+                e.name(),
+                m(xi)
+            );
+        }
+    }
+}
+
 /// Everything above, for one element type.
 fn check_reference_element<E: ReferenceElement + ?Sized>(e: &E) {
     let points = sample_points(e.domain());
@@ -286,6 +308,34 @@ fn quad4_shape_functions() {
     );
 }
 
+#[test]
+fn line3_shape_functions() {
+    check_reference_element(&LINE3);
+    check_quadratic_completeness(&LINE3, &sample_points(ReferenceDomain::Line));
+    assert_eq!((LINE3.node_count(), LINE3.shape_degree()), (3, 2));
+}
+
+#[test]
+fn tri6_shape_functions() {
+    check_reference_element(&TRI6);
+    check_quadratic_completeness(&TRI6, &sample_points(ReferenceDomain::Triangle));
+    assert_eq!((TRI6.node_count(), TRI6.shape_degree()), (6, 2));
+}
+
+#[test]
+fn quad8_shape_functions() {
+    check_reference_element(&QUAD8);
+    check_quadratic_completeness(&QUAD8, &sample_points(ReferenceDomain::Quadrilateral));
+    assert_eq!((QUAD8.node_count(), QUAD8.shape_degree()), (8, 3));
+}
+
+#[test]
+fn quad9_shape_functions() {
+    check_reference_element(&QUAD9);
+    check_quadratic_completeness(&QUAD9, &sample_points(ReferenceDomain::Quadrilateral));
+    assert_eq!((QUAD9.node_count(), QUAD9.shape_degree()), (9, 4));
+}
+
 /// A point of a reference domain from two uniform numbers in [0, 1].
 fn point_in(domain: ReferenceDomain, u: f64, v: f64) -> Vector2<f64> {
     match domain {
@@ -319,5 +369,16 @@ proptest! {
         check_partition_of_unity(&Quad4, &quad);
         check_gradients(&Quad4, &quad);
         check_linear_completeness(&Quad4, &quad);
+        check_partition_of_unity(&Line3, &line);
+        check_gradients(&Line3, &line);
+        check_quadratic_completeness(&Line3, &line);
+        check_partition_of_unity(&Tri6, &tri);
+        check_gradients(&Tri6, &tri);
+        check_quadratic_completeness(&Tri6, &tri);
+        for e in [&Quad8 as &dyn ReferenceElement, &Quad9] {
+            check_partition_of_unity(e, &quad);
+            check_gradients(e, &quad);
+            check_quadratic_completeness(e, &quad);
+        }
     }
 }
