@@ -192,14 +192,20 @@ fn unsupported_selections_and_element_types() {
         &m,
         &["cube.msh", "\"vol\"", "dimension 3"],
     );
-    let tri6 = gmsh_style_file(true, 9);
-    let line = format!("line {}", line_number(&tri6, "3 1 2 3 5 6 7"));
+    let tri6 = gmsh_style_file(true, 21);
+    let line = format!("line {}", line_number(&tri6, "3 1 2 3 4 5 6 7 8 1 2"));
     let s = dir.file("tri6.msh", &tri6);
     assert_fails(
         &dir,
         &format!("{s}#face"),
         &m,
-        &["tri6.msh", &line, "element 3", "type 9", "6-node triangle"],
+        &[
+            "tri6.msh",
+            &line,
+            "element 3",
+            "type 21",
+            "10-node triangle",
+        ],
     );
 }
 

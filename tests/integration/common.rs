@@ -93,7 +93,7 @@ pub fn replace_line(text: &str, old: &str, new: &str) -> String {
 /// A hand-written file in the style Gmsh writes: a unit cube's bottom face (two triangles,
 /// physical surface "face", tag 20), one bottom edge (physical curve "edge", tag 10), a point
 /// element, a hexahedron (physical volume "vol", tag 30), a parametric node block and a
-/// `$Comments` section. `surface_type` 2 gives Tri3 faces, 9 gives one Tri6.
+/// `$Comments` section. `surface_type` 2 gives Tri3 faces, 21 one cubic 10-node triangle (a type not shipped).
 pub fn gmsh_style_file(with_volume: bool, surface_type: u32) -> String {
     let (volumes, vol_names) = if with_volume { (1, 3) } else { (0, 2) };
     let mut s = String::new();
@@ -125,13 +125,13 @@ pub fn gmsh_style_file(with_volume: bool, surface_type: u32) -> String {
     }
     s.push_str("$EndNodes\n");
     let elements = if with_volume { 5 } else { 4 };
-    let surface_elements = if surface_type == 9 { 1 } else { 2 };
+    let surface_elements = if surface_type == 21 { 1 } else { 2 };
     let elements = elements - 2 + surface_elements;
     s.push_str(&format!("$Elements\n{blocks} {elements} 1 5\n"));
     s.push_str("0 1 15 1\n1 1\n");
     s.push_str("1 1 1 1\n2 1 2\n");
-    if surface_type == 9 {
-        s.push_str("2 1 9 1\n3 1 2 3 5 6 7\n");
+    if surface_type == 21 {
+        s.push_str("2 1 21 1\n3 1 2 3 4 5 6 7 8 1 2\n");
     } else {
         s.push_str("2 1 2 2\n3 1 2 3\n4 1 3 4\n");
     }

@@ -176,7 +176,7 @@ fn group_errors_name_the_group() {
         IoError::GroupDimension { dim: 3, .. }
     ));
     assert!(matches!(read(&text, None), IoError::GroupRequired { .. }));
-    let e = read(gmsh_style_file(true, 9), Some("face"));
+    let e = read(gmsh_style_file(true, 21), Some("face"));
     match &e {
         IoError::UnsupportedElement {
             element,
@@ -184,18 +184,21 @@ fn group_errors_name_the_group() {
             at,
             ..
         } => {
-            assert_eq!((*element, *element_type), (3, 9));
+            assert_eq!((*element, *element_type), (3, 21));
             assert_eq!(
                 *at,
-                Location::Line(line_number(&gmsh_style_file(true, 9), "3 1 2 3 5 6 7"))
+                Location::Line(line_number(
+                    &gmsh_style_file(true, 21),
+                    "3 1 2 3 4 5 6 7 8 1 2"
+                ))
             );
         }
         _ => panic!("{e:?}"),
     }
-    assert!(e.to_string().contains("6-node triangle"), "{e}");
-    // Quadratic elements are not shipped: the message says how to mesh at order one, or to
-    // register one's own element.
-    assert!(e.to_string().contains("gmsh -order 1"), "{e}");
+    assert!(e.to_string().contains("10-node triangle"), "{e}");
+    // Cubic elements are not shipped: the message says how to mesh at order one or two, or
+    // to register one's own element.
+    assert!(e.to_string().contains("gmsh -order 2"), "{e}");
     assert!(e.to_string().contains("examples/extend_element.rs"), "{e}");
 }
 

@@ -162,12 +162,14 @@ pub(super) fn is_higher_order(element_type: i32) -> bool {
     entry(element_type).is_some_and(|(_, shape, n)| *n > corners(shape))
 }
 
-/// Advice for an unsupported element type: for a second-order one, how to mesh at order one.
+/// Advice for an unsupported element type: for a higher-order one (the shipped elements stop
+/// at order two, without second-order prisms and pyramids), how to mesh at a shipped order.
 pub(crate) fn unsupported_hint(element_type: i32) -> String {
     if is_higher_order(element_type) {
-        "; quadratic (second-order) elements are not shipped: mesh at order one \
-         (`gmsh -order 1`, or Mesh.ElementOrder = 1), or register your own element \
-         (mortar::extend::Registries, mortar::cli::main_with; see examples/extend_element.rs)"
+        "; elements of order one and two (lines, triangles, quadrangles, tetrahedra, \
+         hexahedra) are shipped: mesh at one of those orders (`gmsh -order 2`, or \
+         Mesh.ElementOrder = 2), or register your own element (mortar::extend::Registries, \
+         mortar::cli::main_with; see examples/extend_element.rs)"
             .to_string()
     } else {
         String::new()
@@ -179,10 +181,10 @@ mod tests {
     use super::*;
 
     #[test]
-    fn second_order_types_get_the_order_one_hint() {
-        for t in [8, 9, 10, 11, 16, 17] {
+    fn higher_order_types_get_the_order_hint() {
+        for t in [8, 9, 10, 11, 16, 17, 21, 26] {
             assert!(is_higher_order(t), "type {t}");
-            assert!(unsupported_hint(t).contains("gmsh -order 1"));
+            assert!(unsupported_hint(t).contains("gmsh -order 2"));
         }
         for t in [1, 2, 3, 4, 5, 15] {
             assert!(!is_higher_order(t), "type {t}");
