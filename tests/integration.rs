@@ -33,3 +33,6 @@ mod contact_scene;
 
 #[path = "integration/affine_faces.rs"]
 mod affine_faces;
+
+#[path = "integration/second_order.rs"]
+mod second_order;

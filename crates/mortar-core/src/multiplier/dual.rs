@@ -1,11 +1,12 @@
 use nalgebra::SMatrix;
 
 use super::{LmBasis, MultiplierSpace};
-use crate::element::MAX_FACE_NODES;
+use crate::element::{SurfaceElement, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
 use crate::geometry::ModelGeometry;
-use crate::interface::FaceGeometry;
 use crate::interface::WARPED_EXTRA_DEGREE;
+use crate::interface::{FaceGeometry, Interface};
+use crate::linalg::SparseMatrix;
 use crate::quadrature::{Quadrature, QuadratureRule};
 use crate::tolerances::Tolerances;
 
@@ -17,6 +18,21 @@ type Square = SMatrix<f64, MAX_FACE_NODES, MAX_FACE_NODES>;
 ///
 /// For a flat Tri3 this gives the classical `Phi_j = 3 N_j - 1`, for a straight Line2
 /// `Phi_1 = 2 N_1 - N_2`; for a Quad4, `A` depends on the face's shape.
+///
+/// **Second-order faces.** Where a corner's shape function integrates to zero or less over
+/// the reference element (Tri6: 0; Quad8: -1/3 of 4), `D_e` would have a zero or negative
+/// entry and the basis would be singular or ill-posed. There the shape functions are first
+/// recombined (Popp, Gee and Wall, "Dual quadratic mortar finite element methods for 3D
+/// finite deformation contact", SIAM J. Sci. Comput. 34, 2012): with `alpha =`
+/// [`RECOMBINATION_ALPHA`], `N~_c = N_c + alpha sum_(m on an edge of c) N_m` for each corner
+/// `c` and `N~_m = (1 - 2 alpha) N_m` for each edge node `m` (a centre node stays), so that
+/// each `N~` integrates to a positive share of the face (Tri6 corners 1/15 of the face, edge
+/// nodes 1/5; Quad8 corners 1/20, edge nodes 1/5), and the basis is built biorthogonal to the
+/// `N~`: `int Phi_j N~_k = delta_jk int N~_k`. The `Phi_j` are returned in terms of the
+/// face's own `N` (`a = A T` for `N~ = T N`), so D, M and everything built on them keep the
+/// nodal unknowns; D is then `D~ T^-T` with `D~` diagonal (positive on a covered face), not
+/// diagonal itself. Line3 and Quad9 faces (all integrals positive) and linear faces are not
+/// recombined.
 ///
 /// With the axisymmetric measure ([`ModelGeometry::Axisymmetric`], through
 /// [`basis_for`](MultiplierSpace::basis_for)) both `D_e` and `M_e` are weighted by the radius
@@ -50,10 +66,52 @@ impl MultiplierSpace for DualMultipliers {
     }
 }
 
+/// The weight `alpha` of the recombination of second-order shape functions (see
+/// [`DualMultipliers`]): 1/5, as Popp, Gee and Wall (2012) take for Tri6 and Quad8.
+pub const RECOMBINATION_ALPHA: f64 = 0.2;
+
+/// The recombination `N~ = T N` of an element's shape functions when one of its corner
+/// functions integrates to zero or less over the reference element (see [`DualMultipliers`]),
+/// with the edge node of each pair of neighbouring corners found from the reference
+/// coordinates; `None` when every corner function integrates to a positive value.
+pub fn recombination(
+    element: &dyn SurfaceElement,
+) -> Option<SMatrix<f64, MAX_FACE_NODES, MAX_FACE_NODES>> {
+    let (k, c) = (element.node_count(), element.corner_count());
+    let rule = QuadratureRule::cached(element.domain(), element.shape_degree()).ok()?;
+    let mut integral = [0.0; MAX_FACE_NODES];
+    let mut n = [0.0; MAX_FACE_NODES];
+    for (xi, w) in rule.points().iter().zip(rule.weights()) {
+        element.shape_values_into(xi, &mut n[..k]);
+        for i in 0..k {
+            integral[i] += w * n[i];
+        }
+    }
+    let scale = element.domain().measure();
+    if integral[..c].iter().all(|&v| v > 1e-12 * scale) {
+        return None;
+    }
+    let r = element.node_reference_coords();
+    let mut t = Square::identity();
+    for m in c..k {
+        // The neighbouring corners (consecutive, cyclically) whose middle node m is.
+        let edge = (0..c)
+            .map(|a| (a, (a + 1) % c))
+            .find(|&(a, b)| (0..2).all(|d| (0.5 * (r[a][d] + r[b][d]) - r[m][d]).abs() < 1e-12));
+        if let Some((a, b)) = edge {
+            t[(a, m)] += RECOMBINATION_ALPHA;
+            t[(b, m)] += RECOMBINATION_ALPHA;
+            t[(m, m)] = 1.0 - 2.0 * RECOMBINATION_ALPHA;
+        }
+    }
+    Some(t)
+}
+
 /// The dual basis on `face`, biorthogonal with respect to the measure of `geometry`.
 fn dual_basis(face: &FaceGeometry, geometry: ModelGeometry) -> Result<LmBasis> {
     let el = face.element;
     let k = face.node_count();
+    let t = recombination(el);
     // N_j N_k has degree 2p; the Jacobian of a planar quad adds 1 (2 with margin); that of
     // a warped or curved face is not a polynomial (WARPED_EXTRA_DEGREE more).
     let extra = if face.is_flat() {
@@ -71,6 +129,13 @@ fn dual_basis(face: &FaceGeometry, geometry: ModelGeometry) -> Result<LmBasis> {
     let mut n = [0.0; MAX_FACE_NODES];
     for (xi, w) in rule.points().iter().zip(rule.weights()) {
         el.shape_values_into(xi, &mut n[..k]);
+        if let Some(t) = &t {
+            // N~ = T N.
+            let plain = n;
+            for i in 0..k {
+                n[i] = (0..k).map(|j| t[(i, j)] * plain[j]).sum();
+            }
+        }
         let mut wj = w * el.jacobian_det(face.node_coords(), xi);
         if geometry.is_axisymmetric() {
             // The radius; the constant 2 pi cancels in D_e M_e^-1.
@@ -88,6 +153,17 @@ fn dual_basis(face: &FaceGeometry, geometry: ModelGeometry) -> Result<LmBasis> {
         face: face.location(),
         reason: reason.to_string(),
     };
+    // A shape function integrating to zero or less would make its dual function vanish or
+    // flip sign: the basis is not a basis of the multipliers then.
+    let total: f64 = de[..k].iter().sum();
+    if let Some(j) = (0..k).find(|&j| de[j] <= 1e-12 * total.abs()) {
+        return Err(fail(&format!(
+            "the shape function of its node {} integrates to {:.3e} of the face's measure \
+             (not positive), so its dual function is not defined",
+            j + 1,
+            de[j] / total
+        )));
+    }
     let chol = me
         .cholesky()
         .ok_or_else(|| fail("the local mass matrix is not positive definite"))?;
@@ -99,6 +175,15 @@ fn dual_basis(face: &FaceGeometry, geometry: ModelGeometry) -> Result<LmBasis> {
             basis.a[j][i] = de[j] * inv[(j, i)];
         }
     }
+    if let Some(t) = &t {
+        // Phi = A N~ = (A T) N.
+        let a = basis.a;
+        for j in 0..k {
+            for i in 0..k {
+                basis.a[j][i] = (0..k).map(|l| a[j][l] * t[(l, i)]).sum();
+            }
+        }
+    }
     if basis.a[..k]
         .iter()
         .any(|row| row[..k].iter().any(|v| !v.is_finite()))
@@ -106,4 +191,71 @@ fn dual_basis(face: &FaceGeometry, geometry: ModelGeometry) -> Result<LmBasis> {
         return Err(fail("non-finite coefficients"));
     }
     Ok(basis)
+}
+
+/// The recombination of the slave side of `interface` as one matrix `T` over the coupling's
+/// slave rows (`N~ = T N` node by node; see [`DualMultipliers`]), or `None` when no slave face
+/// is recombined. With it, the dual coupling's D is `D~ T^-T` with `D~ = D T^T` diagonal on a
+/// covered interface: the form in which the slave unknowns `u~ = T^-T u` condense out.
+///
+/// # Errors
+/// [`MortarError::MultiplierSpace`] when an edge node is shared by a recombined face and one
+/// that is not (a Tri6 beside a Quad9): then no one `T` serves both, and the dual D is still
+/// right but its diagonal form `D T^T` does not exist.
+pub fn slave_recombination(interface: &Interface) -> Result<Option<SparseMatrix>> {
+    let slave = interface.slave();
+    let rows = interface.slave_nodes().len();
+    // Per slave row: the entries of its row of T (corner rows) and its diagonal.
+    let mut diagonal = vec![1.0; rows];
+    let mut recombined = vec![None::<bool>; rows];
+    let mut off: Vec<(u32, u32)> = Vec::new();
+    let mut any = false;
+    for f in 0..slave.face_count() {
+        let face = slave.face(f);
+        let t = recombination(face.element);
+        any |= t.is_some();
+        let row = |i: usize| interface.slave_row(face.nodes[i]).map(|r| r as usize);
+        let (k, c) = (face.element.node_count(), face.element.corner_count());
+        for i in c..k {
+            let Some(r) = row(i) else { continue };
+            if recombined[r].is_some_and(|was| was != t.is_some()) {
+                return Err(MortarError::MultiplierSpace {
+                    space: "dual",
+                    face: interface.slave_face(f).location(),
+                    reason: format!(
+                        "its node {} is an edge node of faces recombined and not recombined \
+                         (second-order elements of different kinds side by side): no one \
+                         recombination of the slave side",
+                        i + 1
+                    ),
+                });
+            }
+            recombined[r] = Some(t.is_some());
+        }
+        let Some(t) = t else { continue };
+        for m in c..k {
+            let Some(rm) = row(m) else { continue };
+            diagonal[rm] = t[(m, m)];
+            for a in 0..c {
+                if t[(a, m)] != 0.0 {
+                    if let Some(ra) = row(a) {
+                        off.push((ra as u32, rm as u32));
+                    }
+                }
+            }
+        }
+    }
+    if !any {
+        return Ok(None);
+    }
+    off.sort_unstable();
+    off.dedup();
+    let mut tri = sprs::TriMat::new((rows, rows));
+    for (r, d) in diagonal.iter().enumerate() {
+        tri.add_triplet(r, r, *d);
+    }
+    for (a, m) in off {
+        tri.add_triplet(a as usize, m as usize, RECOMBINATION_ALPHA);
+    }
+    Ok(Some(tri.to_csr()))
 }

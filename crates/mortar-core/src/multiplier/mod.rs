@@ -10,5 +10,5 @@ mod dual;
 mod standard;
 
 pub use basis::{LmBasis, MultiplierSpace};
-pub use dual::DualMultipliers;
+pub use dual::{recombination, slave_recombination, DualMultipliers, RECOMBINATION_ALPHA};
 pub use standard::StandardMultipliers;

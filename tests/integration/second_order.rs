@@ -1,0 +1,206 @@
+//! Second-order meshes made by Gmsh 4.15 itself (`tests/meshes/make_second_order_meshes.py`:
+//! `Mesh.ElementOrder = 2`, complete and incomplete, Gmsh's own node order): the cells and
+//! faces are read as the shipped quadratic elements, the bodies' measures and boundaries are
+//! exact, and the non-conforming interfaces of two bodies meshed apart (Tri6 against Quad8 and
+//! Quad9 lines in 2D; Quad8 against Tri6, Tri6 against Quad9 faces in 3D) are coupled exactly.
+//!
+//! Closed forms: the unit square and the box `[0,1]^2 x [0,0.5]`; on the flat interface of
+//! measure 1, `sum(D) = 1`, constants tied (`D 1 = M 1`) and linear fields tied
+//! (`D x_s = M x_m`, each coordinate), for standard and dual multipliers.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use mortar::core::element::volume::CellValues;
+use mortar::core::multiplier::slave_recombination;
+use mortar::core::quadrature::{Quadrature, QuadratureRule, VolumeQuadratureRule};
+use mortar::elements::volume::VolumeRegistry;
+use mortar::elements::ElementRegistry;
+use mortar::io::{read_gmsh_surface, read_gmsh_volume};
+use mortar::{assemble_coupling, CouplingOptions, Interface};
+use nalgebra::Vector3;
+
+fn mesh(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/meshes")
+        .join(name)
+}
+
+/// One file: its two bodies with their cell types and measures, and the interface groups
+/// (slave first) with their face types.
+struct Case {
+    file: &'static str,
+    bodies: [(&'static str, &'static str, f64); 2],
+    interface: [(&'static str, &'static str); 2],
+}
+
+const CASES: [Case; 5] = [
+    Case {
+        file: "so_2d_quad8.msh",
+        bodies: [("left", "Tri6", 1.0), ("right", "Quad8", 1.0)],
+        interface: [("right_x0", "Line3"), ("left_x1", "Line3")],
+    },
+    Case {
+        file: "so_2d_quad9.msh",
+        bodies: [("left", "Quad9", 1.0), ("right", "Tri6", 1.0)],
+        interface: [("left_x1", "Line3"), ("right_x0", "Line3")],
+    },
+    Case {
+        file: "so_3d_hex20.msh",
+        bodies: [("bottom", "Hex20", 0.5), ("top", "Tet10", 0.5)],
+        interface: [("bottom_top", "Quad8"), ("top_bottom", "Tri6")],
+    },
+    Case {
+        file: "so_3d_hex20.msh",
+        bodies: [("bottom", "Hex20", 0.5), ("top", "Tet10", 0.5)],
+        interface: [("top_bottom", "Tri6"), ("bottom_top", "Quad8")],
+    },
+    Case {
+        file: "so_3d_hex27.msh",
+        bodies: [("bottom", "Tet10", 0.5), ("top", "Hex27", 0.5)],
+        interface: [("top_bottom", "Quad9"), ("bottom_top", "Tri6")],
+    },
+];
+
+#[test]
+fn second_order_cells_are_read_with_exact_measures_and_boundaries() {
+    let registry = VolumeRegistry::new();
+    for case in &CASES {
+        for (group, kind, volume) in case.bodies {
+            let body = read_gmsh_volume(mesh(case.file), group, &registry).unwrap();
+            let m = &body.mesh;
+            let mut cv = CellValues::new();
+            let mut x = [Vector3::zeros(); 27];
+            let mut total = 0.0;
+            for c in 0..m.cell_count() {
+                let el = m.cell(c).element;
+                assert_eq!(el.name(), kind, "{} {group}", case.file);
+                let k = m.cell_coords_into(c, &mut x);
+                let rule = VolumeQuadratureRule::cached(el.domain(), 2).unwrap();
+                cv.reinit(el, rule, &x[..k]).unwrap();
+                total += (0..cv.len()).map(|q| cv.jxw(q)).sum::<f64>();
+            }
+            assert!(
+                (total - volume).abs() < 1e-13,
+                "{} {group}: {total}",
+                case.file
+            );
+            // The boundary: closed (outward area vectors sum to zero), of the box's measure
+            // (perimeter 4; surface 4 for the 1 x 1 x 0.5 box), and the divergence theorem
+            // `int x n_x = volume` holds on it.
+            let surf = m.boundary_surface(|_| true).unwrap();
+            let (mut sum, mut flux, mut measure) = (Vector3::zeros(), 0.0, 0.0);
+            for f in 0..surf.face_count() {
+                let view = surf.face(f);
+                assert!(
+                    view.nodes.len() > view.element.corner_count(),
+                    "{}",
+                    case.file
+                );
+                let xs: Vec<Vector3<f64>> = view
+                    .nodes
+                    .iter()
+                    .map(|&n| surf.coords()[n as usize])
+                    .collect();
+                let rule = QuadratureRule::cached(view.element.domain(), 6).unwrap();
+                for (p, w) in rule.points().iter().zip(rule.weights()) {
+                    let n = view.element.scaled_normal(&xs, p);
+                    sum += n * *w;
+                    flux += view.element.map(&xs, p).x * n.x * w;
+                    measure += n.norm() * w;
+                }
+            }
+            assert!(sum.norm() < 1e-13, "{} {group}: {sum:?}", case.file);
+            assert!(
+                (flux - volume).abs() < 1e-13,
+                "{} {group}: {flux}",
+                case.file
+            );
+            assert!(
+                (measure - 4.0).abs() < 1e-13,
+                "{} {group}: {measure}",
+                case.file
+            );
+        }
+    }
+}
+
+#[test]
+fn second_order_interfaces_tie_constants_and_linear_fields() {
+    let registry = ElementRegistry::new();
+    for case in &CASES {
+        for options in [
+            CouplingOptions::default(),
+            CouplingOptions::default().dual(),
+        ] {
+            let read = |(group, kind): (&str, &str)| {
+                let mut s = read_gmsh_surface(mesh(case.file), Some(group), &registry).unwrap();
+                for f in 0..s.mesh.face_count() {
+                    assert_eq!(s.mesh.face(f).element.name(), kind, "{} {group}", case.file);
+                }
+                s.orient_outward().unwrap();
+                s.mesh
+            };
+            let (slave, master) = (read(case.interface[0]), read(case.interface[1]));
+            let coords = |m: &mortar::SurfaceMesh| -> HashMap<u64, Vector3<f64>> {
+                m.node_tags()
+                    .iter()
+                    .copied()
+                    .zip(m.coords().iter().copied())
+                    .collect()
+            };
+            let (xs, xm) = (coords(&slave), coords(&master));
+            let interface = Interface::new(slave, master).unwrap();
+            let t = slave_recombination(&interface).unwrap();
+            let c = assemble_coupling(&interface, &options)
+                .unwrap_or_else(|e| panic!("{} {options:?}: {e}", case.file));
+            let what = format!("{} ({})", case.file, c.formulation);
+            assert!(
+                (c.stats.area - 1.0).abs() < 1e-12,
+                "{what}: sum(D) {}",
+                c.stats.area
+            );
+            assert!(c.warnings.is_empty(), "{what}: {:?}", c.warnings);
+            // D f(x_s) = M f(x_m) for f = 1, x, y, z.
+            for f in 0..4 {
+                let value = |x: &Vector3<f64>| if f == 0 { 1.0 } else { x[f - 1] };
+                let us: Vec<f64> = c.slave_nodes.iter().map(|t| value(&xs[t])).collect();
+                let um: Vec<f64> = c.master_nodes.iter().map(|t| value(&xm[t])).collect();
+                let (du, mu) = (product(&c.d, &us), product(&c.m, &um));
+                let worst = du
+                    .iter()
+                    .zip(&mu)
+                    .fold(0.0f64, |w, (a, b)| w.max((a - b).abs()));
+                assert!(
+                    worst < 1e-12,
+                    "{what}, field {f}: |D u_s - M u_m| = {worst:e}"
+                );
+            }
+            if options.multipliers.diagonal_d() {
+                // Dual: D~ = D T^T (D itself where nothing is recombined) is diagonal to
+                // round-off, every diagonal entry positive (Popp, Gee and Wall 2012).
+                let dt = match &t {
+                    Some(t) => &c.d * &t.transpose_view().to_csr(),
+                    None => c.d.clone(),
+                };
+                for (r, row) in dt.outer_iterator().enumerate() {
+                    let diag = row.get(r).copied().unwrap_or(0.0);
+                    assert!(diag > 0.0, "{what}: D~ row {r} diagonal {diag}");
+                    for (j, v) in row.iter() {
+                        assert!(
+                            j == r || v.abs() < 1e-12 * diag,
+                            "{what}: D~[{r}][{j}] = {v}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `a u` for a sparse matrix.
+fn product(a: &sprs::CsMat<f64>, u: &[f64]) -> Vec<f64> {
+    a.outer_iterator()
+        .map(|row| row.iter().map(|(j, v)| v * u[j]).sum())
+        .collect()
+}
