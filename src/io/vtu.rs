@@ -8,8 +8,11 @@
 //! Cell types, by the cell's Gmsh type (so a program's own cell of one of these types is
 //! written too): Tri3 -> `VTK_TRIANGLE` (5), Quad4 -> `VTK_QUAD` (9), Tet4 -> `VTK_TETRA` (10),
 //! Hex8 -> `VTK_HEXAHEDRON` (12), Tri6 -> `VTK_QUADRATIC_TRIANGLE` (22), Quad9 ->
-//! `VTK_BIQUADRATIC_QUAD` (28), Quad8 -> `VTK_QUADRATIC_QUAD` (23); the Gmsh node order of
-//! these is VTK's.
+//! `VTK_BIQUADRATIC_QUAD` (28), Quad8 -> `VTK_QUADRATIC_QUAD` (23), Tet10 ->
+//! `VTK_QUADRATIC_TETRA` (24), Hex20 -> `VTK_QUADRATIC_HEXAHEDRON` (25), Hex27 ->
+//! `VTK_TRIQUADRATIC_HEXAHEDRON` (29). The Gmsh node order of the 2D ones is VTK's; the 3D
+//! second-order ones number their edge (and face) nodes differently and are permuted
+//! ([`vtk_order`]).
 //!
 //! ```
 //! use mortar::io::vtu::{write_vtu, VtuPiece};
@@ -53,6 +56,28 @@ fn vtk_type(gmsh_type: Option<u32>) -> Option<u8> {
         9 => Some(22),  // Tri6: VTK_QUADRATIC_TRIANGLE
         10 => Some(28), // Quad9: VTK_BIQUADRATIC_QUAD
         16 => Some(23), // Quad8: VTK_QUADRATIC_QUAD
+        11 => Some(24), // Tet10: VTK_QUADRATIC_TETRA
+        17 => Some(25), // Hex20: VTK_QUADRATIC_HEXAHEDRON
+        12 => Some(29), // Hex27: VTK_TRIQUADRATIC_HEXAHEDRON
+        _ => None,
+    }
+}
+
+/// For the cell types whose VTK node order differs from Gmsh's: the Gmsh node at each VTK
+/// position. VTK numbers a tetrahedron's edges 01 12 02 03 13 23 (Gmsh: 01 12 20 30 32 31), a
+/// hexahedron's edges round the bottom, round the top, then the verticals (Gmsh: 01 03 04 12
+/// 15 23 26 37 45 47 56 67), and its face centres -x +x -y +y -z +z (Gmsh: -z -y -x +x +y +z).
+fn vtk_order(gmsh_type: Option<u32>) -> Option<&'static [usize]> {
+    const HEX20: [usize; 20] = [
+        0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15,
+    ];
+    match gmsh_type? {
+        11 => Some(&[0, 1, 2, 3, 4, 5, 6, 7, 9, 8]),
+        17 => Some(&HEX20),
+        12 => Some(&[
+            0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15, 22, 23, 21, 24,
+            20, 25, 26,
+        ]),
         _ => None,
     }
 }
@@ -208,11 +233,11 @@ pub fn vtu_string_with_vectors(
                 ))
             })?;
             types.push(t);
-            conn.extend(
-                cell.nodes
-                    .iter()
-                    .map(|&n| (first_node + n as usize).to_string()),
-            );
+            let node = |n: u32| (first_node + n as usize).to_string();
+            match vtk_order(cell.element.gmsh_type()) {
+                Some(order) => conn.extend(order.iter().map(|&i| node(cell.nodes[i]))),
+                None => conn.extend(cell.nodes.iter().map(|&n| node(n))),
+            }
             offsets.push(conn.len());
         }
         first_node += mesh.node_count();

@@ -204,3 +204,177 @@ fn product(a: &sprs::CsMat<f64>, u: &[f64]) -> Vec<f64> {
         .map(|row| row.iter().map(|(j, v)| v * u[j]).sum())
         .collect()
 }
+
+/// The VTU writer puts the second-order cells' nodes in VTK's order (VTK's documentation of
+/// vtkQuadraticTetra, vtkQuadraticHexahedron, vtkTriQuadraticHexahedron): in the written
+/// connectivity of each Tet10, Hex20 and Hex27 of the Gmsh meshes, every edge node is the
+/// middle of VTK's edge at its position, and every face centre the centre of VTK's face.
+#[test]
+fn vtu_writes_second_order_cells_in_vtk_order() {
+    // VTK's edges: tetrahedron 01 12 02 03 13 23; hexahedron bottom 01 12 23 30, top 45 56 67
+    // 74, verticals 04 15 26 37; hexahedron faces -x +x -y +y -z +z.
+    let tet_edges = [[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]];
+    let hex_edges = [
+        [0, 1],
+        [1, 2],
+        [2, 3],
+        [3, 0],
+        [4, 5],
+        [5, 6],
+        [6, 7],
+        [7, 4],
+        [0, 4],
+        [1, 5],
+        [2, 6],
+        [3, 7],
+    ];
+    let hex_faces = [
+        [0, 3, 7, 4],
+        [1, 2, 6, 5],
+        [0, 1, 5, 4],
+        [3, 2, 6, 7],
+        [0, 1, 2, 3],
+        [4, 5, 6, 7],
+    ];
+    let registry = VolumeRegistry::new();
+    for (file, group, vtk_type) in [
+        ("so_3d_hex20.msh", "top", 24u8),
+        ("so_3d_hex20.msh", "bottom", 25),
+        ("so_3d_hex27.msh", "top", 29),
+    ] {
+        let body = read_gmsh_volume(mesh(file), group, &registry).unwrap();
+        let piece = mortar::io::vtu::VtuPiece {
+            mesh: &body.mesh,
+            point_data: vec![],
+        };
+        let text = mortar::io::vtu::vtu_string(Path::new("x.vtu"), &[piece]).unwrap();
+        let array = |name: &str| -> Vec<f64> {
+            let start = match name {
+                "Points" => text.find("<Points>").unwrap(),
+                _ => text.find(&format!("Name=\"{name}\"")).unwrap(),
+            };
+            let body = &text[start..];
+            let a = body.find("format=\"ascii\">").unwrap() + "format=\"ascii\">".len();
+            let b = body.find("</DataArray>").unwrap();
+            body[a..b]
+                .split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect()
+        };
+        let (points, conn, offsets, types) = (
+            array("Points"),
+            array("connectivity"),
+            array("offsets"),
+            array("types"),
+        );
+        let p = |i: f64| {
+            Vector3::new(
+                points[3 * i as usize],
+                points[3 * i as usize + 1],
+                points[3 * i as usize + 2],
+            )
+        };
+        let mut start = 0;
+        for (c, end) in offsets.iter().enumerate() {
+            let cell = &conn[start..*end as usize];
+            start = *end as usize;
+            assert_eq!(types[c] as u8, vtk_type, "{file} {group}");
+            let (edges, corners): (&[[usize; 2]], usize) = if vtk_type == 24 {
+                (&tet_edges, 4)
+            } else {
+                (&hex_edges, 8)
+            };
+            for (e, [a, b]) in edges.iter().enumerate() {
+                let mid = 0.5 * (p(cell[*a]) + p(cell[*b]));
+                assert!(
+                    (p(cell[corners + e]) - mid).norm() < 1e-12,
+                    "{file} {group} cell {c} edge {e}"
+                );
+            }
+            if vtk_type == 29 {
+                for (f, face) in hex_faces.iter().enumerate() {
+                    let centre = face.iter().map(|&i| p(cell[i])).sum::<Vector3<f64>>() / 4.0;
+                    assert!(
+                        (p(cell[20 + f]) - centre).norm() < 1e-12,
+                        "{file} cell {c} face {f}"
+                    );
+                }
+                let centre = (0..8).map(|i| p(cell[i])).sum::<Vector3<f64>>() / 8.0;
+                assert!((p(cell[26]) - centre).norm() < 1e-12);
+            }
+        }
+    }
+}
+
+/// The tied-heat scene on the Gmsh second-order bodies (2D Tri6 | Quad8, 3D Hex20 | Tet10,
+/// standard and dual): `T = 0` on one far side, a flux of 2 into the other, conductivities 1
+/// and 2, so the exact temperature is piecewise linear (slope 2, then 1), which quadratic
+/// elements and the mortar tie reproduce to round-off.
+#[test]
+fn tied_heat_scene_on_second_order_bodies_is_exact() {
+    use mortar::scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    let dir = mesh("");
+    let scenes = [
+        (
+            "so_2d_quad8.msh",
+            [
+                "left", "right", "left_x0", "right_x1", "right_x0", "left_x1",
+            ],
+            0,
+        ),
+        (
+            "so_3d_hex20.msh",
+            [
+                "bottom",
+                "top",
+                "bottom_z0",
+                "top_z1",
+                "top_bottom",
+                "bottom_top",
+            ],
+            2,
+        ),
+    ];
+    for (file, [a, b, a0, b1, slave, master], axis) in scenes {
+        for multipliers in ["standard", "dual"] {
+            let text = format!(
+                "kind = \"tied_heat\"\n\
+                 [bodies.{a}]\nmesh = \"{file}\"\ngroup = \"{a}\"\nconductivity = 1.0\n\
+                 dirichlet = [{{ group = \"{a0}\", value = 0.0 }}]\n\
+                 [bodies.{b}]\nmesh = \"{file}\"\ngroup = \"{b}\"\nconductivity = 2.0\n\
+                 neumann = [{{ group = \"{b1}\", flux = 2.0 }}]\n\
+                 [interface]\nslave = {{ body = \"{b}\", group = \"{slave}\" }}\n\
+                 master = {{ body = \"{a}\", group = \"{master}\" }}\n\
+                 multipliers = \"{multipliers}\"\n"
+            );
+            let path = dir.join("scene.toml");
+            let solved = TiedHeatSpec::parse(&text, &path)
+                .unwrap()
+                .solve(&path, &dir, &FileSystem)
+                .unwrap_or_else(|e| panic!("{file} {multipliers}: {e}"));
+            // The interface is at 1 (2D, x) or 0.5 (3D, z).
+            let at = if axis == 0 { 1.0 } else { 0.5 };
+            let mut worst: f64 = 0.0;
+            for (body, t) in solved
+                .problem
+                .bodies()
+                .iter()
+                .zip(&solved.solution.temperatures)
+            {
+                for (x, t) in body.mesh.coords().iter().zip(t) {
+                    let s = x[axis];
+                    let exact = if s <= at {
+                        2.0 * s
+                    } else {
+                        2.0 * at + (s - at)
+                    };
+                    worst = worst.max((t - exact).abs());
+                }
+            }
+            assert!(
+                worst < 1e-11,
+                "{file} {multipliers}: |T - T_exact| = {worst:e}"
+            );
+        }
+    }
+}
