@@ -1,12 +1,12 @@
-//! An element of one's own, end to end (issue 11): the library ships Line2, Tri3 and Quad4
-//! faces and Tri3, Quad4, Tet4 and Hex8 cells; here a program adds the quadratic pair Gmsh
-//! writes with `-order 2` in 2D, the six-node triangle (Gmsh type 9) and its three-node edges
-//! (Gmsh type 8), and uses them through the library's own doors: two bodies meshed
-//! independently are written as Gmsh files, their interface lines are read back by the Gmsh
-//! reader, tied by `Interface` and the coupling (sum(D) = the interface's length, D 1 = M 1,
-//! standard and dual multipliers), then coupled again by `mortar couple` and solved as a
-//! tied-heat scene file by `mortar run`, both from `mortar::cli::run_from` with the program's
-//! registries (a program's `main` would be `mortar::cli::main_with(registries)`).
+//! An element of one's own, end to end (issue 11): the library ships elements up to order
+//! two; here a program adds the cubic pair Gmsh writes with `-order 3` in 2D, the ten-node
+//! triangle (Gmsh type 21) and its four-node edges (Gmsh type 26), and uses them through the
+//! library's own doors: two bodies meshed independently are written as Gmsh files, their
+//! interface lines are read back by the Gmsh reader, tied by `Interface` and the coupling
+//! (sum(D) = the interface's length, D 1 = M 1, standard and dual multipliers), then coupled
+//! again by `mortar couple` and solved as a tied-heat scene file by `mortar run`, both from
+//! `mortar::cli::run_from` with the program's registries (a program's `main` would be
+//! `mortar::cli::main_with(registries)`).
 //!
 //! ```sh
 //! cargo run --release --example extend_element [OUT_DIR]
@@ -23,132 +23,187 @@ use nalgebra::{Vector2, Vector3};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
-// ---- the user's code: the two elements (101 lines as rustfmt lays them out) ----
-/// Three-node line, Gmsh order: the two ends, then the middle.
+// ---- the user's code: the two elements (131 lines as rustfmt lays them out, comments and blank lines not counted) ----
+/// Four-node cubic line, Gmsh order: the ends -1, 1, then -1/3, 1/3 (Lagrange polynomials).
 #[derive(Debug)]
-struct Line3;
-impl ReferenceElement for Line3 {
+struct Line4;
+const LINE4_NODES: [f64; 4] = [-1.0, 1.0, -1.0 / 3.0, 1.0 / 3.0];
+impl ReferenceElement for Line4 {
     fn name(&self) -> &'static str {
-        "Line3"
+        "Line4"
     }
     fn domain(&self) -> ReferenceDomain {
         ReferenceDomain::Line
     }
     fn node_count(&self) -> usize {
-        3
+        4
     }
     fn corner_count(&self) -> usize {
         2
     }
     fn shape_degree(&self) -> u32 {
-        2
+        3
     }
     fn node_reference_coords(&self) -> &'static [[f64; 2]] {
-        &[[-1.0, 0.0], [1.0, 0.0], [0.0, 0.0]]
+        &[[-1.0, 0.0], [1.0, 0.0], [-1.0 / 3.0, 0.0], [1.0 / 3.0, 0.0]]
     }
     fn shape_values_into(&self, xi: &Vector2<f64>, out: &mut [f64]) {
-        let x = xi.x;
-        out[..3].copy_from_slice(&[0.5 * x * (x - 1.0), 0.5 * x * (x + 1.0), 1.0 - x * x]);
+        let x = &LINE4_NODES;
+        for i in 0..4 {
+            let others = (0..4).filter(|&j| j != i);
+            out[i] = others.map(|j| (xi.x - x[j]) / (x[i] - x[j])).product();
+        }
     }
     fn shape_gradients_into(&self, xi: &Vector2<f64>, out: &mut [[f64; 2]]) {
-        let x = xi.x;
-        out[..3].copy_from_slice(&[[x - 0.5, 0.0], [x + 0.5, 0.0], [-2.0 * x, 0.0]]);
+        let x = &LINE4_NODES;
+        for i in 0..4 {
+            // d/dxi prod_(j != i) (xi - x_j) / (x_i - x_j): one factor differentiated at a time.
+            let term = |k: usize| -> f64 {
+                (0..4)
+                    .filter(|&j| j != i)
+                    .map(|j| if j == k { 1.0 } else { xi.x - x[j] } / (x[i] - x[j]))
+                    .product()
+            };
+            out[i] = [(0..4).filter(|&k| k != i).map(term).sum(), 0.0];
+        }
     }
 }
-impl SurfaceElement for Line3 {
+impl SurfaceElement for Line4 {
     fn gmsh_type(&self) -> Option<u32> {
-        Some(8)
+        Some(26)
     }
-    // Reversed: the ends swap, the middle stays.
+    // Reversed: the ends swap, and so do the inner nodes.
     fn reverse_nodes(&self, nodes: &mut [u32]) -> bool {
-        nodes.len() == 3 && {
+        nodes.len() == 4 && {
             nodes.swap(0, 1);
+            nodes.swap(2, 3);
             true
         }
     }
 }
 
-/// Six-node triangle, Gmsh order: corners, then the middles of edges 1-2, 2-3, 3-1.
+/// Ten-node cubic triangle, Gmsh order: corners, two nodes on each edge 1-2, 2-3, 3-1 (the one
+/// nearer the edge's first corner first), then the centre.
 #[derive(Debug)]
-struct Tri6;
-impl VolumeElement for Tri6 {
+struct Tri10;
+impl VolumeElement for Tri10 {
     fn name(&self) -> &'static str {
-        "Tri6"
+        "Tri10"
     }
     fn domain(&self) -> VolumeDomain {
         VolumeDomain::Triangle
     }
     fn node_count(&self) -> usize {
-        6
+        10
     }
     fn shape_degree(&self) -> u32 {
-        2
+        3
     }
     fn node_reference_coords(&self) -> &'static [[f64; 3]] {
+        const T: f64 = 1.0 / 3.0;
         &[
             [0., 0., 0.],
             [1., 0., 0.],
             [0., 1., 0.],
-            [0.5, 0., 0.],
-            [0.5, 0.5, 0.],
-            [0., 0.5, 0.],
+            [T, 0., 0.],
+            [2. * T, 0., 0.],
+            [2. * T, T, 0.],
+            [T, 2. * T, 0.],
+            [0., 2. * T, 0.],
+            [0., T, 0.],
+            [T, T, 0.],
         ]
     }
     fn shape_values_into(&self, xi: &Vector3<f64>, out: &mut [f64]) {
-        let l = [1.0 - xi.x - xi.y, xi.x, xi.y]; // barycentric coordinates
-        for i in 0..3 {
-            out[i] = l[i] * (2.0 * l[i] - 1.0);
-            out[i + 3] = 4.0 * l[i] * l[(i + 1) % 3];
-        }
+        let mut g = [[0.0; 3]; 10];
+        tri10(xi, out, &mut g);
     }
     fn shape_gradients_into(&self, xi: &Vector3<f64>, out: &mut [[f64; 3]]) {
-        let (l, d) = (
-            [1.0 - xi.x - xi.y, xi.x, xi.y],
-            [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]],
-        );
-        for (i, j) in [(0, 1), (1, 2), (2, 0)] {
-            out[i] = [
-                (4.0 * l[i] - 1.0) * d[i][0],
-                (4.0 * l[i] - 1.0) * d[i][1],
-                0.0,
-            ];
-            out[i + 3] = [
-                4.0 * (l[i] * d[j][0] + l[j] * d[i][0]),
-                4.0 * (l[i] * d[j][1] + l[j] * d[i][1]),
-                0.0,
-            ];
-        }
+        let mut n = [0.0; 10];
+        tri10(xi, &mut n, out);
     }
     fn gmsh_type(&self) -> Option<u32> {
-        Some(9)
+        Some(21)
     }
     fn faces(&self) -> &'static [&'static [usize]] {
-        &[&[0, 1, 3], &[1, 2, 4], &[2, 0, 5]]
+        &[&[0, 1, 3, 4], &[1, 2, 5, 6], &[2, 0, 7, 8]]
     }
     fn face_element(&self, _face: usize) -> ElementRef {
-        &Line3
+        &Line4
     }
+}
+
+/// The cubic functions of the barycentric coordinates L and their gradients: corners
+/// `L (3L - 1)(3L - 2) / 2`, edge nodes `9/2 L_a L_b (3 L_a - 1)`, centre `27 L_1 L_2 L_3`.
+fn tri10(xi: &Vector3<f64>, n: &mut [f64], g: &mut [[f64; 3]]) {
+    let l = [1.0 - xi.x - xi.y, xi.x, xi.y];
+    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
+    let mut put = |i: usize, v: f64, d: [f64; 3]| {
+        n[i] = v;
+        g[i] = [
+            d[0] * dl[0][0] + d[1] * dl[1][0] + d[2] * dl[2][0],
+            d[0] * dl[0][1] + d[1] * dl[1][1] + d[2] * dl[2][1],
+            0.0,
+        ];
+    };
+    for a in 0..3 {
+        let mut d = [0.0; 3];
+        d[a] = (27.0 * l[a] * l[a] - 18.0 * l[a] + 2.0) / 2.0;
+        put(a, l[a] * (3.0 * l[a] - 1.0) * (3.0 * l[a] - 2.0) / 2.0, d);
+        let b = (a + 1) % 3;
+        // The edge a-b's node nearer a, then the one nearer b (their values, dN/dL).
+        for (k, (p, q)) in [(a, b), (b, a)].into_iter().enumerate() {
+            let mut d = [0.0; 3];
+            d[p] = 4.5 * (6.0 * l[p] - 1.0) * l[q];
+            d[q] = 4.5 * l[p] * (3.0 * l[p] - 1.0);
+            put(3 + 2 * a + k, 4.5 * l[p] * l[q] * (3.0 * l[p] - 1.0), d);
+        }
+    }
+    put(
+        9,
+        27.0 * l[0] * l[1] * l[2],
+        [27.0 * l[1] * l[2], 27.0 * l[0] * l[2], 27.0 * l[0] * l[1]],
+    );
 }
 // ---- end of the elements ----
 
-/// The unit square `[x0, x0 + 1] x [0, 1]` in `2 n^2` Tri6 cells.
-fn tri6_square(x0: f64, n: usize) -> Res<VolumeMesh> {
-    let (m, mut mesh) = (2 * n + 1, VolumeMesh::new());
+/// The unit square `[x0, x0 + 1] x [0, 1]` in `2 n^2` Tri10 cells.
+fn tri10_square(x0: f64, n: usize) -> Res<VolumeMesh> {
+    let (m, mut mesh) = (3 * n + 1, VolumeMesh::new());
     let tag = |i: usize, j: usize| (j * m + i + 1) as u64;
     for (i, j) in (0..m).flat_map(|j| (0..m).map(move |i| (i, j))) {
         let h = 1.0 / (m - 1) as f64;
         mesh.add_node(tag(i, j), [x0 + i as f64 * h, j as f64 * h, 0.0])?;
     }
-    for (a, b) in (0..n).flat_map(|b| (0..n).map(move |a| (2 * a, 2 * b))) {
-        let t = |di, dj| tag(a + di, b + dj);
-        mesh.add_cell(
-            &Tri6,
-            &[t(0, 0), t(2, 0), t(2, 2), t(1, 0), t(2, 1), t(1, 1)],
-        )?;
-        mesh.add_cell(
-            &Tri6,
-            &[t(0, 0), t(2, 2), t(0, 2), t(1, 1), t(1, 2), t(0, 1)],
-        )?;
+    // Each square of 3 x 3 grid steps in two triangles, their nodes as grid offsets.
+    let lower = [
+        (0, 0),
+        (3, 0),
+        (3, 3),
+        (1, 0),
+        (2, 0),
+        (3, 1),
+        (3, 2),
+        (2, 2),
+        (1, 1),
+        (2, 1),
+    ];
+    let upper = [
+        (0, 0),
+        (3, 3),
+        (0, 3),
+        (1, 1),
+        (2, 2),
+        (2, 3),
+        (1, 3),
+        (0, 2),
+        (0, 1),
+        (1, 2),
+    ];
+    for (a, b) in (0..n).flat_map(|b| (0..n).map(move |a| (3 * a, 3 * b))) {
+        for cell in [lower, upper] {
+            mesh.add_cell(&Tri10, &cell.map(|(di, dj)| tag(a + di, b + dj)))?;
+        }
     }
     Ok(mesh)
 }
@@ -156,7 +211,7 @@ fn tri6_square(x0: f64, n: usize) -> Res<VolumeMesh> {
 /// Writes body `name` on `[x0, x0 + 1] x [0, 1]` as `dir/name.msh`, with its faces at
 /// `x = x0` (group `name_x0`) and `x = x0 + 1` (`name_x1`).
 fn write_body(dir: &std::path::Path, name: &str, x0: f64, n: usize) -> Res<()> {
-    let mesh = tri6_square(x0, n)?;
+    let mesh = tri10_square(x0, n)?;
     let faces = mesh.boundary_faces()?;
     let at = |x: f64| {
         faces
@@ -197,10 +252,10 @@ pub fn run(out: &std::path::Path) -> Res<()> {
     std::fs::create_dir_all(out)?;
     // ---- the user's code: registering and using the elements (46 lines) ----
     let mut registries = Registries::default();
-    registries.elements.register(&Line3);
-    registries.cells.register(&Tri6);
-    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri6: 3 lines, 7 nodes on x = 1
-    write_body(out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 9 nodes (3 shared: y = 0, 1/2, 1)
+    registries.elements.register(&Line4);
+    registries.cells.register(&Tri10);
+    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri10: 3 lines, 10 nodes on x = 1
+    write_body(out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 13 nodes (4 shared: y = 0, 1/3, 2/3, 1)
     let read =
         |file: &str, group| read_gmsh_surface(out.join(file), Some(group), &registries.elements);
     for options in [
@@ -209,7 +264,7 @@ pub fn run(out: &std::path::Path) -> Res<()> {
     ] {
         let (mut slave, mut master) =
             (read("right.msh", "right_x0")?, read("left.msh", "left_x1")?);
-        slave.orient_outward()?; // outward from their Tri6 cells: facing each other
+        slave.orient_outward()?; // outward from their Tri10 cells: facing each other
         master.orient_outward()?;
         let c = assemble_coupling(&Interface::new(slave.mesh, master.mesh)?, &options)?;
         let worst = row_sums(&c.d)
@@ -273,7 +328,7 @@ fn check_scene(out: &std::path::Path, registries: &Registries) -> Res<()> {
         }
     }
     println!(
-        "tied heat on Tri6 bodies: max |T - T_exact| = {worst:.1e} ({})",
+        "tied heat on Tri10 bodies: max |T - T_exact| = {worst:.1e} ({})",
         solved.solution.formulation.formulation.describe()
     );
     if worst > 1e-10 {

@@ -12,7 +12,10 @@
 //! `VTK_QUADRATIC_TETRA` (24), Hex20 -> `VTK_QUADRATIC_HEXAHEDRON` (25), Hex27 ->
 //! `VTK_TRIQUADRATIC_HEXAHEDRON` (29). The Gmsh node order of the 2D ones is VTK's; the 3D
 //! second-order ones number their edge (and face) nodes differently and are permuted
-//! ([`vtk_order`]).
+//! ([`vtk_order`]). A cell of any other type (a program's own cubic triangle, say) is written
+//! as the linear cell of its corners, its first nodes as in Gmsh's order (VTK's triangle,
+//! quad, tetrahedron or hexahedron): every node and its values are still in the file, the
+//! cell is drawn with straight edges.
 //!
 //! ```
 //! use mortar::io::vtu::{write_vtu, VtuPiece};
@@ -32,6 +35,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
+use mortar_core::element::volume::VolumeDomain;
 use mortar_core::mesh::VolumeMesh;
 
 use super::IoError;
@@ -225,18 +229,34 @@ pub fn vtu_string_with_vectors(
         let mesh = piece.mesh;
         for c in 0..mesh.cell_count() {
             let cell = mesh.cell(c);
-            let t = vtk_type(cell.element.gmsh_type()).ok_or_else(|| {
-                invalid(format!(
-                    "piece {p}: cell {} is a {}, which has no VTK cell type here",
-                    cell.tag,
-                    cell.element.name()
-                ))
-            })?;
-            types.push(t);
             let node = |n: u32| (first_node + n as usize).to_string();
-            match vtk_order(cell.element.gmsh_type()) {
-                Some(order) => conn.extend(order.iter().map(|&i| node(cell.nodes[i]))),
-                None => conn.extend(cell.nodes.iter().map(|&n| node(n))),
+            match vtk_type(cell.element.gmsh_type()) {
+                Some(t) => {
+                    types.push(t);
+                    match vtk_order(cell.element.gmsh_type()) {
+                        Some(order) => conn.extend(order.iter().map(|&i| node(cell.nodes[i]))),
+                        None => conn.extend(cell.nodes.iter().map(|&n| node(n))),
+                    }
+                }
+                None => {
+                    // The linear cell of the corners.
+                    let (t, corners) = match cell.element.domain() {
+                        VolumeDomain::Triangle => (5, 3),
+                        VolumeDomain::Quadrilateral => (9, 4),
+                        VolumeDomain::Tetrahedron => (10, 4),
+                        VolumeDomain::Hexahedron => (12, 8),
+                    };
+                    if cell.nodes.len() < corners {
+                        return Err(invalid(format!(
+                            "piece {p}: cell {} is a {} of {} nodes, fewer than its corners",
+                            cell.tag,
+                            cell.element.name(),
+                            cell.nodes.len()
+                        )));
+                    }
+                    types.push(t);
+                    conn.extend(cell.nodes[..corners].iter().map(|&n| node(n)));
+                }
             }
             offsets.push(conn.len());
         }
