@@ -10,7 +10,8 @@
 //! [`grid_box_mesh`] on given (e.g. [`graded_points`]) coordinates, [`quarter_disc_mesh`], a
 //! quarter disc refined towards a point of its rim for a cylinder in contact,
 //! [`ball_octant_mesh`], its 3D counterpart for a sphere, [`quarter_annulus_mesh`], and
-//! [`extrude_mesh`], a Quad4 mesh swept along z into Hex8)
+//! [`extrude_mesh`], a Quad4 mesh swept along z into Hex8; [`second_order_mesh`] raises any of
+//! them to second order, curving the cells onto a sphere with [`onto_sphere`])
 //! number nodes from `first_node_tag` and cells from 1, all cells positively oriented; their
 //! boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
@@ -22,6 +23,7 @@ mod extrude;
 mod inclusion;
 mod line;
 mod plane;
+mod second_order;
 mod sphere;
 mod volume;
 
@@ -32,6 +34,7 @@ pub use extrude::extrude_mesh;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
+pub use second_order::{onto_sphere, second_order_mesh, SecondOrder};
 pub use sphere::sphere_surface;
 pub use volume::{
     box_mesh, graded_points, grid_box_mesh, grid_rectangle_mesh, rectangle_mesh, CellShape,

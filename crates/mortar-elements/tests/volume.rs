@@ -300,6 +300,38 @@ fn volume_quadrature_is_exact_to_its_degree() {
         .map(|(p, w)| w * p.x.powi(4) * p.y.powi(4) * p.z.powi(2))
         .sum();
     assert!((q - 8.0 / 75.0).abs() < 1e-14);
+    // Above the symmetric rules (degree 11), tensor Gauss rules: every monomial of total
+    // degree up to 20, against prod 2 / (e + 1) for even exponents, 0 for odd ones.
+    for degree in [12u32, 13, 16, 20] {
+        let rule = VolumeQuadratureRule::for_domain(
+            mortar_core::element::volume::VolumeDomain::Hexahedron,
+            degree,
+        )
+        .unwrap();
+        for a in 0..=degree {
+            for b in 0..=degree - a {
+                let c = degree - a - b;
+                let q: f64 = rule
+                    .points()
+                    .iter()
+                    .zip(rule.weights())
+                    .map(|(p, w)| w * p.x.powi(a as i32) * p.y.powi(b as i32) * p.z.powi(c as i32))
+                    .sum();
+                let one = |e: u32| {
+                    if e.is_multiple_of(2) {
+                        2.0 / f64::from(e + 1)
+                    } else {
+                        0.0
+                    }
+                };
+                let exact = one(a) * one(b) * one(c);
+                assert!(
+                    (q - exact).abs() < 1e-13,
+                    "degree {degree}: x^{a} y^{b} z^{c}: {q} vs {exact}"
+                );
+            }
+        }
+    }
 }
 
 /// A 2 x 2 x 2 cube of Hex8, or of Tet4 (six per cube, Kuhn split), of side 1.

@@ -28,9 +28,13 @@ pub const fn max_volume_degree(domain: VolumeDomain) -> u32 {
     match domain {
         VolumeDomain::Triangle | VolumeDomain::Quadrilateral => 20,
         VolumeDomain::Tetrahedron => 10,
-        VolumeDomain::Hexahedron => 11,
+        VolumeDomain::Hexahedron => 20,
     }
 }
+
+/// The highest degree of the symmetric (polyquad) hexahedron rules; above it, tensor
+/// Gauss-Legendre rules.
+const MAX_POLYQUAD_HEXAHEDRON: u32 = 11;
 
 impl VolumeQuadratureRule {
     /// The smallest rule on `domain` exact for polynomials of total degree `degree`.
@@ -74,6 +78,29 @@ impl VolumeQuadratureRule {
                         .map(|x| Vector3::new(x[0] + 1.0, x[1] + 1.0, x[2] + 1.0) * 0.5)
                         .collect(),
                     weights: w.iter().map(|w| w * 0.125).collect(),
+                })
+            }
+            VolumeDomain::Hexahedron if degree > MAX_POLYQUAD_HEXAHEDRON => {
+                // The tensor product of Gauss-Legendre lines exact to `degree` in each
+                // coordinate, hence for total degree `degree` (the second-order hexahedra's
+                // integrands: Hex27 has shape degree 6).
+                let line = QuadratureRule::line(degree)?;
+                let (lp, lw) = (line.points(), line.weights());
+                let mut points = Vec::with_capacity(lp.len().pow(3));
+                let mut weights = Vec::with_capacity(lp.len().pow(3));
+                for (a, wa) in lp.iter().zip(lw) {
+                    for (b, wb) in lp.iter().zip(lw) {
+                        for (c, wc) in lp.iter().zip(lw) {
+                            points.push(Vector3::new(a.x, b.x, c.x));
+                            weights.push(wa * wb * wc);
+                        }
+                    }
+                }
+                Ok(Self {
+                    domain,
+                    degree,
+                    points,
+                    weights,
                 })
             }
             VolumeDomain::Hexahedron => {
