@@ -31,6 +31,7 @@ mod plot;
 use std::path::PathBuf;
 
 use clap::Parser;
+use mortar::generate::SecondOrder;
 use mortar::io::vtu::{write_vtu, VtuPiece};
 use mortar::physics::tied::{FormulationChoice, TiedOptions};
 use mortar::scenes::tied_heat::{rate, Exact, Geometry, TiedHeatRun, TiedHeatScene};
@@ -64,6 +65,13 @@ pub struct Args {
     /// Skip the curved-interface scene.
     #[arg(long)]
     skip_curved: bool,
+    /// Element order: 1 (Quad4/Tri3, Hex8/Tet4) or 2 (Quad9/Tri6, Hex27/Tet10; the curved
+    /// interface's new nodes on its circle or sphere).
+    #[arg(long, default_value_t = 1)]
+    order: u32,
+    /// With --order 2: the serendipity cells (Quad8, Hex20) instead of Quad9, Hex27.
+    #[arg(long)]
+    serendipity: bool,
 }
 
 fn main() -> Res<()> {
@@ -88,6 +96,23 @@ pub fn run(args: Args) -> Res<()> {
     if levels.len() < 2 {
         return Err("give at least two levels".into());
     }
+    let order = match (args.order, args.serendipity) {
+        (1, false) => None,
+        (2, false) => Some(SecondOrder::Complete),
+        (2, true) => Some(SecondOrder::Serendipity),
+        (o, s) => {
+            return Err(format!(
+                "--order {o}{}: 1 or 2 (serendipity with 2)",
+                if s { " --serendipity" } else { "" }
+            )
+            .into())
+        }
+    };
+    let scene = |geometry, n| {
+        let mut s = TiedHeatScene::new(dim, geometry, n);
+        s.order = order;
+        s
+    };
 
     // 1. The patch test: a linear field on the straight interface, both paths, and
     //    element-based integration for comparison.
@@ -96,7 +121,7 @@ pub fn run(args: Args) -> Res<()> {
         b: [1.0, -2.0, 0.5],
     };
     let patch = |tied: TiedOptions, coupling: CouplingOptions| -> Res<TiedHeatRun> {
-        let mut s = TiedHeatScene::new(dim, Geometry::Straight, 8);
+        let mut s = scene(Geometry::Straight, 8);
         s.exact = linear;
         s.tied = tied;
         s.coupling = coupling;
@@ -119,15 +144,15 @@ pub fn run(args: Args) -> Res<()> {
     );
 
     // 2. The refinement studies.
-    let straight = study(dim, Geometry::Straight, &levels)?;
+    let straight = study(dim, Geometry::Straight, &levels, order)?;
     let finest = straight.last().expect("two levels or more");
 
     // 3. The finest straight level solved by the other paths.
     let n = *levels.last().expect("levels");
-    let mut saddle_scene = TiedHeatScene::new(dim, Geometry::Straight, n);
+    let mut saddle_scene = scene(Geometry::Straight, n);
     saddle_scene.tied = TiedOptions::default().with_formulation(FormulationChoice::SaddlePoint);
     let saddle = saddle_scene.run()?;
-    let mut standard_scene = TiedHeatScene::new(dim, Geometry::Straight, n);
+    let mut standard_scene = scene(Geometry::Straight, n);
     standard_scene.coupling = CouplingOptions::default();
     let standard = standard_scene.run()?;
     let max_diff = |a: &TiedHeatRun, b: &TiedHeatRun| -> f64 {
@@ -180,13 +205,15 @@ pub fn run(args: Args) -> Res<()> {
     let curved = if args.skip_curved {
         Vec::new()
     } else {
-        study(dim, Geometry::Curved, &levels)?
+        study(dim, Geometry::Curved, &levels, order)?
     };
 
     // 4. The report.
     let (l2_rate, h1_rate, flux_rate) = rates(&straight);
     let mut report = json!({
         "dim": dim,
+        "order": args.order,
+        "second_order_family": format!("{order:?}"),
         "scene": "straight interface at x = 0.5, left Quad4/Hex8 (n per unit length), right Tri3/Tet4 (3n/2), u = prod sin(pi x_d)",
         "levels": levels_json(&straight),
         "l2_rate": l2_rate,
@@ -294,15 +321,22 @@ pub fn run(args: Args) -> Res<()> {
 }
 
 /// Runs the levels of a scene and prints a table.
-fn study(dim: usize, geometry: Geometry, levels: &[usize]) -> Res<Vec<TiedHeatRun>> {
-    println!("\n{geometry:?} interface, {dim}D");
+fn study(
+    dim: usize,
+    geometry: Geometry,
+    levels: &[usize],
+    order: Option<SecondOrder>,
+) -> Res<Vec<TiedHeatRun>> {
+    println!("\n{geometry:?} interface, {dim}D, {order:?}");
     println!(
         "{:>5} {:>9} {:>9} {:>11} {:>11} {:>11} {:>9}",
         "n", "h", "dofs", "L2", "H1", "flux", "seconds"
     );
     let mut runs: Vec<TiedHeatRun> = Vec::new();
     for &n in levels {
-        let r = TiedHeatScene::new(dim, geometry, n).run()?;
+        let mut scene = TiedHeatScene::new(dim, geometry, n);
+        scene.order = order;
+        let r = scene.run()?;
         let rates = runs
             .last()
             .map(|p| {

@@ -29,7 +29,8 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 use crate::generate::{
-    ball_mesh, box_mesh, box_with_hole_mesh, rectangle_mesh, CellShape, Inclusion,
+    ball_mesh, box_mesh, box_with_hole_mesh, onto_sphere, rectangle_mesh, second_order_mesh,
+    CellShape, Inclusion, SecondOrder,
 };
 
 /// The interface of a scene.
@@ -124,6 +125,10 @@ pub struct TiedHeatScene {
     pub coupling: CouplingOptions,
     /// The tied solve (default: automatic formulation).
     pub tied: TiedOptions,
+    /// `None` for first-order cells (Quad4/Tri3, Hex8/Tet4); a [`SecondOrder`] family to
+    /// raise both bodies to second order ([`second_order_mesh`]), the new nodes of the
+    /// curved interface placed on its circle (sphere).
+    pub order: Option<SecondOrder>,
 }
 
 impl TiedHeatScene {
@@ -138,6 +143,7 @@ impl TiedHeatScene {
             conductivity: 1.0,
             coupling: CouplingOptions::default().dual(),
             tied: TiedOptions::default(),
+            order: None,
         }
     }
 
@@ -219,6 +225,22 @@ impl TiedHeatScene {
                     Box::new(move |x: &Vector3<f64>| (x - c).norm() < cut),
                 )
             }
+        };
+        let (master, slave) = match self.order {
+            None => (master, slave),
+            Some(family) => match self.geometry {
+                Geometry::Straight => (
+                    second_order_mesh(&master, family, |x, _| *x)?,
+                    second_order_mesh(&slave, family, |x, _| *x)?,
+                ),
+                Geometry::Curved => {
+                    let g = Inclusion::unit(dim, INCLUSION_RADIUS);
+                    (
+                        second_order_mesh(&master, family, onto_sphere(g.centre, g.radius))?,
+                        second_order_mesh(&slave, family, onto_sphere(g.centre, g.radius))?,
+                    )
+                }
+            },
         };
         let k = self.conductivity;
         let exact = self.exact;
