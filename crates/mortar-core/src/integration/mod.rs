@@ -17,6 +17,7 @@
 //! - [`ElementBased`]: quadrature points of the slave face, each projected onto the master face
 //!   it falls on. Cheap, but inexact where a slave face spans master edges.
 
+pub mod curved_3d;
 mod degree;
 mod element_based;
 mod segment_based;
