@@ -59,6 +59,14 @@ pub enum Exact {
         /// The gradient.
         b: [f64; 3],
     },
+    /// `u = sum_d a_d x_d^2 + c x y` with the source `Q = -2 k sum_d a_d`: reproduced exactly
+    /// by second-order elements and a consistent mortar coupling on a flat interface.
+    Quadratic {
+        /// The coefficients of `x_d^2`.
+        a: [f64; 3],
+        /// The coefficient of `x y`.
+        c: f64,
+    },
 }
 
 impl Exact {
@@ -69,6 +77,9 @@ impl Exact {
                 .map(|d| (std::f64::consts::PI * x[d]).sin())
                 .product(),
             Exact::Linear { a, b } => a + (0..dim).map(|d| b[d] * x[d]).sum::<f64>(),
+            Exact::Quadratic { a, c } => {
+                (0..dim).map(|d| a[d] * x[d] * x[d]).sum::<f64>() + c * x.x * x.y
+            }
         }
     }
 
@@ -95,6 +106,13 @@ impl Exact {
                     g[d] = b[d];
                 }
             }
+            Exact::Quadratic { a, c } => {
+                for d in 0..dim {
+                    g[d] = 2.0 * a[d] * x[d];
+                }
+                g.x += c * x.y;
+                g.y += c * x.x;
+            }
         }
         g
     }
@@ -104,6 +122,7 @@ impl Exact {
         match self {
             Exact::Sine => dim as f64 * std::f64::consts::PI.powi(2) * k * self.value(dim, x),
             Exact::Linear { .. } => 0.0,
+            Exact::Quadratic { a, .. } => -2.0 * k * a[..dim].iter().sum::<f64>(),
         }
     }
 }

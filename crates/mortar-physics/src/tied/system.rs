@@ -696,17 +696,26 @@ fn modified_rows(
     // failing those (a face whose nodes are all Dirichlet nodes, at a corner of the
     // interface) the free rows one face further.
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); ns];
+    // Rows of nodes on second-order faces: their redistribution must keep linear multipliers.
+    let mut second_order = vec![false; ns];
     if count > 0 {
         let interface = tie.interface();
         let slave = interface.slave();
         let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); ns];
         for f in 0..slave.face_count() {
-            let rows: Vec<u32> = slave
-                .face(f)
+            let face = slave.face(f);
+            let rows: Vec<u32> = face
                 .nodes
                 .iter()
                 .filter_map(|&n| interface.slave_row(n))
                 .collect();
+            if face.element.node_count() > face.element.corner_count() {
+                for &a in &rows {
+                    for k in 0..comps {
+                        second_order[a as usize * comps + k] = true;
+                    }
+                }
+            }
             for k in 0..comps as u32 {
                 for &a in &rows {
                     let a = (a * comps as u32 + k) as usize;
@@ -727,7 +736,16 @@ fn modified_rows(
             let mut front = vec![c as u32];
             let mut visited = vec![c as u32];
             seen[c] = true;
-            while !front.is_empty() && neighbours[c].is_empty() {
+            // Second-order rows gather rings until their free neighbours can reproduce a
+            // linear function at the node (at most three rings).
+            let mut rings = 0;
+            while !front.is_empty()
+                && (neighbours[c].is_empty()
+                    || (second_order[c]
+                        && rings < 3
+                        && linear_weights(tie, c, &neighbours[c]).is_none()))
+            {
+                rings += 1;
                 let mut next: Vec<u32> = front
                     .iter()
                     .flat_map(|&r| adjacent[r as usize].iter().copied())
@@ -739,11 +757,7 @@ fn modified_rows(
                     seen[r as usize] = true;
                     visited.push(r);
                 }
-                neighbours[c] = next
-                    .iter()
-                    .copied()
-                    .filter(|&r| !fixed[r as usize])
-                    .collect();
+                neighbours[c].extend(next.iter().copied().filter(|&r| !fixed[r as usize]));
                 front = next;
             }
             for r in visited {
@@ -761,8 +775,20 @@ fn modified_rows(
             } else {
                 redistributed += 1;
             }
+            let weights = if second_order[r] {
+                linear_weights(tie, r, nb)
+            } else {
+                None
+            };
             let w = 1.0 / nb.len().max(1) as f64;
-            nb.iter().map(|&k| (new_of[k as usize], w)).collect()
+            match weights {
+                Some(ws) => nb
+                    .iter()
+                    .zip(ws)
+                    .map(|(&k, wk)| (new_of[k as usize], wk))
+                    .collect(),
+                None => nb.iter().map(|&k| (new_of[k as usize], w)).collect(),
+            }
         } else {
             vec![(new_of[r], 1.0)]
         };
@@ -791,6 +817,37 @@ fn modified_rows(
         redistributed,
         dropped,
     })
+}
+
+/// The weights with which the row of a Dirichlet slave node `r` is shared among its free
+/// neighbours `nb` so that the modified multipliers still represent linear functions (as a
+/// second-order multiplier space must, for the flux of a quadratic field): the least-norm
+/// affine combination `sum w_k = 1`, `sum w_k x_k = x_r` of the neighbours' positions; on a
+/// Line3 end, `2` on the middle node and `-1` on the far end. `None` when no such combination
+/// exists (the node off the neighbours' affine hull), leaving the equal shares.
+fn linear_weights(tie: &Tie, r: usize, nb: &[u32]) -> Option<Vec<f64>> {
+    let interface = tie.interface();
+    let comps = tie.components();
+    let x = |row: usize| interface.slave().coords()[interface.slave_nodes()[row / comps] as usize];
+    let xr = x(r);
+    let scale = nb
+        .iter()
+        .map(|&k| (x(k as usize) - xr).norm())
+        .fold(0.0, f64::max);
+    if nb.len() < 2 || scale <= 0.0 {
+        return None;
+    }
+    let a = nalgebra::DMatrix::from_fn(4, nb.len(), |i, j| {
+        if i == 0 {
+            1.0
+        } else {
+            (x(nb[j] as usize) - xr)[i - 1] / scale
+        }
+    });
+    let pinv = a.clone().pseudo_inverse(1e-12).ok()?;
+    let w = pinv.column(0).into_owned();
+    let residual = &a * &w - nalgebra::DVector::from_fn(4, |i, _| if i == 0 { 1.0 } else { 0.0 });
+    (residual.amax() <= 1e-10).then(|| w.iter().copied().collect())
 }
 
 /// Whether the rows can be condensed: each row's own entry positive, and its entries on other
