@@ -14,161 +14,55 @@
 
 use std::process::ExitCode;
 
-use mortar::core::element::volume::{VolumeDomain, VolumeElement};
-use mortar::core::element::{ElementRef, ReferenceDomain, ReferenceElement, SurfaceElement};
+use mortar::core::element::volume::{VolumeDomain, VolumeElementRef};
+use mortar::core::element::{ElementRef, ReferenceDomain};
+use mortar::elements::{LagrangeCell, LagrangeFace};
 use mortar::extend::Registries;
 use mortar::io::{msh41_volume_bytes, read_gmsh_surface, MshFormat};
 use mortar::{assemble_coupling, CouplingOptions, Interface, VolumeMesh};
-use nalgebra::{Vector2, Vector3};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
-// ---- the user's code: the two elements (131 lines as rustfmt lays them out, comments and blank lines not counted) ----
-/// Four-node cubic line, Gmsh order: the ends -1, 1, then -1/3, 1/3 (Lagrange polynomials).
-#[derive(Debug)]
-struct Line4;
-const LINE4_NODES: [f64; 4] = [-1.0, 1.0, -1.0 / 3.0, 1.0 / 3.0];
-impl ReferenceElement for Line4 {
-    fn name(&self) -> &'static str {
-        "Line4"
-    }
-    fn domain(&self) -> ReferenceDomain {
-        ReferenceDomain::Line
-    }
-    fn node_count(&self) -> usize {
-        4
-    }
-    fn corner_count(&self) -> usize {
-        2
-    }
-    fn shape_degree(&self) -> u32 {
-        3
-    }
-    fn node_reference_coords(&self) -> &'static [[f64; 2]] {
-        &[[-1.0, 0.0], [1.0, 0.0], [-1.0 / 3.0, 0.0], [1.0 / 3.0, 0.0]]
-    }
-    fn shape_values_into(&self, xi: &Vector2<f64>, out: &mut [f64]) {
-        let x = &LINE4_NODES;
-        for i in 0..4 {
-            let others = (0..4).filter(|&j| j != i);
-            out[i] = others.map(|j| (xi.x - x[j]) / (x[i] - x[j])).product();
-        }
-    }
-    fn shape_gradients_into(&self, xi: &Vector2<f64>, out: &mut [[f64; 2]]) {
-        let x = &LINE4_NODES;
-        for i in 0..4 {
-            // d/dxi prod_(j != i) (xi - x_j) / (x_i - x_j): one factor differentiated at a time.
-            let term = |k: usize| -> f64 {
-                (0..4)
-                    .filter(|&j| j != i)
-                    .map(|j| if j == k { 1.0 } else { xi.x - x[j] } / (x[i] - x[j]))
-                    .product()
-            };
-            out[i] = [(0..4).filter(|&k| k != i).map(term).sum(), 0.0];
-        }
-    }
-}
-impl SurfaceElement for Line4 {
-    fn gmsh_type(&self) -> Option<u32> {
-        Some(26)
-    }
-    // Reversed: the ends swap, and so do the inner nodes.
-    fn reverse_nodes(&self, nodes: &mut [u32]) -> bool {
-        nodes.len() == 4 && {
-            nodes.swap(0, 1);
-            nodes.swap(2, 3);
-            true
-        }
-    }
-}
+// ---- the user's code: the two elements (29 lines as rustfmt lays them out, comments and blank lines not counted) ----
+/// Gmsh's cubic line (type 26): the ends, then the inner nodes.
+static LINE4: [[f64; 2]; 4] = [[-1.0, 0.0], [1.0, 0.0], [-1.0 / 3.0, 0.0], [1.0 / 3.0, 0.0]];
+const T: f64 = 1.0 / 3.0;
+/// Gmsh's cubic triangle (type 21): corners, two nodes on each edge 1-2, 2-3, 3-1, centre.
+static TRI10: [[f64; 3]; 10] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [T, 0.0, 0.0],
+    [2.0 * T, 0.0, 0.0],
+    [2.0 * T, T, 0.0],
+    [T, 2.0 * T, 0.0],
+    [0.0, 2.0 * T, 0.0],
+    [0.0, T, 0.0],
+    [T, T, 0.0],
+];
+/// Its edges as Line4 faces, outward for a counter-clockwise cell.
+static TRI10_EDGES: [&[usize]; 3] = [&[0, 1, 3, 4], &[1, 2, 5, 6], &[2, 0, 7, 8]];
 
-/// Ten-node cubic triangle, Gmsh order: corners, two nodes on each edge 1-2, 2-3, 3-1 (the one
-/// nearer the edge's first corner first), then the centre.
-#[derive(Debug)]
-struct Tri10;
-impl VolumeElement for Tri10 {
-    fn name(&self) -> &'static str {
-        "Tri10"
-    }
-    fn domain(&self) -> VolumeDomain {
-        VolumeDomain::Triangle
-    }
-    fn node_count(&self) -> usize {
-        10
-    }
-    fn shape_degree(&self) -> u32 {
-        3
-    }
-    fn node_reference_coords(&self) -> &'static [[f64; 3]] {
-        const T: f64 = 1.0 / 3.0;
-        &[
-            [0., 0., 0.],
-            [1., 0., 0.],
-            [0., 1., 0.],
-            [T, 0., 0.],
-            [2. * T, 0., 0.],
-            [2. * T, T, 0.],
-            [T, 2. * T, 0.],
-            [0., 2. * T, 0.],
-            [0., T, 0.],
-            [T, T, 0.],
-        ]
-    }
-    fn shape_values_into(&self, xi: &Vector3<f64>, out: &mut [f64]) {
-        let mut g = [[0.0; 3]; 10];
-        tri10(xi, out, &mut g);
-    }
-    fn shape_gradients_into(&self, xi: &Vector3<f64>, out: &mut [[f64; 3]]) {
-        let mut n = [0.0; 10];
-        tri10(xi, &mut n, out);
-    }
-    fn gmsh_type(&self) -> Option<u32> {
-        Some(21)
-    }
-    fn faces(&self) -> &'static [&'static [usize]] {
-        &[&[0, 1, 3, 4], &[1, 2, 5, 6], &[2, 0, 7, 8]]
-    }
-    fn face_element(&self, _face: usize) -> ElementRef {
-        &Line4
-    }
-}
-
-/// The cubic functions of the barycentric coordinates L and their gradients: corners
-/// `L (3L - 1)(3L - 2) / 2`, edge nodes `9/2 L_a L_b (3 L_a - 1)`, centre `27 L_1 L_2 L_3`.
-fn tri10(xi: &Vector3<f64>, n: &mut [f64], g: &mut [[f64; 3]]) {
-    let l = [1.0 - xi.x - xi.y, xi.x, xi.y];
-    let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
-    let mut put = |i: usize, v: f64, d: [f64; 3]| {
-        n[i] = v;
-        g[i] = [
-            d[0] * dl[0][0] + d[1] * dl[1][0] + d[2] * dl[2][0],
-            d[0] * dl[0][1] + d[1] * dl[1][1] + d[2] * dl[2][1],
-            0.0,
-        ];
-    };
-    for a in 0..3 {
-        let mut d = [0.0; 3];
-        d[a] = (27.0 * l[a] * l[a] - 18.0 * l[a] + 2.0) / 2.0;
-        put(a, l[a] * (3.0 * l[a] - 1.0) * (3.0 * l[a] - 2.0) / 2.0, d);
-        let b = (a + 1) % 3;
-        // The edge a-b's node nearer a, then the one nearer b (their values, dN/dL).
-        for (k, (p, q)) in [(a, b), (b, a)].into_iter().enumerate() {
-            let mut d = [0.0; 3];
-            d[p] = 4.5 * (6.0 * l[p] - 1.0) * l[q];
-            d[q] = 4.5 * l[p] * (3.0 * l[p] - 1.0);
-            put(3 + 2 * a + k, 4.5 * l[p] * l[q] * (3.0 * l[p] - 1.0), d);
-        }
-    }
-    put(
-        9,
-        27.0 * l[0] * l[1] * l[2],
-        [27.0 * l[1] * l[2], 27.0 * l[0] * l[2], 27.0 * l[0] * l[1]],
-    );
+/// The two elements, Lagrange elements from their nodes (their cubic shape functions found
+/// by the library), made to live as long as the program.
+fn elements() -> Res<(ElementRef, VolumeElementRef)> {
+    let line4 = LagrangeFace::new("Line4", ReferenceDomain::Line, 2, &LINE4, Some(26))?
+        .with_reversal(&[1, 0, 3, 2]);
+    let line4: ElementRef = Box::leak(Box::new(line4));
+    let tri10 = LagrangeCell::new(
+        "Tri10",
+        VolumeDomain::Triangle,
+        &TRI10,
+        &TRI10_EDGES,
+        line4,
+        Some(21),
+    )?;
+    Ok((line4, Box::leak(Box::new(tri10))))
 }
 // ---- end of the elements ----
 
 /// The unit square `[x0, x0 + 1] x [0, 1]` in `2 n^2` Tri10 cells.
-fn tri10_square(x0: f64, n: usize) -> Res<VolumeMesh> {
+fn tri10_square(tri10: VolumeElementRef, x0: f64, n: usize) -> Res<VolumeMesh> {
     let (m, mut mesh) = (3 * n + 1, VolumeMesh::new());
     let tag = |i: usize, j: usize| (j * m + i + 1) as u64;
     for (i, j) in (0..m).flat_map(|j| (0..m).map(move |i| (i, j))) {
@@ -202,7 +96,7 @@ fn tri10_square(x0: f64, n: usize) -> Res<VolumeMesh> {
     ];
     for (a, b) in (0..n).flat_map(|b| (0..n).map(move |a| (3 * a, 3 * b))) {
         for cell in [lower, upper] {
-            mesh.add_cell(&Tri10, &cell.map(|(di, dj)| tag(a + di, b + dj)))?;
+            mesh.add_cell(tri10, &cell.map(|(di, dj)| tag(a + di, b + dj)))?;
         }
     }
     Ok(mesh)
@@ -210,8 +104,14 @@ fn tri10_square(x0: f64, n: usize) -> Res<VolumeMesh> {
 
 /// Writes body `name` on `[x0, x0 + 1] x [0, 1]` as `dir/name.msh`, with its faces at
 /// `x = x0` (group `name_x0`) and `x = x0 + 1` (`name_x1`).
-fn write_body(dir: &std::path::Path, name: &str, x0: f64, n: usize) -> Res<()> {
-    let mesh = tri10_square(x0, n)?;
+fn write_body(
+    tri10: VolumeElementRef,
+    dir: &std::path::Path,
+    name: &str,
+    x0: f64,
+    n: usize,
+) -> Res<()> {
+    let mesh = tri10_square(tri10, x0, n)?;
     let faces = mesh.boundary_faces()?;
     let at = |x: f64| {
         faces
@@ -250,12 +150,13 @@ master = { body = "left", group = "left_x1" }
 /// Runs the example, writing into `out` (meshes, the scene, the outputs of `couple` and `run`).
 pub fn run(out: &std::path::Path) -> Res<()> {
     std::fs::create_dir_all(out)?;
-    // ---- the user's code: registering and using the elements (46 lines) ----
+    // ---- the user's code: registering and using the elements (47 lines) ----
     let mut registries = Registries::default();
-    registries.elements.register(&Line4);
-    registries.cells.register(&Tri10);
-    write_body(out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri10: 3 lines, 10 nodes on x = 1
-    write_body(out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 13 nodes (4 shared: y = 0, 1/3, 2/3, 1)
+    let (line4, tri10) = elements()?;
+    registries.elements.register(line4);
+    registries.cells.register(tri10);
+    write_body(tri10, out, "left", 0.0, 3)?; // 3 x 3 squares of two Tri10: 3 lines, 10 nodes on x = 1
+    write_body(tri10, out, "right", 1.0, 4)?; // 4 x 4: 4 lines, 13 nodes (4 shared: y = 0, 1/3, 2/3, 1)
     let read =
         |file: &str, group| read_gmsh_surface(out.join(file), Some(group), &registries.elements);
     for options in [

@@ -55,6 +55,7 @@
 //! assert_eq!(registry.by_gmsh_type(8).unwrap().name(), "Line3");
 //! ```
 
+mod lagrange;
 mod line2;
 mod line3;
 mod quad4;
@@ -66,6 +67,7 @@ mod tri3;
 mod tri6;
 pub mod volume;
 
+pub use lagrange::{LagrangeCell, LagrangeError, LagrangeFace};
 pub use line2::{Line2, LINE2};
 pub use line3::{Line3, LINE3};
 pub use quad4::{Quad4, QUAD4};

@@ -6,6 +6,7 @@
 
 mod unit {
     mod geometry;
+    mod lagrange;
     mod registry;
     mod shape;
 
