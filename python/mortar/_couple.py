@@ -204,7 +204,9 @@ def _meshio_blocks(mesh: Any, selection: Union[str, int, None], side: str):
     if selection is None:
         top = max((_CELL_DIM[t] for _, t, _ in usable), default=None)
         out = [(t, c) for _, t, c in usable if _CELL_DIM[t] == top]
-    elif isinstance(selection, str) and selection in mesh.cell_sets:
+    elif isinstance(selection, str) and any(
+        s is not None and len(s) for s in mesh.cell_sets.get(selection, [])
+    ):
         sets = mesh.cell_sets[selection]
         out = [
             (t, c[np.asarray(sets[i], dtype=np.int64)])
