@@ -84,23 +84,13 @@ def solve(n: int, multipliers: str = "standard"):
     nl, nr = lb.N, rb.N
     K = sp.block_diag([laplace.assemble(lb), laplace.assemble(rb)], format="csr")
     f = np.concatenate([load.assemble(lb), load.assemble(rb)])
-    # B = [-M D] on all unknowns; rows of slave nodes on the Dirichlet boundary dropped.
+    # B = [-M D] on all unknowns (slave_nodes, master_nodes are the meshes' node numbers);
+    # rows of slave nodes on the Dirichlet boundary dropped.
+    def columns(nodes, n):  # the (len(nodes), n) matrix picking those nodes
+        return sp.csr_array((np.ones(len(nodes)), (np.arange(len(nodes)), nodes)), shape=(len(nodes), n))
+
     rows = np.flatnonzero(~np.isin(c.slave_nodes, rdir))
-    B = sp.hstack(
-        [
-            -sp.csr_array((c.M.data, c.M.indices, c.M.indptr), shape=c.M.shape)
-            @ sp.csr_array(
-                (np.ones(len(c.master_nodes)), (np.arange(len(c.master_nodes)), c.master_nodes)),
-                shape=(len(c.master_nodes), nl),
-            ),
-            c.D
-            @ sp.csr_array(
-                (np.ones(len(c.slave_nodes)), (np.arange(len(c.slave_nodes)), c.slave_nodes)),
-                shape=(len(c.slave_nodes), nr),
-            ),
-        ],
-        format="csr",
-    )[rows]
+    B = sp.hstack([-c.M @ columns(c.master_nodes, nl), c.D @ columns(c.slave_nodes, nr)], format="csr")[rows]
     fixed = np.concatenate([ldir, nl + rdir])
     free = np.setdiff1d(np.arange(nl + nr), fixed)
     Kf = K[free][:, free]

@@ -18,7 +18,8 @@ __all__ = [
 
 
 class MortarError(Exception):
-    """Base class of every error mortar raises."""
+    """Base class of every error mortar raises; its message is the library's, naming what
+    went wrong and where."""
 
 
 class InvalidInputError(MortarError, ValueError):

@@ -5,7 +5,9 @@ use std::time::Instant;
 use mortar::core::element::ElementRef;
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
 use mortar::elements::{LINE2, QUAD4, TRI3};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SurfaceMesh};
+use mortar::{
+    assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
+};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -244,10 +246,10 @@ fn work(
     let interface = Interface::new(s, m).map_err(Failure::Core)?;
     let seconds_interface = t.elapsed().as_secs_f64();
     let coupling = assemble_coupling(&interface, options).map_err(Failure::Core)?;
-    let dim = if slave.dim == 2 && master.dim == 2 {
-        2
-    } else {
-        3
+    // Lines make a 2D problem whether their points came with two columns or three (z = 0).
+    let dim = match interface.dim() {
+        SpatialDim::Two => 2,
+        SpatialDim::Three => 3,
     };
     // The meshes are dropped here, inside the timed span, as the caller's would be.
     drop(interface);

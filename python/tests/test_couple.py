@@ -242,3 +242,15 @@ def test_weighted_gap_shapes():
     # open gap, and the weighted normal gap is the gap times the row sums of D.
     g = c.normal_gaps(SP[c.slave_nodes], MP[c.master_nodes] + 0.1 * c.normals[0])
     assert np.allclose(g, 0.1 * (c.D @ np.ones(c.D.shape[1])), rtol=1e-12, atol=1e-15)
+
+
+def test_lines_with_three_columns_are_2d():
+    # Lines given with a z = 0 column (as meshio gives a 2D mesh's points): a 2D problem.
+    sp, sl = square_edge(4)
+    mp, ml = square_edge(5, reverse=True)
+    c = mortar.couple((np.c_[sp, np.zeros(5)], sl, "line"), (mp, ml, "line"))
+    assert c.dim == 2 and c.normals.shape == (5, 2)
+    assert c.weighted_gap(sp[c.slave_nodes], mp[c.master_nodes]).shape == (5, 2)
+    # Off the plane z = 0, lines are refused.
+    with pytest.raises(mortar.InvalidInputError, match="dimension"):
+        mortar.couple((np.c_[sp, np.ones(5)], sl, "line"), (mp, ml, "line"))
