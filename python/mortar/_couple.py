@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import time
+import warnings
 from typing import Any, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -336,9 +337,13 @@ def couple(
     start = time.perf_counter()
     sp, sb = _surface(slave, "slave")
     mp, mb = _surface(master, "master")
-    if degree is not None and (not isinstance(degree, (int, np.integer)) or degree < 0):
+    if degree is not None and (
+        not isinstance(degree, (int, np.integer)) or not 0 <= degree < 2**31
+    ):
         raise InvalidInputError(f"degree={degree!r}: give a non-negative integer or None")
-    if threads is not None and (not isinstance(threads, (int, np.integer)) or threads < 1):
+    if threads is not None and (
+        not isinstance(threads, (int, np.integer)) or not 1 <= threads < 2**31
+    ):
         raise InvalidInputError(f"threads={threads!r}: give a positive integer or None")
     raw = _mortar.couple_arrays(
         sp,
@@ -353,11 +358,8 @@ def couple(
         require_full_coverage=bool(require_full_coverage),
     )
     c = Coupling(raw)
-    if c.warnings:
-        import warnings
-
-        for w in c.warnings:
-            warnings.warn(f"mortar: {w}", RuntimeWarning, stacklevel=2)
+    for w in c.warnings:
+        warnings.warn(f"mortar: {w}", RuntimeWarning, stacklevel=2)
     c.stats["seconds_call"] = time.perf_counter() - start
     return c
 
@@ -372,8 +374,8 @@ def read_gmsh(path: Union[str, "os.PathLike[str]"], group: Union[str, int, None]
             volume cells needs a group).
 
     Returns:
-        ``Surface(points, cells, cell_type)``: ``points`` (n, 2) for lines (a 2D problem) or
-        (n, 3), in the file's unit; ``cells`` (m, k) 0-based rows of ``points``;
+        ``Surface(points, cells, cell_type)``: ``points`` (n, 2) for lines at z = 0 (a 2D
+        problem) or (n, 3), in the file's unit; ``cells`` (m, k) 0-based rows of ``points``;
         ``cell_type`` ``"line"``, ``"triangle"`` or ``"quad"``; with ``node_tags`` and
         ``cell_tags``, the file's tags. Only the points the faces use are returned. Where
         every face bounds one cell of the file, faces are oriented out of that cell (as

@@ -232,8 +232,20 @@ fn work(
     orient: bool,
 ) -> Result<Output, Failure> {
     let start = Instant::now();
-    let mut s = surface(slave)?;
-    let mut m = surface(master)?;
+    // The two meshes are built at once, unless one thread was asked for.
+    let (s, m) = if options.threads == Some(1) {
+        (surface(slave), surface(master))
+    } else {
+        std::thread::scope(|scope| {
+            let master_mesh = scope.spawn(|| surface(master));
+            let s = surface(slave);
+            let m = master_mesh
+                .join()
+                .unwrap_or_else(|p| Err(Failure::Panic(errors::panic_message(&*p))));
+            (s, m)
+        })
+    };
+    let (mut s, mut m) = (s?, m?);
     let seconds_meshes = start.elapsed().as_secs_f64();
     let t = Instant::now();
     let orientation = if orient {

@@ -21,7 +21,8 @@ fn meshio_name(name: &str) -> &str {
 
 /// Reads a Gmsh 4.1 file (ASCII or binary): the whole file's faces or the physical group
 /// `group`, each face oriented outward from the one cell of the file it bounds where every
-/// face bounds one. Returns a dict: `points` (n, 2) for lines (a 2D problem) or (n, 3),
+/// face bounds one. Returns a dict: `points` (n, 2) for lines at z = 0 (a 2D problem) or
+/// (n, 3),
 /// `cells` (m, k) int64 (0-based rows of `points`), `cell_type` (meshio name), `node_tags`,
 /// `cell_tags` (the file's tags), `oriented_from_cells` (faces reversed, or None).
 #[pyfunction]
@@ -45,7 +46,14 @@ pub(crate) fn read_gmsh_arrays<'py>(
     });
     let (surface, flipped) = read.map_err(|(k, m)| errors::raise(k, m))?;
     let mesh = &surface.mesh;
-    let dim = if surface.dimension == 1 { 2 } else { 3 };
+    // Lines in the plane z = 0 (a 2D problem) come as (n, 2); lines off it keep their z, so
+    // that coupling them says what is wrong instead of dropping it.
+    let planar = mesh.coords().iter().all(|x| x.z == 0.0);
+    let dim = if surface.dimension == 1 && planar {
+        2
+    } else {
+        3
+    };
     let mut element = None;
     for f in 0..mesh.face_count() {
         let e = mesh.face(f).element;

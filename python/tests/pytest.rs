@@ -6,8 +6,9 @@
 //!    `python3 -m venv` (`$PYTHON` names another interpreter), with the pinned test
 //!    requirements of `tests/requirements.txt` installed from the package registry; it is
 //!    remade when that file changes;
-//! 2. the package built and installed into it by `maturin develop --release`, in the same
-//!    cargo target folder (so only the extension's own crates are compiled again);
+//! 2. the package built and installed into it by `maturin develop --release --features
+//!    workspace-test`, in the same cargo target folder: with the features the workspace's
+//!    build gave the library, so that only PyO3 and the extension are compiled again;
 //! 3. `python -m pytest tests` in this folder.
 //!
 //! A missing `python3`, `venv` or `pip`, a failed install or build, or a failed Python test
@@ -99,7 +100,8 @@ fn pytest() {
     run(
         "building and installing the package (maturin develop --release)",
         Command::new(bin.join("maturin"))
-            .args(["develop", "--release", "--manifest-path"])
+            .args(["develop", "--release", "--features", "workspace-test"])
+            .arg("--manifest-path")
             .arg(here.join("Cargo.toml"))
             .env("VIRTUAL_ENV", &venv)
             .env("PATH", &path)

@@ -254,3 +254,35 @@ def test_lines_with_three_columns_are_2d():
     # Off the plane z = 0, lines are refused.
     with pytest.raises(mortar.InvalidInputError, match="dimension"):
         mortar.couple((np.c_[sp, np.ones(5)], sl, "line"), (mp, ml, "line"))
+
+
+def test_gil_is_released_while_the_library_works():
+    # A Python thread keeps running while another thread is inside mortar.couple: the
+    # longest pause between its steps stays far below the library's time (with the GIL held
+    # it would be the whole of it).
+    import threading
+    import time
+
+    sp, st = grid_triangles(120, 120)
+    mp, mt = grid_triangles(181, 181)
+    result = {}
+
+    def work():
+        result["c"] = mortar.couple((sp, st, "triangle"), (mp, mt, "triangle"), threads=1)
+
+    t = threading.Thread(target=work)
+    stamps = [time.perf_counter()]
+    t.start()
+    while t.is_alive():
+        stamps.append(time.perf_counter())
+    t.join()
+    library = result["c"].stats["seconds"]
+    assert library > 0.1
+    assert np.diff(stamps).max() < library / 3, (np.diff(stamps).max(), library)
+
+
+def test_huge_options_are_refused():
+    with pytest.raises(mortar.InvalidInputError, match="threads"):
+        mortar.couple((SP, ST, "triangle"), (MP, MT, "triangle"), threads=2**40)
+    with pytest.raises(mortar.InvalidInputError, match="degree"):
+        mortar.couple((SP, ST, "triangle"), (MP, MT, "triangle"), degree=2**40)
