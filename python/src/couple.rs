@@ -72,7 +72,7 @@ fn side_arrays<'a>(
     blocks: &'a [(String, PyReadonlyArray2<'_, i64>)],
 ) -> Result<SideArrays<'a>, Failure> {
     let &[n, dim] = points.shape() else {
-        unreachable!("a 2-D array has two extents")
+        return Err(Failure::Input(format!("{side} points: not a 2-D array")));
     };
     if dim != 2 && dim != 3 {
         return Err(Failure::Input(format!(
@@ -86,7 +86,7 @@ fn side_arrays<'a>(
     let mut faces = 0;
     for (cell_type, cells) in blocks {
         let &[m, k] = cells.shape() else {
-            unreachable!("a 2-D array has two extents")
+            return Err(Failure::Input(format!("{side} cells: not a 2-D array")));
         };
         let element = element(cell_type).ok_or_else(|| {
             Failure::Input(format!(
