@@ -1,0 +1,418 @@
+//! `couple_arrays`: two surfaces given as numpy arrays in, D, M and the node maps out.
+
+use std::time::Instant;
+
+use mortar::core::element::ElementRef;
+use mortar::core::mesh::orient::{face_each_other, OrientationReport};
+use mortar::elements::{LINE2, QUAD4, TRI3};
+use mortar::{
+    assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
+};
+use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::errors::{self, Kind};
+
+/// How far the facing step looks across a gap, in slave face sizes (as `mortar couple`).
+const FACING_REACH: f64 = 2.0;
+
+/// What went wrong off the GIL, turned into a Python exception once it is held again.
+enum Failure {
+    /// An error of the library.
+    Core(MortarError),
+    /// Input the library never saw (shapes, indices, names), with the message.
+    Input(String),
+    /// A panic (a bug), with its message.
+    Panic(String),
+}
+
+impl Failure {
+    fn into_py(self) -> PyErr {
+        match self {
+            Failure::Core(e) => errors::core(&e),
+            Failure::Input(m) => errors::raise(Kind::InvalidInput, m),
+            Failure::Panic(m) => errors::raise(Kind::Base, m),
+        }
+    }
+}
+
+/// A surface element by its meshio name (`line`, `triangle`, `quad`) or the library's
+/// (`Line2`, `Tri3`, `Quad4`).
+fn element(name: &str) -> Option<ElementRef> {
+    match name {
+        "line" | "Line2" => Some(&LINE2),
+        "triangle" | "Tri3" => Some(&TRI3),
+        "quad" | "Quad4" => Some(&QUAD4),
+        _ => None,
+    }
+}
+
+/// A block of cells of one type, borrowed from numpy (row-major, checked contiguous).
+struct Block<'a> {
+    cells: &'a [i64],
+    k: usize,
+    element: ElementRef,
+}
+
+/// One side's arrays, borrowed from numpy (row-major, checked contiguous).
+struct SideArrays<'a> {
+    side: &'static str,
+    points: &'a [f64],
+    n: usize,
+    dim: usize,
+    blocks: Vec<Block<'a>>,
+    faces: usize,
+}
+
+/// Borrows one side's arrays and checks their shapes and the cell types.
+fn side_arrays<'a>(
+    side: &'static str,
+    points: &'a PyReadonlyArray2<'_, f64>,
+    blocks: &'a [(String, PyReadonlyArray2<'_, i64>)],
+) -> Result<SideArrays<'a>, Failure> {
+    let &[n, dim] = points.shape() else {
+        return Err(Failure::Input(format!("{side} points: not a 2-D array")));
+    };
+    if dim != 2 && dim != 3 {
+        return Err(Failure::Input(format!(
+            "{side} points: shape ({n}, {dim}); points are (n, 2) or (n, 3) coordinates"
+        )));
+    }
+    let points_slice = points
+        .as_slice()
+        .map_err(|_| Failure::Input(format!("{side} points: not a C-contiguous float64 array")))?;
+    let mut out = Vec::with_capacity(blocks.len());
+    let mut faces = 0;
+    for (cell_type, cells) in blocks {
+        let &[m, k] = cells.shape() else {
+            return Err(Failure::Input(format!("{side} cells: not a 2-D array")));
+        };
+        let element = element(cell_type).ok_or_else(|| {
+            Failure::Input(format!(
+                "{side} cell type \"{cell_type}\": known types are \"line\" (Line2), \
+                 \"triangle\" (Tri3) and \"quad\" (Quad4)"
+            ))
+        })?;
+        if k != element.node_count() {
+            return Err(Failure::Input(format!(
+                "{side} cells: shape ({m}, {k}); a {cell_type} cell has {} nodes",
+                element.node_count()
+            )));
+        }
+        let cells_slice = cells
+            .as_slice()
+            .map_err(|_| Failure::Input(format!("{side} cells: not a C-contiguous int64 array")))?;
+        faces += m;
+        out.push(Block {
+            cells: cells_slice,
+            k,
+            element,
+        });
+    }
+    Ok(SideArrays {
+        side,
+        points: points_slice,
+        n,
+        dim,
+        blocks: out,
+        faces,
+    })
+}
+
+/// The surface mesh of one side: the points used by a cell (tag = row of `points`) and the
+/// cells (tag = row in the concatenation of the blocks).
+fn surface(a: &SideArrays<'_>) -> Result<SurfaceMesh, Failure> {
+    let mut used = vec![false; a.n];
+    let mut j0 = 0;
+    for b in &a.blocks {
+        for (j, row) in b.cells.chunks_exact(b.k).enumerate() {
+            for &i in row {
+                match usize::try_from(i).ok().filter(|&i| i < a.n) {
+                    Some(i) => used[i] = true,
+                    None => {
+                        return Err(Failure::Input(format!(
+                            "{} cell {} refers to point {i}, but there are {} points (indices \
+                             are 0-based rows of the points array)",
+                            a.side,
+                            j0 + j,
+                            a.n
+                        )))
+                    }
+                }
+            }
+        }
+        j0 += b.cells.len() / b.k.max(1);
+    }
+    let nodes = used.iter().filter(|&&u| u).count();
+    let mut mesh = SurfaceMesh::with_capacity(nodes, a.faces);
+    let side_error = |e: MortarError| match e {
+        // The library names the node by its tag, the row of `points`: say which side.
+        MortarError::NonFiniteCoordinate { .. } | MortarError::DuplicateNode { .. } => {
+            Failure::Input(format!("{} points: {e}", a.side))
+        }
+        e => Failure::Core(e),
+    };
+    for (i, x) in a.points.chunks_exact(a.dim).enumerate() {
+        if used[i] {
+            let z = if a.dim == 3 { x[2] } else { 0.0 };
+            mesh.add_node(i as u64, [x[0], x[1], z])
+                .map_err(side_error)?;
+        }
+    }
+    let mut tags = [0u64; 4];
+    let mut tag = 0u64;
+    for b in &a.blocks {
+        for row in b.cells.chunks_exact(b.k) {
+            for (t, &i) in tags.iter_mut().zip(row) {
+                *t = i as u64;
+            }
+            mesh.add_face_with_tag(tag, b.element, &tags[..b.k])
+                .map_err(side_error)?;
+            tag += 1;
+        }
+    }
+    Ok(mesh)
+}
+
+/// The options of the keywords.
+fn options(
+    multipliers: &str,
+    integration: &str,
+    degree: Option<u32>,
+    threads: Option<usize>,
+    require_full_coverage: bool,
+) -> Result<CouplingOptions, Failure> {
+    let o = CouplingOptions::default().require_full_coverage(require_full_coverage);
+    let o = match multipliers {
+        "standard" => o.standard(),
+        "dual" => o.dual(),
+        other => {
+            return Err(Failure::Input(format!(
+                "multipliers=\"{other}\": give \"standard\" or \"dual\""
+            )))
+        }
+    };
+    let mut o = match integration {
+        "segment" => o.segment_based(degree).map_err(Failure::Core)?,
+        "element" => o.element_based(degree).map_err(Failure::Core)?,
+        other => {
+            return Err(Failure::Input(format!(
+                "integration=\"{other}\": give \"segment\" or \"element\""
+            )))
+        }
+    };
+    if let Some(t) = threads {
+        if t == 0 {
+            return Err(Failure::Input(
+                "threads=0: give at least one thread, or None for all cores".into(),
+            ));
+        }
+        o = o.threads(t);
+    }
+    Ok(o)
+}
+
+/// What the work off the GIL returns.
+struct Output {
+    coupling: Coupling,
+    orientation: Option<[OrientationReport; 2]>,
+    dim: usize,
+    seconds_meshes: f64,
+    seconds_orientation: f64,
+    seconds_interface: f64,
+    seconds_total: f64,
+}
+
+/// Builds the meshes, orients them, validates the interface and assembles D and M.
+fn work(
+    slave: &SideArrays<'_>,
+    master: &SideArrays<'_>,
+    options: &CouplingOptions,
+    orient: bool,
+) -> Result<Output, Failure> {
+    let start = Instant::now();
+    // The two meshes are built at once, unless one thread was asked for.
+    let (s, m) = if options.threads == Some(1) {
+        (surface(slave), surface(master))
+    } else {
+        std::thread::scope(|scope| {
+            let master_mesh = scope.spawn(|| surface(master));
+            let s = surface(slave);
+            let m = master_mesh
+                .join()
+                .unwrap_or_else(|p| Err(Failure::Panic(errors::panic_message(&*p))));
+            (s, m)
+        })
+    };
+    let (mut s, mut m) = (s?, m?);
+    let seconds_meshes = start.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let orientation = if orient {
+        Some(face_each_other(&mut s, &mut m, FACING_REACH, false, false).map_err(Failure::Core)?)
+    } else {
+        None
+    };
+    let seconds_orientation = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let interface = Interface::new(s, m).map_err(Failure::Core)?;
+    let seconds_interface = t.elapsed().as_secs_f64();
+    let coupling = assemble_coupling(&interface, options).map_err(Failure::Core)?;
+    // Lines make a 2D problem whether their points came with two columns or three (z = 0).
+    let dim = match interface.dim() {
+        SpatialDim::Two => 2,
+        SpatialDim::Three => 3,
+    };
+    // The meshes are dropped here, inside the timed span, as the caller's would be.
+    drop(interface);
+    Ok(Output {
+        coupling,
+        orientation,
+        dim,
+        seconds_meshes,
+        seconds_orientation,
+        seconds_interface,
+        seconds_total: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Index vectors as numpy arrays: int32 where every value fits (what scipy converts sparse
+/// indices to anyway, so it keeps them without a copy), int64 otherwise (the allocation
+/// reused: usize and i64 have the same size and alignment).
+fn index_arrays(py: Python<'_>, fits_i32: bool, v: Vec<usize>) -> Bound<'_, PyAny> {
+    if fits_i32 {
+        let w: Vec<i32> = v.iter().map(|&x| x as i32).collect();
+        PyArray1::from_vec(py, w).into_any()
+    } else {
+        let w: Vec<i64> = v.into_iter().map(|x| x as i64).collect();
+        PyArray1::from_vec(py, w).into_any()
+    }
+}
+
+/// A CSR matrix as a dict of its numpy arrays (indptr, indices, data, shape); the data vector
+/// becomes its array without a copy.
+fn csr<'py>(
+    py: Python<'py>,
+    a: mortar::core::linalg::SparseMatrix,
+) -> PyResult<Bound<'py, PyDict>> {
+    let shape = (a.rows(), a.cols());
+    let largest = a.nnz().max(a.rows()).max(a.cols());
+    let fits = i32::try_from(largest).is_ok();
+    let (indptr, indices, data) = a.into_raw_storage();
+    let d = PyDict::new(py);
+    d.set_item("indptr", index_arrays(py, fits, indptr))?;
+    d.set_item("indices", index_arrays(py, fits, indices))?;
+    d.set_item("data", PyArray1::from_vec(py, data))?;
+    d.set_item("shape", shape)?;
+    Ok(d)
+}
+
+/// Couples two surfaces given as arrays (the compiled half of `mortar.couple`; see its
+/// docstring). `*_points` are float64 (n, 2|3), C-contiguous; `*_blocks` lists of
+/// `(cell_type, cells)` with `cells` int64 (m, k), C-contiguous, 0-based rows of the points.
+/// Returns a dict of plain arrays.
+#[pyfunction]
+#[pyo3(signature = (
+    slave_points, slave_blocks, master_points, master_blocks,
+    *, multipliers = "standard", integration = "segment", degree = None, threads = None,
+    orient = true, require_full_coverage = false
+))]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn couple_arrays<'py>(
+    py: Python<'py>,
+    slave_points: PyReadonlyArray2<'py, f64>,
+    slave_blocks: Vec<(String, PyReadonlyArray2<'py, i64>)>,
+    master_points: PyReadonlyArray2<'py, f64>,
+    master_blocks: Vec<(String, PyReadonlyArray2<'py, i64>)>,
+    multipliers: &str,
+    integration: &str,
+    degree: Option<u32>,
+    threads: Option<usize>,
+    orient: bool,
+    require_full_coverage: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    let slave = side_arrays("slave", &slave_points, &slave_blocks).map_err(Failure::into_py)?;
+    let master = side_arrays("master", &master_points, &master_blocks).map_err(Failure::into_py)?;
+    let opts = options(
+        multipliers,
+        integration,
+        degree,
+        threads,
+        require_full_coverage,
+    )
+    .map_err(Failure::into_py)?;
+    // The GIL is released for the whole of the work: the arrays are only read (numpy's
+    // borrow flags keep Rust from writing them; Python code must not write them meanwhile).
+    let out = py
+        .detach(|| {
+            errors::no_panic(|| work(&slave, &master, &opts, orient))
+                .unwrap_or_else(|m| Err(Failure::Panic(m)))
+        })
+        .map_err(Failure::into_py)?;
+    let dim = out.dim;
+    let c = out.coupling;
+    let result = PyDict::new(py);
+    let stats = PyDict::new(py);
+    let st = &c.stats;
+    stats.set_item("pairs", st.pairs)?;
+    stats.set_item("candidates", st.candidates)?;
+    stats.set_item("segments", st.segments)?;
+    stats.set_item("area", st.area)?;
+    stats.set_item("back_facing", st.back_facing)?;
+    stats.set_item("skipped_pairs", st.skipped_pairs)?;
+    stats.set_item("uncovered_area", st.uncovered_area)?;
+    stats.set_item("faces_without_partner", st.faces_without_partner)?;
+    stats.set_item("faces_partly_covered", st.faces_partly_covered)?;
+    stats.set_item("d_roundoff_dropped", st.d_roundoff_dropped)?;
+    stats.set_item("threads", st.threads)?;
+    stats.set_item("degrees_used", c.degrees_used())?;
+    stats.set_item("formulation", c.formulation.as_str())?;
+    stats.set_item("seconds", out.seconds_total)?;
+    let phases = PyDict::new(py);
+    phases.set_item("meshes", out.seconds_meshes)?;
+    phases.set_item("orientation", out.seconds_orientation)?;
+    phases.set_item("interface", out.seconds_interface)?;
+    phases.set_item("tree", st.seconds.tree)?;
+    phases.set_item("faces", st.seconds.faces)?;
+    phases.set_item("assembly", st.seconds.assembly)?;
+    phases.set_item("coupling", st.seconds.total)?;
+    stats.set_item("seconds_by_phase", phases)?;
+    if let Some(o) = out.orientation {
+        let orientation = PyDict::new(py);
+        for (name, r) in [("slave", &o[0]), ("master", &o[1])] {
+            let side = PyDict::new(py);
+            side.set_item("pieces", r.components)?;
+            side.set_item("flipped", r.flipped)?;
+            side.set_item("kept_as_given", r.kept_as_given)?;
+            orientation.set_item(name, side)?;
+        }
+        stats.set_item("orientation", orientation)?;
+    }
+    let warnings: Vec<String> = c.warnings.iter().map(|w| w.to_string()).collect();
+    let normals: Vec<f64> = c
+        .slave_normals
+        .iter()
+        .flat_map(|n| n.iter().take(dim).copied().collect::<Vec<_>>())
+        .collect();
+    let rows = c.slave_normals.len();
+    let to_index = |v: Vec<u64>| -> Vec<i64> { v.into_iter().map(|x| x as i64).collect() };
+    result.set_item(
+        "slave_nodes",
+        PyArray1::from_vec(py, to_index(c.slave_nodes)),
+    )?;
+    result.set_item(
+        "master_nodes",
+        PyArray1::from_vec(py, to_index(c.master_nodes)),
+    )?;
+    result.set_item(
+        "normals",
+        PyArray1::from_vec(py, normals).reshape([rows, dim])?,
+    )?;
+    result.set_item("d", csr(py, c.d)?)?;
+    result.set_item("m", csr(py, c.m)?)?;
+    result.set_item("formulation", c.formulation)?;
+    result.set_item("warnings", warnings)?;
+    result.set_item("stats", stats)?;
+    result.set_item("dim", dim)?;
+    Ok(result)
+}
