@@ -90,14 +90,19 @@ fn triangle_pair() -> impl Strategy<Value = MeshPair> {
 proptest! {
     #![proptest_config(config(64))]
 
-    /// Default options on triangle meshes (exact integration).
+    /// Default options on triangle meshes (exact integration). The moved coordinates carry
+    /// a rounding of `eps |t|` each, so the moved mesh is another mesh by `eps |t| / h`; where
+    /// a master edge crosses a slave edge at a shallow angle the clip vertex moves by that
+    /// over the angle's sine. A saved case (Tri3 meshes, translation 9.4e5; found by a full run
+    /// of the test command) moves M by 7.7 `eps |t| / h`
+    /// (1.8e-8): the tolerance allows 16, as for any cells below.
     #[test]
     fn rigid_motion_3d_leaves_d_and_m_unchanged(
         pair in triangle_pair(),
         motion in rigid_motion_3d(),
         dual in any::<bool>(),
     ) {
-        check_rigid(&pair, &motion, &segment_options(dual), 4.0)?;
+        check_rigid(&pair, &motion, &segment_options(dual), 16.0)?;
     }
 
     /// Any cell kinds. On a jittered Quad4 the integrands are not polynomials on the clip
