@@ -12,7 +12,7 @@
 //! `VTK_QUADRATIC_TETRA` (24), Hex20 -> `VTK_QUADRATIC_HEXAHEDRON` (25), Hex27 ->
 //! `VTK_TRIQUADRATIC_HEXAHEDRON` (29). The Gmsh node order of the 2D ones is VTK's; the 3D
 //! second-order ones number their edge (and face) nodes differently and are permuted
-//! ([`vtk_order`]). A cell of any other type (a program's own cubic triangle, say) is written
+//! (`vtk_order`). A cell of any other type (a program's own cubic triangle, say) is written
 //! as the linear cell of its corners, its first nodes as in Gmsh's order (VTK's triangle,
 //! quad, tetrahedron or hexahedron): every node and its values are still in the file, the
 //! cell is drawn with straight edges.
