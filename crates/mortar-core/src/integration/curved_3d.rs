@@ -172,15 +172,7 @@ pub(super) fn segments_into(
 ) -> Result<()> {
     let tol = ctx.interface.tolerances();
     let el = slave.element;
-    let centre = el.domain().centre();
-    let x0 = slave.map(&centre);
-    let (dir, _) = ctx.projector.direction(slave, &centre);
-    let plane = AuxiliaryPlane::new(x0, dir, slave.nodes[1] - slave.nodes[0])
-        .or_else(|| AuxiliaryPlane::from_normal(x0, dir))
-        .ok_or_else(|| MortarError::DegenerateFace {
-            face: slave.location(),
-            reason: "the projection direction at its centre is zero".into(),
-        })?;
+    let (plane, x0) = super::segments_3d::auxiliary_plane(ctx, slave)?;
     let mut subs = Vec::new();
     sub_triangles(slave, &plane, level(bend(slave)), &mut subs);
     let area_s: f64 = subs.iter().map(|s| s.area).sum();

@@ -22,14 +22,7 @@ pub(super) fn segments_into(
     let tol = ctx.interface.tolerances();
     let el = slave.element;
     let centre = el.domain().centre();
-    let x0 = slave.map(&centre);
-    let (dir, _) = ctx.projector.direction(slave, &centre);
-    let plane = AuxiliaryPlane::new(x0, dir, slave.nodes[1] - slave.nodes[0])
-        .or_else(|| AuxiliaryPlane::from_normal(x0, dir))
-        .ok_or_else(|| MortarError::DegenerateFace {
-            face: slave.location(),
-            reason: "the projection direction at its centre is zero".into(),
-        })?;
+    let (plane, x0) = auxiliary_plane(ctx, slave)?;
 
     let ks = slave.node_count();
     let mut sp = [Vector2::zeros(); MAX_FACE_NODES];
@@ -243,6 +236,27 @@ pub(super) fn segments_into(
     }
     out.covered = Some(covered / area_s);
     Ok(())
+}
+
+/// The auxiliary plane of a slave face: through its centre `x0` (returned too), normal to
+/// the projection direction there, its first axis along the face's first edge.
+///
+/// # Errors
+/// [`MortarError::DegenerateFace`] when the projection direction at the centre is zero.
+pub(super) fn auxiliary_plane(
+    ctx: &SegmentContext<'_>,
+    slave: &FaceGeometry,
+) -> Result<(AuxiliaryPlane, Vector3<f64>)> {
+    let centre = slave.element.domain().centre();
+    let x0 = slave.map(&centre);
+    let (dir, _) = ctx.projector.direction(slave, &centre);
+    let plane = AuxiliaryPlane::new(x0, dir, slave.nodes[1] - slave.nodes[0])
+        .or_else(|| AuxiliaryPlane::from_normal(x0, dir))
+        .ok_or_else(|| MortarError::DegenerateFace {
+            face: slave.location(),
+            reason: "the projection direction at its centre is zero".into(),
+        })?;
+    Ok((plane, x0))
 }
 
 /// The degree-2 edge-midpoint rule on the triangulation of `poly` (itself if a triangle,
