@@ -150,7 +150,7 @@ master = { body = "left", group = "left_x1" }
 /// Runs the example, writing into `out` (meshes, the scene, the outputs of `couple` and `run`).
 pub fn run(out: &std::path::Path) -> Res<()> {
     std::fs::create_dir_all(out)?;
-    // ---- the user's code: registering and using the elements (47 lines) ----
+    // ---- the user's code: registering and using the elements (40 lines) ----
     let mut registries = Registries::default();
     let (line4, tri10) = elements()?;
     registries.elements.register(line4);
@@ -181,21 +181,15 @@ pub fn run(out: &std::path::Path) -> Res<()> {
         }
     }
     std::fs::write(out.join("scene.toml"), SCENE)?;
-    let (o, scene) = (out.display(), out.join("scene.toml").display().to_string());
-    let couple = [
-        "mortar",
-        "couple",
-        "--slave",
-        &format!("{o}/right.msh#right_x0"),
-        "--master",
-        &format!("{o}/left.msh#left_x1"),
-        "--out",
-        &format!("{o}/couple"),
-    ];
-    let run = ["mortar", "run", &scene, "--out", &format!("{o}/scene")];
-    for args in [&couple[..], &run[..]] {
-        if mortar::cli::run_from(args, &registries) != ExitCode::SUCCESS {
-            return Err(format!("`{}` failed", args.join(" ")).into());
+    // The two commands as a user types them (OUT_DIR without spaces).
+    let o = out.display();
+    for command in [
+        format!("mortar couple --slave {o}/right.msh#right_x0 --master {o}/left.msh#left_x1 --out {o}/couple"),
+        format!("mortar run {o}/scene.toml --out {o}/scene"),
+    ] {
+        let args: Vec<&str> = command.split_whitespace().collect();
+        if mortar::cli::run_from(&args, &registries) != ExitCode::SUCCESS {
+            return Err(format!("`{command}` failed").into());
         }
     }
     // ---- end of the user's code ----
