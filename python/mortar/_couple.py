@@ -23,6 +23,14 @@ CELL_TYPES = {
     "Tri3": "triangle",
     "quad": "quad",
     "Quad4": "quad",
+    "line3": "line3",
+    "Line3": "line3",
+    "triangle6": "triangle6",
+    "Tri6": "triangle6",
+    "quad8": "quad8",
+    "Quad8": "quad8",
+    "quad9": "quad9",
+    "Quad9": "quad9",
 }
 
 _INT64_MAX = np.iinfo(np.int64).max
@@ -182,8 +190,9 @@ def _cells(cells: Any, side: str) -> np.ndarray:
 def _cell_type(name: Any, side: str) -> str:
     if not isinstance(name, str) or name not in CELL_TYPES:
         raise InvalidInputError(
-            f"{side} cell type {name!r}: known types are 'line' (Line2), 'triangle' (Tri3) "
-            "and 'quad' (Quad4)"
+            f"{side} cell type {name!r}: known types are 'line' (Line2), 'triangle' (Tri3), "
+            "'quad' (Quad4), 'line3' (Line3), 'triangle6' (Tri6), 'quad8' (Quad8) and "
+            "'quad9' (Quad9)"
         )
     return CELL_TYPES[name]
 
@@ -193,7 +202,15 @@ def _is_meshio(x: Any) -> bool:
 
 
 #: Reference dimension of each cell type.
-_CELL_DIM = {"line": 1, "triangle": 2, "quad": 2}
+_CELL_DIM = {
+    "line": 1,
+    "triangle": 2,
+    "quad": 2,
+    "line3": 1,
+    "triangle6": 2,
+    "quad8": 2,
+    "quad9": 2,
+}
 
 
 def _meshio_blocks(mesh: Any, selection: Union[str, int, None], side: str):

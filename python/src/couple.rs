@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use mortar::core::element::ElementRef;
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
-use mortar::elements::{LINE2, QUAD4, TRI3};
+use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 use mortar::{
     assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
 };
@@ -37,13 +37,17 @@ impl Failure {
     }
 }
 
-/// A surface element by its meshio name (`line`, `triangle`, `quad`) or the library's
-/// (`Line2`, `Tri3`, `Quad4`).
+/// A surface element by its meshio name (`line`, `triangle`, `quad`, `line3`, `triangle6`,
+/// `quad8`, `quad9`; the same node order as Gmsh's) or the library's (`Line2`, ..., `Quad9`).
 fn element(name: &str) -> Option<ElementRef> {
     match name {
         "line" | "Line2" => Some(&LINE2),
         "triangle" | "Tri3" => Some(&TRI3),
         "quad" | "Quad4" => Some(&QUAD4),
+        "line3" | "Line3" => Some(&LINE3),
+        "triangle6" | "Tri6" => Some(&TRI6),
+        "quad8" | "Quad8" => Some(&QUAD8),
+        "quad9" | "Quad9" => Some(&QUAD9),
         _ => None,
     }
 }
@@ -160,7 +164,7 @@ fn surface(a: &SideArrays<'_>) -> Result<SurfaceMesh, Failure> {
                 .map_err(side_error)?;
         }
     }
-    let mut tags = [0u64; 4];
+    let mut tags = [0u64; mortar::core::element::MAX_FACE_NODES];
     let mut tag = 0u64;
     for b in &a.blocks {
         for row in b.cells.chunks_exact(b.k) {

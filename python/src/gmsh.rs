@@ -15,6 +15,10 @@ fn meshio_name(name: &str) -> &str {
         "Line2" => "line",
         "Tri3" => "triangle",
         "Quad4" => "quad",
+        "Line3" => "line3",
+        "Tri6" => "triangle6",
+        "Quad8" => "quad8",
+        "Quad9" => "quad9",
         other => other,
     }
 }

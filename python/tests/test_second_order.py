@@ -1,0 +1,48 @@
+"""Second-order faces from Python: the Gmsh-made meshes of tests/meshes (Mesh.ElementOrder =
+2, made by tests/meshes/make_second_order_meshes.py) read with read_gmsh and coupled, and
+meshio's names for them; the closed forms of a flat unit interface (sum(D) = 1, D 1 = M 1,
+D x_s = M x_m)."""
+
+import pathlib
+
+import numpy as np
+import pytest
+
+import mortar
+
+MESHES = pathlib.Path(__file__).resolve().parents[2] / "tests" / "meshes"
+
+
+@pytest.mark.parametrize(
+    "file, slave, master, types",
+    [
+        ("so_2d_quad8.msh", "right_x0", "left_x1", ("line3", "line3")),
+        ("so_3d_hex20.msh", "top_bottom", "bottom_top", ("triangle6", "quad8")),
+        ("so_3d_hex27.msh", "top_bottom", "bottom_top", ("quad9", "triangle6")),
+    ],
+)
+@pytest.mark.parametrize("multipliers", ["standard", "dual"])
+def test_second_order_interfaces_tie_linear_fields(file, slave, master, types, multipliers):
+    s = mortar.read_gmsh(MESHES / file, slave)
+    m = mortar.read_gmsh(MESHES / file, master)
+    assert (s.cell_type, m.cell_type) == types
+    c = mortar.couple(s, m, multipliers=multipliers)
+    assert c.stats["area"] == pytest.approx(1.0, rel=1e-12)
+    xs, xm = s.points[c.slave_nodes], m.points[c.master_nodes]
+    pairs = [(np.ones(len(xs)), np.ones(len(xm)))]
+    pairs += [(xs[:, d], xm[:, d]) for d in range(xs.shape[1])]
+    for fs, fm in pairs:
+        assert np.abs(c.D @ fs - c.M @ fm).max() < 1e-12
+
+
+def test_second_order_cell_types_by_both_names():
+    # One straight Line3 against two: meshio's and the library's names give the same D and M.
+    pts = np.array([[0.0, 0.0], [1.0, 0.0], [0.5, 0.0]])
+    mpts = np.array([[1.0, 0.0], [0.0, 0.0], [0.5, 0.0], [0.25, 0.0], [0.75, 0.0]])
+    mcells = np.array([[2, 1, 3], [0, 2, 4]])  # running the other way: facing the slave
+    a = mortar.couple((pts, np.array([[0, 1, 2]]), "line3"), (mpts, mcells, "line3"))
+    b = mortar.couple((pts, np.array([[0, 1, 2]]), "Line3"), (mpts, mcells, "Line3"))
+    assert (a.D != b.D).nnz == 0 and (a.M != b.M).nnz == 0
+    assert a.stats["area"] == pytest.approx(1.0, rel=1e-14)
+    with pytest.raises(mortar.InvalidInputError, match="triangle6"):
+        mortar.couple((pts, np.array([[0, 1, 2]]), "line4"), (mpts, mcells, "line3"))
