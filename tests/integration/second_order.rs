@@ -497,3 +497,77 @@ fn second_order_tie_reproduces_a_quadratic_field() {
         }
     }
 }
+
+/// Mixed first- and second-order sides: a Tri3 or Quad4 plane (`generate`) against the
+/// Gmsh-made Quad8 and Quad9 faces, and the Gmsh-made Tri6 faces against a Quad4 plane, at the
+/// interface `z = 0.5`: sum(D) = 1 and D f = M f for f = 1, x, y, z to 1e-12, standard and
+/// dual (issue 10 item 1).
+#[test]
+fn first_order_faces_couple_with_second_order_ones() {
+    use mortar::generate::{square_quads, square_triangles, Diagonal};
+    let registry = ElementRegistry::new();
+    let gmsh = |file: &str, group: &str| {
+        let mut s = read_gmsh_surface(mesh(file), Some(group), &registry).unwrap();
+        s.orient_outward().unwrap();
+        s.mesh
+    };
+    let cases = [
+        // Linear slaves below the top faces of the bottom bodies (normals -z, facing them).
+        (
+            square_triangles(5, Diagonal::Main, 0.5, true, 1).unwrap(),
+            gmsh("so_3d_hex20.msh", "bottom_top"),
+        ),
+        (
+            square_quads(4, 0.5, true, 1).unwrap(),
+            gmsh("so_3d_hex20.msh", "bottom_top"),
+        ),
+        // A linear slave above the Hex27 top body's bottom face (normal +z).
+        (
+            square_triangles(5, Diagonal::Anti, 0.5, false, 1).unwrap(),
+            gmsh("so_3d_hex27.msh", "top_bottom"),
+        ),
+        // A second-order slave (Tri6, normal -z) against a linear master facing it.
+        (
+            gmsh("so_3d_hex20.msh", "top_bottom"),
+            square_quads(3, 0.5, false, 1).unwrap(),
+        ),
+    ];
+    for (k, (slave, master)) in cases.into_iter().enumerate() {
+        let coords = |m: &mortar::SurfaceMesh| -> HashMap<u64, Vector3<f64>> {
+            m.node_tags()
+                .iter()
+                .copied()
+                .zip(m.coords().iter().copied())
+                .collect()
+        };
+        let (xs, xm) = (coords(&slave), coords(&master));
+        let interface = Interface::new(slave, master).unwrap();
+        for options in [
+            CouplingOptions::default(),
+            CouplingOptions::default().dual(),
+        ] {
+            let c = assemble_coupling(&interface, &options)
+                .unwrap_or_else(|e| panic!("case {k} {options:?}: {e}"));
+            assert!(
+                (c.stats.area - 1.0).abs() < 1e-12,
+                "case {k}: {}",
+                c.stats.area
+            );
+            for f in 0..4 {
+                let value = |x: &Vector3<f64>| if f == 0 { 1.0 } else { x[f - 1] };
+                let us: Vec<f64> = c.slave_nodes.iter().map(|t| value(&xs[t])).collect();
+                let um: Vec<f64> = c.master_nodes.iter().map(|t| value(&xm[t])).collect();
+                let (du, mu) = (product(&c.d, &us), product(&c.m, &um));
+                let worst = du
+                    .iter()
+                    .zip(&mu)
+                    .fold(0.0f64, |w, (a, b)| w.max((a - b).abs()));
+                assert!(
+                    worst < 1e-12,
+                    "case {k} ({}), field {f}: {worst:e}",
+                    c.formulation
+                );
+            }
+        }
+    }
+}
