@@ -46,7 +46,9 @@ use mortar_physics::tied::Tie;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
-use crate::generate::{quarter_annulus_mesh, quarter_disc_mesh, CellShape};
+use crate::generate::{
+    quarter_annulus_mesh, quarter_disc_mesh, second_order_mesh, CellShape, SecondOrder,
+};
 
 /// The closed form: Lamé's thick cylinder in plane strain (Timoshenko and Goodier, sec. 33).
 /// A disc and a ring of the same material (`E`, `nu`), interference `delta` on the radius at
@@ -100,6 +102,9 @@ pub struct ShrinkFitScene {
     pub coupling: CouplingOptions,
     /// The contact solve.
     pub contact: ContactOptions,
+    /// `None`: Quad4 cells, Line2 faces; a [`SecondOrder`] family: both bodies raised to
+    /// second order, the new nodes of the arcs on their circles (Line3 faces).
+    pub order: Option<SecondOrder>,
 }
 
 impl ShrinkFitScene {
@@ -119,6 +124,7 @@ impl ShrinkFitScene {
             search_radius: None,
             coupling: CouplingOptions::default().dual(),
             contact: ContactOptions::default(),
+            order: None,
         }
     }
 
@@ -143,6 +149,26 @@ impl ShrinkFitScene {
             .unwrap_or_else(|| ((c - b) / (b * dtm)).round().max(1.0) as usize);
         let disc = quarter_disc_mesh(rs, [0.0, 0.0], self.slave_cells, 1.0, CellShape::Tensor, 1)?;
         let ring = quarter_annulus_mesh(b, c, [self.master_cells, nr], CellShape::Tensor, 1)?;
+        let (disc, ring) = match self.order {
+            None => (disc, ring),
+            Some(family) => {
+                // New nodes between nodes of one of the circles (radii rs, b, c) go onto it.
+                let place = |x: &Vector3<f64>, parents: &[Vector3<f64>]| {
+                    let r0 = parents[0].x.hypot(parents[0].y);
+                    let on = |p: &Vector3<f64>| (p.x.hypot(p.y) - r0).abs() <= 1e-12 * c;
+                    let circle = [rs, b, c].iter().any(|r| (r - r0).abs() <= 1e-12 * c);
+                    if circle && parents.iter().all(on) {
+                        x * (r0 / x.x.hypot(x.y))
+                    } else {
+                        *x
+                    }
+                };
+                (
+                    second_order_mesh(&disc, family, place)?,
+                    second_order_mesh(&ring, family, place)?,
+                )
+            }
+        };
 
         let tol = 1e-12 * c;
         let near = move |a: f64, v: f64| (a - v).abs() <= tol;
