@@ -47,6 +47,17 @@ pub fn stacked_blocks_with(
     pressure: f64,
     coupling: &CouplingOptions,
 ) -> Blocks {
+    stacked_blocks_of_order(dim, lift, pressure, coupling, None)
+}
+
+/// [`stacked_blocks_with`], both blocks raised to second order by `order` (straight cells).
+pub fn stacked_blocks_of_order(
+    dim: usize,
+    lift: f64,
+    pressure: f64,
+    coupling: &CouplingOptions,
+    order: Option<mortar::generate::SecondOrder>,
+) -> Blocks {
     let material = ElasticMaterial::new(E, NU);
     let (top, bottom) = (1.0 + lift, 2.0 + lift);
     let (lower, upper) = if dim == 2 {
@@ -78,6 +89,13 @@ pub fn stacked_blocks_with(
             box_mesh([0.0; 3], [1.0; 3], [3, 3, 3], CellShape::Tensor, 1).unwrap(),
             upper,
         )
+    };
+    let (lower, upper) = match order {
+        None => (lower, upper),
+        Some(family) => {
+            let raise = |m| mortar::generate::second_order_mesh(&m, family, |x, _| *x).unwrap();
+            (raise(lower), raise(upper))
+        }
     };
     let near = |a: f64, b: f64| (a - b).abs() < 1e-9;
     let zero = |_: &Vector3<f64>| Vector3::zeros();

@@ -36,7 +36,10 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
-use crate::generate::{graded_points, grid_rectangle_mesh, quarter_disc_mesh, CellShape};
+use crate::generate::{
+    graded_points, grid_rectangle_mesh, onto_sphere, quarter_disc_mesh, second_order_mesh,
+    CellShape, SecondOrder,
+};
 #[cfg(doc)]
 use mortar_physics::contact::solve_contact;
 
@@ -124,6 +127,9 @@ pub struct HertzScene {
     pub coupling: CouplingOptions,
     /// The contact solve.
     pub contact: ContactOptions,
+    /// `None`: Quad4 cells, Line2 faces; a [`SecondOrder`] family: both bodies raised to
+    /// second order, the disc's arc nodes on its circle (Line3 faces).
+    pub order: Option<SecondOrder>,
 }
 
 impl Default for HertzScene {
@@ -153,6 +159,7 @@ impl HertzScene {
             contact_zone: 0.3,
             coupling: CouplingOptions::default().dual(),
             contact: ContactOptions::default(),
+            order: None,
         }
     }
 
@@ -207,6 +214,13 @@ impl HertzScene {
         let mut ys = graded_points(0.0, -h, nb, self.block_grading);
         ys.reverse();
         let block = grid_rectangle_mesh(&xs, &ys, CellShape::Tensor, 1_000_001)?;
+        let (disc, block) = match self.order {
+            None => (disc, block),
+            Some(family) => (
+                second_order_mesh(&disc, family, onto_sphere([0.0, r, 0.0], r))?,
+                second_order_mesh(&block, family, |x, _| *x)?,
+            ),
+        };
 
         let tol = 1e-12 * r;
         let near = move |a: f64, b: f64| (a - b).abs() <= tol;

@@ -95,7 +95,9 @@ impl NormalGap {
             if w.is_nan() || *w <= 0.0 {
                 return Err(invalid(format!(
                     "slave node {} has no contact area (row sum of D {w:e}): the master \
-                     surface does not cover it",
+                     surface does not cover it, or (with standard multipliers on Tri6 or Quad8 \
+                     slave faces, whose corner functions integrate to zero or less) the \
+                     multipliers give it none: use dual multipliers",
                     c.slave_nodes[j]
                 )));
             }
