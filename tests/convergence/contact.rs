@@ -345,8 +345,10 @@ fn hertz_cylinder_on_block_2d_second_order() {
     use mortar::generate::SecondOrder;
     use mortar::scenes::hertz::HertzScene;
 
-    let mut scene = HertzScene::default();
-    scene.order = Some(SecondOrder::Complete);
+    let scene = HertzScene {
+        order: Some(SecondOrder::Complete),
+        ..HertzScene::default()
+    };
     let run = scene.run().unwrap();
     let a = run.a_exact;
     eprintln!(
