@@ -103,6 +103,12 @@ fn counterpart(
 /// A `place` for [`second_order_mesh`] that moves a new node onto the sphere (circle, in the
 /// plane `z = 0`) of `centre` and `radius` when all its parents lie on it (to `1e-9` of the
 /// radius), radially from the centre; other nodes stay straight.
+///
+/// It assumes that nodes on the sphere are joined through the cells only along the surface
+/// (as in the O-grids of [`ball_mesh`](super::ball_mesh) and
+/// [`box_with_hole_mesh`](super::box_with_hole_mesh), whose cells touch the sphere with one
+/// face): an edge through a cell's inside between two nodes of the sphere would be bent onto
+/// it too.
 pub fn onto_sphere(
     centre: [f64; 3],
     radius: f64,
