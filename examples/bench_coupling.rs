@@ -38,6 +38,9 @@
 //!
 //! `--tradeoff` writes `docs/tradeoff.md` and `docs/tradeoff.png` instead (see `tradeoff.rs`).
 
+#[allow(dead_code)]
+#[path = "curved_segmentation.rs"]
+mod curved_segmentation;
 #[path = "bench_coupling/plot.rs"]
 mod plot;
 #[path = "bench_coupling/reference.rs"]

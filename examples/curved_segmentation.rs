@@ -103,6 +103,24 @@ pub fn run(args: &[String]) -> Res<()> {
     };
     let n: usize = value("--n").map_or(Ok(8), |v| v.parse())?;
     let repeats: usize = value("--repeats").map_or(Ok(3), |v| v.parse())?;
+    let rows = study(n, repeats)?;
+    if let Some(path) = value("--json") {
+        let report = json!({
+            "case": CASE,
+            "n": n, "repeats": repeats, "threads": 1, "rows": rows,
+        });
+        std::fs::write(path, serde_json::to_string_pretty(&report)?)?;
+    }
+    Ok(())
+}
+
+/// What [`study`] measures, in a sentence.
+pub const CASE: &str = "sphere r = 0.3: box of Tet4/Tet10 (slave) around a ball of Hex8/Hex27 (master), O-grids, n per unit length";
+
+/// Every option of the dials at size `n`, each timed as the median of `repeats` couplings:
+/// one JSON object per option (order, level, multipliers, faces, pairs, seconds, area error,
+/// M against level 16, tied-field error), printed as a table as it goes.
+pub fn study(n: usize, repeats: usize) -> Res<Vec<serde_json::Value>> {
     let exact_area = 4.0 * std::f64::consts::PI * 0.09;
     let couple = |i: &Interface, strategy: SegmentBased, dual: bool| -> Res<(Coupling, f64)> {
         let mut options = CouplingOptions::default().threads(1);
@@ -161,12 +179,5 @@ pub fn run(args: &[String]) -> Res<()> {
             }
         }
     }
-    if let Some(path) = value("--json") {
-        let report = json!({
-            "case": "sphere r = 0.3: box of Tet4/Tet10 (slave) around a ball of Hex8/Hex27 (master), O-grids, n per unit length",
-            "n": n, "repeats": repeats, "threads": 1, "rows": rows,
-        });
-        std::fs::write(path, serde_json::to_string_pretty(&report)?)?;
-    }
-    Ok(())
+    Ok(rows)
 }
