@@ -571,3 +571,42 @@ fn first_order_faces_couple_with_second_order_ones() {
         }
     }
 }
+
+/// A Line3 whose middle node lies outside its ends folds back on itself: refused when the
+/// interface is built, naming the face (it was taken, and gave no overlap or wrong
+/// integrals), on either side; a bent Line3 (middle node off the chord) is accepted.
+#[test]
+fn folded_line3_faces_are_refused() {
+    use mortar::core::element::ElementRef;
+    use mortar::MortarError;
+    let line = |mid: [f64; 3], first_tag: u64| {
+        let mut m = mortar::SurfaceMesh::new();
+        m.add_node(first_tag, [0.0, 0.0, 0.0]).unwrap();
+        m.add_node(first_tag + 1, [1.0, 0.0, 0.0]).unwrap();
+        m.add_node(first_tag + 2, mid).unwrap();
+        let el: ElementRef = &mortar::elements::LINE3;
+        m.add_face(el, &[first_tag, first_tag + 1, first_tag + 2])
+            .unwrap();
+        m
+    };
+    let master = |mid| {
+        let mut m = mortar::SurfaceMesh::new();
+        m.add_node(1, [1.0, 0.0, 0.0]).unwrap();
+        m.add_node(2, [0.0, 0.0, 0.0]).unwrap();
+        m.add_node(3, mid).unwrap();
+        m.add_face(&mortar::elements::LINE3, &[1, 2, 3]).unwrap();
+        m
+    };
+    for (slave_mid, master_mid) in [
+        ([1.3, 0.0, 0.0], [0.5, 0.0, 0.0]),
+        ([0.5, 0.0, 0.0], [-0.2, 0.0, 0.0]),
+    ] {
+        match Interface::new(line(slave_mid, 10), master(master_mid)) {
+            Err(MortarError::InvertedFace { reason, .. }) => {
+                assert!(reason.contains("turns back"), "{reason}")
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+    assert!(Interface::new(line([0.5, 0.1, 0.0], 10), master([0.5, 0.0, 0.0])).is_ok());
+}

@@ -212,6 +212,27 @@ pub(super) fn check_faces(
             )));
         }
         if el.domain() == ReferenceDomain::Line {
+            // A curved line (Line3 and higher) must run one way from end to end: its tangent
+            // at every node along its tangent at the centre (a middle node outside its ends
+            // folds it back).
+            if el.node_count() > corners {
+                let tangent =
+                    |xi: &[f64; 2]| el.tangents(&nodes, &Vector2::new(xi[0], xi[1]))[0] / diameter;
+                let centre = tangent(&[0.0, 0.0]);
+                for (i, xi) in el.node_reference_coords().iter().enumerate() {
+                    if tangent(xi).dot(&centre) <= tol.degenerate {
+                        return Err(MortarError::InvertedFace {
+                            face: loc,
+                            kind: Inversion::SelfIntersecting,
+                            reason: format!(
+                                "its tangent vanishes or turns back at node {} (a middle node \
+                                 outside its ends, or far off their middle)",
+                                mesh.node_tags()[view.nodes[i] as usize]
+                            ),
+                        });
+                    }
+                }
+            }
             continue;
         }
         // Scaled normals are products of two lengths and their dot products of four: they are
