@@ -166,3 +166,21 @@ fn the_search_radius_reaches_across_the_gap_and_what_it_misses_is_reported() {
         other => panic!("expected IncompleteCoverage, got {other:?}"),
     }
 }
+
+/// A face that lists a node twice is degenerate, and orienting says so first (it was reported
+/// as a fin: three "faces" on one edge), on either side, naming the face and the node.
+#[test]
+fn a_face_with_a_repeated_node_is_degenerate_not_a_fin() {
+    let mut bad = square_triangles(2, Diagonal::Main, 0.0, false, 1).unwrap();
+    bad.add_face_with_tag(99, &TRI3, &[1, 2, 2]).unwrap();
+    match orient_consistently(&mut bad.clone(), None) {
+        Err(MortarError::DegenerateFace { face, reason }) => {
+            assert_eq!(face.tag, 99);
+            assert!(reason.contains("node 2 appears twice"), "{reason}");
+        }
+        other => panic!("{other:?}"),
+    }
+    let mut good = square_triangles(3, Diagonal::Anti, 0.0, true, 1).unwrap();
+    let e = face_each_other(&mut good, &mut bad, 1.0, false, false).unwrap_err();
+    assert!(matches!(e, MortarError::DegenerateFace { .. }), "{e:?}");
+}

@@ -293,13 +293,32 @@ pub(crate) fn consistent_flips(
 /// first face) and whether it was reversed.
 ///
 /// # Errors
-/// [`MortarError::Topology`] for an edge shared by more than two faces (three lines at a
-/// node in 2D), or a piece that cannot be oriented (a Moebius strip); the error of
-/// [`SurfaceMesh::reverse_face`] for an element that cannot be reversed.
+/// [`MortarError::DegenerateFace`] for a face that lists a node twice (checked first: such a
+/// face would otherwise look like a fin); [`MortarError::Topology`] for an edge shared by
+/// more than two faces (three lines at a node in 2D), or a piece that cannot be oriented (a
+/// Moebius strip); the error of [`SurfaceMesh::reverse_face`] for an element that cannot be
+/// reversed.
 pub fn orient_consistently(
     mesh: &mut SurfaceMesh,
     side: Option<Side>,
 ) -> Result<(Vec<u32>, Vec<bool>)> {
+    for f in 0..mesh.face_count() {
+        let face = mesh.face(f);
+        if let Some((_, a)) = face
+            .nodes
+            .iter()
+            .enumerate()
+            .find(|(i, a)| face.nodes[i + 1..].contains(a))
+        {
+            return Err(MortarError::DegenerateFace {
+                face: FaceLocation {
+                    side,
+                    tag: face.tag,
+                },
+                reason: format!("node {} appears twice", mesh.node_tags()[*a as usize]),
+            });
+        }
+    }
     let neighbours = EdgeNeighbours::build(mesh, side)?;
     let (component, flip) = consistent_flips(mesh, side, &neighbours)?;
     for (f, &turn) in flip.iter().enumerate() {
