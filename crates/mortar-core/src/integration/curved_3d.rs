@@ -18,7 +18,7 @@ use arrayvec::ArrayVec;
 use nalgebra::{Matrix2, Vector2, Vector3};
 
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
-use crate::element::ReferenceDomain;
+use crate::element::{ElementRef, ReferenceDomain};
 use crate::error::{Inversion, MortarError, Result};
 use crate::geometry::{clip_convex, AuxiliaryPlane, Polygon};
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
@@ -152,11 +152,12 @@ pub(super) fn needs_subdivision(
     slave: &FaceGeometry,
     candidates: &[u32],
 ) -> bool {
-    let second_order = |f: &FaceGeometry| f.node_count() > f.element.corner_count();
-    (second_order(slave) && bend(slave) > 1e-12)
+    // The element type first: first-order faces (the common case) are never gathered.
+    let second_order = |el: ElementRef| el.node_count() > el.corner_count();
+    (second_order(slave.element) && bend(slave) > 1e-12)
         || candidates.iter().any(|&m| {
-            let f = ctx.master_face(m);
-            second_order(&f) && bend(&f) > 1e-12
+            second_order(ctx.masters.element(ctx.interface, m as usize))
+                && bend(&ctx.master_face(m)) > 1e-12
         })
 }
 
