@@ -131,6 +131,7 @@ fn second_order_interfaces_tie_constants_and_linear_fields() {
         for options in [
             CouplingOptions::default(),
             CouplingOptions::default().dual(),
+            CouplingOptions::default().linear(),
         ] {
             let read = |(group, kind): (&str, &str)| {
                 let mut s = read_gmsh_surface(mesh(case.file), Some(group), &registry).unwrap();
@@ -154,6 +155,31 @@ fn second_order_interfaces_tie_constants_and_linear_fields() {
             assert!(c.warnings.is_empty(), "{what}: {:?}", c.warnings);
             let worst = linear_fields_untied(&interface, &c);
             assert!(worst < 1e-12, "{what}: |D f_s - M f_m| = {worst:e}");
+            if options.multipliers.name() == "linear" {
+                // A row for each corner node, none for the others.
+                let slave = interface.slave();
+                let mut corner = vec![false; slave.node_count()];
+                for f in 0..slave.face_count() {
+                    let face = slave.face(f);
+                    for &n in &face.nodes[..face.element.corner_count()] {
+                        corner[n as usize] = true;
+                    }
+                }
+                for (r, tag) in c.slave_nodes.iter().enumerate() {
+                    let node = slave.node_index(*tag).unwrap() as usize;
+                    assert_eq!(
+                        c.d.outer_view(r).unwrap().nnz() > 0,
+                        corner[node],
+                        "{what}: row {r} (node {tag}, corner {})",
+                        corner[node]
+                    );
+                    assert_eq!(
+                        c.m.outer_view(r).unwrap().nnz() > 0,
+                        corner[node],
+                        "{what}: M row {r}"
+                    );
+                }
+            }
             if options.multipliers.diagonal_d() {
                 // Dual: D~ = D T^T (D itself where nothing is recombined) is diagonal to
                 // round-off, every diagonal entry positive (Popp, Gee and Wall 2012).
@@ -472,30 +498,37 @@ fn curved_second_order_sphere_converges_with_the_subdivision_level() {
 /// only constants across faces (each face's coefficients of a linear function differ), so the
 /// linear flux of this field is not in their space: in 3D they miss it by 3.8e-5 at this
 /// size (n = 4); in 2D (Line3) they happen to reproduce it; both are checked as measured.
+/// Linear multipliers on the second-order faces (corner nodes only, continuous linear
+/// functions) contain that flux: to 1e-10 as the standard ones, in both families.
 #[test]
 fn second_order_tie_reproduces_a_quadratic_field() {
     use mortar::generate::SecondOrder;
     use mortar::scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
     for dim in [2, 3] {
-        for (family, dual) in [
-            (SecondOrder::Complete, false),
-            (SecondOrder::Serendipity, false),
-            (SecondOrder::Complete, true),
+        for (family, space) in [
+            (SecondOrder::Complete, "standard"),
+            (SecondOrder::Serendipity, "standard"),
+            (SecondOrder::Complete, "dual"),
+            (SecondOrder::Complete, "linear"),
+            (SecondOrder::Serendipity, "linear"),
         ] {
+            let dual = space == "dual";
             let mut scene = TiedHeatScene::new(dim, Geometry::Straight, 4);
             scene.order = Some(family);
             scene.exact = Exact::Quadratic {
                 a: [0.7, -0.4, 0.2],
                 c: 0.5,
             };
-            if !dual {
-                scene.coupling = CouplingOptions::default();
+            match space {
+                "standard" => scene.coupling = CouplingOptions::default(),
+                "linear" => scene.coupling = CouplingOptions::default().linear(),
+                _ => {}
             }
             let run = scene.run().unwrap();
             let bound = if dual && dim == 3 { 1e-4 } else { 1e-10 };
             assert!(
                 run.max_nodal < bound,
-                "{dim}D {family:?} dual {dual}: max nodal error {:e}",
+                "{dim}D {family:?} {space}: max nodal error {:e}",
                 run.max_nodal
             );
         }
@@ -541,6 +574,7 @@ fn first_order_faces_couple_with_second_order_ones() {
         for options in [
             CouplingOptions::default(),
             CouplingOptions::default().dual(),
+            CouplingOptions::default().linear(),
         ] {
             let c = assemble_coupling(&interface, &options)
                 .unwrap_or_else(|e| panic!("case {k} {options:?}: {e}"));
@@ -592,4 +626,86 @@ fn folded_line3_faces_are_refused() {
         }
     }
     assert!(Interface::new(line([0.5, 0.1, 0.0], 10), master([0.5, 0.0, 0.0])).is_ok());
+}
+
+/// The linear multiplier basis (`LinearMultipliers`) on every shipped second-order face: in
+/// the face's own shape functions it is the first-order basis of the corners (closed form:
+/// `Phi_c(corner d) = delta_cd`, `sum_c Phi_c = 1`, linear along each edge, so its value at
+/// an edge's middle is the mean of its ends, and the bilinear value 1/4 at a Quad9's centre),
+/// with zero rows on the other nodes; first-order faces keep the standard basis.
+#[test]
+fn linear_multipliers_are_the_corner_functions() {
+    use mortar::core::element::{ElementRef, MAX_FACE_NODES};
+    use mortar::core::interface::FaceGeometry;
+    use mortar::core::multiplier::{LinearMultipliers, MultiplierSpace};
+    use mortar::core::{Side, Tolerances};
+    use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
+    use nalgebra::Vector2;
+    let elements: [ElementRef; 7] = [&LINE2, &TRI3, &QUAD4, &LINE3, &TRI6, &QUAD8, &QUAD9];
+    for el in elements {
+        let (k, c) = (el.node_count(), el.corner_count());
+        let mut nodes = [Vector3::zeros(); MAX_FACE_NODES];
+        for (x, xi) in nodes.iter_mut().zip(el.node_reference_coords()) {
+            *x = Vector3::new(xi[0], xi[1], 0.0);
+        }
+        let face = FaceGeometry {
+            index: 0,
+            tag: 1,
+            side: Side::Slave,
+            element: el,
+            nodes,
+            normals: [Vector3::z(); MAX_FACE_NODES],
+        };
+        let basis = LinearMultipliers
+            .basis(&face, &Tolerances::default())
+            .unwrap();
+        assert_eq!(basis.identity, k == c, "{}", el.name());
+        let phi = |xi: [f64; 2]| {
+            let mut n = [0.0; MAX_FACE_NODES];
+            let mut p = [0.0; MAX_FACE_NODES];
+            el.shape_values_into(&Vector2::new(xi[0], xi[1]), &mut n[..k]);
+            basis.eval_into(&n, &mut p);
+            p
+        };
+        let xi = el.node_reference_coords();
+        for (node, x) in xi.iter().enumerate() {
+            let p = phi(*x);
+            assert!(
+                (p[..c].iter().sum::<f64>() - 1.0).abs() < 1e-14,
+                "{}: partition of unity at node {node}",
+                el.name()
+            );
+            for (corner, v) in p[..c].iter().enumerate() {
+                // The first-order function of `corner` at `x`, from the corners' coordinates.
+                let expected = if node < c {
+                    f64::from(u8::from(node == corner))
+                } else {
+                    // An edge's middle: the mean of the ends it lies between; a centre: 1/4.
+                    let ends: Vec<usize> = (0..c)
+                        .filter(|&d| {
+                            (0..c).any(|e| {
+                                e != d
+                                    && (0..2)
+                                        .all(|i| ((xi[d][i] + xi[e][i]) / 2.0 - x[i]).abs() < 1e-14)
+                            })
+                        })
+                        .collect();
+                    if ends.contains(&corner) {
+                        1.0 / ends.len() as f64
+                    } else {
+                        0.0
+                    }
+                };
+                assert!(
+                    (v - expected).abs() < 1e-14,
+                    "{}: Phi_{corner} at node {node} = {v}, expected {expected}",
+                    el.name()
+                );
+            }
+            assert!(p[c..k].iter().all(|v| *v == 0.0), "{}", el.name());
+        }
+        for j in 0..k {
+            assert_eq!(basis.carries(j), j < c, "{} node {j}", el.name());
+        }
+    }
 }

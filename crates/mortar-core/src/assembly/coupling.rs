@@ -753,13 +753,21 @@ fn chunk(
             out.uncovered_area += missing * face.measure();
             note_uncovered(face.tag);
         }
-        for (j, &r) in rows.iter().enumerate() {
+        // Rows of nodes without a multiplier (linear multipliers on second-order faces)
+        // stay empty.
+        let mut carries = [true; MAX_FACE_NODES];
+        if let Some(b) = &basis {
+            for (j, c) in carries[..ks].iter_mut().enumerate() {
+                *c = b.carries(j);
+            }
+        }
+        for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
             for (k, &c) in rows.iter().enumerate() {
                 d.push(r, c, blocks.d[j][k]);
             }
         }
         for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
-            for (&r, &v) in rows.iter().zip(vals) {
+            for ((&r, &v), _) in rows.iter().zip(vals).zip(&carries).filter(|(_, c)| **c) {
                 m.push(r, c, v);
             }
         }

@@ -3,7 +3,7 @@ use std::sync::Arc;
 use crate::error::Result;
 use crate::geometry::ModelGeometry;
 use crate::integration::{ElementBased, IntegrationStrategy, SegmentBased};
-use crate::multiplier::{DualMultipliers, MultiplierSpace, StandardMultipliers};
+use crate::multiplier::{DualMultipliers, LinearMultipliers, MultiplierSpace, StandardMultipliers};
 use crate::projector::{NodalNormalField, Projector};
 
 /// How to compute the coupling: multiplier space, integration strategy, projector, threads,
@@ -65,6 +65,13 @@ impl CouplingOptions {
     /// Standard multipliers.
     pub fn standard(mut self) -> Self {
         self.multipliers = Arc::new(StandardMultipliers);
+        self
+    }
+
+    /// Linear multipliers on second-order faces (standard on first-order ones): see
+    /// [`LinearMultipliers`].
+    pub fn linear(mut self) -> Self {
+        self.multipliers = Arc::new(LinearMultipliers);
         self
     }
 

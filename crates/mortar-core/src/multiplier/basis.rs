@@ -29,6 +29,14 @@ impl LmBasis {
         }
     }
 
+    /// Whether node `j` of the face carries a multiplier: `false` when its row of `a` is
+    /// zero (the edge and centre nodes of [`LinearMultipliers`](super::LinearMultipliers)),
+    /// whose rows of D and M the coupling leaves empty.
+    #[inline]
+    pub fn carries(&self, j: usize) -> bool {
+        self.identity || self.a[j][..self.nodes].iter().any(|v| *v != 0.0)
+    }
+
     /// Multiplier values from shape function values: `phi[j] = sum_k a[j][k] n[k]`.
     #[inline]
     pub fn eval_into(&self, n: &[f64], phi: &mut [f64]) {
