@@ -393,7 +393,8 @@ fn hertz_cylinder_on_block_2d_second_order() {
 /// multipliers in 2D, dual in 3D. With standard multipliers a Tri6 slave's corner functions
 /// integrate to zero, so its corner nodes have no contact area (row sum of D): the nodal
 /// contact formulation refuses it with a typed error naming the node, checked here; the dual
-/// basis (recombined, Popp, Gee and Wall 2012) gives every node a positive area.
+/// basis (recombined, Popp, Gee and Wall 2012) gives every node a positive area. Linear
+/// multipliers (none on the edge nodes) are refused by the nodal formulation, naming a node.
 #[test]
 fn contact_patch_test_second_order() {
     use mortar::generate::SecondOrder;
@@ -412,6 +413,24 @@ fn contact_patch_test_second_order() {
         .unwrap_or_default();
     assert!(
         message.contains("has no contact area") && message.contains("use dual multipliers"),
+        "{message}"
+    );
+    // Linear multipliers leave the edge nodes without a pressure: refused, naming one.
+    let linear = std::panic::catch_unwind(|| {
+        super::blocks::stacked_blocks_of_order(
+            2,
+            0.0,
+            SIGMA,
+            &mortar::CouplingOptions::default().linear(),
+            Some(SecondOrder::Complete),
+        )
+    });
+    let message = linear
+        .err()
+        .and_then(|e| e.downcast_ref::<String>().cloned())
+        .unwrap_or_default();
+    assert!(
+        message.contains("carries no multiplier") && message.contains("linear multipliers"),
         "{message}"
     );
     for dim in [2, 3] {

@@ -37,8 +37,9 @@ impl NormalGap {
     ///
     /// # Errors
     /// [`PhysicsError::InvalidInput`] for a tie of more than one component, a dimension not
-    /// 2 or 3, or a slave row with a non-positive weight (a slave node the master does not
-    /// cover at all).
+    /// 2 or 3, a slave row with a non-positive weight (a slave node the master does not
+    /// cover at all), or a slave node without multiplier (linear multipliers on
+    /// second-order faces).
     pub fn new(
         tie: &Tie,
         dim: usize,
@@ -71,6 +72,13 @@ impl NormalGap {
         let offset = slave_nodes * dim;
         for (j, w) in weights.iter_mut().enumerate() {
             let n = c.slave_normals[j];
+            let empty = c.d.outer_view(j).is_none_or(|d| d.nnz() == 0);
+            if empty && c.formulation.starts_with("linear ") {
+                return Err(invalid(format!(
+                    "slave node {} carries no multiplier (linear multipliers on second-order                      faces leave the edge and centre nodes without one): the contact solver                      needs a pressure at every slave node; use dual or standard multipliers",
+                    c.slave_nodes[j]
+                )));
+            }
             if let Some(d) = c.d.outer_view(j) {
                 let djj = d.get(j).copied().unwrap_or(0.0);
                 for (k, v) in d.iter() {

@@ -23,7 +23,8 @@ pub struct TiedFields {
     /// The multiplier of each row of the tie's D (slave interface node and component, in
     /// coupling row order): for heat conduction the heat flux leaving the slave body, for
     /// elasticity the traction on it. `NaN` for a Dirichlet slave unknown, whose multiplier
-    /// was removed.
+    /// was removed, and for a node without multiplier (its row of D empty: the edge nodes of
+    /// linear multipliers on second-order faces).
     pub multipliers: Vec<f64>,
     /// Seconds spent in this solve (right-hand side, triangular solves, recovery).
     pub seconds: f64,
@@ -237,9 +238,10 @@ impl TiedSystem {
             ),
             (FormulationChoice::Auto, Ok(())) => (
                 Formulation::DualCondensed,
-                "D is diagonal (dual multipliers on a fully covered interface), so the slave \
-                 unknowns condense out (T_s = D^-1 M T_m) into a symmetric positive definite \
-                 system"
+                "D is diagonal on the unknowns that carry the rows (dual multipliers on a fully \
+                 covered interface, or linear multipliers on straight Line3 faces), so the \
+                 slave unknowns condense out (T_s = D^-1 M T_m) into a symmetric positive \
+                 definite system"
                     .to_string(),
             ),
             (FormulationChoice::Auto, Err(e)) => (
@@ -669,10 +671,16 @@ fn modified_rows(
 ) -> Result<Crossing, PhysicsError> {
     let ns = tie.slave_dofs().len();
     let comps = tie.components();
+    // Rows that carry a multiplier: all but the empty ones of nodes without (linear
+    // multipliers on second-order faces), which constrain nothing.
+    let carries: Vec<bool> = (0..ns)
+        .map(|r| tie.d().outer_view(r).is_some_and(|v| v.nnz() > 0))
+        .collect();
     let fixed: Vec<bool> = tie
         .slave_dofs()
         .iter()
-        .map(|&s| dirichlet_pos[s as usize] != NONE)
+        .zip(&carries)
+        .map(|(&s, &c)| c && dirichlet_pos[s as usize] != NONE)
         .collect();
     let count = fixed.iter().filter(|f| **f).count();
     if count > 0 && policy == SlaveDirichlet::Refuse {
@@ -685,7 +693,7 @@ fn modified_rows(
     let mut new_of = vec![NONE; ns];
     let (mut origin, mut own) = (Vec::new(), Vec::new());
     for r in 0..ns {
-        if !fixed[r] {
+        if carries[r] && !fixed[r] {
             new_of[r] = origin.len() as u32;
             origin.push(r as u32);
             own.push(tie.slave_dofs()[r]);
@@ -757,7 +765,11 @@ fn modified_rows(
                     seen[r as usize] = true;
                     visited.push(r);
                 }
-                neighbours[c].extend(next.iter().copied().filter(|&r| !fixed[r as usize]));
+                neighbours[c].extend(
+                    next.iter()
+                        .copied()
+                        .filter(|&r| carries[r as usize] && !fixed[r as usize]),
+                );
                 front = next;
             }
             for r in visited {
@@ -767,7 +779,7 @@ fn modified_rows(
     }
     let (mut redistributed, mut dropped) = (0usize, 0usize);
     let mut t = Triplets::default();
-    for r in 0..ns {
+    for r in (0..ns).filter(|&r| carries[r]) {
         let targets: Vec<(u32, f64)> = if fixed[r] {
             let nb = &neighbours[r];
             if nb.is_empty() {
@@ -894,9 +906,9 @@ fn why_not_diagonal(e: &TyingError, tol: f64) -> String {
             diagonal,
         } => format!(
             "D is not diagonal: D[{row},{col}] = {value:.3e} against D[{row},{row}] = \
-             {diagonal:.3e} (relative {:.1e}, tolerance {tol:.0e}): standard multipliers, a \
-             partly covered interface, or dual multipliers on warped faces; the condensation \
-             needs a diagonal D",
+             {diagonal:.3e} (relative {:.1e}, tolerance {tol:.0e}): standard multipliers, linear \
+             multipliers on second-order faces, a partly covered interface, or dual \
+             multipliers on warped or recombined faces; the condensation needs a diagonal D",
             (value / diagonal).abs()
         ),
         TyingError::Uncovered { tag, value, .. } => format!(
