@@ -13,7 +13,8 @@
 //! per unit length; and a curved variant, a disc (ball) of radius 0.3 inside the rest of the
 //! square (cube), both O-grids with the same 2:3 ratio. Exact solution
 //! u = sin(pi x) sin(pi y) (sin(pi z)), with the matching source and Dirichlet data on the
-//! outer boundary. Dual multipliers, segment-based integration; the toolkit condenses the
+//! outer boundary. Dual multipliers (or `--multipliers standard|linear`), segment-based
+//! integration; the toolkit condenses the
 //! slave unknowns (SPD, Cholesky) when D is diagonal and says so. On the curved 3D interface
 //! the faces are warped quads, on which the core's D is diagonal only up to O(h^2), so the
 //! toolkit keeps the saddle point there, and says why.
@@ -72,6 +73,10 @@ pub struct Args {
     /// With --order 2: the serendipity cells (Quad8, Hex20) instead of Quad9, Hex27.
     #[arg(long)]
     serendipity: bool,
+    /// The multipliers of the refinement studies: dual, standard, or linear (on the corner
+    /// nodes of second-order faces).
+    #[arg(long, default_value = "dual")]
+    multipliers: String,
 }
 
 fn main() -> Res<()> {
@@ -108,9 +113,16 @@ pub fn run(args: Args) -> Res<()> {
             .into())
         }
     };
+    let coupling = match args.multipliers.as_str() {
+        "dual" => CouplingOptions::default().dual(),
+        "standard" => CouplingOptions::default(),
+        "linear" => CouplingOptions::default().linear(),
+        m => return Err(format!("--multipliers {m}: dual, standard or linear").into()),
+    };
     let scene = |geometry, n| {
         let mut s = TiedHeatScene::new(dim, geometry, n);
         s.order = order;
+        s.coupling = coupling.clone();
         s
     };
 
@@ -144,7 +156,7 @@ pub fn run(args: Args) -> Res<()> {
     );
 
     // 2. The refinement studies.
-    let straight = study(dim, Geometry::Straight, &levels, order)?;
+    let straight = study(&levels, &|n| scene(Geometry::Straight, n))?;
     let finest = straight.last().expect("two levels or more");
 
     // 3. The finest straight level solved by the other paths.
@@ -205,7 +217,7 @@ pub fn run(args: Args) -> Res<()> {
     let curved = if args.skip_curved {
         Vec::new()
     } else {
-        study(dim, Geometry::Curved, &levels, order)?
+        study(&levels, &|n| scene(Geometry::Curved, n))?
     };
 
     // 4. The report.
@@ -223,7 +235,7 @@ pub fn run(args: Args) -> Res<()> {
         "flux_norm": "sqrt(sum_j d_j (lambda_j - lambda(x_j))^2), d_j the row sums of D, lambda = -k grad u . n_s",
         "formulation": finest.solution.formulation.formulation.describe(),
         "formulation_reason": finest.solution.formulation.reason,
-        "multipliers": "dual, segment-based integration",
+        "multipliers": format!("{}, segment-based integration", coupling.multipliers.name()),
         "redistributed_dirichlet_slave_nodes": finest.solution.formulation.redistributed,
         "patch_test_error": p_cond.max_nodal,
         "patch_test": {
@@ -312,7 +324,10 @@ pub fn run(args: Args) -> Res<()> {
         }
         plot::draw(
             &png,
-            &format!("Tied heat conduction, {dim}D: error against h (dual mortar, 2:3 meshes)"),
+            &format!(
+                "Tied heat conduction, {dim}D: error against h ({} mortar, 2:3 meshes)",
+                coupling.multipliers.name()
+            ),
             &series,
         )?;
         println!("wrote {}", png.display());
@@ -320,23 +335,23 @@ pub fn run(args: Args) -> Res<()> {
     Ok(())
 }
 
-/// Runs the levels of a scene and prints a table.
-fn study(
-    dim: usize,
-    geometry: Geometry,
-    levels: &[usize],
-    order: Option<SecondOrder>,
-) -> Res<Vec<TiedHeatRun>> {
-    println!("\n{geometry:?} interface, {dim}D, {order:?}");
+/// Runs the levels of a scene (`scene(n)`) and prints a table.
+fn study(levels: &[usize], scene: &dyn Fn(usize) -> TiedHeatScene) -> Res<Vec<TiedHeatRun>> {
+    let first = scene(levels[0]);
+    println!(
+        "\n{:?} interface, {}D, {:?}, {} multipliers",
+        first.geometry,
+        first.dim,
+        first.order,
+        first.coupling.multipliers.name()
+    );
     println!(
         "{:>5} {:>9} {:>9} {:>11} {:>11} {:>11} {:>9}",
         "n", "h", "dofs", "L2", "H1", "flux", "seconds"
     );
     let mut runs: Vec<TiedHeatRun> = Vec::new();
     for &n in levels {
-        let mut scene = TiedHeatScene::new(dim, geometry, n);
-        scene.order = order;
-        let r = scene.run()?;
+        let r = scene(n).run()?;
         let rates = runs
             .last()
             .map(|p| {

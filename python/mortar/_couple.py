@@ -320,7 +320,9 @@ def couple(
               group name (``mesh.field_data``) or a physical tag;
             - a :class:`Surface` from :func:`read_gmsh`.
             Points no face uses are ignored.
-        multipliers: ``"standard"`` (Phi = N) or ``"dual"`` (biorthogonal: D diagonal).
+        multipliers: ``"standard"`` (Phi = N), ``"dual"`` (biorthogonal: D diagonal) or
+            ``"linear"`` (second-order faces: first-order functions on the corner nodes
+            only, the rows of the other nodes empty; standard on first-order faces).
         integration: ``"segment"`` (clipped overlaps: exact on affine faces) or
             ``"element"`` (slave quadrature points projected: cheaper, inexact where master
             edges cross a slave face).

@@ -191,9 +191,10 @@ fn options(
     let o = match multipliers {
         "standard" => o.standard(),
         "dual" => o.dual(),
+        "linear" => o.linear(),
         other => {
             return Err(Failure::Input(format!(
-                "multipliers=\"{other}\": give \"standard\" or \"dual\""
+                "multipliers=\"{other}\": give \"standard\", \"dual\" or \"linear\""
             )))
         }
     };

@@ -21,7 +21,7 @@ MESHES = pathlib.Path(__file__).resolve().parents[2] / "tests" / "meshes"
         ("so_3d_hex27.msh", "top_bottom", "bottom_top", ("quad9", "triangle6")),
     ],
 )
-@pytest.mark.parametrize("multipliers", ["standard", "dual"])
+@pytest.mark.parametrize("multipliers", ["standard", "dual", "linear"])
 def test_second_order_interfaces_tie_linear_fields(file, slave, master, types, multipliers):
     s = mortar.read_gmsh(MESHES / file, slave)
     m = mortar.read_gmsh(MESHES / file, master)
@@ -33,6 +33,13 @@ def test_second_order_interfaces_tie_linear_fields(file, slave, master, types, m
     pairs += [(xs[:, d], xm[:, d]) for d in range(xs.shape[1])]
     for fs, fm in pairs:
         assert np.abs(c.D @ fs - c.M @ fm).max() < 1e-12
+    if multipliers == "linear":
+        # Rows for the corner nodes only (the first columns of the cells).
+        corners = {"line3": 2, "triangle6": 3, "quad8": 4, "quad9": 4}[s.cell_type]
+        expected = np.isin(c.slave_nodes, np.unique(s.cells[:, :corners]))
+        assert 0 < expected.sum() < len(expected)
+        assert np.array_equal(np.diff(c.D.indptr) > 0, expected)
+        assert np.array_equal(np.diff(c.M.indptr) > 0, expected)
 
 
 def test_second_order_cell_types_by_both_names():

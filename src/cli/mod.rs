@@ -170,6 +170,9 @@ enum Lm {
     Standard,
     /// Dual (biorthogonal) multipliers: D is diagonal.
     Dual,
+    /// Linear multipliers on second-order faces (corner nodes only; rows of the other
+    /// nodes empty).
+    Linear,
 }
 
 #[derive(Debug, Clone, Copy, ValueEnum)]
@@ -186,6 +189,7 @@ impl CoupleArgs {
             multipliers: match self.lm {
                 Lm::Standard => Multipliers::Standard,
                 Lm::Dual => Multipliers::Dual,
+                Lm::Linear => Multipliers::Linear,
             },
             integration: match self.integration {
                 IntegrationArg::Segment => Integration::Segment,

@@ -16,6 +16,9 @@ pub enum Multipliers {
     Standard,
     /// Dual (biorthogonal) multipliers: D is diagonal.
     Dual,
+    /// Linear multipliers on second-order faces (on the corner nodes only; standard on
+    /// first-order faces): see [`mortar_core::multiplier::LinearMultipliers`].
+    Linear,
 }
 
 /// The integration strategy.
@@ -65,6 +68,7 @@ impl CouplingSettings {
         o = match self.multipliers {
             Multipliers::Standard => o.standard(),
             Multipliers::Dual => o.dual(),
+            Multipliers::Linear => o.linear(),
         };
         o = match self.integration {
             Integration::Segment => o.segment_based(self.degree)?,

@@ -370,3 +370,38 @@ fn ctrl_c_stops_a_long_run_cleanly() {
     let times = report["history"]["time"].as_array().unwrap();
     assert_eq!(times.len() as u64, valid);
 }
+
+/// `mortar couple --lm linear` on a Gmsh-made second-order interface (Tri6 slave against
+/// Quad8 master, `tests/meshes/so_3d_hex20.msh`, the unit square `z = 0.5`): the summary
+/// names the space, D 1 = M 1 and sum(D) = 1 (checked by `couple_and_check`), and only the
+/// corner nodes of the slave faces have rows (closed form: linear multipliers live on the
+/// corners, issue 10 item 3).
+#[test]
+fn couples_second_order_faces_with_linear_multipliers() {
+    let dir = TempDir::new("clilinear");
+    let file =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes/so_3d_hex20.msh");
+    let s = format!("{}#top_bottom", file.display());
+    let m = format!("{}#bottom_top", file.display());
+    let out = dir.join("out");
+    let (d, m_rows, summary) =
+        couple_and_check(&out, &["--slave", &s, "--master", &m, "--lm", "linear"]);
+    assert_eq!(summary["multipliers"], "linear");
+    let registry = ElementRegistry::new();
+    let slave = read_surface(&file, Some("top_bottom"), &registry).unwrap();
+    let mut corner = std::collections::BTreeSet::new();
+    for f in 0..slave.face_count() {
+        let face = slave.face(f);
+        assert_eq!(face.element.name(), "Tri6");
+        for &n in &face.nodes[..3] {
+            corner.insert(slave.node_tags()[n as usize]);
+        }
+    }
+    let rows = tags(&summary["slave_nodes"]);
+    assert!(corner.len() < rows.len());
+    for (j, tag) in rows.iter().enumerate() {
+        let has = d[j].iter().any(|v| *v != 0.0);
+        assert_eq!(has, corner.contains(tag), "row {j} (node {tag})");
+        assert_eq!(m_rows[j].iter().any(|v| *v != 0.0), has, "M row {j}");
+    }
+}

@@ -24,7 +24,7 @@
 //! [interface]
 //! slave = { body = "right", group = "right_cut" }
 //! master = { body = "left", group = "left_cut" }
-//! multipliers = "dual"       # or "standard"
+//! multipliers = "dual"       # or "standard", or "linear" (second-order faces: corners only)
 //! integration = "segment"    # or "element"
 //!
 //! [solve]

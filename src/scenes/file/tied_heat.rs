@@ -14,7 +14,8 @@
 //!   `k dT/dn`, W/m^2) on physical groups of the body's boundary faces (lines in 2D, surfaces
 //!   in 3D). Boundary faces without a condition are insulated.
 //! - `[interface]`: `slave = { body, group }`, `master = { body, group }` (the slave side
-//!   carries the multipliers), `multipliers = "standard" | "dual"` (default `"dual"`),
+//!   carries the multipliers), `multipliers = "standard" | "dual" | "linear"` (default
+//!   `"dual"`; `"linear"`: on the corner nodes of second-order faces only),
 //!   `integration = "segment" | "element"` (default `"segment"`), `degree` (default
 //!   automatic).
 //! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
