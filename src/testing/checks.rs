@@ -83,7 +83,10 @@ pub fn nodal_areas(mesh: &SurfaceMesh) -> HashMap<u64, f64> {
 /// point, as the pairs of [`covered_pair`](super::covered_pair) are): constants and linear
 /// fields reproduced, row sums of D equal to the slave nodal areas, and D diagonal when the
 /// multiplier space says so (`dual`). Exact answers, so every figure is round-off for flat
-/// faces integrated exactly.
+/// faces integrated exactly. The row sums hold for the standard and dual spaces
+/// (`int Phi_j = int N_j`), not for linear multipliers on second-order faces, whose rows sum
+/// to the corners' first-order areas: there, read [`PatchReport::constants`] and
+/// [`PatchReport::linear`].
 pub fn patch_test(interface: &Interface, coupling: &Coupling, dual: bool) -> PatchReport {
     let (d, m) = (&coupling.d, &coupling.m);
     let row = |a: &mortar_core::linalg::SparseMatrix, j: usize, x: &[f64]| -> f64 {

@@ -11,6 +11,9 @@ Each file holds two bodies and the two faces of their common interface:
 - so_3d_hex20.msh: bottom [0,1]^2 x [0,0.5] in Hex20 (3 x 3 x 2), top [0,1]^2 x [0.5,1] in
   Tet10 (size 0.35); groups bottom, top, bottom_top, top_bottom, bottom_z0, top_z1.
 - so_3d_hex27.msh: the same with Tet10 below (size 0.35) and Hex27 above (4 x 4 x 2).
+- so3_2d_tri10.msh: Mesh.ElementOrder = 3, the 2D bodies both in cubic Tri10 (Gmsh type 21,
+  faces Line4, type 26: elements the library does not ship; examples/extend_element.rs
+  defines them), left size 0.45, right 0.3; the groups of so_2d_quad8.msh.
 ASCII, Gmsh 4.1 format.
 """
 
@@ -46,17 +49,19 @@ def at_x(curves, x):
     return out
 
 
-def file_2d(name, left_quads, right_quads, incomplete):
+def file_2d(name, left_quads, right_quads, incomplete, order=2, sizes=None):
     gmsh.model.add(name)
-    left, lc = body_2d(0.0, left_quads, 3 if incomplete == 0 else 4, 0.3)
-    right, rc = body_2d(1.0, right_quads, 4, 0.27 if incomplete == 0 else 0.3)
+    if sizes is None:
+        sizes = (0.3, 0.27 if incomplete == 0 else 0.3)
+    left, lc = body_2d(0.0, left_quads, 3 if incomplete == 0 else 4, sizes[0])
+    right, rc = body_2d(1.0, right_quads, 4, sizes[1])
     gmsh.model.addPhysicalGroup(2, [left], name="left")
     gmsh.model.addPhysicalGroup(2, [right], name="right")
     gmsh.model.addPhysicalGroup(1, at_x(lc, 1.0), name="left_x1")
     gmsh.model.addPhysicalGroup(1, at_x(rc, 1.0), name="right_x0")
     gmsh.model.addPhysicalGroup(1, at_x(lc, 0.0), name="left_x0")
     gmsh.model.addPhysicalGroup(1, at_x(rc, 2.0), name="right_x1")
-    mesh_and_write(name, 2, incomplete)
+    mesh_and_write(name, 2, incomplete, order)
 
 
 def body_3d(z0, hexes, n, nz, size):
@@ -104,8 +109,8 @@ def file_3d(name, bottom_hexes, top_hexes, n_hex, incomplete):
     mesh_and_write(name, 3, incomplete)
 
 
-def mesh_and_write(name, dim, incomplete):
-    gmsh.option.setNumber("Mesh.ElementOrder", 2)
+def mesh_and_write(name, dim, incomplete, order=2):
+    gmsh.option.setNumber("Mesh.ElementOrder", order)
     gmsh.option.setNumber("Mesh.SecondOrderIncomplete", incomplete)
     gmsh.model.mesh.generate(dim)
     gmsh.option.setNumber("Mesh.Binary", 0)
@@ -120,6 +125,7 @@ def main():
     file_2d("so_2d_quad9", True, False, 0)
     file_3d("so_3d_hex20", True, False, 3, 1)
     file_3d("so_3d_hex27", False, True, 4, 0)
+    file_2d("so3_2d_tri10", False, False, 0, order=3, sizes=(0.45, 0.3))
     gmsh.finalize()
 
 

@@ -1,4 +1,4 @@
-use mortar_core::element::ElementRef;
+use mortar_core::element::{ElementRef, SurfaceElement};
 
 use crate::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 
@@ -29,6 +29,16 @@ impl ElementRegistry {
             self.elements.retain(|e| e.gmsh_type() != Some(t));
         }
         self.elements.push(element);
+    }
+
+    /// Registers an element built at run time (a [`LagrangeFace`](crate::LagrangeFace), say)
+    /// and gives it back as the `&'static` reference meshes hold: the element is moved to the
+    /// heap and kept for the rest of the program (elements live as long as the meshes that
+    /// use them; register each one once, not in a loop).
+    pub fn add(&mut self, element: impl SurfaceElement + 'static) -> ElementRef {
+        let element: ElementRef = Box::leak(Box::new(element));
+        self.register(element);
+        element
     }
 
     /// The element of a Gmsh type number.

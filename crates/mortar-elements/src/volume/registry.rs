@@ -1,4 +1,4 @@
-use mortar_core::element::volume::VolumeElementRef;
+use mortar_core::element::volume::{VolumeElement, VolumeElementRef};
 
 use super::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
 
@@ -34,6 +34,15 @@ impl VolumeRegistry {
                 .retain(|e| e.gmsh_type() != Some(t) || e.dim() != element.dim());
         }
         self.elements.push(element);
+    }
+
+    /// Registers a cell built at run time (a [`LagrangeCell`](crate::LagrangeCell), say) and
+    /// gives it back as the `&'static` reference meshes hold: the cell is moved to the heap and
+    /// kept for the rest of the program (register each one once, not in a loop).
+    pub fn add(&mut self, element: impl VolumeElement + 'static) -> VolumeElementRef {
+        let element: VolumeElementRef = Box::leak(Box::new(element));
+        self.register(element);
+        element
     }
 
     /// The element of a Gmsh type number in a mesh of reference dimension `dim`.
