@@ -11,8 +11,8 @@
 //!   value per component) and `traction = [{ group, value = [tx, ty(, tz)] }, ...]` (Pa).
 //! - `[contact]`: `slave = { body, group }`, `master = { body, group }`, `law = "exact" |
 //!   "exponential"` (the latter with `base_pressure`, `stiffness`, `onset`), `multipliers`
-//!   (default `"dual"`; `"linear"` is refused: the nodal contact needs a pressure at every
-//!   slave node), `integration` (default `"segment"`), `search_radius` (optional).
+//!   (default `"dual"`; or `"standard"`, or `"linear"`: on the corners of second-order faces
+//!   only), `integration` (default `"segment"`), `search_radius` (optional).
 //! - `[solve]` (optional): `load_steps` (default 1), `max_newton_steps` (default 30),
 //!   `tolerance` (default 1e-10).
 //!

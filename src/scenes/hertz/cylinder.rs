@@ -288,10 +288,12 @@ impl HertzScene {
         let reaction_bottom = problem.reaction(&sol, 1, 1, |x| near(x.y, -h));
         let reaction_top = -problem.reaction(&sol, 0, 1, |x| near(x.y, r));
 
-        // The profile, by x.
+        // The profile, by x, over the nodes that carry a multiplier (with linear multipliers
+        // on Line3 faces the corners: the pressure is linear between them).
         let cpl = tie.coupling();
         let coords = slave.mesh.coords();
         let mut nodes: Vec<ProfileNode> = (0..sol.pressure.len())
+            .filter(|&j| gap.carries[j])
             .map(|j| ProfileNode {
                 x: coords[tie.slave_nodes()[j] as usize].x,
                 y: coords[tie.slave_nodes()[j] as usize].y,
@@ -426,13 +428,16 @@ pub struct HertzRun {
     /// The block's cells per direction.
     pub block_cells: usize,
     /// Unknowns of the saddle-point system before the Dirichlet values are eliminated: two
-    /// displacements per node of both bodies and a pressure per slave interface node.
+    /// displacements per node of both bodies and a pressure per slave interface node that
+    /// carries a multiplier.
     pub unknowns: usize,
-    /// Slave interface nodes.
+    /// Slave interface nodes that carry a multiplier (all of them, but for linear
+    /// multipliers on Line3 faces: the corners).
     pub slave_nodes: usize,
-    /// Slave interface nodes in contact (positive pressure).
+    /// Of those, the nodes in contact (positive pressure).
     pub active: usize,
-    /// The length of the slave face at the contact point (`x = 0`).
+    /// The distance between the first two of those nodes at the contact point (`x = 0`):
+    /// the resolution of the pressure profile.
     pub contact_cell: f64,
     /// The length of the slave face in which the exact contact zone ends.
     pub edge_cell: f64,

@@ -1,6 +1,7 @@
 //! The linearised weighted normal gap `g~ = g~_0 - N u` of a tie.
 
 use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::multiplier::{LinearMultipliers, MultiplierSpace};
 
 use crate::error::PhysicsError;
 use crate::tied::Tie;
@@ -28,7 +29,19 @@ pub struct NormalGap {
     /// at most 1e-10 of the diagonal): each row's slave part then holds its own node only,
     /// and the pressure can be condensed out of the Newton system.
     pub diagonal: bool,
+    /// Per row, whether its slave node carries a multiplier: `false` for the edge and centre
+    /// nodes of linear multipliers on second-order faces, whose rows of D are empty. Such a
+    /// row has no weight and no pressure of its own (the solver holds it at zero); its
+    /// reported pressure and gap are interpolated from its face's corners
+    /// ([`interpolate_rows_without_multiplier`](Self::interpolate_rows_without_multiplier)).
+    pub carries: Vec<bool>,
+    /// For each row without multiplier: the rows of its face's corners and the first-order
+    /// shape functions of those corners at its node.
+    interpolation: Vec<Interpolated>,
 }
+
+/// A row without multiplier and the `(row, weight)` pairs its value is interpolated from.
+type Interpolated = (u32, Vec<(u32, f64)>);
 
 impl NormalGap {
     /// The gap of `tie` (a tie of scalar node numbering: [`Tie::components`] must be 1; the
@@ -38,8 +51,8 @@ impl NormalGap {
     /// # Errors
     /// [`PhysicsError::InvalidInput`] for a tie of more than one component, a dimension not
     /// 2 or 3, a slave row with a non-positive weight (a slave node the master does not
-    /// cover at all), or a slave node without multiplier (linear multipliers on
-    /// second-order faces).
+    /// cover at all), or a slave node without multiplier whose face's corners do not all
+    /// carry one.
     pub fn new(
         tie: &Tie,
         dim: usize,
@@ -66,18 +79,18 @@ impl NormalGap {
         let roundoff =
             8.0 * f64::EPSILON * x_s.iter().chain(&x_m).fold(0.0f64, |a, x| a.max(x.amax()));
         let rows = c.d.rows();
+        let carries: Vec<bool> = (0..rows)
+            .map(|j| c.d.outer_view(j).is_some_and(|d| d.nnz() > 0))
+            .collect();
+        let interpolation = interpolation(tie, &carries)?;
         let mut weights = vec![0.0; rows];
         let mut diagonal = true;
         let mut t = Triplets::default();
         let offset = slave_nodes * dim;
         for (j, w) in weights.iter_mut().enumerate() {
             let n = c.slave_normals[j];
-            let empty = c.d.outer_view(j).is_none_or(|d| d.nnz() == 0);
-            if empty && c.formulation.starts_with("linear ") {
-                return Err(invalid(format!(
-                    "slave node {} carries no multiplier (linear multipliers on second-order                      faces leave the edge and centre nodes without one): the contact solver                      needs a pressure at every slave node; use dual or standard multipliers",
-                    c.slave_nodes[j]
-                )));
+            if !carries[j] {
+                continue;
             }
             if let Some(d) = c.d.outer_view(j) {
                 let djj = d.get(j).copied().unwrap_or(0.0);
@@ -105,7 +118,7 @@ impl NormalGap {
                     "slave node {} has no contact area (row sum of D {w:e}): the master \
                      surface does not cover it, or (with standard multipliers on Tri6 or Quad8 \
                      slave faces, whose corner functions integrate to zero or less) the \
-                     multipliers give it none: use dual multipliers",
+                     multipliers give it none: use dual or linear multipliers",
                     c.slave_nodes[j]
                 )));
             }
@@ -119,16 +132,33 @@ impl NormalGap {
             slave_node: tie.slave_nodes().to_vec(),
             dim,
             diagonal,
+            carries,
+            interpolation,
         })
+    }
+
+    /// Overwrites the values of the rows without multiplier (see [`carries`](Self::carries))
+    /// with the first-order interpolation of their face's corners' values: the pressure
+    /// field the linear multipliers stand for, or the gap there.
+    pub fn interpolate_rows_without_multiplier(&self, values: &mut [f64]) {
+        for (row, from) in &self.interpolation {
+            values[*row as usize] = from.iter().map(|&(r, w)| w * values[r as usize]).sum();
+        }
     }
 
     /// The nodal gaps `g_j = (g~_0 - N u)_j / w_j` for displacements `u` (both bodies),
     /// those within [`roundoff`](Self::roundoff) of zero set to zero.
+    ///
+    /// Rows without multiplier get the interpolation of their face's corners' gaps.
     pub fn nodal(&self, u: &[f64]) -> Vec<f64> {
-        self.matrix
+        let mut gaps: Vec<f64> = self
+            .matrix
             .outer_iterator()
             .enumerate()
             .map(|(j, row)| {
+                if !self.carries[j] {
+                    return 0.0;
+                }
                 let nu: f64 = row.iter().map(|(k, v)| v * u[k]).sum();
                 let g = (self.initial[j] - nu) / self.weights[j];
                 if g.abs() <= self.roundoff {
@@ -137,7 +167,9 @@ impl NormalGap {
                     g
                 }
             })
-            .collect()
+            .collect();
+        self.interpolate_rows_without_multiplier(&mut gaps);
+        gaps
     }
 
     /// The rounding error of each nodal gap [`nodal`](Self::nodal) computes at `u`: 8 ulps of
@@ -148,9 +180,68 @@ impl NormalGap {
             .outer_iterator()
             .enumerate()
             .map(|(j, row)| {
+                if !self.carries[j] {
+                    return 0.0;
+                }
                 let nu: f64 = row.iter().map(|(k, v)| (v * u[k]).abs()).sum();
                 8.0 * f64::EPSILON * (self.initial[j].abs() + nu) / self.weights[j].abs()
             })
             .collect()
     }
+}
+
+/// For each row of `tie` that carries no multiplier, the corner rows of a slave face of its
+/// node and the first-order functions of those corners at it (the coefficients of
+/// [`LinearMultipliers`]); an error naming the node when a corner of that face carries none
+/// either.
+fn interpolation(tie: &Tie, carries: &[bool]) -> Result<Vec<Interpolated>, PhysicsError> {
+    let interface = tie.interface();
+    let slave = interface.slave();
+    let mut done: Vec<bool> = carries.to_vec();
+    let mut out = Vec::new();
+    if done.iter().all(|d| *d) {
+        return Ok(out);
+    }
+    for f in 0..slave.face_count() {
+        let rows: Vec<u32> = slave
+            .face(f)
+            .nodes
+            .iter()
+            .map(|&n| interface.slave_row(n).expect("a face's node has a row"))
+            .collect();
+        if rows.iter().all(|&r| done[r as usize]) {
+            continue;
+        }
+        let face = interface.slave_face(f);
+        let basis = LinearMultipliers.basis(&face, interface.tolerances())?;
+        let corners = face.element.corner_count();
+        for (k, &r) in rows.iter().enumerate().skip(corners) {
+            if done[r as usize] {
+                continue;
+            }
+            let mut from = Vec::new();
+            for (c, &rc) in rows.iter().enumerate().take(corners) {
+                let w = basis.a[c][k];
+                if w == 0.0 {
+                    continue;
+                }
+                if !carries[rc as usize] {
+                    return Err(PhysicsError::InvalidInput {
+                        body: "contact".into(),
+                        what: format!(
+                            "slave node {} carries no multiplier, nor does the corner {} of \
+                             its face {}: the contact solver needs a pressure at the corners",
+                            tie.row_tag(r as usize),
+                            tie.row_tag(rc as usize),
+                            face.tag
+                        ),
+                    });
+                }
+                from.push((rc, w));
+            }
+            done[r as usize] = true;
+            out.push((r, from));
+        }
+    }
+    Ok(out)
 }

@@ -66,9 +66,12 @@ pub struct ContactStep {
 pub struct ContactSolution {
     /// Displacements of the slave body and of the master body (`node * dim + k`).
     pub displacements: [Vec<f64>; 2],
-    /// The contact pressure at each slave interface node (coupling row order), Pa.
+    /// The contact pressure at each slave interface node (coupling row order), Pa; at a node
+    /// without multiplier (linear multipliers on second-order faces), the first-order
+    /// interpolation of its face's corners' pressures.
     pub pressure: Vec<f64>,
-    /// The nodal normal gap at each slave interface node, m (positive open).
+    /// The nodal normal gap at each slave interface node, m (positive open; interpolated
+    /// likewise at a node without multiplier).
     pub gap: Vec<f64>,
     /// The total normal contact force, `sum_j w_j p_j` (N, or N/m in 2D).
     pub force: f64,
@@ -274,6 +277,11 @@ pub fn solve_contact<L: ConstraintLaw>(
             let mut c_g = vec![0.0; rows];
             let mut c_p = vec![0.0; rows];
             for j in 0..rows {
+                if !gap.carries[j] {
+                    // No multiplier at this node: its pressure is held at zero (C = p).
+                    (c[j], c_p[j]) = (p[j], 1.0);
+                    continue;
+                }
                 let t = evaluate(law, LawPoint::new(gaps[j], p[j], 0.0))?;
                 c[j] = t.value;
                 c_g[j] = t.d_gap;
@@ -340,7 +348,15 @@ pub fn solve_contact<L: ConstraintLaw>(
                         .collect()
                 })
                 .collect();
-            let a: Vec<f64> = (0..rows).map(|j| -c_g[j] / gap.weights[j]).collect();
+            let a: Vec<f64> = (0..rows)
+                .map(|j| {
+                    if gap.carries[j] {
+                        -c_g[j] / gap.weights[j]
+                    } else {
+                        0.0
+                    }
+                })
+                .collect();
             let weighted_gap: Vec<f64> = (0..rows).map(|j| gap.weights[j] * gaps[j]).collect();
             let lin = Linearised {
                 nfree,
@@ -429,10 +445,13 @@ pub fn solve_contact<L: ConstraintLaw>(
     }
     let gaps = gap.nodal(&u);
     let force = p.iter().zip(&gap.weights).map(|(p, w)| p * w).sum();
+    // The pressure the corners' multipliers stand for, at the nodes without one.
+    gap.interpolate_rows_without_multiplier(&mut p);
     let total_steps: usize = steps.iter().map(|s| s.newton_steps).sum();
     let formulation = if !gap.diagonal {
         "saddle point of displacements and pressures, sparse LU: D is not diagonal (standard \
-         multipliers, or a partly covered interface), so the pressures cannot be condensed"
+         or linear multipliers, or a partly covered interface), so the pressures cannot be \
+         condensed"
             .to_string()
     } else if condensed_steps == total_steps {
         "pressures condensed out (D is diagonal: dual multipliers), symmetric system of the \

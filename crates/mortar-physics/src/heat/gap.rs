@@ -145,7 +145,10 @@ impl<L: ConstraintLaw> GapHeat<L> {
             return Err(PhysicsError::InvalidInput {
                 body: slave.name.clone(),
                 what: format!(
-                    "slave interface node {} has no coupling (row sum of D {})",
+                    "slave interface node {} has no coupling (row sum of D {}): the master \
+                     surface does not cover it, or it carries no multiplier (linear \
+                     multipliers on second-order faces; gap heat needs a flux at every slave \
+                     node: use dual or standard multipliers)",
                     tie.coupling().slave_nodes[j],
                     weight[j]
                 ),
