@@ -188,8 +188,7 @@ mod tests {
             onto_cylinder([0.0, 0.0, 5.0], [0.0, 0.0, -2.0], outer),
             onto_cylinder([0.0, 0.0, 0.0], [0.0, 0.0, 1.0], inner),
         );
-        let raised =
-            second_order_mesh(&hex, SecondOrder::Complete, |x, p| i(&o(x, p), p)).unwrap();
+        let raised = second_order_mesh(&hex, SecondOrder::Complete, |x, p| i(&o(x, p), p)).unwrap();
         assert_eq!(raised.node_tags(), straight.node_tags());
         let radius = |x: &Vector3<f64>| x.xy().norm();
         let mut on = vec![false; raised.node_count()];
@@ -230,6 +229,9 @@ mod tests {
         let t = std::f64::consts::FRAC_PI_4 / 6.0;
         let flat = 1.0 - t.sin() / t;
         let rel = (area - exact).abs() / exact;
-        assert!(rel < flat * flat, "area {area} vs {exact}: {rel:e}, flat {flat:e}");
+        assert!(
+            rel < flat * flat,
+            "area {area} vs {exact}: {rel:e}, flat {flat:e}"
+        );
     }
 }
