@@ -14,6 +14,7 @@ mod convergence {
     mod contact;
     mod contact_laws;
     mod contrast;
+    mod curved_reference;
     mod determinism;
     mod law_ranges;
     mod mesh_ratio;

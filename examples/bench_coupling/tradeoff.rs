@@ -324,18 +324,21 @@ fn curved_case(repeats: usize) -> Res<Case> {
 /// The section of the second-order dials (element order, subdivision level, multipliers),
 /// from `examples/curved_segmentation.rs`.
 fn second_order_section(md: &mut String, rows: &[serde_json::Value]) {
+    let faces = |k: &str| rows.first().and_then(|r| r[k].as_u64()).unwrap_or(0);
     let _ = writeln!(
         md,
         "## Curved, second order: {}\n\n\
-         The dials of curved interfaces (`examples/curved_segmentation.rs`, n = 8: 216 slave \
-         faces, 96 master faces): element order, the subdivision level of curved faces \
+         The dials of curved interfaces (`examples/curved_segmentation.rs`, n = 8: {} slave \
+         faces, {} master faces): element order, the subdivision level of curved faces \
          (`SegmentBased::with_subdivision`, or the default tolerance) and the multipliers. \
          Errors: `area` = |sum(D) - 4 pi r^2| / 4 pi r^2; `M` = the largest entry of M minus \
          the same order's level-16 M, over M's largest entry; `tied` = the slave values \
          D^-1 M u_m of u = 1 + 2x - 3y + z at the master nodes against u at the slave nodes \
          (largest, over the largest |u|).\n\n\
          | order | level | multipliers | ms | area | M | tied |\n| ---: | ---: | --- | ---: | ---: | ---: | ---: |",
-        crate::curved_segmentation::CASE
+        crate::curved_segmentation::CASE,
+        faces("slave_faces"),
+        faces("master_faces"),
     );
     for r in rows {
         let f = |k: &str| r[k].as_f64().unwrap_or(f64::NAN);

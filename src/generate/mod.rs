@@ -11,7 +11,8 @@
 //! quarter disc refined towards a point of its rim for a cylinder in contact,
 //! [`ball_octant_mesh`], its 3D counterpart for a sphere, [`quarter_annulus_mesh`], and
 //! [`extrude_mesh`], a Quad4 mesh swept along z into Hex8; [`second_order_mesh`] raises any of
-//! them to second order, curving the cells onto a sphere with [`onto_sphere`])
+//! them to second order, curving the cells onto a sphere with [`onto_sphere`] or a cylinder
+//! with [`onto_cylinder`])
 //! number nodes from `first_node_tag` and cells from 1, all cells positively oriented; their
 //! boundary surfaces come from
 //! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
@@ -34,7 +35,7 @@ pub use extrude::extrude_mesh;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
 pub use line::line_mesh;
 pub use plane::{square_quads, square_triangles, Diagonal};
-pub use second_order::{onto_sphere, second_order_mesh, SecondOrder};
+pub use second_order::{onto_cylinder, onto_sphere, second_order_mesh, SecondOrder};
 pub use sphere::sphere_surface;
 pub use volume::{
     box_mesh, graded_points, grid_box_mesh, grid_rectangle_mesh, rectangle_mesh, CellShape,

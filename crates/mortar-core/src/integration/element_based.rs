@@ -85,8 +85,9 @@ impl IntegrationStrategy for ElementBased {
     }
 }
 
-/// The first candidate whose projection along `d` from `x` lies in its reference domain.
-fn find_master(
+/// The first candidate whose projection along `d` from `x` lies in its reference domain
+/// (and whose normal there opposes `d`), with the reference coordinates of the projection.
+pub(super) fn find_master(
     ctx: &SegmentContext<'_>,
     x: &Vector3<f64>,
     d: &Vector3<f64>,

@@ -16,7 +16,11 @@
 //!
 //! - [`ElementBased`]: quadrature points of the slave face, each projected onto the master face
 //!   it falls on. Cheap, but inexact where a slave face spans master edges.
+//! - [`AdaptiveElementBased`]: the same on leaves of a recursive split of the slave face,
+//!   refined where master edges cross it: a reference for curved faces, built without
+//!   clipping or flat sub-faces (slow).
 
+mod adaptive;
 pub mod curved_3d;
 mod degree;
 mod element_based;
@@ -26,6 +30,7 @@ mod segments_3d;
 
 use nalgebra::{Vector2, Vector3};
 
+pub use adaptive::{AdaptiveElementBased, MAX_ADAPTIVE_DEPTH};
 pub use degree::default_degree;
 pub use element_based::ElementBased;
 pub use segment_based::SegmentBased;
