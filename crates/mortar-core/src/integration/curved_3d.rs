@@ -12,7 +12,12 @@
 //! The level `L` of a face comes from its bend `beta` (the largest distance of a node from
 //! where the face's corners alone would put it, over the face's diameter) and the tolerance
 //! `tol` of the strategy: `L = ceil(sqrt(beta / tol))`, at most [`MAX_SUBDIVISION`]; a face
-//! with straight edges and centred nodes (`beta = 0`) is not cut.
+//! with straight edges and centred nodes (`beta = 0`) is not cut. The slave face takes the
+//! level of its own bend; every master face takes the level of the largest bend of the master
+//! surface ([`Interface::master_bend`](crate::Interface::master_bend)), so that neighbouring
+//! master faces trace their shared curved edges by the same chords and their sub-triangles
+//! tile the projection without overlap or gap (with a level per master face they did not:
+//! on a sphere the slave area was counted twice along such edges, D 4.1e-4 too large).
 
 use arrayvec::ArrayVec;
 use nalgebra::{Matrix2, Vector2, Vector3};
@@ -196,13 +201,17 @@ pub(super) fn segments_into(
     } else {
         WARPED_EXTRA_DEGREE
     };
+    // One level for every master face, from the most bent of them: faces cut at different
+    // levels would trace their shared curved edge by different chords, which overlap or
+    // leave gaps in projection (the slave area counted twice or not at all there).
+    let master_level = level(ctx.interface.master_bend());
     let mut msubs = Vec::new();
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], 16> = ArrayVec::new();
     let mut covered = 0.0;
     for &m in candidates {
         let master = ctx.master_face(m);
-        sub_triangles(&master, &plane, level(bend(&master)), &mut msubs);
+        sub_triangles(&master, &plane, master_level, &mut msubs);
         let deg = degree
             .unwrap_or_else(|| default_degree(el, master.element) + extra)
             .min(20);

@@ -1,3 +1,5 @@
+use std::sync::OnceLock;
+
 use nalgebra::Vector3;
 
 use super::validate::{
@@ -43,6 +45,8 @@ pub struct Interface {
     master_nodes: Vec<u32>,
     master_cols: Vec<u32>,
     slave_normals: Vec<Vector3<f64>>,
+    /// The largest bend of the master faces, computed on first use.
+    master_bend: OnceLock<f64>,
 }
 
 impl Interface {
@@ -94,6 +98,7 @@ impl Interface {
             master_nodes,
             master_cols,
             slave_normals,
+            master_bend: OnceLock::new(),
         })
     }
 
@@ -154,6 +159,25 @@ impl Interface {
     /// Gathers a master face.
     pub fn master_face(&self, face: usize) -> FaceGeometry {
         FaceGeometry::gather(&self.master, Side::Master, face, None)
+    }
+
+    /// The largest [`bend`](crate::integration::curved_3d::bend) of the master faces (0 for a
+    /// first-order master), computed on first use (in parallel) and kept: the curved
+    /// segmentation cuts every master face at the level of this bend, so that neighbouring
+    /// faces cut their shared curved edges alike.
+    pub fn master_bend(&self) -> f64 {
+        use rayon::prelude::*;
+        *self.master_bend.get_or_init(|| {
+            (0..self.master.face_count())
+                .into_par_iter()
+                .with_min_len(1024)
+                .filter(|&f| {
+                    let el = self.master.face(f).element;
+                    el.node_count() > el.corner_count()
+                })
+                .map(|f| crate::integration::curved_3d::bend(&self.master_face(f)))
+                .reduce(|| 0.0, f64::max)
+        })
     }
 }
 
