@@ -410,7 +410,8 @@ fn tied_heat_scene_on_second_order_bodies_is_exact() {
 }
 
 /// Curved second-order faces in 3D (issue 10 item 2): the sphere of radius 0.3 between a Hex27
-/// ball (master) and a Tet10 box around it (slave), their second-order nodes on the sphere.
+/// ball (master) and a Hex27 box around it (slave; `box_with_hole_mesh` makes hexahedra in
+/// 3D), their second-order nodes on the sphere.
 /// The slave is fully covered, so sum(D) is its own area (its Jacobian integrated by a
 /// degree-20 rule) at every subdivision level, and D 1 = M 1; M converges as the level grows:
 /// its distance from the level-16 M falls at least fourfold from level 1 to 4 and again from
