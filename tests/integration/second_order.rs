@@ -500,7 +500,8 @@ fn curved_second_order_sphere_converges_with_the_subdivision_level() {
 /// linear flux of this field is not in their space: in 3D they miss it by 3.8e-5 at this
 /// size (n = 4); in 2D (Line3) they happen to reproduce it; both are checked as measured.
 /// Linear multipliers on the second-order faces (corner nodes only, continuous linear
-/// functions) contain that flux: to 1e-10 as the standard ones, in both families.
+/// functions) contain that flux: to 1e-10 as the standard ones, in both families, and the
+/// flux itself (exact at the corners, interpolated at the edge nodes) to 1e-9.
 #[test]
 fn second_order_tie_reproduces_a_quadratic_field() {
     use mortar::generate::SecondOrder;
@@ -532,6 +533,33 @@ fn second_order_tie_reproduces_a_quadratic_field() {
                 "{dim}D {family:?} {space}: max nodal error {:e}",
                 run.max_nodal
             );
+            if space == "linear" {
+                // The flux is linear, so the corners' multipliers carry it exactly and the
+                // edge nodes' fluxes, interpolated from them, are exact too.
+                let c = run.problem.tie().coupling();
+                let coords = run.problem.bodies()[0].mesh.coords();
+                let (mut edge_nodes, mut worst) = (0, 0.0f64);
+                for (j, (&node, flux)) in run
+                    .problem
+                    .tie()
+                    .slave_nodes()
+                    .iter()
+                    .zip(&run.solution.flux)
+                    .enumerate()
+                {
+                    let empty = c.d.outer_view(j).is_none_or(|r| r.nnz() == 0);
+                    if !flux.is_finite() {
+                        continue;
+                    }
+                    edge_nodes += usize::from(empty);
+                    let x = coords[node as usize];
+                    let exact = -scene.conductivity
+                        * scene.exact.gradient(dim, &x).dot(&c.slave_normals[j]);
+                    worst = worst.max((flux - exact).abs());
+                }
+                assert!(edge_nodes > 0, "{dim}D {family:?}: no edge node flux");
+                assert!(worst < 1e-9, "{dim}D {family:?}: flux off by {worst:e}");
+            }
         }
     }
 }

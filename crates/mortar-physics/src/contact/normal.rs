@@ -1,7 +1,6 @@
 //! The linearised weighted normal gap `g~ = g~_0 - N u` of a tie.
 
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_core::multiplier::{LinearMultipliers, MultiplierSpace};
 
 use crate::error::PhysicsError;
 use crate::tied::Tie;
@@ -40,8 +39,7 @@ pub struct NormalGap {
     interpolation: Vec<Interpolated>,
 }
 
-/// A row without multiplier and the `(row, weight)` pairs its value is interpolated from.
-type Interpolated = (u32, Vec<(u32, f64)>);
+use crate::tied::Interpolated;
 
 impl NormalGap {
     /// The gap of `tie` (a tie of scalar node numbering: [`Tie::components`] must be 1; the
@@ -82,7 +80,7 @@ impl NormalGap {
         let carries: Vec<bool> = (0..rows)
             .map(|j| c.d.outer_view(j).is_some_and(|d| d.nnz() > 0))
             .collect();
-        let interpolation = interpolation(tie, &carries)?;
+        let interpolation = tie.rows_without_multiplier()?;
         let mut weights = vec![0.0; rows];
         let mut diagonal = true;
         let mut t = Triplets::default();
@@ -188,60 +186,4 @@ impl NormalGap {
             })
             .collect()
     }
-}
-
-/// For each row of `tie` that carries no multiplier, the corner rows of a slave face of its
-/// node and the first-order functions of those corners at it (the coefficients of
-/// [`LinearMultipliers`]); an error naming the node when a corner of that face carries none
-/// either.
-fn interpolation(tie: &Tie, carries: &[bool]) -> Result<Vec<Interpolated>, PhysicsError> {
-    let interface = tie.interface();
-    let slave = interface.slave();
-    let mut done: Vec<bool> = carries.to_vec();
-    let mut out = Vec::new();
-    if done.iter().all(|d| *d) {
-        return Ok(out);
-    }
-    for f in 0..slave.face_count() {
-        let rows: Vec<u32> = slave
-            .face(f)
-            .nodes
-            .iter()
-            .map(|&n| interface.slave_row(n).expect("a face's node has a row"))
-            .collect();
-        if rows.iter().all(|&r| done[r as usize]) {
-            continue;
-        }
-        let face = interface.slave_face(f);
-        let basis = LinearMultipliers.basis(&face, interface.tolerances())?;
-        let corners = face.element.corner_count();
-        for (k, &r) in rows.iter().enumerate().skip(corners) {
-            if done[r as usize] {
-                continue;
-            }
-            let mut from = Vec::new();
-            for (c, &rc) in rows.iter().enumerate().take(corners) {
-                let w = basis.a[c][k];
-                if w == 0.0 {
-                    continue;
-                }
-                if !carries[rc as usize] {
-                    return Err(PhysicsError::InvalidInput {
-                        body: "contact".into(),
-                        what: format!(
-                            "slave node {} carries no multiplier, nor does the corner {} of \
-                             its face {}: the contact solver needs a pressure at the corners",
-                            tie.row_tag(r as usize),
-                            tie.row_tag(rc as usize),
-                            face.tag
-                        ),
-                    });
-                }
-                from.push((rc, w));
-            }
-            done[r as usize] = true;
-            out.push((r, from));
-        }
-    }
-    Ok(out)
 }

@@ -38,7 +38,9 @@ pub struct TiedHeatSolution {
     /// Nodal temperatures of the slave body and the master body (by mesh node index).
     pub temperatures: [Vec<f64>; 2],
     /// The heat flux leaving the slave body at each slave interface node (rows of D: ascending
-    /// node tag), the multiplier `lambda`; `NaN` at Dirichlet slave nodes.
+    /// node tag), the multiplier `lambda`; `NaN` at Dirichlet slave nodes; at a node without
+    /// multiplier (linear multipliers on second-order faces) the first-order interpolation of
+    /// its face's corners' fluxes.
     pub flux: Vec<f64>,
     /// Which formulation was solved, and why.
     pub formulation: FormulationReport,
@@ -62,6 +64,8 @@ pub struct TiedHeat {
     options: HeatOptions,
     dirichlet: [(Vec<u32>, Vec<usize>); 2],
     seconds: HeatSeconds,
+    /// The rows without multiplier and how their flux follows from their face's corners.
+    without_multiplier: Vec<crate::tied::Interpolated>,
 }
 
 /// The largest conductivity contrast `max(k) / min(k)` of the two bodies that [`TiedHeat::new`]
@@ -165,6 +169,8 @@ impl TiedHeat {
             ..Default::default()
         };
         let dirichlet = [slave.dirichlet_nodes(), master.dirichlet_nodes()];
+        // Rows without multiplier whose face's corners carry none either keep NaN fluxes.
+        let without_multiplier = tie.rows_without_multiplier().unwrap_or_default();
         Ok(Self {
             bodies: [slave, master],
             tie,
@@ -172,6 +178,7 @@ impl TiedHeat {
             options: *options,
             dirichlet,
             seconds,
+            without_multiplier,
         })
     }
 
@@ -296,9 +303,13 @@ impl TiedHeat {
         loads: f64,
     ) -> TiedHeatSolution {
         let [slave, master] = fields.fields;
+        let mut flux = fields.multipliers;
+        for (row, from) in &self.without_multiplier {
+            flux[*row as usize] = from.iter().map(|&(r, w)| w * flux[r as usize]).sum();
+        }
         TiedHeatSolution {
             temperatures: [slave, master],
-            flux: fields.multipliers,
+            flux,
             formulation: system.report().clone(),
             seconds: HeatSeconds {
                 loads,

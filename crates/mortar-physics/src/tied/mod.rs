@@ -16,4 +16,4 @@ pub use formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };
 pub use system::{SystemSeconds, TiedFields, TiedSystem};
-pub use tie::{kron_identity, Tie};
+pub use tie::{kron_identity, Interpolated, Tie};

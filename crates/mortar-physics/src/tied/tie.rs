@@ -1,5 +1,6 @@
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::mesh::{SurfaceMesh, VolumeMesh};
+use mortar_core::multiplier::{LinearMultipliers, MultiplierSpace};
 use mortar_core::{assemble_coupling, Coupling, CouplingOptions, Interface, Side};
 
 use crate::error::PhysicsError;
@@ -25,6 +26,10 @@ pub struct Tie {
     slave_dofs: Vec<u32>,
     master_dofs: Vec<u32>,
 }
+
+/// A coupling row without multiplier and the `(row, weight)` pairs its value is interpolated
+/// from (see [`Tie::rows_without_multiplier`]).
+pub type Interpolated = (u32, Vec<(u32, f64)>);
 
 /// `a (x) I_c`: each entry `a_ij` becomes the diagonal block `a_ij I_c` (rows and columns
 /// `i * c + k`, the numbering of a field of `c` components).
@@ -172,5 +177,69 @@ impl Tie {
     /// For each column of M, the master body's node index.
     pub fn master_nodes(&self) -> &[u32] {
         &self.master_nodes
+    }
+
+    /// For each coupling row that carries no multiplier (its row of D empty: the edge and
+    /// centre nodes of linear multipliers on second-order faces), the rows of the corners of a
+    /// slave face of its node and the first-order functions of those corners at it (the
+    /// coefficients of [`LinearMultipliers`]): a value the corners' multipliers stand for
+    /// there is `sum w value[row]`. Empty when every row carries one.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] naming the node when a corner of its face carries no
+    /// multiplier either; [`PhysicsError::Mortar`] if the linear basis cannot be built on
+    /// the face.
+    pub fn rows_without_multiplier(&self) -> Result<Vec<Interpolated>, PhysicsError> {
+        let c = &self.coupling;
+        let carries: Vec<bool> = (0..c.d.rows())
+            .map(|j| c.d.outer_view(j).is_some_and(|d| d.nnz() > 0))
+            .collect();
+        let mut out = Vec::new();
+        if carries.iter().all(|d| *d) {
+            return Ok(out);
+        }
+        let interface = &self.interface;
+        let slave = interface.slave();
+        let mut done = carries.clone();
+        for f in 0..slave.face_count() {
+            let rows: Vec<u32> = slave
+                .face(f)
+                .nodes
+                .iter()
+                .map(|&n| interface.slave_row(n).expect("a face's node has a row"))
+                .collect();
+            if rows.iter().all(|&r| done[r as usize]) {
+                continue;
+            }
+            let face = interface.slave_face(f);
+            let basis = LinearMultipliers.basis(&face, interface.tolerances())?;
+            let corners = face.element.corner_count();
+            for (k, &r) in rows.iter().enumerate().skip(corners) {
+                if done[r as usize] {
+                    continue;
+                }
+                let mut from = Vec::new();
+                for (corner, &rc) in rows.iter().enumerate().take(corners) {
+                    let w = basis.a[corner][k];
+                    if w == 0.0 {
+                        continue;
+                    }
+                    if !carries[rc as usize] {
+                        return Err(PhysicsError::InvalidInput {
+                            body: "interface".into(),
+                            what: format!(
+                                "slave node {} carries no multiplier, nor does the corner {} \
+                                 of its face {}",
+                                c.slave_nodes[r as usize], c.slave_nodes[rc as usize], face.tag
+                            ),
+                        });
+                    }
+                    from.push((rc, w));
+                }
+                done[r as usize] = true;
+                out.push((r, from));
+            }
+        }
+        Ok(out)
     }
 }
