@@ -20,6 +20,7 @@ mod convergence {
     mod mesh_ratio;
     mod patch;
     mod paths;
+    mod quad_subdivision;
     mod rates;
     mod shrink_fit;
     mod transient;

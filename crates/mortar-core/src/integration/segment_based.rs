@@ -18,6 +18,10 @@ pub struct SegmentBased {
     /// A fixed subdivision level for every curved face instead of the tolerance's (for
     /// studies of the level's effect); `None`: from the tolerance.
     pub subdivision: Option<u32>,
+    /// Slave quadrilaterals that are not parallelograms in the auxiliary plane (see
+    /// [`with_quad_subdivision`](Self::with_quad_subdivision)): each clip triangle cut into
+    /// `m^2` before it is mapped to the slave's reference coordinates; `None`: not cut.
+    pub quad_subdivision: Option<u32>,
 }
 
 impl SegmentBased {
@@ -66,6 +70,36 @@ impl SegmentBased {
         self.subdivision = Some(level);
         Ok(self)
     }
+
+    /// Accuracy of M on slave quadrilaterals that are not parallelograms (in the auxiliary
+    /// plane: bilinear, not affine). Such a face is integrated in its reference coordinates
+    /// (so that D stays exact and the dual D diagonal), into which a master edge, straight in
+    /// the plane, maps as a curve; by default each clip polygon is mapped by its vertices, with
+    /// straight edges, and points near a master edge take the neighbouring master face's
+    /// (extrapolated) shape functions: D, `D 1 = M 1` and `D x = M x` stay exact, M's
+    /// distribution over the master nodes is off by the area between the curve and its chord.
+    /// With `m > 1` each clip triangle (fan from the polygon's centroid, in the plane) is cut
+    /// into `m^2` triangles whose vertices are mapped, so that the chords follow the curves
+    /// `m` times closer, at `m^2` times the points on such faces. Measured
+    /// (`tests/convergence/quad_subdivision.rs`, one distorted quad against a Tri3 master, M
+    /// against adaptive element-based integration): 6.1e-6 of M's largest entry at `m = 1`,
+    /// 3.8e-7 at 2, 2.3e-8 at 4 (about `m^-4`); the time per pair 2.8 and 9.1 times that of
+    /// `m = 1` at 2 and 4 on a 64 x 64 mesh of randomly distorted quads (one thread).
+    /// Parallelograms, triangles and curved second-order faces are not affected.
+    ///
+    /// # Errors
+    /// [`MortarError::InvalidOption`] unless `1 <= m <= 16`.
+    pub fn with_quad_subdivision(mut self, m: u32) -> Result<Self> {
+        if !(1..=16).contains(&m) {
+            return Err(MortarError::InvalidOption {
+                option: "quad subdivision",
+                value: m.to_string(),
+                reason: "out of range 1..=16".into(),
+            });
+        }
+        self.quad_subdivision = Some(m);
+        Ok(self)
+    }
 }
 
 pub(super) fn check_degree(degree: Option<u32>) -> Result<()> {
@@ -81,10 +115,14 @@ pub(super) fn check_degree(degree: Option<u32>) -> Result<()> {
 
 impl IntegrationStrategy for SegmentBased {
     fn name(&self) -> String {
-        match self.degree {
+        let mut name = match self.degree {
             Some(d) => format!("segment-based, degree {d}"),
             None => "segment-based, degree auto".to_string(),
+        };
+        if let Some(m) = self.quad_subdivision.filter(|&m| m > 1) {
+            name.push_str(&format!(", non-parallelogram quads cut {m}x{m}"));
         }
+        name
     }
 
     fn paired_rule_into(
@@ -104,7 +142,8 @@ impl IntegrationStrategy for SegmentBased {
                 curved_3d::segments_into(ctx, slave, candidates, self.degree, level, out)
             }
             SpatialDim::Three => {
-                segments_3d::segments_into(ctx, slave, candidates, self.degree, out)
+                let m = self.quad_subdivision.unwrap_or(1);
+                segments_3d::segments_into(ctx, slave, candidates, self.degree, m, out)
             }
         }
     }

@@ -12,11 +12,13 @@ use crate::geometry::{
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
+/// `quad_subdivision`: see [`SegmentBased::with_quad_subdivision`](super::SegmentBased::with_quad_subdivision).
 pub(super) fn segments_into(
     ctx: &SegmentContext<'_>,
     slave: &FaceGeometry,
     candidates: &[u32],
     degree: Option<u32>,
+    quad_subdivision: u32,
     out: &mut PairedRule,
 ) -> Result<()> {
     let tol = ctx.interface.tolerances();
@@ -76,6 +78,10 @@ pub(super) fn segments_into(
     let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
+    // The cut triangles of a non-parallelogram quad (`quad_subdivision > 1`), in the slave's
+    // reference coordinates.
+    let cut = quad_subdivision > 1 && in_reference && !slave_map.is_affine();
+    let mut cut_tris: Vec<[Vector2<f64>; 3]> = Vec::new();
     let mut covered = 0.0;
 
     for &m in candidates {
@@ -185,7 +191,22 @@ pub(super) fn segments_into(
                 }
             } else {
                 tris.clear();
-                if in_reference {
+                cut_tris.clear();
+                if cut {
+                    // Each plane triangle of the centroid fan cut into m^2, its vertices
+                    // mapped back: the chords m times closer to the curved edges.
+                    let mut plane_tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> =
+                        ArrayVec::new();
+                    clip.for_each_triangle(|t| plane_tris.push(t));
+                    let to_xi = |v: &Vector2<f64>| {
+                        slave_map
+                            .invert(v, tol.newton, tol.newton_max_iterations)
+                            .map_err(|f| fail(f, v, Side::Slave, slave.tag))
+                    };
+                    for t in &plane_tris {
+                        cut_triangle(t, quad_subdivision, to_xi, &mut cut_tris)?;
+                    }
+                } else if in_reference {
                     let mut xi_poly = Polygon::default();
                     for v in &clip.vertices {
                         let xi = slave_map
@@ -205,7 +226,8 @@ pub(super) fn segments_into(
                     // the faces permutes D and M to round-off).
                     clip.for_each_triangle(|t| tris.push(t));
                 }
-                for t in &tris {
+                let list: &[[Vector2<f64>; 3]] = if cut { &cut_tris } else { &tris };
+                for t in list {
                     let e1 = t[1] - t[0];
                     let e2 = t[2] - t[0];
                     let twice_area = e1.x * e2.y - e1.y * e2.x;
@@ -334,4 +356,33 @@ fn vertex_fan_midpoints(
         }
     }
     f(0.5 * (v[n - 1] + v[0]), prev / 3.0, 0)
+}
+
+/// Cuts the triangle `t` into `m^2` (the vertices `t0 + (i e1 + j e2) / m`, each mapped once by
+/// `map`) and appends the mapped triangles to `out`, in `t`'s orientation.
+fn cut_triangle(
+    t: &[Vector2<f64>; 3],
+    m: u32,
+    map: impl Fn(&Vector2<f64>) -> Result<Vector2<f64>>,
+    out: &mut Vec<[Vector2<f64>; 3]>,
+) -> Result<()> {
+    let m = m as usize;
+    let (e1, e2) = ((t[1] - t[0]) / m as f64, (t[2] - t[0]) / m as f64);
+    // Vertex (i, j), i + j <= m, row by row.
+    let at = |i: usize, j: usize| j * (m + 1) - j * j.saturating_sub(1) / 2 + i;
+    let mut v = Vec::with_capacity((m + 1) * (m + 2) / 2);
+    for j in 0..=m {
+        for i in 0..=m - j {
+            v.push(map(&(t[0] + e1 * i as f64 + e2 * j as f64))?);
+        }
+    }
+    for j in 0..m {
+        for i in 0..m - j {
+            out.push([v[at(i, j)], v[at(i + 1, j)], v[at(i, j + 1)]]);
+            if i + j + 1 < m {
+                out.push([v[at(i + 1, j)], v[at(i + 1, j + 1)], v[at(i, j + 1)]]);
+            }
+        }
+    }
+    Ok(())
 }
