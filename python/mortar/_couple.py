@@ -299,6 +299,9 @@ def couple(
     threads: Optional[int] = None,
     orient: bool = True,
     require_full_coverage: bool = False,
+    curved_tolerance: Optional[float] = None,
+    subdivision: Optional[int] = None,
+    quad_subdivision: Optional[int] = None,
 ) -> Coupling:
     """Assemble the mortar operators D and M between two non-matching surfaces.
 
@@ -334,6 +337,14 @@ def couple(
             order given (then a master facing the wrong way is an error that says so).
         require_full_coverage: make uncovered slave area or skipped pairs an error
             (:class:`CoverageError`) instead of a warning.
+        curved_tolerance: segment-based, curved second-order faces in 3D: the bend left per
+            flat sub-triangle, relative to the face size (None: 1e-2); smaller is finer.
+        subdivision: segment-based, curved second-order faces in 3D: a fixed subdivision
+            level (1 to 16) instead of the tolerance's.
+        quad_subdivision: segment-based, slave quads that are not parallelograms: cut each
+            clip triangle into m^2 (1 to 16; None: 1) so that M follows the master edges'
+            curved images in the quad's coordinates (error about m^-4, cost m^2 on such
+            faces).
 
     Returns:
         A :class:`Coupling`: ``D``, ``M`` (``scipy.sparse.csr_array``), ``slave_nodes``,
@@ -375,6 +386,9 @@ def couple(
         threads=None if threads is None else int(threads),
         orient=bool(orient),
         require_full_coverage=bool(require_full_coverage),
+        curved_tolerance=None if curved_tolerance is None else float(curved_tolerance),
+        subdivision=None if subdivision is None else int(subdivision),
+        quad_subdivision=None if quad_subdivision is None else int(quad_subdivision),
     )
     c = Coupling(raw)
     for w in c.warnings:

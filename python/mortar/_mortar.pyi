@@ -19,6 +19,9 @@ def couple_arrays(
     threads: Optional[int] = None,
     orient: bool = True,
     require_full_coverage: bool = False,
+    curved_tolerance: Optional[float] = None,
+    subdivision: Optional[int] = None,
+    quad_subdivision: Optional[int] = None,
 ) -> Dict[str, Any]:
     """The compiled half of :func:`mortar.couple`: C-contiguous float64 points (n, 2|3),
     blocks of (cell type, C-contiguous int64 cells (m, k)); returns a dict with ``d`` and

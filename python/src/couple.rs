@@ -3,6 +3,7 @@
 use std::time::Instant;
 
 use mortar::core::element::ElementRef;
+use mortar::core::integration::SegmentBased;
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
 use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 use mortar::{
@@ -179,11 +180,21 @@ fn surface(a: &SideArrays<'_>) -> Result<SurfaceMesh, Failure> {
     Ok(mesh)
 }
 
+/// The dials of segment-based integration (`curved_tolerance`, `subdivision`,
+/// `quad_subdivision`; see `mortar::core::integration::SegmentBased`).
+#[derive(Debug, Clone, Copy, Default)]
+struct SegmentDials {
+    curved_tolerance: Option<f64>,
+    subdivision: Option<u32>,
+    quad_subdivision: Option<u32>,
+}
+
 /// The options of the keywords.
 fn options(
     multipliers: &str,
     integration: &str,
     degree: Option<u32>,
+    dials: SegmentDials,
     threads: Option<usize>,
     require_full_coverage: bool,
 ) -> Result<CouplingOptions, Failure> {
@@ -199,7 +210,32 @@ fn options(
         }
     };
     let mut o = match integration {
-        "segment" => o.segment_based(degree).map_err(Failure::Core)?,
+        "segment" => {
+            let mut s = SegmentBased::new(degree).map_err(Failure::Core)?;
+            if let Some(t) = dials.curved_tolerance {
+                s = s.with_curved_tolerance(t).map_err(Failure::Core)?;
+            }
+            if let Some(l) = dials.subdivision {
+                s = s.with_subdivision(l).map_err(Failure::Core)?;
+            }
+            if let Some(m) = dials.quad_subdivision {
+                s = s.with_quad_subdivision(m).map_err(Failure::Core)?;
+            }
+            let mut o = o;
+            o.integration = std::sync::Arc::new(s);
+            o
+        }
+        "element"
+            if dials.curved_tolerance.is_some()
+                || dials.subdivision.is_some()
+                || dials.quad_subdivision.is_some() =>
+        {
+            return Err(Failure::Input(
+                "curved_tolerance, subdivision and quad_subdivision are dials of \
+                 integration=\"segment\", not \"element\""
+                    .into(),
+            ))
+        }
         "element" => o.element_based(degree).map_err(Failure::Core)?,
         other => {
             return Err(Failure::Input(format!(
@@ -320,7 +356,8 @@ fn csr<'py>(
 #[pyo3(signature = (
     slave_points, slave_blocks, master_points, master_blocks,
     *, multipliers = "standard", integration = "segment", degree = None, threads = None,
-    orient = true, require_full_coverage = false
+    orient = true, require_full_coverage = false, curved_tolerance = None, subdivision = None,
+    quad_subdivision = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn couple_arrays<'py>(
@@ -335,13 +372,22 @@ pub(crate) fn couple_arrays<'py>(
     threads: Option<usize>,
     orient: bool,
     require_full_coverage: bool,
+    curved_tolerance: Option<f64>,
+    subdivision: Option<u32>,
+    quad_subdivision: Option<u32>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let slave = side_arrays("slave", &slave_points, &slave_blocks).map_err(Failure::into_py)?;
     let master = side_arrays("master", &master_points, &master_blocks).map_err(Failure::into_py)?;
+    let dials = SegmentDials {
+        curved_tolerance,
+        subdivision,
+        quad_subdivision,
+    };
     let opts = options(
         multipliers,
         integration,
         degree,
+        dials,
         threads,
         require_full_coverage,
     )

@@ -286,3 +286,21 @@ def test_huge_options_are_refused():
         mortar.couple((SP, ST, "triangle"), (MP, MT, "triangle"), threads=2**40)
     with pytest.raises(mortar.InvalidInputError, match="degree"):
         mortar.couple((SP, ST, "triangle"), (MP, MT, "triangle"), degree=2**40)
+
+
+def test_segment_dials_reach_the_integration():
+    # A slave quad that is not a parallelogram against a finer Tri3 master: cutting its clip
+    # triangles (quad_subdivision) changes only the distribution of M; D, D 1 = M 1 stay.
+    s_pts = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.2, 0.0], [0.0, 0.8, 0.0]])
+    s = (s_pts, np.array([[0, 1, 2, 3]]), "quad")
+    m = grid_triangles(5, 5, x0=-0.1, x1=1.3, y0=-0.1, y1=1.3)
+    plain = mortar.couple(s, (*m, "triangle"))
+    cut = mortar.couple(s, (*m, "triangle"), quad_subdivision=4)
+    assert "cut 4x4" in cut.formulation
+    assert abs(cut.D - plain.D).max() < 1e-14
+    assert np.abs(cut.D.sum(axis=1) - cut.M.sum(axis=1)).max() < 1e-14
+    assert abs(cut.M - plain.M).max() > 1e-9
+    with pytest.raises(mortar.InvalidInputError, match="quad subdivision"):
+        mortar.couple(s, (*m, "triangle"), quad_subdivision=0)
+    with pytest.raises(mortar.InvalidInputError, match="segment"):
+        mortar.couple(s, (*m, "triangle"), integration="element", subdivision=2)

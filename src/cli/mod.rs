@@ -142,6 +142,22 @@ struct CoupleArgs {
     #[arg(long, value_name = "N")]
     degree: Option<u32>,
 
+    /// Segment-based, curved second-order faces in 3D: the subdivision tolerance (bend left
+    /// per flat sub-triangle, relative to the face size; default 1e-2).
+    #[arg(long, value_name = "TOL")]
+    curved_tolerance: Option<f64>,
+
+    /// Segment-based, curved second-order faces in 3D: a fixed subdivision level (1 to 16)
+    /// instead of the tolerance's.
+    #[arg(long, value_name = "L")]
+    subdivision: Option<u32>,
+
+    /// Segment-based, slave quads that are not parallelograms: cut each clip triangle into
+    /// M^2 (1 to 16; default 1) so that M follows the master edges' curved images more
+    /// closely (error about M^-4, cost M^2 on such faces).
+    #[arg(long, value_name = "M")]
+    quad_subdivision: Option<u32>,
+
     /// Worker threads (default: all cores, or RAYON_NUM_THREADS).
     #[arg(long, value_name = "N")]
     threads: Option<usize>,
@@ -196,6 +212,9 @@ impl CoupleArgs {
                 IntegrationArg::Element => Integration::Element,
             },
             degree: self.degree,
+            curved_tolerance: self.curved_tolerance,
+            subdivision: self.subdivision,
+            quad_subdivision: self.quad_subdivision,
             threads: self.threads,
             search_radius: self.search_radius,
             require_full_coverage: self.require_full_coverage,

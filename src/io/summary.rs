@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use mortar_core::integration::SegmentBased;
 use mortar_core::{
     Coupling, CouplingOptions, Interface, MortarError, SearchRadius, SpatialDim, Tolerances,
 };
@@ -49,13 +50,27 @@ pub struct CouplingSettings {
     /// Make uncovered slave area and skipped pairs errors instead of warnings.
     #[serde(default)]
     pub require_full_coverage: bool,
+    /// Segment-based, curved second-order faces in 3D: the subdivision tolerance (`None`:
+    /// [`DEFAULT_CURVED_TOLERANCE`](mortar_core::integration::curved_3d::DEFAULT_CURVED_TOLERANCE));
+    /// see [`SegmentBased::with_curved_tolerance`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curved_tolerance: Option<f64>,
+    /// Segment-based, curved second-order faces in 3D: a fixed subdivision level instead of
+    /// the tolerance's; see [`SegmentBased::with_subdivision`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subdivision: Option<u32>,
+    /// Segment-based, slave quads that are not parallelograms: each clip triangle cut into
+    /// `m^2`; see [`SegmentBased::with_quad_subdivision`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quad_subdivision: Option<u32>,
 }
 
 impl CouplingSettings {
     /// The core's options for these settings.
     ///
     /// # Errors
-    /// [`MortarError::InvalidOption`] for a degree out of range or zero threads.
+    /// [`MortarError::InvalidOption`] for a degree out of range, zero threads, a dial of the
+    /// segment-based integration out of its range, or given with element-based integration.
     pub fn options(&self) -> Result<CouplingOptions, MortarError> {
         if self.threads == Some(0) {
             return Err(MortarError::InvalidOption {
@@ -71,8 +86,41 @@ impl CouplingSettings {
             Multipliers::Linear => o.linear(),
         };
         o = match self.integration {
-            Integration::Segment => o.segment_based(self.degree)?,
-            Integration::Element => o.element_based(self.degree)?,
+            Integration::Segment => {
+                let mut s = SegmentBased::new(self.degree)?;
+                if let Some(t) = self.curved_tolerance {
+                    s = s.with_curved_tolerance(t)?;
+                }
+                if let Some(l) = self.subdivision {
+                    s = s.with_subdivision(l)?;
+                }
+                if let Some(m) = self.quad_subdivision {
+                    s = s.with_quad_subdivision(m)?;
+                }
+                o.integration = std::sync::Arc::new(s);
+                o
+            }
+            Integration::Element => {
+                let dials = [
+                    (
+                        "curved tolerance",
+                        self.curved_tolerance.map(|t| t.to_string()),
+                    ),
+                    ("subdivision level", self.subdivision.map(|l| l.to_string())),
+                    (
+                        "quad subdivision",
+                        self.quad_subdivision.map(|m| m.to_string()),
+                    ),
+                ];
+                if let Some((option, Some(value))) = dials.into_iter().find(|d| d.1.is_some()) {
+                    return Err(MortarError::InvalidOption {
+                        option,
+                        value,
+                        reason: "a dial of segment-based integration, not element-based".into(),
+                    });
+                }
+                o.element_based(self.degree)?
+            }
         };
         if let Some(t) = self.threads {
             o = o.threads(t);

@@ -309,6 +309,9 @@ fn help_is_printed() {
         "--lm",
         "--integration",
         "--degree",
+        "--curved-tolerance",
+        "--subdivision",
+        "--quad-subdivision",
         "--threads",
     ] {
         assert!(text.contains(flag), "{flag}");
@@ -404,4 +407,66 @@ fn couples_second_order_faces_with_linear_multipliers() {
         assert_eq!(has, corner.contains(tag), "row {j} (node {tag})");
         assert_eq!(m_rows[j].iter().any(|v| *v != 0.0), has, "M row {j}");
     }
+}
+
+/// `mortar couple --quad-subdivision 2` reaches the integration: on a slave quad that is not
+/// a parallelogram the summary's formulation names the cut, D 1 = M 1 and sum(D) = the
+/// quad's area (checked by `couple_and_check` against 1: the quad (0,0), (1,0), (1,1.2),
+/// (0,0.8) has area 1), and M differs from the uncut one (closed form of the dial: only the
+/// distribution of M changes).
+#[test]
+fn couples_with_the_quad_subdivision_dial() {
+    let dir = TempDir::new("cliquadcut");
+    let mut slave = mortar::SurfaceMesh::new();
+    for (i, p) in [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.2, 0.0],
+        [0.0, 0.8, 0.0],
+    ]
+    .iter()
+    .enumerate()
+    {
+        slave.add_node(i as u64 + 1, *p).unwrap();
+    }
+    slave
+        .add_face(&mortar::elements::QUAD4, &[1, 2, 3, 4])
+        .unwrap();
+    // Tri3 covering [-0.1, 1.3]^2, facing the slave.
+    let unit = square_triangles(5, Diagonal::Main, 0.0, true, 101).unwrap();
+    let mut master = mortar::SurfaceMesh::new();
+    for (x, &tag) in unit.coords().iter().zip(unit.node_tags()) {
+        master
+            .add_node(tag, [1.4 * x.x - 0.1, 1.4 * x.y - 0.1, 0.0])
+            .unwrap();
+    }
+    for f in 0..unit.face_count() {
+        let face = unit.face(f);
+        let tags: Vec<u64> = face
+            .nodes
+            .iter()
+            .map(|&n| unit.node_tags()[n as usize])
+            .collect();
+        master.add_face(face.element, &tags).unwrap();
+    }
+    let (s, m) = (dir.join("slave.msh"), dir.join("master.msh"));
+    write_msh41_ascii(&slave, &s, "slave").unwrap();
+    write_msh41_ascii(&master, &m, "master").unwrap();
+    let (s, m) = (
+        s.to_string_lossy().into_owned(),
+        m.to_string_lossy().into_owned(),
+    );
+    let (_, m_plain, _) = couple_and_check(&dir.join("plain"), &["--slave", &s, "--master", &m]);
+    let (_, m_cut, summary) = couple_and_check(
+        &dir.join("cut"),
+        &["--slave", &s, "--master", &m, "--quad-subdivision", "2"],
+    );
+    let formulation = summary["formulation"].as_str().unwrap();
+    assert!(formulation.contains("cut 2x2"), "{formulation}");
+    let changed = m_plain
+        .iter()
+        .flatten()
+        .zip(m_cut.iter().flatten())
+        .fold(0.0f64, |w, (a, b)| w.max((a - b).abs()));
+    assert!(changed > 1e-9, "M unchanged: {changed:e}");
 }

@@ -275,3 +275,42 @@ fn scene_kinds() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("no built-in scene named \"nope\""));
     assert!(!out.exists());
 }
+
+/// The dials of segment-based integration in a scene file: out of range or given with
+/// element-based integration, refused naming their key; in range, the scene runs.
+#[test]
+fn integration_dials_are_checked_and_named() {
+    let dir = TempDir::new("scene-err-dials");
+    let text = setup(&dir);
+    for (name, line, key) in [
+        (
+            "quad.toml",
+            "quad_subdivision = 0",
+            "interface.quad_subdivision",
+        ),
+        ("level.toml", "subdivision = 17", "interface.subdivision"),
+        (
+            "tol.toml",
+            "curved_tolerance = 2.0",
+            "interface.curved_tolerance",
+        ),
+    ] {
+        let bad = text.replace("[interface]", &format!("[interface]\n{line}"));
+        assert_fails(&dir, name, &bad, &[key, "out of range"]);
+    }
+    let bad = text.replace(
+        "integration = \"segment\"",
+        "integration = \"element\"\nquad_subdivision = 2",
+    );
+    assert_fails(
+        &dir,
+        "element.toml",
+        &bad,
+        &["interface.quad_subdivision", "not element-based"],
+    );
+    let good = text.replace("[interface]", "[interface]\nquad_subdivision = 2");
+    let scene = dir.file("good.toml", &good);
+    let out = dir.join("out-good");
+    let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

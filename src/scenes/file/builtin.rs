@@ -162,6 +162,9 @@ pub fn tied_block(dim: usize, n: usize, format: MshFormat) -> Result<BuiltinScen
             multipliers: Multipliers::Dual,
             integration: Integration::Segment,
             degree: None,
+            curved_tolerance: None,
+            subdivision: None,
+            quad_subdivision: None,
         },
     };
     let toml = spec.to_toml()?;

@@ -17,7 +17,8 @@
 //!   carries the multipliers), `multipliers = "standard" | "dual" | "linear"` (default
 //!   `"dual"`; `"linear"`: on the corner nodes of second-order faces only),
 //!   `integration = "segment" | "element"` (default `"segment"`), `degree` (default
-//!   automatic).
+//!   automatic), and for segment-based integration `curved_tolerance`, `subdivision` (curved
+//!   second-order faces in 3D) and `quad_subdivision` (non-parallelogram slave quads).
 //! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
 //!   (at most [`MAX_STEPS`])
 //!   for a transient solve; `formulation = "auto" | "saddle_point" | "dual_condensed"`
@@ -31,6 +32,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+use mortar_core::MortarError;
 use mortar_physics::heat::{
     HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, TiedHeatSolution,
 };
@@ -146,6 +148,17 @@ pub struct InterfaceSpec {
     /// The quadrature degree (default automatic).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub degree: Option<u32>,
+    /// Segment-based: the curved-face subdivision tolerance (see
+    /// [`CouplingSettings::curved_tolerance`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curved_tolerance: Option<f64>,
+    /// Segment-based: a fixed curved-face subdivision level.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subdivision: Option<u32>,
+    /// Segment-based: the cut of non-parallelogram slave quads (see
+    /// [`CouplingSettings::quad_subdivision`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quad_subdivision: Option<u32>,
 }
 
 /// Steady or transient.
@@ -543,12 +556,26 @@ impl TiedHeatSpec {
             multipliers: self.interface.multipliers,
             integration: self.interface.integration,
             degree: self.interface.degree,
+            curved_tolerance: self.interface.curved_tolerance,
+            subdivision: self.interface.subdivision,
+            quad_subdivision: self.interface.quad_subdivision,
             ..Default::default()
         };
-        let coupling = settings.options().map_err(|e| SceneError::Invalid {
-            path: path.to_path_buf(),
-            key: "interface.degree".into(),
-            what: e.to_string(),
+        let coupling = settings.options().map_err(|e| {
+            let key = match &e {
+                MortarError::InvalidOption { option, .. } => match *option {
+                    "curved tolerance" => "interface.curved_tolerance",
+                    "subdivision level" => "interface.subdivision",
+                    "quad subdivision" => "interface.quad_subdivision",
+                    _ => "interface.degree",
+                },
+                _ => "interface",
+            };
+            SceneError::Invalid {
+                path: path.to_path_buf(),
+                key: key.into(),
+                what: e.to_string(),
+            }
         })?;
         let master_surface = surfaces.pop().expect("two surfaces");
         let slave_surface = surfaces.pop().expect("two surfaces");
