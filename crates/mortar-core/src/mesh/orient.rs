@@ -370,8 +370,11 @@ pub fn face_each_other(
                 .fold(0.0, f64::max)
         })
         .collect();
-    // Nearby pairs by a grid of master centres (cells of the largest slave size).
-    let cell = sizes.iter().copied().fold(0.0, f64::max) * (1.0 + reach);
+    // Nearby pairs by a grid of master centres. A pair's centres lie within
+    // `sqrt(1 + reach^2)` times the largest slave size of each other, so with cells that wide
+    // a slave face's partners are in the 27 cells around its own.
+    let largest = sizes.iter().copied().fold(0.0, f64::max);
+    let cell = largest * (1.0 + reach * reach).sqrt() * (1.0 + 1e-9);
     let key = |x: &Vector3<f64>| {
         (
             (x.x / cell).floor() as i64,
@@ -379,47 +382,58 @@ pub fn face_each_other(
             (x.z / cell).floor() as i64,
         )
     };
-    let mut grid: std::collections::HashMap<(i64, i64, i64), Vec<u32>> = Default::default();
+    let mut grid: rustc_hash::FxHashMap<(i64, i64, i64), Vec<u32>> = Default::default();
     if cell > 0.0 && cell.is_finite() {
         for (m, (_, c, _)) in fm.iter().enumerate() {
             grid.entry(key(c)).or_default().push(m as u32);
         }
     }
-    // Nearby pairs (slave face, master face, distance along the slave normal).
-    let mut near: Vec<(u32, u32, f64)> = Vec::new();
-    for (s, (n, c, _)) in fs.iter().enumerate() {
-        let (i, j, k) = key(c);
-        for di in -1..=1 {
-            for dj in -1..=1 {
-                for dk in -1..=1 {
-                    for &m in grid.get(&(i + di, j + dj, k + dk)).into_iter().flatten() {
-                        let d = fm[m as usize].1 - c;
-                        let along = n.dot(&d);
-                        let across = (d - n * along).norm();
-                        if across <= sizes[s] && along.abs() <= reach * sizes[s] {
-                            near.push((s as u32, m, along));
+    // Nearby pairs (slave face, master face, distance along the slave normal), the slave
+    // faces in chunks on all threads, concatenated in face order. Each slave face heeds the
+    // nearest master faces along its normal only (within a thousandth of its size of the
+    // nearest): where the surfaces touch, the faces behind them must not decide, neither those
+    // of the next facet of a coarse closed surface (a triangle's sides turn by 120 degrees:
+    // the master faces near a corner lie behind the next side) nor those of the far side of a
+    // thin body within reach (a short prism's caps).
+    let near: Vec<(u32, u32, f64)> = {
+        use rayon::prelude::*;
+        let chunks: Vec<Vec<(u32, u32, f64)>> = (0..fs.len())
+            .collect::<Vec<usize>>()
+            .par_chunks(4096)
+            .map(|faces| {
+                let mut out = Vec::new();
+                let mut pairs = Vec::new();
+                for &s in faces {
+                    let (n, c, _) = &fs[s];
+                    let (i, j, k) = key(c);
+                    pairs.clear();
+                    for di in -1..=1 {
+                        for dj in -1..=1 {
+                            for dk in -1..=1 {
+                                let cell = grid.get(&(i + di, j + dj, k + dk));
+                                for &m in cell.into_iter().flatten() {
+                                    let d = fm[m as usize].1 - c;
+                                    let along = n.dot(&d);
+                                    let across = (d - n * along).norm();
+                                    if across <= sizes[s] && along.abs() <= reach * sizes[s] {
+                                        pairs.push((s as u32, m, along));
+                                    }
+                                }
+                            }
                         }
                     }
+                    let closest = pairs
+                        .iter()
+                        .map(|p| p.2.abs())
+                        .fold(f64::INFINITY, f64::min);
+                    let tol = 1e-3 * sizes[s];
+                    out.extend(pairs.iter().filter(|p| p.2.abs() <= closest + tol));
                 }
-            }
-        }
-    }
-    // Each slave face heeds the nearest master faces along its normal only (within a
-    // thousandth of its size of the nearest): where the surfaces touch, the faces behind them
-    // must not decide, neither those of the next facet of a coarse closed surface (a
-    // triangle's sides turn by 120 degrees: the master faces near a corner lie behind the
-    // next side) nor those of the far side of a thin body within reach (a short prism's caps).
-    let mut nearest: Vec<(u32, u32, f64)> = Vec::with_capacity(near.len());
-    for group in near.chunk_by(|a, b| a.0 == b.0) {
-        let s = group[0].0 as usize;
-        let closest = group
-            .iter()
-            .map(|p| p.2.abs())
-            .fold(f64::INFINITY, f64::min);
-        let tol = 1e-3 * sizes[s];
-        nearest.extend(group.iter().filter(|p| p.2.abs() <= closest + tol));
-    }
-    let near = nearest;
+                out
+            })
+            .collect();
+        chunks.concat()
+    };
     // Slave pieces: the master on the normal's side (a positive gap) or the other.
     let mut votes = vec![(0.0f64, 0.0f64); ns];
     for &(s, _, along) in &near {
