@@ -3,7 +3,7 @@
 use std::time::Instant;
 
 use mortar::core::element::ElementRef;
-use mortar::core::integration::SegmentBased;
+use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
 use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 use mortar::{
@@ -189,7 +189,8 @@ struct SegmentDials {
     quad_subdivision: Option<u32>,
 }
 
-/// The options of the keywords.
+/// The options of the keywords, through the library's own [`CouplingSettings`] (the
+/// settings of `mortar couple` and the scene files).
 fn options(
     multipliers: &str,
     integration: &str,
@@ -198,60 +199,43 @@ fn options(
     threads: Option<usize>,
     require_full_coverage: bool,
 ) -> Result<CouplingOptions, Failure> {
-    let o = CouplingOptions::default().require_full_coverage(require_full_coverage);
-    let o = match multipliers {
-        "standard" => o.standard(),
-        "dual" => o.dual(),
-        "linear" => o.linear(),
+    let multipliers = match multipliers {
+        "standard" => Multipliers::Standard,
+        "dual" => Multipliers::Dual,
+        "linear" => Multipliers::Linear,
         other => {
             return Err(Failure::Input(format!(
                 "multipliers=\"{other}\": give \"standard\", \"dual\" or \"linear\""
             )))
         }
     };
-    let mut o = match integration {
-        "segment" => {
-            let mut s = SegmentBased::new(degree).map_err(Failure::Core)?;
-            if let Some(t) = dials.curved_tolerance {
-                s = s.with_curved_tolerance(t).map_err(Failure::Core)?;
-            }
-            if let Some(l) = dials.subdivision {
-                s = s.with_subdivision(l).map_err(Failure::Core)?;
-            }
-            if let Some(m) = dials.quad_subdivision {
-                s = s.with_quad_subdivision(m).map_err(Failure::Core)?;
-            }
-            let mut o = o;
-            o.integration = std::sync::Arc::new(s);
-            o
-        }
-        "element"
-            if dials.curved_tolerance.is_some()
-                || dials.subdivision.is_some()
-                || dials.quad_subdivision.is_some() =>
-        {
-            return Err(Failure::Input(
-                "curved_tolerance, subdivision and quad_subdivision are dials of \
-                 integration=\"segment\", not \"element\""
-                    .into(),
-            ))
-        }
-        "element" => o.element_based(degree).map_err(Failure::Core)?,
+    let integration = match integration {
+        "segment" => Integration::Segment,
+        "element" => Integration::Element,
         other => {
             return Err(Failure::Input(format!(
                 "integration=\"{other}\": give \"segment\" or \"element\""
             )))
         }
     };
-    if let Some(t) = threads {
-        if t == 0 {
-            return Err(Failure::Input(
-                "threads=0: give at least one thread, or None for all cores".into(),
-            ));
-        }
-        o = o.threads(t);
+    if threads == Some(0) {
+        return Err(Failure::Input(
+            "threads=0: give at least one thread, or None for all cores".into(),
+        ));
     }
-    Ok(o)
+    CouplingSettings {
+        multipliers,
+        integration,
+        degree,
+        threads,
+        require_full_coverage,
+        curved_tolerance: dials.curved_tolerance,
+        subdivision: dials.subdivision,
+        quad_subdivision: dials.quad_subdivision,
+        ..Default::default()
+    }
+    .options()
+    .map_err(Failure::Core)
 }
 
 /// What the work off the GIL returns.

@@ -35,22 +35,10 @@ fn interface() -> Interface {
     slave
         .add_face(&mortar::elements::QUAD4, &[1, 2, 3, 4])
         .unwrap();
-    let unit = square_triangles(7, Diagonal::Main, 0.0, true, 100).unwrap();
-    let mut master = SurfaceMesh::new();
-    for (x, &tag) in unit.coords().iter().zip(unit.node_tags()) {
-        master
-            .add_node(tag, [1.4 * x.x - 0.1, 1.4 * x.y - 0.1, 0.0])
-            .unwrap();
-    }
-    for f in 0..unit.face_count() {
-        let face = unit.face(f);
-        let tags: Vec<u64> = face
-            .nodes
-            .iter()
-            .map(|&n| unit.node_tags()[n as usize])
-            .collect();
-        master.add_face(face.element, &tags).unwrap();
-    }
+    let mut master = square_triangles(7, Diagonal::Main, 0.0, true, 100).unwrap();
+    master
+        .transform(|x| nalgebra::Vector3::new(1.4 * x.x - 0.1, 1.4 * x.y - 0.1, 0.0))
+        .unwrap();
     Interface::new(slave, master).unwrap()
 }
 

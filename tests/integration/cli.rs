@@ -433,22 +433,10 @@ fn couples_with_the_quad_subdivision_dial() {
         .add_face(&mortar::elements::QUAD4, &[1, 2, 3, 4])
         .unwrap();
     // Tri3 covering [-0.1, 1.3]^2, facing the slave.
-    let unit = square_triangles(5, Diagonal::Main, 0.0, true, 101).unwrap();
-    let mut master = mortar::SurfaceMesh::new();
-    for (x, &tag) in unit.coords().iter().zip(unit.node_tags()) {
-        master
-            .add_node(tag, [1.4 * x.x - 0.1, 1.4 * x.y - 0.1, 0.0])
-            .unwrap();
-    }
-    for f in 0..unit.face_count() {
-        let face = unit.face(f);
-        let tags: Vec<u64> = face
-            .nodes
-            .iter()
-            .map(|&n| unit.node_tags()[n as usize])
-            .collect();
-        master.add_face(face.element, &tags).unwrap();
-    }
+    let mut master = square_triangles(5, Diagonal::Main, 0.0, true, 101).unwrap();
+    master
+        .transform(|x| nalgebra::Vector3::new(1.4 * x.x - 0.1, 1.4 * x.y - 0.1, 0.0))
+        .unwrap();
     let (s, m) = (dir.join("slave.msh"), dir.join("master.msh"));
     write_msh41_ascii(&slave, &s, "slave").unwrap();
     write_msh41_ascii(&master, &m, "master").unwrap();
