@@ -3,9 +3,9 @@
 use std::time::Instant;
 
 use mortar::core::element::ElementRef;
-use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
 use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
+use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar::{
     assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
 };
