@@ -83,7 +83,10 @@ class Coupling:
 
     The tying constraint of fields ``u_s`` (slave nodes, row order) and ``u_m`` (master
     nodes, column order) is ``D @ u_s - M @ u_m = 0``; for a field given on all points,
-    ``u_s = u[slave_nodes]``, ``u_m = u[master_nodes]``.
+    ``u_s = u[slave_nodes]``, ``u_m = u[master_nodes]``. With ``multipliers="linear"`` the
+    rows of the edge and centre nodes of second-order faces are empty (no multiplier there):
+    take ``D[c.multiplier_rows]`` and ``M[c.multiplier_rows]`` as the constraint, or its
+    saddle point is singular.
     """
 
     def __init__(self, raw: dict):
@@ -96,6 +99,13 @@ class Coupling:
         self.stats: dict = raw["stats"]
         self.warnings: list = raw["warnings"]
         self.dim: int = raw["dim"]
+
+    @property
+    def multiplier_rows(self) -> np.ndarray:
+        """int64: the rows of D and M that carry a multiplier, ascending: every row but the
+        empty ones (the edge and centre nodes of second-order faces with
+        ``multipliers="linear"``, and slave nodes no master face covers)."""
+        return np.flatnonzero(np.diff(self.D.indptr) > 0).astype(np.int64)
 
     def weighted_gap(self, x_s: np.ndarray, x_m: np.ndarray) -> np.ndarray:
         """The weighted gap vectors ``G = D x_s - M x_m``, one row per slave node.

@@ -40,6 +40,9 @@ def test_second_order_interfaces_tie_linear_fields(file, slave, master, types, m
         assert 0 < expected.sum() < len(expected)
         assert np.array_equal(np.diff(c.D.indptr) > 0, expected)
         assert np.array_equal(np.diff(c.M.indptr) > 0, expected)
+        assert np.array_equal(c.multiplier_rows, np.flatnonzero(expected))
+    else:
+        assert np.array_equal(c.multiplier_rows, np.arange(len(c.slave_nodes)))
 
 
 def test_second_order_cell_types_by_both_names():
