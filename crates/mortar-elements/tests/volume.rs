@@ -264,6 +264,15 @@ fn faces_point_outwards() {
     }
 }
 
+/// `int x^e0 y^e1 z^e2` by the rule.
+fn monomial_integral(rule: &VolumeQuadratureRule, e: [u32; 3]) -> f64 {
+    rule.points()
+        .iter()
+        .zip(rule.weights())
+        .map(|(p, w)| w * p.x.powi(e[0] as i32) * p.y.powi(e[1] as i32) * p.z.powi(e[2] as i32))
+        .sum()
+}
+
 #[test]
 fn volume_quadrature_is_exact_to_its_degree() {
     // Monomials x^a y^b z^c over the unit tetrahedron: a! b! c! / (a + b + c + 3)!.
@@ -277,12 +286,7 @@ fn volume_quadrature_is_exact_to_its_degree() {
         for a in 0..=degree {
             for b in 0..=degree - a {
                 let c = degree - a - b;
-                let q: f64 = rule
-                    .points()
-                    .iter()
-                    .zip(rule.weights())
-                    .map(|(p, w)| w * p.x.powi(a as i32) * p.y.powi(b as i32) * p.z.powi(c as i32))
-                    .sum();
+                let q = monomial_integral(&rule, [a, b, c]);
                 let exact = fact(a) * fact(b) * fact(c) / fact(a + b + c + 3);
                 assert!((q - exact).abs() < 1e-14, "degree {degree}: {q} vs {exact}");
             }
@@ -293,12 +297,7 @@ fn volume_quadrature_is_exact_to_its_degree() {
         11,
     )
     .unwrap();
-    let q: f64 = hex
-        .points()
-        .iter()
-        .zip(hex.weights())
-        .map(|(p, w)| w * p.x.powi(4) * p.y.powi(4) * p.z.powi(2))
-        .sum();
+    let q = monomial_integral(&hex, [4, 4, 2]);
     assert!((q - 8.0 / 75.0).abs() < 1e-14);
     // Above the symmetric rules (degree 11), tensor Gauss rules: every monomial of total
     // degree up to 20, against prod 2 / (e + 1) for even exponents, 0 for odd ones.
@@ -311,12 +310,7 @@ fn volume_quadrature_is_exact_to_its_degree() {
         for a in 0..=degree {
             for b in 0..=degree - a {
                 let c = degree - a - b;
-                let q: f64 = rule
-                    .points()
-                    .iter()
-                    .zip(rule.weights())
-                    .map(|(p, w)| w * p.x.powi(a as i32) * p.y.powi(b as i32) * p.z.powi(c as i32))
-                    .sum();
+                let q = monomial_integral(&rule, [a, b, c]);
                 let one = |e: u32| {
                     if e.is_multiple_of(2) {
                         2.0 / f64::from(e + 1)

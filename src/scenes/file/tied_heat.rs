@@ -564,10 +564,11 @@ impl TiedHeatSpec {
         let coupling = settings.options().map_err(|e| {
             let key = match &e {
                 MortarError::InvalidOption { option, .. } => match *option {
+                    "quadrature degree" => "interface.degree",
                     "curved tolerance" => "interface.curved_tolerance",
                     "subdivision level" => "interface.subdivision",
                     "quad subdivision" => "interface.quad_subdivision",
-                    _ => "interface.degree",
+                    _ => "interface",
                 },
                 _ => "interface",
             };

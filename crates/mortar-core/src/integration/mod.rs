@@ -33,7 +33,7 @@ use nalgebra::{Vector2, Vector3};
 pub use adaptive::{AdaptiveElementBased, MAX_ADAPTIVE_DEPTH};
 pub use degree::default_degree;
 pub use element_based::ElementBased;
-pub use segment_based::SegmentBased;
+pub use segment_based::{SegmentBased, MAX_QUAD_SUBDIVISION};
 
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};

@@ -60,14 +60,7 @@ impl SegmentBased {
     /// # Errors
     /// [`MortarError::InvalidOption`] unless `1 <= level <= MAX_SUBDIVISION`.
     pub fn with_subdivision(mut self, level: u32) -> Result<Self> {
-        if !(1..=MAX_SUBDIVISION).contains(&level) {
-            return Err(MortarError::InvalidOption {
-                option: "subdivision level",
-                value: level.to_string(),
-                reason: format!("out of range 1..={MAX_SUBDIVISION}"),
-            });
-        }
-        self.subdivision = Some(level);
+        self.subdivision = Some(in_range("subdivision level", level, MAX_SUBDIVISION)?);
         Ok(self)
     }
 
@@ -88,17 +81,26 @@ impl SegmentBased {
     /// Parallelograms, triangles and curved second-order faces are not affected.
     ///
     /// # Errors
-    /// [`MortarError::InvalidOption`] unless `1 <= m <= 16`.
+    /// [`MortarError::InvalidOption`] unless `1 <= m <= MAX_QUAD_SUBDIVISION` (16).
     pub fn with_quad_subdivision(mut self, m: u32) -> Result<Self> {
-        if !(1..=16).contains(&m) {
-            return Err(MortarError::InvalidOption {
-                option: "quad subdivision",
-                value: m.to_string(),
-                reason: "out of range 1..=16".into(),
-            });
-        }
-        self.quad_subdivision = Some(m);
+        self.quad_subdivision = Some(in_range("quad subdivision", m, MAX_QUAD_SUBDIVISION)?);
         Ok(self)
+    }
+}
+
+/// The largest cut of [`SegmentBased::with_quad_subdivision`].
+pub const MAX_QUAD_SUBDIVISION: u32 = 16;
+
+/// `value` if `1 <= value <= max`, else [`MortarError::InvalidOption`] naming `option`.
+fn in_range(option: &'static str, value: u32, max: u32) -> Result<u32> {
+    if (1..=max).contains(&value) {
+        Ok(value)
+    } else {
+        Err(MortarError::InvalidOption {
+            option,
+            value: value.to_string(),
+            reason: format!("out of range 1..={max}"),
+        })
     }
 }
 

@@ -397,14 +397,15 @@ pub fn face_each_other(
     // thin body within reach (a short prism's caps).
     let near: Vec<(u32, u32, f64)> = {
         use rayon::prelude::*;
-        let chunks: Vec<Vec<(u32, u32, f64)>> = (0..fs.len())
-            .collect::<Vec<usize>>()
-            .par_chunks(4096)
-            .map(|faces| {
+        const CHUNK: usize = 4096;
+        let chunks: Vec<Vec<(u32, u32, f64)>> = fs
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(chunk, frames)| {
                 let mut out = Vec::new();
                 let mut pairs = Vec::new();
-                for &s in faces {
-                    let (n, c, _) = &fs[s];
+                for (i, (n, c, _)) in frames.iter().enumerate() {
+                    let s = chunk * CHUNK + i;
                     let (i, j, k) = key(c);
                     pairs.clear();
                     for di in -1..=1 {

@@ -1,3 +1,4 @@
+use arrayvec::ArrayVec;
 use nalgebra::{DMatrix, Vector2};
 
 use super::{LmBasis, MultiplierSpace};
@@ -94,12 +95,14 @@ impl MultiplierSpace for LinearMultipliers {
 
 /// The first-order polynomials of a reference domain: `1, xi` (line), `1, xi, eta`
 /// (triangle), `1, xi, eta, xi eta` (quadrilateral).
-fn monomials(domain: ReferenceDomain, xi: &Vector2<f64>) -> Vec<f64> {
-    match domain {
-        ReferenceDomain::Line => vec![1.0, xi.x],
-        ReferenceDomain::Triangle => vec![1.0, xi.x, xi.y],
-        ReferenceDomain::Quadrilateral => vec![1.0, xi.x, xi.y, xi.x * xi.y],
-    }
+fn monomials(domain: ReferenceDomain, xi: &Vector2<f64>) -> ArrayVec<f64, 4> {
+    let all = [1.0, xi.x, xi.y, xi.x * xi.y];
+    let count = match domain {
+        ReferenceDomain::Line => 2,
+        ReferenceDomain::Triangle => 3,
+        ReferenceDomain::Quadrilateral => 4,
+    };
+    all[..count].iter().copied().collect()
 }
 
 /// The coefficients of the corner functions in [`monomials`] (column `c` for corner `c`):
@@ -108,10 +111,10 @@ fn monomials(domain: ReferenceDomain, xi: &Vector2<f64>) -> Vec<f64> {
 fn corner_functions(el: &dyn SurfaceElement) -> Option<DMatrix<f64>> {
     let c = el.corner_count();
     let xi = el.node_reference_coords();
-    let rows: Vec<Vec<f64>> = (0..c)
+    let rows: Vec<ArrayVec<f64, 4>> = (0..c)
         .map(|d| monomials(el.domain(), &Vector2::new(xi[d][0], xi[d][1])))
         .collect();
-    if rows.first().map(Vec::len) != Some(c) {
+    if rows.first().map(ArrayVec::len) != Some(c) {
         return None;
     }
     DMatrix::from_fn(c, c, |d, p| rows[d][p]).try_inverse()

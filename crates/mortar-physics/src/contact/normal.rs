@@ -77,9 +77,7 @@ impl NormalGap {
         let roundoff =
             8.0 * f64::EPSILON * x_s.iter().chain(&x_m).fold(0.0f64, |a, x| a.max(x.amax()));
         let rows = c.d.rows();
-        let carries: Vec<bool> = (0..rows)
-            .map(|j| c.d.outer_view(j).is_some_and(|d| d.nnz() > 0))
-            .collect();
+        let carries = tie.rows_with_multiplier();
         let interpolation = tie.rows_without_multiplier()?;
         let mut weights = vec![0.0; rows];
         let mut diagonal = true;

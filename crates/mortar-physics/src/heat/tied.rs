@@ -40,7 +40,7 @@ pub struct TiedHeatSolution {
     /// The heat flux leaving the slave body at each slave interface node (rows of D: ascending
     /// node tag), the multiplier `lambda`; `NaN` at Dirichlet slave nodes; at a node without
     /// multiplier (linear multipliers on second-order faces) the first-order interpolation of
-    /// its face's corners' fluxes.
+    /// its face's corners' fluxes (`NaN` where a corner has none either).
     pub flux: Vec<f64>,
     /// Which formulation was solved, and why.
     pub formulation: FormulationReport,

@@ -673,9 +673,7 @@ fn modified_rows(
     let comps = tie.components();
     // Rows that carry a multiplier: all but the empty ones of nodes without (linear
     // multipliers on second-order faces), which constrain nothing.
-    let carries: Vec<bool> = (0..ns)
-        .map(|r| tie.d().outer_view(r).is_some_and(|v| v.nnz() > 0))
-        .collect();
+    let carries = tie.rows_with_multiplier();
     let fixed: Vec<bool> = tie
         .slave_dofs()
         .iter()

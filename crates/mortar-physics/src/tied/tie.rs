@@ -45,6 +45,11 @@ pub fn kron_identity(a: &SparseMatrix, c: usize) -> SparseMatrix {
     t.to_csr(a.rows() * c, a.cols() * c)
 }
 
+/// Per row of `a`, whether it has a stored entry.
+fn nonempty_rows(a: &SparseMatrix) -> Vec<bool> {
+    a.outer_iterator().map(|row| row.nnz() > 0).collect()
+}
+
 /// Node indices to unknowns of `c` components: `node * c + k`.
 fn expand(nodes: &[u32], c: usize) -> Vec<u32> {
     nodes
@@ -179,6 +184,13 @@ impl Tie {
         &self.master_nodes
     }
 
+    /// Per row of [`d`](Self::d) (unknown rows: a node's components together), whether it
+    /// carries a multiplier: every row but the empty ones (the edge and centre nodes of
+    /// linear multipliers on second-order faces), which constrain nothing.
+    pub fn rows_with_multiplier(&self) -> Vec<bool> {
+        nonempty_rows(self.d())
+    }
+
     /// For each coupling row that carries no multiplier (its row of D empty: the edge and
     /// centre nodes of linear multipliers on second-order faces), the rows of the corners of a
     /// slave face of its node and the first-order functions of those corners at it (the
@@ -191,9 +203,7 @@ impl Tie {
     /// the face.
     pub fn rows_without_multiplier(&self) -> Result<Vec<Interpolated>, PhysicsError> {
         let c = &self.coupling;
-        let carries: Vec<bool> = (0..c.d.rows())
-            .map(|j| c.d.outer_view(j).is_some_and(|d| d.nnz() > 0))
-            .collect();
+        let carries = nonempty_rows(&c.d);
         let mut out = Vec::new();
         if carries.iter().all(|d| *d) {
             return Ok(out);
