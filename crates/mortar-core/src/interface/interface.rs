@@ -162,21 +162,20 @@ impl Interface {
     }
 
     /// The largest [`bend`](crate::integration::curved_3d::bend) of the master faces (0 for a
-    /// first-order master), computed on first use (in parallel) and kept: the curved
-    /// segmentation cuts every master face at the level of this bend, so that neighbouring
-    /// faces cut their shared curved edges alike.
+    /// first-order master), computed on first use and kept: the curved segmentation cuts
+    /// every master face at the level of this bend, so that neighbouring faces cut their
+    /// shared curved edges alike. Computed on the calling thread: the first call comes from
+    /// a worker of the coupling, and parallel work inside the initialisation could let that
+    /// worker pick up another face of the coupling, call this again and wait on itself.
     pub fn master_bend(&self) -> f64 {
-        use rayon::prelude::*;
         *self.master_bend.get_or_init(|| {
             (0..self.master.face_count())
-                .into_par_iter()
-                .with_min_len(1024)
                 .filter(|&f| {
                     let el = self.master.face(f).element;
                     el.node_count() > el.corner_count()
                 })
                 .map(|f| crate::integration::curved_3d::bend(&self.master_face(f)))
-                .reduce(|| 0.0, f64::max)
+                .fold(0.0, f64::max)
         })
     }
 }

@@ -3,7 +3,7 @@
 use mortar_core::linalg::{SparseMatrix, Triplets};
 
 use crate::error::PhysicsError;
-use crate::tied::Tie;
+use crate::tied::{Interpolated, Tie};
 
 /// The weighted normal gap of a tie, linear in the displacements: `g~ = g~_0 - N u`, with
 /// `u` the slave body's displacements followed by the master body's (`node * dim + k`).
@@ -38,8 +38,6 @@ pub struct NormalGap {
     /// shape functions of those corners at its node.
     interpolation: Vec<Interpolated>,
 }
-
-use crate::tied::Interpolated;
 
 impl NormalGap {
     /// The gap of `tie` (a tie of scalar node numbering: [`Tie::components`] must be 1; the

@@ -40,7 +40,8 @@ pub struct TiedHeatSolution {
     /// The heat flux leaving the slave body at each slave interface node (rows of D: ascending
     /// node tag), the multiplier `lambda`; `NaN` at Dirichlet slave nodes; at a node without
     /// multiplier (linear multipliers on second-order faces) the first-order interpolation of
-    /// its face's corners' fluxes (`NaN` where a corner has none either).
+    /// its face's corners' fluxes (where that fails, a corner without multiplier too or a
+    /// face the linear basis cannot be built on, every such node keeps `NaN`).
     pub flux: Vec<f64>,
     /// Which formulation was solved, and why.
     pub formulation: FormulationReport,
@@ -169,7 +170,8 @@ impl TiedHeat {
             ..Default::default()
         };
         let dirichlet = [slave.dirichlet_nodes(), master.dirichlet_nodes()];
-        // Rows without multiplier whose face's corners carry none either keep NaN fluxes.
+        // If the interpolation cannot be built (see TiedHeatSolution::flux), the rows without
+        // multiplier keep NaN fluxes, the value of "no multiplier here".
         let without_multiplier = tie.rows_without_multiplier().unwrap_or_default();
         Ok(Self {
             bodies: [slave, master],
