@@ -15,8 +15,9 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::solvers::SolveCore;
 use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::linalg::LuError;
@@ -424,6 +425,142 @@ impl CholeskyFactorization {
         self.symbolic.len_val()
     }
 
+    /// The last `k` columns and rows of the factor `L` (in the elimination order), as a
+    /// dense lower-triangular `k x k` block stored by columns: for an ordering that
+    /// eliminates a set of `k` unknowns last, `L_kk L_kk^T` is the Schur complement of the
+    /// others in `A` (what [`SubstructuredCholesky`](super::SubstructuredCholesky) combines).
+    /// The first half of a solve: `x <- L^-1 P x`, the result in the elimination order
+    /// (`P` the fill-reducing permutation). [`backward_in_place`](Self::backward_in_place)
+    /// completes it; between them a caller may change the values of the unknowns eliminated
+    /// last (see [`SubstructuredCholesky`](super::SubstructuredCholesky)).
+    pub(crate) fn forward_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        check_rhs(self.pattern.n, x.len())?;
+        self.permute(x, false);
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sym) => {
+                let n = x.len();
+                let mut mem =
+                    MemBuffer::try_new(sym.solve_in_place_scratch::<f64>(1, faer::Par::Seq))
+                        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+                SupernodalLltRef::new(sym, &self.values).l_solve_with_conj(
+                    Conj::No,
+                    MatMut::from_column_major_slice_mut(x, n, 1),
+                    faer::Par::Seq,
+                    MemStack::new(&mut mem),
+                );
+            }
+            SymbolicCholeskyRaw::Simplicial(sym) => {
+                let (ptr, idx) = (sym.col_ptr(), sym.row_idx());
+                for j in 0..x.len() {
+                    let col = ptr[j]..ptr[j + 1];
+                    let d = col.clone().find(|&p| idx[p] == j).map(|p| self.values[p]);
+                    x[j] /= d.unwrap_or(f64::NAN);
+                    let xj = x[j];
+                    for p in col.filter(|&p| idx[p] > j) {
+                        x[idx[p]] -= self.values[p] * xj;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The second half of a solve: `x <- P^T L^-T x` for `x` in the elimination order (see
+    /// [`forward_in_place`](Self::forward_in_place)).
+    pub(crate) fn backward_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        check_rhs(self.pattern.n, x.len())?;
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sym) => {
+                let n = x.len();
+                let mut mem =
+                    MemBuffer::try_new(sym.solve_in_place_scratch::<f64>(1, faer::Par::Seq))
+                        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+                SupernodalLltRef::new(sym, &self.values).l_transpose_solve_with_conj(
+                    Conj::No,
+                    MatMut::from_column_major_slice_mut(x, n, 1),
+                    faer::Par::Seq,
+                    MemStack::new(&mut mem),
+                );
+            }
+            SymbolicCholeskyRaw::Simplicial(sym) => {
+                let (ptr, idx) = (sym.col_ptr(), sym.row_idx());
+                for j in (0..x.len()).rev() {
+                    let (mut dot, mut d) = (0.0, f64::NAN);
+                    for p in ptr[j]..ptr[j + 1] {
+                        if idx[p] == j {
+                            d = self.values[p];
+                        } else if idx[p] > j {
+                            dot += self.values[p] * x[idx[p]];
+                        }
+                    }
+                    x[j] = (x[j] - dot) / d;
+                }
+            }
+        }
+        self.permute(x, true);
+        check_finite(x)
+    }
+
+    /// `x <- P x` (into the elimination order), or `x <- P^T x` if `back`.
+    fn permute(&self, x: &mut [f64], back: bool) {
+        if let Some(perm) = self.symbolic.perm() {
+            let (fwd, inv) = perm.arrays();
+            let map = if back { inv } else { fwd };
+            let old = x.to_vec();
+            for (xi, &m) in x.iter_mut().zip(map) {
+                *xi = old[m];
+            }
+        }
+    }
+
+    /// Whether faer chose its supernodal factorisation (else the simplicial one).
+    #[cfg(test)]
+    pub(crate) fn is_supernodal(&self) -> bool {
+        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+    }
+
+    pub(crate) fn trailing_factor(&self, k: usize) -> Vec<f64> {
+        let n = self.pattern.n;
+        let k = k.min(n);
+        let first = n - k;
+        let mut out = vec![0.0; k * k];
+        let mut put = |i: usize, j: usize, v: f64| {
+            if i >= first && j >= first {
+                out[(j - first) * k + (i - first)] = v;
+            }
+        };
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sym) => {
+                let l = SupernodalLltRef::new(sym, &self.values);
+                for s in 0..sym.n_supernodes() {
+                    let node = l.supernode(s);
+                    let (start, block) = (node.start(), node.val());
+                    let cols = block.ncols();
+                    if start + cols <= first {
+                        continue;
+                    }
+                    for c in 0..cols {
+                        for r in c..cols {
+                            put(start + r, start + c, block[(r, c)]);
+                        }
+                        for (p, &row) in node.pattern().iter().enumerate() {
+                            put(row, start + c, block[(cols + p, c)]);
+                        }
+                    }
+                }
+            }
+            SymbolicCholeskyRaw::Simplicial(sym) => {
+                let (ptr, idx) = (sym.col_ptr(), sym.row_idx());
+                for j in first..n {
+                    for p in ptr[j]..ptr[j + 1] {
+                        put(idx[p], j, self.values[p]);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// Overwrites `x` (the right-hand side) with the solution of `A x = b`.
     ///
     /// # Errors
@@ -455,6 +592,42 @@ impl CholeskyFactorization {
         self.solve_in_place(&mut x)?;
         Ok(x)
     }
+}
+
+/// Overwrites the dense symmetric positive definite `n x n` matrix `a` (stored by columns,
+/// both triangles) with its Cholesky factor `L` (lower triangle; the upper one zeroed).
+///
+/// # Errors
+/// [`SolverError::NotPositiveDefinite`].
+pub(crate) fn dense_cholesky(a: &mut [f64], n: usize) -> Result<(), SolverError> {
+    let m = faer::MatRef::from_column_major_slice(a, n, n);
+    let llt = m
+        .llt(Side::Lower)
+        .map_err(|_| SolverError::NotPositiveDefinite { pivot: 0 })?;
+    let l = llt.L();
+    for j in 0..n {
+        for i in 0..n {
+            a[j * n + i] = if i >= j { l[(i, j)] } else { 0.0 };
+        }
+    }
+    Ok(())
+}
+
+/// `L L^T` for the dense lower-triangular `n x n` matrix `l` (stored by columns; its upper
+/// triangle must be zero), stored by columns.
+pub(crate) fn dense_gram(l: &[f64], n: usize) -> Vec<f64> {
+    let l = faer::MatRef::from_column_major_slice(l, n, n);
+    let mut out = vec![0.0; n * n];
+    let c = MatMut::from_column_major_slice_mut(&mut out, n, n);
+    faer::linalg::matmul::matmul(
+        c,
+        faer::Accum::Replace,
+        l,
+        l.transpose(),
+        1.0,
+        faer::Par::Seq,
+    );
+    out
 }
 
 /// The inverse of the permutation `fwd` of `0..n`.

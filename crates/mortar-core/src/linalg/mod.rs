@@ -5,6 +5,8 @@
 //! - [`LuFactorization`], [`CholeskyFactorization`]: factorise once, solve many times, and
 //!   [`refactor`](LuFactorization::refactor) a new matrix of the same pattern reusing the
 //!   symbolic analysis (Newton steps, new time step sizes).
+//! - [`SubstructuredCholesky`]: the same for two domains coupled through a small separator
+//!   (two tied bodies), the domains factorised in parallel.
 //! - [`gmres`]: right-preconditioned restarted GMRES(m) on any [`LinearOperator`] (an
 //!   assembled matrix or a matrix-free product), with any [`Preconditioner`] (the
 //!   factorisations above, or [`IdentityPreconditioner`]).
@@ -13,6 +15,7 @@ mod conditioning;
 mod faer_backend;
 mod gmres;
 pub mod nested_dissection;
+mod substructured;
 mod triplets;
 
 pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
@@ -23,6 +26,7 @@ pub use faer_backend::{
 pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
 };
+pub use substructured::SubstructuredCholesky;
 pub use triplets::{CompressWorkspace, PartList, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.
