@@ -162,3 +162,61 @@ fn tied_system_input_errors() {
     ));
     assert!(sys.solve([&b0, &b1], [&[], &g]).is_ok());
 }
+
+/// From `SUBSTRUCTURED_MIN` unknowns a 2D condensed system is factorised by body (the two
+/// bodies in parallel, the interface last); it gives the saddle point's solution, also with a
+/// slave body that has no Dirichlet condition of its own (held only through the interface).
+#[test]
+fn condensed_by_body_agrees_with_the_saddle_point() {
+    use mortar::physics::tied::{TiedSystem, SUBSTRUCTURED_MIN};
+    for geometry in [Geometry::Straight, Geometry::Curved] {
+        let problem = TiedHeatScene::new(2, geometry, 64).build().unwrap();
+        let auto = problem.solve_steady(&TiedOptions::default(), 0.0).unwrap();
+        let saddle = problem
+            .solve_steady(
+                &TiedOptions::default().with_formulation(FormulationChoice::SaddlePoint),
+                0.0,
+            )
+            .unwrap();
+        let name = format!("{geometry:?}");
+        assert!(auto.formulation.unknowns >= SUBSTRUCTURED_MIN, "{name}");
+        assert!(
+            auto.formulation.factorisation.contains("by body"),
+            "{name}: {}",
+            auto.formulation.factorisation
+        );
+        for b in 0..2 {
+            let d = max_abs_diff(&auto.temperatures[b], &saddle.temperatures[b]);
+            assert!(d < 1e-10, "{name}: temperatures differ by {d:e}");
+        }
+        let d = max_abs_diff(&auto.flux, &saddle.flux);
+        assert!(d < 1e-9, "{name}: fluxes differ by {d:e}");
+    }
+    // A floating slave body: only the master's Dirichlet nodes.
+    let problem = TiedHeatScene::new(2, Geometry::Straight, 64)
+        .build()
+        .unwrap();
+    let m = problem.matrices();
+    let k = [&m[0].stiffness, &m[1].stiffness];
+    let (nodes, _) = problem.bodies()[1].dirichlet_nodes();
+    let values: Vec<f64> = (0..nodes.len()).map(|i| (i as f64 * 0.1).sin()).collect();
+    let rhs: Vec<Vec<f64>> = (0..2).map(|b| vec![1.0; k[b].rows()]).collect();
+    let mut fields = Vec::new();
+    for choice in [FormulationChoice::Auto, FormulationChoice::SaddlePoint] {
+        let opts = TiedOptions::default().with_formulation(choice);
+        let sys = TiedSystem::new(k, problem.tie(), [&[], &nodes], &opts).unwrap();
+        let by_body = sys.report().factorisation.contains("by body");
+        assert_eq!(by_body, choice == FormulationChoice::Auto);
+        fields.push(sys.solve([&rhs[0], &rhs[1]], [&[], &values]).unwrap());
+    }
+    for b in 0..2 {
+        let d = max_abs_diff(&fields[0].fields[b], &fields[1].fields[b]);
+        let scale = fields[1].fields[b]
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        assert!(
+            d < 1e-10 * scale,
+            "floating slave body {b}: differ by {d:e} of {scale:e}"
+        );
+    }
+}

@@ -1,7 +1,7 @@
 //! Two bodies tied by mortar: the interface and its coupling ([`Tie`]), and the tied linear
 //! system ([`TiedSystem`]) solved either as a saddle point (standard or dual multipliers,
 //! sparse LU) or, when D is diagonal, condensed to a symmetric positive definite system
-//! (sparse Cholesky). The choice is automatic by default and reported
+//! (sparse Cholesky; by body, the two bodies in parallel, when the interface is small). The choice is automatic by default and reported
 //! ([`FormulationReport`]).
 //!
 //! Dirichlet conditions on slave interface nodes (where the interface meets a Dirichlet
@@ -15,5 +15,5 @@ mod tie;
 pub use formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };
-pub use system::{SystemSeconds, TiedFields, TiedSystem};
+pub use system::{SystemSeconds, TiedFields, TiedSystem, SUBSTRUCTURED_MIN};
 pub use tie::{kron_identity, Interpolated, Tie};
