@@ -1,5 +1,5 @@
-//! Parallel assembly is deterministic: the matrices and loads are the same bit for bit on one
-//! thread and on several (fixed chunks of cells, merged in order).
+//! Parallel assembly and solves are deterministic: the matrices, loads and solutions are the
+//! same bit for bit on one thread and on several (fixed chunks of cells, merged in order).
 
 use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::physics::heat::{
@@ -115,6 +115,35 @@ fn shuffled_files_give_the_operators_of_sorted_ones() {
                     );
                 }
             }
+        }
+    }
+}
+
+/// The tied system solved by body (two domains on two threads, the interface last) gives the
+/// same temperatures bit for bit on one thread and on several; as does the single factor.
+#[test]
+fn tied_solutions_are_bit_identical_across_thread_counts() {
+    use mortar::physics::tied::TiedOptions;
+    use mortar::scenes::tied_heat::{Geometry, TiedHeatScene};
+    for (dim, n) in [(2, 64), (3, 8)] {
+        let problem = TiedHeatScene::new(dim, Geometry::Straight, n)
+            .build()
+            .unwrap();
+        let solve = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let s = problem.solve_steady(&TiedOptions::default(), 0.0).unwrap();
+                let by_body = s.formulation.factorisation.contains("by body");
+                (by_body, bits(&s.temperatures[0]), bits(&s.temperatures[1]))
+            })
+        };
+        let one = solve(1);
+        assert_eq!(one.0, dim == 2, "{dim}D: factorised by body");
+        for threads in [2, 3] {
+            assert_eq!(one, solve(threads), "{dim}D, {threads} threads");
         }
     }
 }

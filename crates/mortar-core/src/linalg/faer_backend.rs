@@ -600,15 +600,30 @@ impl CholeskyFactorization {
 /// # Errors
 /// [`SolverError::NotPositiveDefinite`].
 pub(crate) fn dense_cholesky(a: &mut [f64], n: usize) -> Result<(), SolverError> {
-    let m = faer::MatRef::from_column_major_slice(a, n, n);
-    let llt = m
-        .llt(Side::Lower)
-        .map_err(|_| SolverError::NotPositiveDefinite { pivot: 0 })?;
-    let l = llt.L();
-    for j in 0..n {
-        for i in 0..n {
-            a[j * n + i] = if i >= j { l[(i, j)] } else { 0.0 };
+    // Sequential, so that the factor's bits do not depend on the thread count.
+    let par = faer::Par::Seq;
+    let mut mem = MemBuffer::try_new(
+        faer::linalg::cholesky::llt::factor::cholesky_in_place_scratch::<f64>(
+            n,
+            par,
+            Default::default(),
+        ),
+    )
+    .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+    faer::linalg::cholesky::llt::factor::cholesky_in_place(
+        MatMut::from_column_major_slice_mut(a, n, n),
+        Default::default(),
+        par,
+        MemStack::new(&mut mem),
+        Default::default(),
+    )
+    .map_err(|e| match e {
+        faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index } => {
+            SolverError::NotPositiveDefinite { pivot: index }
         }
+    })?;
+    for j in 0..n {
+        a[j * n..j * n + j].fill(0.0);
     }
     Ok(())
 }
