@@ -24,7 +24,8 @@ fn exact(x: &Vector3<f64>, k: usize) -> f64 {
 
 #[test]
 fn linear_vector_fields_are_reproduced_by_both_paths() {
-    for (dim, n) in [(2, 8), (3, 4)] {
+    // (2, 48): 7,852 unknowns, factorised by body on the condensed path.
+    for (dim, n) in [(2, 8), (2, 48), (3, 4)] {
         let problem = TiedHeatScene::new(dim, Geometry::Straight, n)
             .build()
             .unwrap();
@@ -62,6 +63,12 @@ fn linear_vector_fields_are_reproduced_by_both_paths() {
                 Formulation::SaddlePoint
             };
             assert_eq!(system.report().formulation, expected, "{dim}D");
+            let by_body = system.report().factorisation.contains("by body");
+            assert_eq!(
+                by_body,
+                n == 48 && choice == FormulationChoice::Auto,
+                "{dim}D {n}"
+            );
             let zero = [vec![0.0; k[0].rows()], vec![0.0; k[1].rows()]];
             let sol = system
                 .solve([&zero[0], &zero[1]], [&values[0], &values[1]])

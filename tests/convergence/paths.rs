@@ -219,4 +219,23 @@ fn condensed_by_body_agrees_with_the_saddle_point() {
             "floating slave body {b}: differ by {d:e} of {scale:e}"
         );
     }
+    // Refactored by body with twice the matrices: twice the right-hand side gives the same
+    // fields.
+    let opts = TiedOptions::default();
+    let mut sys = TiedSystem::new(k, problem.tie(), [&[], &nodes], &opts).unwrap();
+    let doubled: Vec<_> = k.iter().map(|m| m.map(|v| 2.0 * v)).collect();
+    sys.refactor([&doubled[0], &doubled[1]]).unwrap();
+    assert!(sys.report().factorisation.contains("by body"));
+    let rhs2: Vec<Vec<f64>> = rhs
+        .iter()
+        .map(|r| r.iter().map(|v| 2.0 * v).collect())
+        .collect();
+    let again = sys.solve([&rhs2[0], &rhs2[1]], [&[], &values]).unwrap();
+    for b in 0..2 {
+        let d = max_abs_diff(&again.fields[b], &fields[0].fields[b]);
+        let scale = fields[0].fields[b]
+            .iter()
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        assert!(d < 1e-10 * scale, "refactored, body {b}: differ by {d:e}");
+    }
 }
