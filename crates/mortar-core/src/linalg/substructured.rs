@@ -56,7 +56,8 @@ pub struct SubstructuredCholesky {
 
 impl SubstructuredCholesky {
     /// The separator of the split `second` (per unknown: whether it belongs to the second
-    /// domain): the unknowns of the second domain with an entry in a row of the first, in
+    /// domain): the unknowns of the second domain that share a stored entry with one of the
+    /// first (in either triangle, so that an entry stored on one side only is not lost), in
     /// ascending order.
     ///
     /// # Errors
@@ -65,11 +66,9 @@ impl SubstructuredCholesky {
         check_split(a, second)?;
         let mut mark = vec![false; second.len()];
         for (r, row) in a.outer_iterator().enumerate() {
-            if !second[r] {
-                for (c, _) in row.iter() {
-                    if second[c] {
-                        mark[c] = true;
-                    }
+            for (c, _) in row.iter() {
+                if second[r] != second[c] {
+                    mark[if second[r] { r } else { c }] = true;
                 }
             }
         }
@@ -127,6 +126,16 @@ impl SubstructuredCholesky {
                 a.cols(),
                 self.n
             )));
+        }
+        // The same split: an entry between the domains outside the separator would be lost.
+        let mut second = vec![false; self.n];
+        for &i in self.domains[1].own.iter().chain(&self.separator) {
+            second[i] = true;
+        }
+        if Self::separator(a, &second)? != self.separator {
+            return Err(SolverError::PatternMismatch(
+                "the unknowns that couple the two domains differ from the analysed ones".into(),
+            ));
         }
         let sep = &self.separator;
         let [d0, d1] = &self.domains;
@@ -459,6 +468,49 @@ mod tests {
             .map(|(a, b)| (a - b).abs())
             .fold(0.0, f64::max);
         assert!(diff < 1e-11, "difference {diff}");
+    }
+
+    /// Two domains without coupling: an empty separator, solved per domain. An entry
+    /// stored in one triangle only still puts its unknown in the separator; a new matrix
+    /// that couples the domains elsewhere is refused by `refactor`.
+    #[test]
+    fn separators_empty_one_sided_and_changed() {
+        let (nx, ny) = (8, 6);
+        let a = grid(nx, ny, 1.0);
+        let pick = |k: usize| k >= nx * ny / 2;
+        // The two halves of the grid, decoupled: drop the entries between them.
+        let mut t = Triplets::default();
+        for (v, (i, j)) in a.iter() {
+            if pick(i) == pick(j) {
+                t.push(i as u32, j as u32, *v);
+            }
+        }
+        let split = t.to_csr(nx * ny, nx * ny);
+        let second: Vec<bool> = (0..nx * ny).map(pick).collect();
+        let f = SubstructuredCholesky::try_new(&split, &second).unwrap();
+        assert_eq!(f.separator_len(), 0);
+        let x: Vec<f64> = (0..nx * ny).map(|k| k as f64).collect();
+        let y = f.solve(&mul(&split, &x)).unwrap();
+        let err = x
+            .iter()
+            .zip(&y)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        assert!(err < 1e-11, "error {err}");
+        // One entry (0, last) stored above the diagonal only.
+        let mut t = Triplets::default();
+        for (v, (i, j)) in split.iter() {
+            t.push(i as u32, j as u32, *v);
+        }
+        t.push(0, (nx * ny - 1) as u32, -0.1);
+        let one_sided = t.to_csr(nx * ny, nx * ny);
+        let sep = SubstructuredCholesky::separator(&one_sided, &second).unwrap();
+        assert_eq!(sep, vec![nx * ny - 1]);
+        let mut f = f;
+        assert!(matches!(
+            f.refactor(&a),
+            Err(SolverError::PatternMismatch(_))
+        ));
     }
 
     /// Both of faer's factor layouts (simplicial on a small grid, supernodal on a larger
