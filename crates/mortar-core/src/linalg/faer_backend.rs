@@ -90,14 +90,7 @@ struct CscView<'a> {
 
 impl<'a> CscView<'a> {
     fn of(a: &'a SparseMatrix) -> Result<Self, SolverError> {
-        let (n, m) = a.shape();
-        if n != m {
-            return Err(SolverError::DimensionMismatch {
-                expected: n,
-                found: m,
-                what: "columns of a square matrix (as many as its rows)",
-            });
-        }
+        let n = check_square(a)?;
         Ok(Self {
             n,
             col_ptr: a.proper_indptr(),
@@ -167,6 +160,22 @@ impl Pattern {
         }
         Ok(())
     }
+}
+
+/// The size of the square matrix `a`.
+///
+/// # Errors
+/// [`SolverError::DimensionMismatch`] if `a` is not square.
+pub(crate) fn check_square(a: &SparseMatrix) -> Result<usize, SolverError> {
+    let (n, m) = a.shape();
+    if n != m {
+        return Err(SolverError::DimensionMismatch {
+            expected: n,
+            found: m,
+            what: "columns of a square matrix (as many as its rows)",
+        });
+    }
+    Ok(n)
 }
 
 fn check_rhs(n: usize, len: usize) -> Result<(), SolverError> {
@@ -438,10 +447,7 @@ impl CholeskyFactorization {
         self.permute(x, false);
         match self.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sym) => {
-                let n = x.len();
-                let mut mem =
-                    MemBuffer::try_new(sym.solve_in_place_scratch::<f64>(1, faer::Par::Seq))
-                        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+                let (mut mem, n) = (supernodal_scratch(sym)?, x.len());
                 SupernodalLltRef::new(sym, &self.values).l_solve_with_conj(
                     Conj::No,
                     MatMut::from_column_major_slice_mut(x, n, 1),
@@ -471,10 +477,7 @@ impl CholeskyFactorization {
         check_rhs(self.pattern.n, x.len())?;
         match self.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sym) => {
-                let n = x.len();
-                let mut mem =
-                    MemBuffer::try_new(sym.solve_in_place_scratch::<f64>(1, faer::Par::Seq))
-                        .map_err(|e| SolverError::Backend(format!("{e:?}")))?;
+                let (mut mem, n) = (supernodal_scratch(sym)?, x.len());
                 SupernodalLltRef::new(sym, &self.values).l_transpose_solve_with_conj(
                     Conj::No,
                     MatMut::from_column_major_slice_mut(x, n, 1),
@@ -643,6 +646,14 @@ pub(crate) fn dense_gram(l: &[f64], n: usize) -> Vec<f64> {
         faer::Par::Seq,
     );
     out
+}
+
+/// The workspace of one sequential triangular solve with a supernodal factor.
+fn supernodal_scratch(
+    sym: &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize>,
+) -> Result<MemBuffer, SolverError> {
+    MemBuffer::try_new(sym.solve_in_place_scratch::<f64>(1, faer::Par::Seq))
+        .map_err(|e| SolverError::Backend(format!("{e:?}")))
 }
 
 /// The inverse of the permutation `fwd` of `0..n`.

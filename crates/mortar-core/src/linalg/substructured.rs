@@ -26,7 +26,7 @@
 
 use rayon::prelude::*;
 
-use super::faer_backend::{dense_cholesky, dense_gram, fill_reducing_ordering};
+use super::faer_backend::{check_square, dense_cholesky, dense_gram, fill_reducing_ordering};
 use super::{CholeskyFactorization, SolverError, SparseMatrix};
 
 /// One domain: its unknowns, the factor of its principal submatrix with the separator
@@ -338,14 +338,7 @@ fn principal_submatrix(a: &SparseMatrix, own: &[usize], sep: &[usize]) -> Sparse
 }
 
 fn check_split(a: &SparseMatrix, second: &[bool]) -> Result<(), SolverError> {
-    let (n, m) = a.shape();
-    if n != m {
-        return Err(SolverError::DimensionMismatch {
-            expected: n,
-            found: m,
-            what: "columns of a square matrix (as many as its rows)",
-        });
-    }
+    let n = check_square(a)?;
     if second.len() != n {
         return Err(SolverError::DimensionMismatch {
             expected: n,
@@ -430,6 +423,13 @@ mod tests {
         t.to_csr(nx * ny, nx * ny)
     }
 
+    fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max)
+    }
+
     fn mul(a: &SparseMatrix, x: &[f64]) -> Vec<f64> {
         a.outer_iterator()
             .map(|row| row.iter().map(|(c, v)| v * x[c]).sum())
@@ -451,22 +451,14 @@ mod tests {
             .collect();
         let b = mul(&a, &x);
         let y = f.solve(&b).unwrap();
-        let err = x
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = max_diff(&x, &y);
         assert!(err < 1e-11, "error {err}");
         // Against the global factorisation.
         let g = CholeskyFactorization::try_new(&a)
             .unwrap()
             .solve(&b)
             .unwrap();
-        let diff = g
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let diff = max_diff(&g, &y);
         assert!(diff < 1e-11, "difference {diff}");
     }
 
@@ -491,11 +483,7 @@ mod tests {
         assert_eq!(f.separator_len(), 0);
         let x: Vec<f64> = (0..nx * ny).map(|k| k as f64).collect();
         let y = f.solve(&mul(&split, &x)).unwrap();
-        let err = x
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = max_diff(&x, &y);
         assert!(err < 1e-11, "error {err}");
         // One entry (0, last) stored above the diagonal only.
         let mut t = Triplets::default();
@@ -527,11 +515,7 @@ mod tests {
             }
             let x: Vec<f64> = (0..nx * ny).map(|k| (k as f64 * 0.1).sin()).collect();
             let y = f.solve(&mul(&a, &x)).unwrap();
-            let err = x
-                .iter()
-                .zip(&y)
-                .map(|(a, b)| (a - b).abs())
-                .fold(0.0, f64::max);
+            let err = max_diff(&x, &y);
             assert!(err < 1e-9, "{nx} x {ny}: error {err}");
         }
         assert_eq!(seen, [true, true], "both layouts met");
@@ -550,11 +534,7 @@ mod tests {
         assert!(x.iter().zip(&stale).any(|(a, b)| (a - b).abs() > 1e-3));
         f.refactor(&a).unwrap();
         let y = f.solve(&b).unwrap();
-        let err = x
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = max_diff(&x, &y);
         assert!(err < 1e-12, "error {err}");
         assert!(f.refactor(&grid(nx, ny + 1, 0.0)).is_err());
     }
@@ -570,11 +550,7 @@ mod tests {
         let f = SubstructuredCholesky::try_new(&a, &second).unwrap();
         let x: Vec<f64> = (0..nx * ny).map(|k| (k as f64 * 0.37).cos()).collect();
         let y = f.solve(&mul(&a, &x)).unwrap();
-        let err = x
-            .iter()
-            .zip(&y)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = max_diff(&x, &y);
         assert!(err < 1e-10, "error {err}");
         let bad = grid(nx, ny, -3.5);
         assert!(matches!(
