@@ -26,7 +26,7 @@ pub use faer_backend::{
 pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
 };
-pub use substructured::SubstructuredCholesky;
+pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};
 pub use triplets::{CompressWorkspace, PartList, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.

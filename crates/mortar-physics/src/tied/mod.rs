@@ -15,5 +15,6 @@ mod tie;
 pub use formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };
-pub use system::{SystemSeconds, TiedFields, TiedSystem, SUBSTRUCTURED_MIN};
+pub use mortar_core::linalg::SUBSTRUCTURED_MIN;
+pub use system::{SystemSeconds, TiedFields, TiedSystem};
 pub use tie::{kron_identity, Interpolated, Tie};

@@ -81,14 +81,6 @@ impl Factor {
     }
 }
 
-/// The number of unknowns from which a condensed system whose interface has at most
-/// `2 sqrt(n)` unknowns is factorised by body ([`SubstructuredCholesky`]: the two bodies side
-/// by side, the interface last) instead of as one. Measured on the straight 2D tied-heat
-/// scene (`bench_tied_heat --n N`, build and factorisation, medians of 3, one thread against
-/// the other per size): 1,786 unknowns 3 ms by body against 2 ms as one; 6,898: 9 against
-/// 10 ms; 27,106: 27 against 37 ms; 107,458: 0.14 against 0.18 s; 996,661: 1.7 against 2.4 s.
-pub const SUBSTRUCTURED_MIN: usize = 5_000;
-
 /// The linear system of two bodies tied by mortar: per-body matrices `A_1`, `A_2`
 /// (symmetric positive semi-definite each, e.g. heat conduction stiffness, plus capacity over
 /// the time step), the tying constraint `D T_s - M T_m = 0`, and Dirichlet conditions,
@@ -110,8 +102,9 @@ pub const SUBSTRUCTURED_MIN: usize = 5_000;
 ///   free unknowns is symmetric positive definite and solved by sparse Cholesky: by body
 ///   ([`SubstructuredCholesky`]: each body with the master's interface unknowns factorised
 ///   on its own thread, the interface's dense Schur complement last) from
-///   [`SUBSTRUCTURED_MIN`] unknowns when the interface has at most `2 sqrt(n)` of them, as one
-///   matrix otherwise. The multipliers follow from the slave rows:
+///   [`SUBSTRUCTURED_MIN`](mortar_core::linalg::SUBSTRUCTURED_MIN) unknowns when the
+///   interface has at most `2 sqrt(n)` of them, as one matrix otherwise. The multipliers
+///   follow from the slave rows:
 ///   `lambda_j = (b - A T)_j / D_jj`.
 ///
 /// Both give the same solution up to round-off.
@@ -613,29 +606,23 @@ impl Layout {
         scale
     }
 
-    /// The matrix of the formulation and its coupling to the Dirichlet values.
-    /// The factorisation of the condensed system `matrix`: by body
-    /// ([`SubstructuredCholesky`], the two bodies side by side, the unknowns of the master
-    /// body that the slave body's rows reach last) from [`SUBSTRUCTURED_MIN`] unknowns when
-    /// that interface has at most `2 sqrt(n)` unknowns (its dense Schur complement costs
-    /// `n_s^3 / 3`, at most the sparse factor's `O(n^1.5)`: a 2D interface, not a 3D one
-    /// at scale), else one sparse Cholesky.
+    /// The factorisation of the condensed system `matrix`: by body where
+    /// [`SubstructuredCholesky::try_new_if_worthwhile`] finds it pays (the two bodies side by
+    /// side, the master's unknowns that the slave body's rows reach last: a 2D interface),
+    /// else one sparse Cholesky.
     fn condensed_factor(&self, matrix: &SparseMatrix) -> Result<Factor, SolverError> {
-        let n = matrix.rows();
-        if n >= SUBSTRUCTURED_MIN {
-            let mut master = vec![false; n];
-            for (g, &f) in self.free.iter().enumerate() {
-                if f != NONE {
-                    master[f as usize] = g >= self.n[0];
-                }
-            }
-            let k = SubstructuredCholesky::separator(matrix, &master)?.len();
-            if k > 0 && k * k <= 4 * n {
-                let f = SubstructuredCholesky::try_new(matrix, &master)?;
-                return Ok(Factor::Substructured(Box::new(f)));
+        let mut master = vec![false; matrix.rows()];
+        for (g, &f) in self.free.iter().enumerate() {
+            if f != NONE {
+                master[f as usize] = g >= self.n[0];
             }
         }
-        Ok(Factor::Cholesky(CholeskyFactorization::try_new(matrix)?))
+        Ok(
+            match SubstructuredCholesky::try_new_if_worthwhile(matrix, &master)? {
+                Some(f) => Factor::Substructured(Box::new(f)),
+                None => Factor::Cholesky(CholeskyFactorization::try_new(matrix)?),
+            },
+        )
     }
 
     /// The system matrix `Q^T A Q` on the free unknowns (with the constraint rows and columns
