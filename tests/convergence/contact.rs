@@ -167,6 +167,19 @@ fn hertz_cylinder_on_block_2d() {
     );
 }
 
+/// The same scene with 96 arc cells (23,654 unknowns): two bodies with a short contact zone
+/// in 2D, whose Newton systems are factorised by body (the bodies side by side, the master
+/// unknowns in contact last); the same criteria hold.
+#[test]
+fn hertz_2d_newton_systems_by_body() {
+    use mortar::scenes::hertz::HertzScene;
+
+    let run = HertzScene::new(96).run().unwrap();
+    assert!(run.unknowns >= mortar::core::linalg::SUBSTRUCTURED_MIN);
+    assert!(run.formulation.contains("by body"), "{}", run.formulation);
+    hertz_2d_criteria(&run, "96 arc cells");
+}
+
 /// The criteria of the 2D Hertz case (the doc of [`hertz_cylinder_on_block_2d`]): the scene
 /// is the one intended (a about 0.1 R, a few slave nodes across it, contiguous), the peak
 /// within 2 %, the half-width within one spacing of the nodes that carry the pressure and

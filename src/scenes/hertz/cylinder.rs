@@ -339,6 +339,7 @@ impl HertzScene {
             profile_l2,
             complementarity: c,
             steps: sol.steps.clone(),
+            formulation: sol.formulation.clone(),
             seconds,
             profile: nodes,
         })
@@ -464,6 +465,8 @@ pub struct HertzRun {
     pub complementarity: f64,
     /// The load steps of the contact solve.
     pub steps: Vec<ContactStep>,
+    /// How the Newton systems were solved (the contact solution's report).
+    pub formulation: String,
     /// Wall-clock seconds of meshing, assembly and solve.
     pub seconds: f64,
     /// The slave interface nodes by `x`.

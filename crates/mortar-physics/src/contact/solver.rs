@@ -4,7 +4,7 @@ use std::time::Instant;
 
 use mortar_core::linalg::{
     fill_reducing_ordering, inf_norm, well_conditioned, CholeskyFactorization, LuFactorization,
-    SolverError, SparseMatrix, Triplets,
+    SolverError, SparseMatrix, SubstructuredCholesky, Triplets,
 };
 
 use super::normal::NormalGap;
@@ -194,6 +194,8 @@ pub fn solve_contact<L: ConstraintLaw>(
         }
     }
     let (free, nfree) = free_numbering(ndof, &fixed);
+    // Free indices below this are the slave body's (the numbering increases with the unknown).
+    let slave_free = free[..n[0]].iter().filter(|&&f| f != FIXED).count();
     let rows = gap.weights.len();
     let dim = gap.dim;
     if rows > 0
@@ -215,6 +217,7 @@ pub fn solve_contact<L: ConstraintLaw>(
         .map(|&node| (0..dim).map(|k| free[node as usize * dim + k]).collect())
         .collect();
     let mut condensed_steps = 0usize;
+    let mut by_body_steps = 0usize;
     let f: Vec<f64> = load[0].iter().chain(load[1]).copied().collect();
     // The global stiffness, block diagonal.
     let entry = |g: usize| -> (usize, usize) {
@@ -360,6 +363,7 @@ pub fn solve_contact<L: ConstraintLaw>(
             let weighted_gap: Vec<f64> = (0..rows).map(|j| gap.weights[j] * gaps[j]).collect();
             let lin = Linearised {
                 nfree,
+                slave_free,
                 weighted_gap: &weighted_gap,
                 r_u: &r_u,
                 n_free: &n_free,
@@ -394,7 +398,8 @@ pub fn solve_contact<L: ConstraintLaw>(
             let (du, dp, held) = match pivots {
                 Some(pivots) => {
                     condensed_steps += 1;
-                    condensed_step(&lin, &kff, &pivots, &mut order).map_err(singular)?
+                    condensed_step(&lin, &kff, &pivots, &mut order, &mut by_body_steps)
+                        .map_err(singular)?
                 }
                 None => saddle_step(&lin, &kff).map_err(singular)?,
             };
@@ -454,9 +459,17 @@ pub fn solve_contact<L: ConstraintLaw>(
          condensed"
             .to_string()
     } else if condensed_steps == total_steps {
-        "pressures condensed out (D is diagonal: dual multipliers), symmetric system of the \
-         displacements less one unknown per slave node in contact, sparse Cholesky"
-            .to_string()
+        let by_body = match by_body_steps {
+            0 => String::new(),
+            k if k == total_steps => " by body (the two bodies factorised side by side, the \
+                                       master unknowns in contact last)"
+                .to_string(),
+            k => format!(" (by body, the two bodies side by side, in {k} of {total_steps} steps)"),
+        };
+        format!(
+            "pressures condensed out (D is diagonal: dual multipliers), symmetric system of the \
+             displacements less one unknown per slave node in contact, sparse Cholesky{by_body}"
+        )
     } else {
         format!(
             "pressures condensed out in {condensed_steps} of {total_steps} Newton steps (D is \
@@ -484,6 +497,8 @@ type Step = (Vec<f64>, Vec<f64>, bool);
 /// `[[K_ff, N_f^T], [A N_f, diag(C_p)]] [du; dp] = [-R_u; -C]`, `A = diag(-C_g / w)`.
 struct Linearised<'a> {
     nfree: usize,
+    /// Free displacements of the slave body (the first `slave_free` of them).
+    slave_free: usize,
     /// The weighted gaps `w_j g_j`.
     weighted_gap: &'a [f64],
     r_u: &'a [f64],
@@ -523,13 +538,25 @@ fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverE
     Ok((rhs, dp, false))
 }
 
-/// Solves the symmetric `a x = b` in place: Cholesky in the elimination order `perm`, or LU if
-/// `a` is not positive definite.
-fn solve_symmetric(a: &SparseMatrix, perm: &[usize], b: &mut [f64]) -> Result<(), SolverError> {
-    match CholeskyFactorization::try_new_ordered(a, perm) {
+/// Solves the symmetric `a x = b` in place: by body where that pays
+/// ([`SubstructuredCholesky::try_new_if_worthwhile`], `master` saying which unknowns are the
+/// master body's: the two bodies factorised side by side, the master unknowns in contact last),
+/// else Cholesky in the elimination order that `perm` makes for `a` (asked for only then), or
+/// LU if `a` is not positive definite. Whether it was solved by body.
+fn solve_symmetric(
+    a: &SparseMatrix,
+    perm: &mut dyn FnMut(&SparseMatrix) -> Result<Vec<usize>, SolverError>,
+    master: &[bool],
+    b: &mut [f64],
+) -> Result<bool, SolverError> {
+    if let Ok(Some(f)) = SubstructuredCholesky::try_new_if_worthwhile(a, master) {
+        return f.solve_in_place(b).map(|()| true);
+    }
+    match CholeskyFactorization::try_new_ordered(a, &perm(a)?) {
         Ok(f) => f.solve_in_place(b),
         Err(_) => LuFactorization::try_new(a).and_then(|f| f.solve_in_place(b)),
     }
+    .map(|()| false)
 }
 
 /// The pivot of each active row, `(free index, N_j at it)` (`None` for inactive rows).
@@ -590,6 +617,7 @@ fn condensed_step(
     kff: &SparseMatrix,
     pivot: &Pivots,
     order: &mut Option<Vec<u32>>,
+    by_body: &mut usize,
 ) -> Result<Step, SolverError> {
     const NONE: u32 = u32::MAX;
     let (nfree, rows) = (lin.nfree, lin.c.len());
@@ -640,6 +668,13 @@ fn condensed_step(
         if pivot_row[i] == NONE {
             *r = nr as u32;
             nr += 1;
+        }
+    }
+    // Which reduced unknowns are the master body's.
+    let mut master = vec![false; nr];
+    for (i, &r) in reduced.iter().enumerate() {
+        if r != NONE {
+            master[r as usize] = i >= lin.slave_free;
         }
     }
     // du = Q dv + q: a pivot is (r_j - sum_{m != pivot} N_jm du_m) / N_j,pivot.
@@ -725,31 +760,40 @@ fn condensed_step(
     let base = SparseMatrix::new((nr, nr), ptr, idx, val);
     let s = &base + &extra.to_csr(nr, nr);
     drop(base);
-    // The elimination order: the free displacements' order (made from this system the first
-    // time, the pivots of that step put last) without this step's pivots.
-    let perm: Vec<usize> = match order {
-        Some(o) => o
-            .iter()
-            .filter(|&&i| pivot_row[i as usize] == NONE)
-            .map(|&i| reduced[i as usize] as usize)
-            .collect(),
-        None => {
-            let (perm, _) = fill_reducing_ordering(&s)?;
-            let mut free_of = vec![0u32; nr];
-            for (i, &r) in reduced.iter().enumerate() {
-                if r != NONE {
-                    free_of[r as usize] = i as u32;
-                }
-            }
-            let mut o: Vec<u32> = perm.iter().map(|&r| free_of[r]).collect();
-            o.extend((0..nfree as u32).filter(|&i| pivot_row[i as usize] != NONE));
-            *order = Some(o);
-            perm
+    // The elimination order of the single factor, made only if the system is not solved by
+    // body: the free displacements' order (made from this system the first time, the pivots
+    // of that step put last) without this step's pivots.
+    let mut made: Option<Vec<usize>> = None;
+    let mut perm = |s: &SparseMatrix| -> Result<Vec<usize>, SolverError> {
+        if let Some(p) = &made {
+            return Ok(p.clone());
         }
+        let p: Vec<usize> = match order {
+            Some(o) => o
+                .iter()
+                .filter(|&&i| pivot_row[i as usize] == NONE)
+                .map(|&i| reduced[i as usize] as usize)
+                .collect(),
+            None => {
+                let (perm, _) = fill_reducing_ordering(s)?;
+                let mut free_of = vec![0u32; nr];
+                for (i, &r) in reduced.iter().enumerate() {
+                    if r != NONE {
+                        free_of[r as usize] = i as u32;
+                    }
+                }
+                let mut o: Vec<u32> = perm.iter().map(|&r| free_of[r]).collect();
+                o.extend((0..nfree as u32).filter(|&i| pivot_row[i as usize] != NONE));
+                *order = Some(o);
+                perm
+            }
+        };
+        made = Some(p.clone());
+        Ok(p)
     };
     let b_norm = inf_norm(&b);
     let mut rhs_b = b.clone();
-    solve_symmetric(&s, &perm, &mut b)?;
+    *by_body += usize::from(solve_symmetric(&s, &mut perm, &master, &mut b)?);
     // A system without a correct digit has a rigid mode held by nothing (a body held only by
     // contact, before contact, or on a flat branch of a regularised law): each row without
     // stiffness gets a spring that pulls its gap shut, the penalty `mu_j / 2 (w_j g_j -
@@ -793,7 +837,7 @@ fn condensed_step(
         let held = &s + &spring.to_csr(nr, nr);
         b = rhs_b;
         let b_norm = inf_norm(&b);
-        solve_symmetric(&held, &perm, &mut b)?;
+        solve_symmetric(&held, &mut perm, &master, &mut b)?;
         if !well_conditioned(&held, &b, b_norm) {
             return Err(SolverError::Singular { pivot: None });
         }
