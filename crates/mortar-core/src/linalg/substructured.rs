@@ -23,6 +23,9 @@
 //!
 //! This is the first level of a nested dissection with the separator the problem provides;
 //! it pays where the separator is small (a 2D interface: `S` is dense, `n_s^3 / 3` flops).
+//! [`SubstructuredCholesky::balanced_split`] evens out two domains of unequal size by moving
+//! layers of the larger one next to the separator to the other side, so that both threads
+//! take about as long.
 
 use rayon::prelude::*;
 
@@ -45,6 +48,9 @@ struct Domain {
     own: Vec<usize>,
     factor: CholeskyFactorization,
     lss: Vec<f64>,
+    /// `S_d = L_ss L_ss^T` (lower triangle), made on the domain's thread; emptied once `S`
+    /// is formed.
+    gram: Vec<f64>,
 }
 
 /// `A = L L^T` for a symmetric positive definite matrix whose unknowns form two domains
@@ -102,7 +108,55 @@ impl SubstructuredCholesky {
         if k == 0 || k * k > 4 * n {
             return Ok(None);
         }
-        Self::try_new(a, second).map(Some)
+        Self::try_new(a, &Self::balanced_split(a, second)?).map(Some)
+    }
+
+    /// The split `second` made more even: whole layers of the larger domain next to the
+    /// smaller one (breadth-first levels of the matrix graph, from the unknowns that touch
+    /// the other domain) move to the smaller domain while that brings the two closer in size,
+    /// and no layer has more than `2 sqrt(n)` unknowns (the separator moves with them: it
+    /// becomes the last layer moved, or the next). Two bodies of unequal size, as a tied
+    /// pair usually is, then take about as long each on their threads. Deterministic.
+    ///
+    /// # Errors
+    /// [`SolverError::DimensionMismatch`] if `a` is not square or `second` has another length.
+    pub fn balanced_split(a: &SparseMatrix, second: &[bool]) -> Result<Vec<bool>, SolverError> {
+        check_split(a, second)?;
+        let n = second.len();
+        let mut split = second.to_vec();
+        let in_second = split.iter().filter(|&&b| b).count();
+        // The larger domain gives layers to the smaller one.
+        let larger = in_second > n - in_second;
+        let gap = in_second.abs_diff(n - in_second);
+        let limit = 2.0 * (n as f64).sqrt();
+        let (ptr, idx) = (a.proper_indptr(), a.indices());
+        let neighbours = |i: usize| &idx[ptr[i]..ptr[i + 1]];
+        // Layer 1: the larger domain's unknowns with a neighbour in the smaller one.
+        let mut layer: Vec<usize> = (0..n)
+            .filter(|&i| split[i] == larger && neighbours(i).iter().any(|&c| split[c] != larger))
+            .collect();
+        let mut moved = 0usize;
+        // Moving a layer of m unknowns changes the difference by 2 m: worth it while it does
+        // not overshoot the balance by more than it gains.
+        while !layer.is_empty()
+            && (layer.len() as f64) <= limit
+            && 2 * (moved + layer.len()) <= gap + layer.len()
+        {
+            for &i in &layer {
+                split[i] = !larger;
+            }
+            moved += layer.len();
+            // The next layer: unmoved unknowns of the larger domain next to this one.
+            let mut next: Vec<usize> = layer
+                .iter()
+                .flat_map(|&i| neighbours(i).iter().copied())
+                .filter(|&c| split[c] == larger)
+                .collect();
+            next.sort_unstable();
+            next.dedup();
+            layer = next;
+        }
+        Ok(split)
     }
 
     /// Factorises `a` (symmetric positive definite, both triangles stored) split into the
@@ -132,8 +186,8 @@ impl SubstructuredCholesky {
                 )
             },
         );
-        let domains = [d0?, d1?];
-        let schur_factor = schur_factor(a, &separator, &domains)?;
+        let mut domains = [d0?, d1?];
+        let schur_factor = schur_factor(a, &separator, &mut domains)?;
         Ok(Self {
             n,
             separator,
@@ -170,8 +224,8 @@ impl SubstructuredCholesky {
         let sep = &self.separator;
         let [d0, d1] = &self.domains;
         let (r0, r1) = rayon::join(|| d0.refactored(a, sep), || d1.refactored(a, sep));
-        let domains = [r0?, r1?];
-        let schur_factor = schur_factor(a, sep, &domains)?;
+        let mut domains = [r0?, r1?];
+        let schur_factor = schur_factor(a, sep, &mut domains)?;
         self.domains = domains;
         self.schur_factor = schur_factor;
         Ok(())
@@ -291,7 +345,13 @@ impl Domain {
         perm.extend(m..m + sep.len());
         let factor = CholeskyFactorization::try_new_ordered(&b, &perm)?;
         let lss = factor.trailing_factor(sep.len());
-        Ok(Self { own, factor, lss })
+        let gram = dense_gram(&lss, sep.len());
+        Ok(Self {
+            own,
+            factor,
+            lss,
+            gram,
+        })
     }
 
     /// This domain factorised anew for the matrix `a` of the same pattern.
@@ -300,10 +360,12 @@ impl Domain {
         let mut factor = self.factor.clone();
         factor.refactor(&b)?;
         let lss = factor.trailing_factor(sep.len());
+        let gram = dense_gram(&lss, sep.len());
         Ok(Self {
             own: self.own.clone(),
             factor,
             lss,
+            gram,
         })
     }
 
@@ -315,16 +377,23 @@ impl Domain {
     }
 }
 
-/// The dense Cholesky factor of `S = S_0 + S_1 - A_ss`.
+/// The dense Cholesky factor of `S = S_0 + S_1 - A_ss` (the lower triangles read; the
+/// domains' `S_d` freed).
 fn schur_factor(
     a: &SparseMatrix,
     sep: &[usize],
-    domains: &[Domain; 2],
+    domains: &mut [Domain; 2],
 ) -> Result<Vec<f64>, SolverError> {
     let k = sep.len();
-    let s0 = dense_gram(&domains[0].lss, k);
-    let s1 = dense_gram(&domains[1].lss, k);
-    let mut s: Vec<f64> = s0.iter().zip(&s1).map(|(a, b)| a + b).collect();
+    let mut s: Vec<f64> = domains[0]
+        .gram
+        .iter()
+        .zip(&domains[1].gram)
+        .map(|(a, b)| a + b)
+        .collect();
+    for d in domains.iter_mut() {
+        d.gram = Vec::new();
+    }
     for (t, &i) in sep.iter().enumerate() {
         let row = a.outer_view(i).expect("separator row in range");
         for (c, v) in row.iter() {
@@ -529,6 +598,35 @@ mod tests {
             f.refactor(&a),
             Err(SolverError::PatternMismatch(_))
         ));
+    }
+
+    /// A grid cut near its left side: whole columns of the larger right part move to the
+    /// left until the two are within a column of each other, the separator stays one grid
+    /// column, and the solve by the balanced split is exact. A balanced split is kept.
+    #[test]
+    fn balanced_split_moves_layers_to_the_smaller_domain() {
+        let (nx, ny, cut) = (30, 12, 4);
+        let a = grid(nx, ny, 0.0);
+        let second: Vec<bool> = (0..nx * ny).map(|k| k % nx >= cut).collect();
+        let split = SubstructuredCholesky::balanced_split(&a, &second).unwrap();
+        let left = split.iter().filter(|&&b| !b).count();
+        assert!(
+            left.abs_diff(nx * ny - left) <= 2 * ny,
+            "{left} of {}",
+            nx * ny
+        );
+        // Whole columns moved: the split is by column.
+        for k in 0..nx * ny {
+            assert_eq!(split[k], split[k % nx], "unknown {k}");
+        }
+        let sep = SubstructuredCholesky::separator(&a, &split).unwrap();
+        assert_eq!(sep.len(), ny);
+        let again = SubstructuredCholesky::balanced_split(&a, &split).unwrap();
+        assert_eq!(again, split);
+        let f = SubstructuredCholesky::try_new(&a, &split).unwrap();
+        let x: Vec<f64> = (0..nx * ny).map(|k| (k as f64 * 0.21).sin()).collect();
+        let y = f.solve(&mul(&a, &x)).unwrap();
+        assert!(max_diff(&x, &y) < 1e-10, "error {}", max_diff(&x, &y));
     }
 
     /// Both of faer's factor layouts (simplicial on a small grid, supernodal on a larger

@@ -462,7 +462,7 @@ pub fn solve_contact<L: ConstraintLaw>(
         let by_body = match by_body_steps {
             0 => String::new(),
             k if k == total_steps => " by body (the two bodies factorised side by side, the \
-                                       master unknowns in contact last)"
+                                       unknowns between them last)"
                 .to_string(),
             k => format!(" (by body, the two bodies side by side, in {k} of {total_steps} steps)"),
         };
@@ -540,7 +540,7 @@ fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverE
 
 /// Solves the symmetric `a x = b` in place: by body where that pays
 /// ([`SubstructuredCholesky::try_new_if_worthwhile`], `master` saying which unknowns are the
-/// master body's: the two bodies factorised side by side, the master unknowns in contact last),
+/// master body's: the two bodies factorised side by side, the unknowns between them last),
 /// else Cholesky in the elimination order that `perm` makes for `a` (asked for only then), or
 /// LU if `a` is not positive definite. Whether it was solved by body.
 fn solve_symmetric(

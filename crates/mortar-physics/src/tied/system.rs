@@ -100,7 +100,7 @@ impl Factor {
 ///   such node's value is an affine combination of the others,
 ///   `T_s = D_ss^-1 (M T_m - D_sd g)`, i.e. `T = Q T_r`; the system `Q^T A Q` in the remaining
 ///   free unknowns is symmetric positive definite and solved by sparse Cholesky: by body
-///   ([`SubstructuredCholesky`]: each body with the master's interface unknowns factorised
+///   ([`SubstructuredCholesky`]: each body with the interface's unknowns factorised
 ///   on its own thread, the interface's dense Schur complement last) from
 ///   [`SUBSTRUCTURED_MIN`](mortar_core::linalg::SUBSTRUCTURED_MIN) unknowns when the
 ///   interface has at most `2 sqrt(n)` of them, as one matrix otherwise. The multipliers
@@ -608,7 +608,7 @@ impl Layout {
 
     /// The factorisation of the condensed system `matrix`: by body where
     /// [`SubstructuredCholesky::try_new_if_worthwhile`] finds it pays (the two bodies side by
-    /// side, the master's unknowns that the slave body's rows reach last: a 2D interface),
+    /// side, balanced, the unknowns between them last: a 2D interface),
     /// else one sparse Cholesky.
     fn condensed_factor(&self, matrix: &SparseMatrix) -> Result<Factor, SolverError> {
         let mut master = vec![false; matrix.rows()];
