@@ -292,20 +292,36 @@ fn row_blocks(slices: &[&[Entry]], nrows: usize) -> Vec<RowBlock> {
         .collect()
 }
 
-/// Concatenates the row blocks into the CSR arrays, freeing each block once copied.
+/// Concatenates the row blocks into the CSR arrays, in parallel (each block into its own
+/// range of the arrays), freeing each block once copied.
 fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMatrix {
     let nnz: usize = blocks.iter().map(|b| b.1.len()).sum();
     let mut indptr = Vec::with_capacity(nrows + 1);
     indptr.push(0usize);
-    let mut indices = Vec::with_capacity(nnz);
-    let mut data = Vec::with_capacity(nnz);
-    for (lens, cols, vals) in blocks {
+    for (lens, _, _) in &blocks {
         for len in lens {
             indptr.push(indptr[indptr.len() - 1] + len);
         }
-        indices.extend(cols.iter().map(|&c| c as usize));
-        data.extend_from_slice(&vals);
     }
+    let mut indices = vec![0usize; nnz];
+    let mut data = vec![0.0; nnz];
+    let mut targets = Vec::with_capacity(blocks.len());
+    let (mut rest_i, mut rest_d) = (&mut indices[..], &mut data[..]);
+    for (_, cols, _) in &blocks {
+        let (head_i, tail_i) = rest_i.split_at_mut(cols.len());
+        let (head_d, tail_d) = rest_d.split_at_mut(cols.len());
+        targets.push((head_i, head_d));
+        (rest_i, rest_d) = (tail_i, tail_d);
+    }
+    blocks
+        .into_par_iter()
+        .zip(targets)
+        .for_each(|((_, cols, vals), (to_i, to_d))| {
+            for (t, &c) in to_i.iter_mut().zip(&cols) {
+                *t = c as usize;
+            }
+            to_d.copy_from_slice(&vals);
+        });
     SparseMatrix::new((nrows, ncols), indptr, indices, data)
 }
 
