@@ -434,10 +434,6 @@ impl CholeskyFactorization {
         self.symbolic.len_val()
     }
 
-    /// The last `k` columns and rows of the factor `L` (in the elimination order), as a
-    /// dense lower-triangular `k x k` block stored by columns: for an ordering that
-    /// eliminates a set of `k` unknowns last, `L_kk L_kk^T` is the Schur complement of the
-    /// others in `A` (what [`SubstructuredCholesky`](super::SubstructuredCholesky) combines).
     /// The first half of a solve: `x <- L^-1 P x`, the result in the elimination order
     /// (`P` the fill-reducing permutation). [`backward_in_place`](Self::backward_in_place)
     /// completes it; between them a caller may change the values of the unknowns eliminated
@@ -522,6 +518,10 @@ impl CholeskyFactorization {
         matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
     }
 
+    /// The last `k` columns and rows of the factor `L` (in the elimination order), as a
+    /// dense lower-triangular `k x k` block stored by columns: for an ordering that
+    /// eliminates a set of `k` unknowns last, `L_kk L_kk^T` is the Schur complement of the
+    /// others in `A` (what [`SubstructuredCholesky`](super::SubstructuredCholesky) combines).
     pub(crate) fn trailing_factor(&self, k: usize) -> Vec<f64> {
         let n = self.pattern.n;
         let k = k.min(n);
