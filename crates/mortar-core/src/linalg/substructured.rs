@@ -113,9 +113,9 @@ impl SubstructuredCholesky {
 
     /// The split `second` made more even: whole layers of the larger domain next to the
     /// smaller one (breadth-first levels of the matrix graph, from the unknowns that touch
-    /// the other domain) move to the smaller domain while that brings the two closer in size,
-    /// and no layer has more than `2 sqrt(n)` unknowns (the separator moves with them: it
-    /// becomes the last layer moved, or the next). Two bodies of unequal size, as a tied
+    /// the other domain) move to the smaller domain while that brings the two closer in size
+    /// and the separator, which moves with them (the last layer moved, or the next where the
+    /// second domain gives), stays within `2 sqrt(n)` unknowns. Two bodies of unequal size, as a tied
     /// pair usually is, then take about as long each on their threads. Deterministic.
     ///
     /// # Errors
@@ -145,7 +145,6 @@ impl SubstructuredCholesky {
             for &i in &layer {
                 split[i] = !larger;
             }
-            moved += layer.len();
             // The next layer: unmoved unknowns of the larger domain next to this one.
             let mut next: Vec<usize> = layer
                 .iter()
@@ -154,6 +153,15 @@ impl SubstructuredCholesky {
                 .collect();
             next.sort_unstable();
             next.dedup();
+            // Where the second domain gives, the separator (its unknowns next to the first)
+            // becomes the next layer: not a move that makes it larger than the bound.
+            if larger && (next.len() as f64) > limit {
+                for &i in &layer {
+                    split[i] = larger;
+                }
+                break;
+            }
+            moved += layer.len();
             layer = next;
         }
         Ok(split)
@@ -627,6 +635,49 @@ mod tests {
         let x: Vec<f64> = (0..nx * ny).map(|k| (k as f64 * 0.21).sin()).collect();
         let y = f.solve(&mul(&a, &x)).unwrap();
         assert!(max_diff(&x, &y) < 1e-10, "error {}", max_diff(&x, &y));
+    }
+
+    /// The second domain gives a layer of one unknown, behind which a layer of fifty would
+    /// become the separator: that move is not made (the separator stays one unknown), while
+    /// the same graph with the domains swapped moves the hub (the separator is then the hub
+    /// itself, the last layer moved).
+    #[test]
+    fn balancing_keeps_the_separator_within_its_bound() {
+        // A path 0..10 (first domain), a hub 10 joined to its end, and fifty leaves on the
+        // hub: n = 61, bound 2 sqrt(61) = 15.6.
+        let (path, leaves) = (10u32, 50u32);
+        let n = (path + 1 + leaves) as usize;
+        let mut t = Triplets::default();
+        let mut link = |a: u32, b: u32| {
+            for (i, j, v) in [(a, a, 1.0), (b, b, 1.0), (a, b, -1.0), (b, a, -1.0)] {
+                t.push(i, j, v);
+            }
+        };
+        for i in 1..=path {
+            link(i - 1, i);
+        }
+        for l in 0..leaves {
+            link(path, path + 1 + l);
+        }
+        for i in 0..n as u32 {
+            t.push(i, i, 1.0);
+        }
+        let a = t.to_csr(n, n);
+        let second: Vec<bool> = (0..n).map(|i| i >= path as usize).collect();
+        let split = SubstructuredCholesky::balanced_split(&a, &second).unwrap();
+        assert_eq!(split, second, "the hub stays");
+        assert_eq!(
+            SubstructuredCholesky::separator(&a, &split).unwrap(),
+            vec![path as usize]
+        );
+        // Swapped: the first domain is the larger one and gives the hub.
+        let swapped: Vec<bool> = second.iter().map(|b| !b).collect();
+        let split = SubstructuredCholesky::balanced_split(&a, &swapped).unwrap();
+        assert!(split[path as usize], "the hub moved");
+        assert_eq!(
+            SubstructuredCholesky::separator(&a, &split).unwrap(),
+            vec![path as usize]
+        );
     }
 
     /// Both of faer's factor layouts (simplicial on a small grid, supernodal on a larger
