@@ -15,6 +15,7 @@ mod properties {
     mod errors;
     mod extremes;
     mod facing;
+    mod fused_lines;
     mod invariance;
     mod patch;
     mod rounding;

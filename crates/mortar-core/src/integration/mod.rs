@@ -25,7 +25,7 @@ pub mod curved_3d;
 mod degree;
 mod element_based;
 mod segment_based;
-mod segments_2d;
+pub(crate) mod segments_2d;
 mod segments_3d;
 
 use nalgebra::{Vector2, Vector3};
@@ -172,6 +172,26 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     fn splits_over_candidates(&self) -> bool {
         false
     }
+
+    /// Whether this strategy, on a 2D interface of straight two-node lines, is the exact
+    /// segmentation of [`SegmentBased`] (the master nodes projected onto the slave line along
+    /// the projector's field, Gauss points on each overlap segment) and with which degree.
+    /// The coupling may then run its fused kernel for such lines instead of
+    /// [`paired_rule_into`](Self::paired_rule_into): the same operations without the
+    /// points in between, and a walk along the master's chains instead of the tree search
+    /// (see [`assemble_coupling`](crate::assemble_coupling)). The default, `None`, always
+    /// calls the strategy.
+    fn line_segments(&self) -> Option<LineSegments> {
+        None
+    }
+}
+
+/// What the fused kernel for straight two-node lines needs to know of a strategy that
+/// segments them exactly ([`IntegrationStrategy::line_segments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LineSegments {
+    /// The degree of the Gauss rule on each segment; `None`: [`default_degree`].
+    pub degree: Option<u32>,
 }
 
 /// Candidates per call of [`IntegrationStrategy::paired_rule_into`] for a strategy that

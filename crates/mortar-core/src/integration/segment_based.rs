@@ -1,5 +1,7 @@
 use super::curved_3d::{self, subdivision_level, DEFAULT_CURVED_TOLERANCE, MAX_SUBDIVISION};
-use super::{segments_2d, segments_3d, IntegrationStrategy, PairedRule, SegmentContext};
+use super::{
+    segments_2d, segments_3d, IntegrationStrategy, LineSegments, PairedRule, SegmentContext,
+};
 use crate::error::{MortarError, Result};
 use crate::interface::{FaceGeometry, SpatialDim};
 
@@ -154,5 +156,12 @@ impl IntegrationStrategy for SegmentBased {
     /// overlap segment or clip polygon).
     fn splits_over_candidates(&self) -> bool {
         true
+    }
+
+    /// Its own 2D segmentation, of its degree.
+    fn line_segments(&self) -> Option<LineSegments> {
+        Some(LineSegments {
+            degree: self.degree,
+        })
     }
 }

@@ -3,10 +3,11 @@
 use nalgebra::{Vector2, Vector3};
 
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
-use crate::element::{ReferenceDomain, MAX_FACE_NODES};
+use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
-use crate::geometry::{bracketed_root, invert_line_map};
+use crate::geometry::{bracketed_root, invert_line_map, ModelGeometry};
 use crate::interface::FaceGeometry;
+use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
 
 /// z-component of the cross product of two vectors of the xy-plane.
@@ -162,6 +163,21 @@ fn project_onto_slave(
     line: &SlaveLine<'_>,
     y: &Vector3<f64>,
 ) -> Result<f64> {
+    try_project_onto_slave(ctx, line, y).ok_or_else(|| MortarError::ProjectionFailed {
+        face: line.face.location(),
+        point: (*y).into(),
+        iterations: 0,
+        residual: f64::INFINITY,
+    })
+}
+
+/// [`project_onto_slave`] without the error (`None` where it fails): a plain `f64` comes
+/// back in a register.
+fn try_project_onto_slave(
+    ctx: &SegmentContext<'_>,
+    line: &SlaveLine<'_>,
+    y: &Vector3<f64>,
+) -> Option<f64> {
     let slave = line.face;
     let g = |xi: f64| {
         if xi == -1.0 {
@@ -174,29 +190,23 @@ fn project_onto_slave(
     };
     let (ga, _) = g(-1.0);
     let (gb, _) = g(1.0);
-    let failed = || MortarError::ProjectionFailed {
-        face: slave.location(),
-        point: (*y).into(),
-        iterations: 0,
-        residual: f64::INFINITY,
-    };
     if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
-        return Err(failed());
+        return None;
     }
     if ga >= 0.0 {
-        return Ok(-1.0);
+        return Some(-1.0);
     }
     if gb <= 0.0 {
-        return Ok(1.0);
+        return Some(1.0);
     }
     if let Some(xi) = line
         .affine
         .as_ref()
         .and_then(|a| a.root(y, line.orientation))
     {
-        return Ok(xi);
+        return Some(xi);
     }
-    bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS).ok_or_else(failed)
+    bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS)
 }
 
 /// What `F` needs at one point of the slave line: position, tangent, direction and its
@@ -338,15 +348,182 @@ impl<'a> SlaveLine<'a> {
     /// [`project_onto_slave`], remembered for the last few points (by the bits of their
     /// coordinates).
     fn project(&mut self, ctx: &SegmentContext<'_>, y: &Vector3<f64>) -> Result<f64> {
+        match self.try_project(ctx, y) {
+            Some(xi) => Ok(xi),
+            None => project_onto_slave(ctx, self, y),
+        }
+    }
+
+    /// [`project`](Self::project) without the error (`None` where it fails).
+    #[inline]
+    fn try_project(&mut self, ctx: &SegmentContext<'_>, y: &Vector3<f64>) -> Option<f64> {
         let key = [y.x.to_bits(), y.y.to_bits(), y.z.to_bits()];
         if let Some(&(_, xi)) = self.last.iter().find(|(k, _)| *k == key) {
-            return Ok(xi);
+            return Some(xi);
         }
-        let xi = project_onto_slave(ctx, self, y)?;
+        let xi = try_project_onto_slave(ctx, self, y)?;
         if self.last.is_full() {
             self.last.remove(0);
         }
         self.last.push((key, xi));
-        Ok(xi)
+        Some(xi)
     }
+}
+
+/// Whether `element` is the two-node line with the linear Lagrange shape functions
+/// `N_0 = (1 - xi) / 2`, `N_1 = (1 + xi) / 2` (checked bit for bit at a few points, so that
+/// [`fused_line_face`] may use them in closed form): straight (affine), of shape degree one.
+pub(crate) fn is_linear_line(element: ElementRef) -> bool {
+    if element.node_count() != 2
+        || element.domain() != ReferenceDomain::Line
+        || !element.is_affine()
+        || element.shape_degree() != 1
+    {
+        return false;
+    }
+    let mut n = [0.0; 2];
+    let mut g = [[0.0; 2]; 2];
+    [-1.0, -0.3, 0.0, 0.7, 1.0].iter().all(|&xi| {
+        let p = Vector2::new(xi, 0.0);
+        element.shape_values_into(&p, &mut n);
+        element.shape_gradients_into(&p, &mut g);
+        n == [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)] && g[0][0] == -0.5 && g[1][0] == 0.5
+    })
+}
+
+/// What [`fused_line_face`] computes for one slave face.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LineFace {
+    /// `D[j][k] = int Phi_j N_k^s` over the face's overlap.
+    pub d: [[f64; 2]; 2],
+    /// The master columns the face meets, in the order first met.
+    pub cols: Vec<u32>,
+    /// Their M values, one per slave node: `M[j][col] = int Phi_j N_col^m`.
+    pub vals: Vec<[f64; 2]>,
+    /// Master faces with a non-empty overlap.
+    pub pairs: u32,
+    /// Candidates facing away from the slave.
+    pub back_facing: u32,
+    /// The quadrature degree used.
+    pub degree: u32,
+}
+
+/// One slave face of two-node linear lines against its candidates (two-node linear lines, as
+/// slots of `ctx.masters`), segmented and integrated in one loop: the work of
+/// [`segments_into`] followed by the coupling's integration of the paired points, the same
+/// operations on the same numbers, without the points in between. The caller checks that the
+/// faces are linear lines ([`is_linear_line`]).
+///
+/// Returns `false`, leaving the face to the general path, when anything needs more than the
+/// clean case: the direction field is not affine, a projection fails, or the candidates
+/// cover less than `1 - coverage` of the face (no overlap at all, a face at the end of the
+/// master, or a candidate the caller's search did not give).
+///
+/// # Errors
+/// A quadrature rule that cannot be built for `degree`.
+pub(crate) fn fused_line_face(
+    ctx: &SegmentContext<'_>,
+    slave: &FaceGeometry,
+    candidates: &[u32],
+    degree: Option<u32>,
+    basis: &LmBasis,
+    geometry: ModelGeometry,
+    out: &mut LineFace,
+) -> Result<bool> {
+    out.d = [[0.0; 2]; 2];
+    out.cols.clear();
+    out.vals.clear();
+    out.pairs = 0;
+    out.back_facing = 0;
+    let tol = ctx.interface.tolerances();
+    let centre = Vector2::zeros();
+    let (n_s, _) = ctx.projector.direction(slave, &centre);
+    let [t, _] = slave.element.tangents(slave.node_coords(), &centre);
+    let orientation = -cross2(&t, &n_s).signum();
+    let mut line = SlaveLine::new(ctx, slave, orientation);
+    let Some(affine) = line.affine else {
+        return Ok(false);
+    };
+    let deg = degree.unwrap_or_else(|| default_degree(slave.element, slave.element));
+    let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
+    out.degree = deg;
+    let mut covered = 0.0;
+    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+    let mut cols = [0u32; MAX_FACE_NODES];
+    // D in registers, not through `out` (which the compiler must assume aliased).
+    let mut dl = [[0.0; 2]; 2];
+    for &m in candidates {
+        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut y);
+        let n_m = mel.unit_normal(&y[..km], &centre);
+        if n_m.dot(&n_s) >= 0.0 {
+            out.back_facing += 1;
+            continue;
+        }
+        let (Some(a), Some(b)) = (line.try_project(ctx, &y[0]), line.try_project(ctx, &y[1]))
+        else {
+            return Ok(false);
+        };
+        let (lo, hi) = (a.min(b), a.max(b));
+        if hi - lo <= tol.clip_area * 2.0 {
+            continue;
+        }
+        let half = 0.5 * (hi - lo);
+        let rel = [y[0] - affine.x0, y[1] - affine.x0];
+        let mut mb = [[0.0; 2]; 2];
+        for (g, w) in rule.points().iter().zip(rule.weights()) {
+            let xi = lo + half * (g.x + 1.0);
+            let (x, d) = affine.at(AffineLine::s(xi));
+            let v = [cross2(&(rel[0] - x), &d), cross2(&(rel[1] - x), &d)];
+            // `invert_line_map` of the linear line: one Newton step from 0, in its order.
+            let r = -0.0 + v[0] * 0.5 + v[1] * 0.5;
+            let slope = 0.0 + v[0] * -0.5 + v[1] * 0.5;
+            if slope == 0.0 || !slope.is_finite() {
+                return Ok(false);
+            }
+            let eta = (0.0 - r / slope).clamp(-1.0, 1.0);
+            let mut weight = w * half * affine.det;
+            if geometry.is_axisymmetric() {
+                weight *= geometry.weight(&slave.map(&Vector2::new(xi, 0.0)));
+            }
+            let ns = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
+            let phi = if basis.identity {
+                ns
+            } else {
+                let mut phi = [0.0; 2];
+                for (j, p) in phi.iter_mut().enumerate() {
+                    *p = 0.0 + basis.a[j][0] * ns[0] + basis.a[j][1] * ns[1];
+                }
+                phi
+            };
+            let nm = [0.5 * (1.0 - eta), 0.5 * (1.0 + eta)];
+            for j in 0..2 {
+                let wp = weight * phi[j];
+                for k in 0..2 {
+                    dl[j][k] += wp * ns[k];
+                }
+                for l in 0..2 {
+                    mb[j][l] += wp * nm[l];
+                }
+            }
+        }
+        ctx.masters
+            .columns_into(ctx.interface, m as usize, &mut cols);
+        for (l, &c) in cols[..2].iter().enumerate() {
+            let at = match out.cols.iter().position(|&k| k == c) {
+                Some(at) => at,
+                None => {
+                    out.cols.push(c);
+                    out.vals.push([0.0; 2]);
+                    out.cols.len() - 1
+                }
+            };
+            for j in 0..2 {
+                out.vals[at][j] += mb[j][l];
+            }
+        }
+        out.pairs += 1;
+        covered += hi - lo;
+    }
+    out.d = dl;
+    Ok(out.pairs > 0 && 1.0 - 0.5 * covered <= tol.coverage)
 }

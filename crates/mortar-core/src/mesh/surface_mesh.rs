@@ -182,6 +182,11 @@ impl SurfaceMesh {
         }
     }
 
+    /// The distinct element types of the faces (each face's type is one of these).
+    pub fn element_types(&self) -> &[ElementRef] {
+        &self.element_types
+    }
+
     /// Copies the coordinates of a face's nodes into `out` and returns the node count.
     ///
     /// # Panics

@@ -150,11 +150,11 @@ impl std::fmt::Debug for MasterTree {
     }
 }
 
-fn union(a: &Box3, b: &Box3) -> Box3 {
+pub(super) fn union(a: &Box3, b: &Box3) -> Box3 {
     (a.0.inf(&b.0), a.1.sup(&b.1))
 }
 
-const EMPTY: Box3 = (
+pub(super) const EMPTY: Box3 = (
     Vector3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
     Vector3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
 );
@@ -287,7 +287,7 @@ impl MasterTree {
     }
 }
 
-fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
+pub(super) fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
     let dims = if planar { 2 } else { 3 };
     (0..dims).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
@@ -324,7 +324,7 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
 /// their nodal normals by the search radius, both ways (which holds every point
 /// `x(xi) + t n(xi)`, `|t| <= radius`, of a face whose normal field interpolates its nodal
 /// normals), inflated like every face box.
-fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
+pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
     let tol = interface.tolerances();
     let k = face.node_count();
     let (nodes, normals) = (&face.nodes[..k], &face.normals[..k]);
@@ -347,7 +347,7 @@ fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
 }
 
 /// The bounding box of a face's nodes, inflated for the search.
-fn points_box(x: &[Vector3<f64>], tol: &Tolerances) -> Box3 {
+pub(super) fn points_box(x: &[Vector3<f64>], tol: &Tolerances) -> Box3 {
     let (mut lo, mut hi) = (x[0], x[0]);
     for p in &x[1..] {
         lo = lo.inf(p);

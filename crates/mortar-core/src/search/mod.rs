@@ -13,7 +13,9 @@
 
 mod bvh;
 mod candidates;
+mod chains;
 mod morton;
 
 pub use candidates::{find_candidates, Candidates, MasterTree};
+pub(crate) use chains::{ChainSearch, LineChains};
 pub(crate) use morton::spatial_order;

@@ -1,0 +1,333 @@
+//! The fused kernel for straight two-node lines (2D, segment-based; issue 13, item 2)
+//! against the general path it replaces: the same D and M, to round-off, on every interface
+//! it takes, and the same warnings where it hands faces back.
+//!
+//! Reference: the general path, forced by [`Plain`], a strategy that wraps [`SegmentBased`]
+//! without claiming its 2D segmentation (a user's strategy reaches the coupling the same
+//! way). The fused kernel does the same operations on the same numbers, in another order of
+//! summation (slave faces along their chain instead of in Morton order): D and M agree to
+//! 1e-13 of their largest entry, the counts of pairs and the uncovered area exactly.
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+use mortar::core::integration::{
+    IntegrationStrategy, LineSegments, PairedRule, SegmentBased, SegmentContext,
+};
+use mortar::core::interface::FaceGeometry;
+use mortar::elements::{LINE2, LINE3};
+use mortar::testing::{covered_pair_2d, shuffled, MeshPair};
+use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
+use nalgebra::Vector3;
+use proptest::prelude::*;
+
+use super::common::{by_tags, compare_mapped, config, ok};
+
+/// [`SegmentBased`] without [`IntegrationStrategy::line_segments`]: the general path.
+#[derive(Debug)]
+struct Plain(SegmentBased);
+
+impl IntegrationStrategy for Plain {
+    fn name(&self) -> String {
+        self.0.name()
+    }
+
+    fn paired_rule_into(
+        &self,
+        ctx: &SegmentContext<'_>,
+        slave: &FaceGeometry,
+        candidates: &[u32],
+        out: &mut PairedRule,
+    ) -> mortar::core::Result<()> {
+        self.0.paired_rule_into(ctx, slave, candidates, out)
+    }
+
+    fn splits_over_candidates(&self) -> bool {
+        self.0.splits_over_candidates()
+    }
+}
+
+/// `options` with the general path instead of the fused kernel.
+fn plain(options: &CouplingOptions) -> CouplingOptions {
+    let mut o = options.clone();
+    o.integration = Arc::new(Plain(SegmentBased::default()));
+    o
+}
+
+/// Couples `interface` both ways; checks that D and M agree to `1e-13` of their largest
+/// entry and that the counts and warnings are the same; returns the fused run.
+fn both_ways(interface: &Interface, options: &CouplingOptions, what: &str) -> Coupling {
+    let fused = assemble_coupling(interface, options).unwrap();
+    let general = assemble_coupling(interface, &plain(options)).unwrap();
+    assert_eq!(general.stats.fused_line_faces, 0, "{what}");
+    for (a, b, name) in [(&general.d, &fused.d, "D"), (&general.m, &fused.m, "M")] {
+        let cols = if name == "D" {
+            &general.slave_nodes
+        } else {
+            &general.master_nodes
+        };
+        let dev = compare_mapped(
+            &by_tags(a, &general.slave_nodes, cols),
+            &by_tags(b, &fused.slave_nodes, cols),
+            |t| t,
+            |t| t,
+            1.0,
+        );
+        assert!(dev <= 1e-13, "{what}: {name} deviates by {dev:e}");
+    }
+    assert_eq!(fused.stats.pairs, general.stats.pairs, "{what}");
+    assert_eq!(
+        fused.stats.skipped_pairs, general.stats.skipped_pairs,
+        "{what}"
+    );
+    assert_eq!(
+        (
+            fused.stats.faces_without_partner,
+            fused.stats.faces_partly_covered
+        ),
+        (
+            general.stats.faces_without_partner,
+            general.stats.faces_partly_covered
+        ),
+        "{what}"
+    );
+    let (u, g) = (fused.stats.uncovered_area, general.stats.uncovered_area);
+    assert!((u - g).abs() <= 1e-13 * (1.0 + g), "{what}: {u} vs {g}");
+    assert_eq!(fused.warnings.len(), general.warnings.len(), "{what}");
+    fused
+}
+
+/// A polyline through `points` in z = 0, nodes tagged from `first_tag`, lines in order
+/// (`reverse`: each line turned round, the normal on the other side).
+fn polyline(points: &[[f64; 2]], first_tag: u64, reverse: bool) -> SurfaceMesh {
+    let mut m = SurfaceMesh::new();
+    for (i, p) in points.iter().enumerate() {
+        m.add_node(first_tag + i as u64, [p[0], p[1], 0.0]).unwrap();
+    }
+    for i in 0..points.len() as u64 - 1 {
+        let (a, b) = (first_tag + i, first_tag + i + 1);
+        let nodes = if reverse { [b, a] } else { [a, b] };
+        m.add_face(&LINE2, &nodes).unwrap();
+    }
+    m
+}
+
+/// `n + 1` points from `a` to `b` on the x-axis at height `y`, graded by `t -> t^p`.
+fn points(a: f64, b: f64, y: f64, n: usize, p: f64) -> Vec<[f64; 2]> {
+    (0..=n)
+        .map(|i| [a + (b - a) * (i as f64 / n as f64).powf(p), y])
+        .collect()
+}
+
+/// A closed polygon of `n` lines on the circle of radius `r` about `c`, counterclockwise
+/// (normal outwards) or, with `reverse`, clockwise (normal inwards).
+fn circle(c: [f64; 2], r: f64, n: usize, phase: f64, first_tag: u64, reverse: bool) -> SurfaceMesh {
+    let mut m = SurfaceMesh::new();
+    for i in 0..n {
+        let t = phase + 2.0 * PI * i as f64 / n as f64;
+        m.add_node(
+            first_tag + i as u64,
+            [c[0] + r * t.cos(), c[1] + r * t.sin(), 0.0],
+        )
+        .unwrap();
+    }
+    for i in 0..n as u64 {
+        let (a, b) = (first_tag + i, first_tag + (i + 1) % n as u64);
+        let nodes = if reverse { [b, a] } else { [a, b] };
+        m.add_face(&LINE2, &nodes).unwrap();
+    }
+    m
+}
+
+/// Standard and dual multipliers, Cartesian.
+fn options() -> [CouplingOptions; 2] {
+    [
+        CouplingOptions::default(),
+        CouplingOptions::default().dual(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(config(48))]
+
+    /// Random covered line pairs, their faces and nodes numbered at random, bent onto an arc
+    /// (curved, non-matching chords) and moved rigidly: the fused kernel takes every slave
+    /// face and gives the general path's D and M.
+    #[test]
+    fn fused_lines_give_the_general_paths_operators(
+        pair in covered_pair_2d(),
+        seed in any::<u64>(),
+        bend in 0.0..2.5f64,
+        angle in 0.0..6.3f64,
+        dual in any::<bool>(),
+    ) {
+        let shuffled_pair = MeshPair {
+            slave: ok(shuffled(&pair.slave, seed))?,
+            master: ok(shuffled(&pair.master, seed ^ 0x9e37))?,
+        };
+        // x along the arc of radius 1 / bend (the slave at y = 0 on it, normal -y inwards
+        // or outwards), then a rotation.
+        let (s, c) = angle.sin_cos();
+        let moved = ok(shuffled_pair.transformed(|p| {
+            let q = if bend == 0.0 {
+                p
+            } else {
+                let r = 1.0 / bend;
+                let t = p.x * bend;
+                Vector3::new((r - p.y) * t.sin(), r - (r - p.y) * t.cos(), 0.0)
+            };
+            Vector3::new(c * q.x - s * q.y, s * q.x + c * q.y, 0.0)
+        }))?;
+        let interface = ok(moved.interface())?;
+        let options = if dual { CouplingOptions::default().dual() } else { CouplingOptions::default() };
+        let fused = both_ways(&interface, &options, "random pair");
+        prop_assert!(fused.stats.fused_line_faces > 0);
+        prop_assert_eq!(
+            fused.stats.fused_line_faces + fused.stats.faces_partly_covered,
+            interface.slave().face_count()
+        );
+    }
+}
+
+/// A slave longer than its master at both ends (graded, so the faces differ in size): the
+/// faces the master covers in part or not at all are handed to the general path, with the
+/// same uncovered area and counts.
+#[test]
+fn uncovered_ends_are_handed_to_the_general_path() {
+    let slave = polyline(&points(-0.3, 1.4, 0.0, 37, 1.3), 1, false);
+    let master = polyline(&points(0.0, 1.0, 0.0, 23, 0.8), 1000, true);
+    let interface = Interface::new(slave, master).unwrap();
+    for options in options() {
+        let fused = both_ways(&interface, &options, "uncovered ends");
+        let s = &fused.stats;
+        assert!(
+            s.faces_without_partner > 0 && s.faces_partly_covered > 0,
+            "{s:?}"
+        );
+        assert!(s.fused_line_faces > 0, "{s:?}");
+        assert!(s.fused_line_faces < interface.slave().face_count());
+    }
+}
+
+/// The master in two bodies that meet under a slave face (two chains, no shared node): the
+/// walk along one chain covers that face in part, and the face is coupled with every
+/// candidate by the general path.
+#[test]
+fn two_master_bodies_under_one_slave_face() {
+    let slave = polyline(&points(0.0, 1.0, 0.0, 10, 1.0), 1, false);
+    let mut master = polyline(&points(0.0, 0.537, 0.0, 7, 1.0), 1000, true);
+    let right = points(0.537, 1.0, 0.0, 9, 1.0);
+    for (i, p) in right.iter().enumerate() {
+        master.add_node(2000 + i as u64, [p[0], p[1], 0.0]).unwrap();
+    }
+    for i in 0..right.len() as u64 - 1 {
+        master.add_face(&LINE2, &[2001 + i, 2000 + i]).unwrap();
+    }
+    let interface = Interface::new(slave, master).unwrap();
+    for options in options() {
+        let fused = both_ways(&interface, &options, "two master bodies");
+        assert_eq!(fused.stats.faces_partly_covered, 0);
+        // The face over the junction (x = 0.537 in [0.5, 0.6]) went the general way.
+        assert_eq!(fused.stats.fused_line_faces, 9, "{:?}", fused.stats);
+    }
+}
+
+/// Closed chains: a circle inside a larger circle (an open gap of 1e-3 of the radius),
+/// differently divided and turned, either numbering start: D and M as the general path's.
+#[test]
+fn closed_chains_with_an_open_gap() {
+    for (ns, nm, phase) in [(40, 57, 0.0), (64, 31, 0.3), (7, 9, 1.1)] {
+        let slave = circle([0.2, -0.1], 1.0, ns, 0.0, 1, false);
+        let master = circle([0.2, -0.1], 1.001, nm, phase, 1000, true);
+        let interface = Interface::new(slave, master).unwrap();
+        for options in options() {
+            let what = format!("circles {ns}/{nm}");
+            let fused = both_ways(&interface, &options, &what);
+            assert_eq!(fused.stats.fused_line_faces, ns, "{what}");
+        }
+    }
+}
+
+/// A slave face over more master faces than a walk follows (200): the exhaustive query
+/// gives its candidates, and it is still fused.
+#[test]
+fn a_coarse_slave_face_over_many_master_faces() {
+    let slave = polyline(&points(0.0, 1.0, 0.0, 2, 1.0), 1, false);
+    let master = polyline(&points(0.0, 1.0, 0.0, 400, 1.0), 1000, true);
+    let interface = Interface::new(slave, master).unwrap();
+    for options in options() {
+        let fused = both_ways(&interface, &options, "coarse slave");
+        assert_eq!(fused.stats.fused_line_faces, 2);
+    }
+}
+
+/// The axisymmetric measure: the fused kernel weights its points by `2 pi r` as the general
+/// path does (vertical lines at r = 0.7, differently graded).
+#[test]
+fn axisymmetric_measure() {
+    let vertical = |n: usize, p: f64| -> Vec<[f64; 2]> {
+        (0..=n)
+            .map(|i| [0.7, (i as f64 / n as f64).powf(p)])
+            .collect()
+    };
+    let slave = polyline(&vertical(13, 1.2), 1, true);
+    let master = polyline(&vertical(19, 0.9), 1000, false);
+    let interface = Interface::new(slave, master).unwrap();
+    for options in options() {
+        let fused = both_ways(&interface, &options.axisymmetric(), "axisymmetric");
+        assert_eq!(fused.stats.fused_line_faces, 13);
+    }
+}
+
+/// Not for the fused kernel, so the general path: a master of three-node lines, and a
+/// strategy that does not claim the segmentation. (A branching line interface is refused
+/// before the coupling: `Interface::new` names the T junction.)
+#[test]
+fn three_node_lines_or_another_strategy_take_the_general_path() {
+    let slave = polyline(&points(0.0, 1.0, 0.0, 6, 1.0), 1, false);
+    let mut quadratic = SurfaceMesh::new();
+    let p = points(0.0, 1.0, 0.0, 16, 1.0);
+    for (i, q) in p.iter().enumerate() {
+        quadratic
+            .add_node(1000 + i as u64, [q[0], q[1], 0.0])
+            .unwrap();
+    }
+    for i in (0..16u64).step_by(2) {
+        quadratic
+            .add_face(&LINE3, &[1002 + i, 1000 + i, 1001 + i])
+            .unwrap();
+    }
+    let interface = Interface::new(slave.clone(), quadratic).unwrap();
+    let c = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    assert_eq!(c.stats.fused_line_faces, 0);
+    let straight = polyline(&points(0.0, 1.0, 0.0, 8, 1.0), 1000, true);
+    let interface = Interface::new(slave, straight).unwrap();
+    let c = assemble_coupling(&interface, &plain(&CouplingOptions::default())).unwrap();
+    assert_eq!(c.stats.fused_line_faces, 0);
+    let c = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    assert_eq!(c.stats.fused_line_faces, 6);
+    assert_eq!(
+        SegmentBased::default().line_segments(),
+        Some(LineSegments { degree: None })
+    );
+}
+
+/// The fused path is bit-for-bit the same on 1, 2 and 3 threads (a slave of 3,000 faces,
+/// twelve chunks).
+#[test]
+fn fused_lines_are_bit_identical_across_thread_counts() {
+    let slave = polyline(&points(0.0, 1.0, 0.0, 3000, 1.1), 1, false);
+    let master = polyline(&points(0.0, 1.0, 0.0, 4001, 0.9), 10_000, true);
+    let interface = Interface::new(slave, master).unwrap();
+    let bits = |t: usize| {
+        let c = assemble_coupling(&interface, &CouplingOptions::default().threads(t)).unwrap();
+        assert_eq!(c.stats.fused_line_faces, 3000);
+        let mut v: Vec<u64> = c.d.data().iter().map(|x| x.to_bits()).collect();
+        v.extend(c.m.data().iter().map(|x| x.to_bits()));
+        v.extend(c.m.indices().iter().map(|&i| i as u64));
+        v
+    };
+    let one = bits(1);
+    assert_eq!(one, bits(2));
+    assert_eq!(one, bits(3));
+}
