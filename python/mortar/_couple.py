@@ -75,7 +75,8 @@ class Coupling:
             (quadrature degrees), ``seconds`` (wall time in the library: meshes, orientation,
             validation, assembly), ``seconds_by_phase``, ``seconds_call`` (the whole Python
             call, conversions included), ``uncovered_area``, ``faces_without_partner``,
-            ``faces_partly_covered``, ``skipped_pairs``, ``threads``, ``formulation``, and
+            ``faces_partly_covered``, ``skipped_pairs``, ``fused_line_faces`` (slave faces
+            done by the fused kernel for straight 2D lines), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
         warnings: list of str: uncovered slave area, skipped pairs (each also warned of with
             ``warnings.warn`` by :func:`couple`).

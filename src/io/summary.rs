@@ -287,6 +287,10 @@ pub struct CouplingSummary {
     pub faces_without_partner: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
+    /// Slave faces coupled by the fused kernel for straight two-node lines (2D,
+    /// segment-based), the others by the integration strategy.
+    #[serde(default)]
+    pub fused_line_faces: usize,
     /// The sum of the entries of D as written: the area (3D) or length (2D) of the slave side
     /// coupled.
     pub area: f64,
@@ -336,6 +340,7 @@ impl CouplingSummary {
             uncovered_area: s.uncovered_area,
             faces_without_partner: s.faces_without_partner,
             faces_partly_covered: s.faces_partly_covered,
+            fused_line_faces: s.fused_line_faces,
             area: s.area,
             warnings: coupling
                 .warnings
