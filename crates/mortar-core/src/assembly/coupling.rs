@@ -281,7 +281,9 @@ fn line_chains(
     if !types.copied().all(is_linear_line) {
         return None;
     }
-    Some((rule, LineChains::of(slave)?, LineChains::of(master)?))
+    // Both sides at once: each chain walk is sequential.
+    let (slave, master) = rayon::join(|| LineChains::of(slave), || LineChains::of(master));
+    Some((rule, slave?, master?))
 }
 
 /// Counts and timings summed over chunks.
