@@ -14,7 +14,7 @@ use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace}
 use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
-use crate::search::{spatial_order, ChainSearch, LineChains, MasterTree};
+use crate::search::{spatial_order, ChainSearch, LineChains, MasterTree, WALK_LIMIT};
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
 /// and M) does not depend on the thread count.
@@ -734,7 +734,10 @@ fn chunk(
         let face = &geometry[i];
         let rows = &face_rows[i][..face.node_count()];
         if let (Search::Lines { search, rule, .. }, false) = (search, cands.is_empty()) {
-            if fused_face(options, ctx, face, rows, cands, *rule, buffers)? {
+            // More candidates than a walk follows came from the exhaustive query: such a
+            // coarse face goes to the strategy (batched, its columns merged through an index).
+            let few = cands.len() <= WALK_LIMIT;
+            if few && fused_face(options, ctx, face, rows, cands, *rule, buffers)? {
                 let line = &buffers.line;
                 out.pairs += line.pairs as usize;
                 out.segments += line.pairs as usize;
@@ -745,9 +748,11 @@ fn chunk(
             }
             // Not settled by the walk's candidates: the general path, with every candidate
             // the tree would give.
-            search.exhaustive(interface, ctx.masters, face, scratch);
-            out.candidates = out.candidates + scratch.len() - cands.len();
-            cands = scratch;
+            if few {
+                search.exhaustive(interface, ctx.masters, face, scratch);
+                out.candidates = out.candidates + scratch.len() - cands.len();
+                cands = scratch;
+            }
         }
         if cands.is_empty() {
             out.without_partner += 1;

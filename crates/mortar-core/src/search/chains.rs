@@ -54,6 +54,15 @@ impl LineChains {
             starting[a as usize] = f as u32;
             ending[b as usize] = f as u32;
         }
+        // Each face's neighbours along its chain, looked up in parallel (a file in random
+        // order makes these cache misses; in parallel they overlap), so that the walk below
+        // follows one array.
+        let next_face: Vec<u32> = ends
+            .par_iter()
+            .map(|&(_, b)| starting[b as usize])
+            .collect();
+        let prev_face: Vec<u32> = ends.par_iter().map(|&(a, _)| ending[a as usize]).collect();
+        drop((starting, ending, ends));
         let mut pos = vec![NONE; n];
         let mut order = Vec::with_capacity(n);
         let walk = |first: usize, pos: &mut Vec<u32>, order: &mut Vec<u32>| {
@@ -61,7 +70,7 @@ impl LineChains {
             loop {
                 pos[f] = order.len() as u32;
                 order.push(f as u32);
-                let next = starting[ends[f].1 as usize];
+                let next = next_face[f];
                 if next == NONE || next as usize == first {
                     break;
                 }
@@ -69,7 +78,7 @@ impl LineChains {
             }
         };
         for f in 0..n {
-            if ending[ends[f].0 as usize] == NONE {
+            if prev_face[f] == NONE {
                 walk(f, &mut pos, &mut order);
             }
         }
@@ -88,11 +97,11 @@ impl LineChains {
         };
         let next = order
             .par_iter()
-            .map(|&f| link(starting[ends[f as usize].1 as usize]))
+            .map(|&f| link(next_face[f as usize]))
             .collect();
         let prev = order
             .par_iter()
-            .map(|&f| link(ending[ends[f as usize].0 as usize]))
+            .map(|&f| link(prev_face[f as usize]))
             .collect();
         Some(Self { order, next, prev })
     }
@@ -101,9 +110,10 @@ impl LineChains {
 /// Master faces per block of [`ChainSearch`]'s exhaustive query.
 const BLOCK: usize = 32;
 
-/// A walk that stops at this many candidates hands over to the exhaustive query (a slave
-/// face far coarser than its master: the walk's membership test is linear in its count).
-const WALK_LIMIT: usize = 64;
+/// A walk that reaches this many candidates hands over to the exhaustive query (a slave
+/// face far coarser than its master), and such a face goes to the integration strategy: the
+/// fused kernel merges its columns by a linear search.
+pub(crate) const WALK_LIMIT: usize = 64;
 
 /// The master side of the merge: the master faces' chains by slot (a face's slot is its
 /// position in chain order, the order of the [`MasterFaces`] built from

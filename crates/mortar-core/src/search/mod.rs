@@ -17,5 +17,5 @@ mod chains;
 mod morton;
 
 pub use candidates::{find_candidates, Candidates, MasterTree};
-pub(crate) use chains::{ChainSearch, LineChains};
+pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
 pub(crate) use morton::spatial_order;
