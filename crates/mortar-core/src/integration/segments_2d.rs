@@ -5,7 +5,7 @@ use nalgebra::{Vector2, Vector3};
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
-use crate::geometry::{bracketed_root, invert_line_map, stable_norm, ModelGeometry};
+use crate::geometry::{bracketed_root, invert_line_map, ModelGeometry};
 use crate::interface::FaceGeometry;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -391,21 +391,6 @@ pub(crate) fn is_linear_line(element: ElementRef) -> bool {
     })
 }
 
-/// `SurfaceElement::unit_normal` of the linear line from `y0` to `y1` at its centre, its
-/// operations in their order (tangent from the shape gradients -1/2 and 1/2, normal
-/// `(t_y, -t_x, 0)`, divided by its [`stable_norm`]), without the calls through the element.
-#[inline]
-fn linear_line_unit_normal(y0: &Vector3<f64>, y1: &Vector3<f64>) -> Vector3<f64> {
-    let t = Vector3::zeros() + y0 * -0.5 + y1 * 0.5;
-    let n = Vector3::new(t.y, -t.x, 0.0);
-    let len = stable_norm(&n);
-    if len > 0.0 {
-        n / len
-    } else {
-        n
-    }
-}
-
 /// What [`fused_line_face`] computes for one slave face.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct LineFace {
@@ -468,8 +453,9 @@ pub(crate) fn fused_line_face(
     // D in registers, not through `out` (which the compiler must assume aliased).
     let mut dl = [[0.0; 2]; 2];
     for &m in candidates {
-        ctx.masters.coords_into(ctx.interface, m as usize, &mut y);
-        if linear_line_unit_normal(&y[0], &y[1]).dot(&n_s) >= 0.0 {
+        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut y);
+        let n_m = mel.unit_normal(&y[..km], &centre);
+        if n_m.dot(&n_s) >= 0.0 {
             out.back_facing += 1;
             continue;
         }
