@@ -203,3 +203,24 @@ pub fn perturbed_line(
         })
     })
 }
+
+/// A polyline of two-node lines through `points` in the plane z = 0, nodes tagged from
+/// `first_tag` in order, faces tagged from 1; with `reverse` each line runs backwards (its
+/// normal on the other side).
+///
+/// # Panics
+/// If `points` has fewer than two points, or a point is not finite.
+pub fn polyline(points: &[[f64; 2]], first_tag: u64, reverse: bool) -> SurfaceMesh {
+    assert!(points.len() >= 2, "a polyline needs two points");
+    let mut m = SurfaceMesh::new();
+    for (i, p) in points.iter().enumerate() {
+        m.add_node(first_tag + i as u64, [p[0], p[1], 0.0])
+            .expect("finite, distinct tags");
+    }
+    for i in 0..points.len() as u64 - 1 {
+        let (a, b) = (first_tag + i, first_tag + i + 1);
+        let nodes = if reverse { [b, a] } else { [a, b] };
+        m.add_face(&LINE2, &nodes).expect("nodes just added");
+    }
+    m
+}

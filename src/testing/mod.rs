@@ -55,7 +55,8 @@ mod relabel;
 
 pub use checks::{nodal_areas, patch_test, PatchReport};
 pub use mesh::{
-    cell_kind, perturbed_line, perturbed_square, CellKind, MAX_LINE_JITTER, MAX_SQUARE_JITTER,
+    cell_kind, perturbed_line, perturbed_square, polyline, CellKind, MAX_LINE_JITTER,
+    MAX_SQUARE_JITTER,
 };
 pub use motion::{
     log_uniform, rigid_motion_2d, rigid_motion_3d, rotation_2d, scale_factor, translation,

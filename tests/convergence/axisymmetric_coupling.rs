@@ -13,26 +13,11 @@ use mortar::core::geometry::ModelGeometry;
 use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
 use mortar::core::multiplier::{DualMultipliers, LmBasis, MultiplierSpace};
-use mortar::elements::LINE2;
+use mortar::testing::polyline;
 use mortar::Tolerances;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SurfaceMesh};
 use std::f64::consts::PI;
 use std::sync::Arc;
-
-/// A polyline of `points` in the plane z = 0 (nodes tagged from `first_tag`), its lines in
-/// order (`reverse`: the opposite orientation).
-fn polyline(points: &[[f64; 2]], first_tag: u64, reverse: bool) -> SurfaceMesh {
-    let mut m = SurfaceMesh::new();
-    for (i, p) in points.iter().enumerate() {
-        m.add_node(first_tag + i as u64, [p[0], p[1], 0.0]).unwrap();
-    }
-    for i in 0..points.len() as u64 - 1 {
-        let (a, b) = (first_tag + i, first_tag + i + 1);
-        let nodes = if reverse { [b, a] } else { [a, b] };
-        m.add_face(&LINE2, &nodes).unwrap();
-    }
-    m
-}
 
 /// The vertical line r = `r`, z from 0 to `l` in `n` pieces, graded by `s(t)`.
 fn vertical(r: f64, l: f64, n: usize, s: impl Fn(f64) -> f64) -> Vec<[f64; 2]> {

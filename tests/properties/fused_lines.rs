@@ -16,7 +16,7 @@ use mortar::core::integration::{
 };
 use mortar::core::interface::FaceGeometry;
 use mortar::elements::{LINE2, LINE3};
-use mortar::testing::{covered_pair_2d, shuffled, MeshPair};
+use mortar::testing::{covered_pair_2d, polyline, shuffled, MeshPair};
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
 use proptest::prelude::*;
@@ -95,21 +95,6 @@ fn both_ways(interface: &Interface, options: &CouplingOptions, what: &str) -> Co
     assert!((u - g).abs() <= 1e-13 * (1.0 + g), "{what}: {u} vs {g}");
     assert_eq!(fused.warnings.len(), general.warnings.len(), "{what}");
     fused
-}
-
-/// A polyline through `points` in z = 0, nodes tagged from `first_tag`, lines in order
-/// (`reverse`: each line turned round, the normal on the other side).
-fn polyline(points: &[[f64; 2]], first_tag: u64, reverse: bool) -> SurfaceMesh {
-    let mut m = SurfaceMesh::new();
-    for (i, p) in points.iter().enumerate() {
-        m.add_node(first_tag + i as u64, [p[0], p[1], 0.0]).unwrap();
-    }
-    for i in 0..points.len() as u64 - 1 {
-        let (a, b) = (first_tag + i, first_tag + i + 1);
-        let nodes = if reverse { [b, a] } else { [a, b] };
-        m.add_face(&LINE2, &nodes).unwrap();
-    }
-    m
 }
 
 /// `n + 1` points from `a` to `b` on the x-axis at height `y`, graded by `t -> t^p`.
