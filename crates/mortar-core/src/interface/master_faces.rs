@@ -174,6 +174,33 @@ impl MasterFaces {
         }
     }
 
+    /// Writes the node coordinates of the master face in slot `s` into `out` and returns the
+    /// node count: [`coords_into`](Self::coords_into) without the element type (which costs
+    /// a read of its own where the faces are not copied).
+    #[inline]
+    pub fn node_coords_into(
+        &self,
+        interface: &Interface,
+        s: usize,
+        out: &mut [Vector3<f64>; MAX_FACE_NODES],
+    ) -> usize {
+        match &self.packed {
+            Some(p) => {
+                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
+                out[..b - a].copy_from_slice(&p.coords[a..b]);
+                b - a
+            }
+            None => {
+                let mesh = interface.master();
+                let nodes = mesh.face_nodes(self.face[s] as usize);
+                for (o, &n) in out.iter_mut().zip(nodes) {
+                    *o = mesh.coords()[n as usize];
+                }
+                nodes.len()
+            }
+        }
+    }
+
     /// Writes the columns in M of the nodes of the master face in slot `s` into `out` and
     /// returns the node count.
     #[inline]

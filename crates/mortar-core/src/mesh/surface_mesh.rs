@@ -187,6 +187,16 @@ impl SurfaceMesh {
         &self.element_types
     }
 
+    /// The node indices of face `face` (into the mesh's node arrays), in element order: the
+    /// part of [`face`](Self::face) that reads neither the element type nor the tag.
+    ///
+    /// # Panics
+    /// If `face >= face_count()`.
+    #[inline]
+    pub fn face_nodes(&self, face: usize) -> &[u32] {
+        &self.face_nodes[self.face_offsets[face] as usize..self.face_offsets[face + 1] as usize]
+    }
+
     /// Copies the coordinates of a face's nodes into `out` and returns the node count.
     ///
     /// # Panics

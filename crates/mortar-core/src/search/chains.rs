@@ -121,9 +121,11 @@ pub(crate) const WALK_LIMIT: usize = 64;
 /// first face of a walk and for faces the walk does not settle.
 ///
 /// Both queries test the same boxes as [`MasterTree`](super::MasterTree) (each master face's
-/// inflated node box against the slave face's search box); the exhaustive one finds exactly
-/// the tree's candidates, the walk those of them connected along the master chains to the
-/// previous slave face's.
+/// inflated node box against the slave face's search box), in `f64` where the tree compares
+/// its boxes rounded outward to `f32`: the exhaustive query finds the tree's candidates but
+/// those whose boxes miss the search box by less than that rounding (which cannot overlap the
+/// slave face within the search radius), the walk those of them connected along the master
+/// chain to the previous slave face's.
 pub(crate) struct ChainSearch {
     next: Vec<u32>,
     prev: Vec<u32>,
@@ -140,7 +142,7 @@ impl ChainSearch {
                 let mut x = [Vector3::zeros(); MAX_FACE_NODES];
                 let slots = b * BLOCK..((b + 1) * BLOCK).min(masters.len());
                 let bx = slots.fold(EMPTY, |acc, s| {
-                    let (_, k) = masters.coords_into(interface, s, &mut x);
+                    let k = masters.node_coords_into(interface, s, &mut x);
                     union(&acc, &points_box(&x[..k], tol))
                 });
                 (b as u32, bx)
@@ -157,7 +159,7 @@ impl ChainSearch {
     #[inline]
     fn face_box(&self, interface: &Interface, masters: &MasterFaces, s: u32) -> Box3 {
         let mut x = [Vector3::zeros(); MAX_FACE_NODES];
-        let (_, k) = masters.coords_into(interface, s as usize, &mut x);
+        let k = masters.node_coords_into(interface, s as usize, &mut x);
         points_box(&x[..k], interface.tolerances())
     }
 

@@ -8,6 +8,11 @@
 //! order of the element size is crossed). O(N log N); nothing is all-pairs. parry's API stays
 //! inside `bvh.rs`.
 //!
+//! A 2D interface of two-node lines in chains is searched as a merge instead (`chains.rs`):
+//! both sides in chain order, each slave face's partners found by walking along the master's
+//! chain from its predecessor's, with the same box test; the coupling uses it with its fused
+//! kernel for straight lines (see [`assemble_coupling`](crate::assemble_coupling)).
+//!
 //! [`Tolerances::search_inflation`]: crate::tolerances::Tolerances::search_inflation
 //! [`Tolerances::search_radius`]: crate::tolerances::Tolerances::search_radius
 
