@@ -525,7 +525,8 @@ fn assemble_on_pool(
         })
         .collect();
 
-    drop(search);
+    // What only the per-face work needed goes before the matrices are built.
+    drop((search, order, masters));
     let t_asm = Instant::now();
     let faces_seconds = (t_asm - start).as_secs_f64() - tree_seconds;
     let mut total = Accumulator::default();
