@@ -153,26 +153,10 @@ fn pair_points(
 /// the `xi` with `F(xi) = (y - x(xi)) x d(xi) = 0`. `F` is evaluated at both ends first: a
 /// root outside `[-1, 1]` gives the nearer end (nothing beyond the face is needed), a root
 /// inside is found by Newton safeguarded by bisection, which converges whatever the face's
-/// curvature (no extrapolation, no absolute tolerance).
-///
-/// # Errors
-/// [`MortarError::ProjectionFailed`] when `F` decreases across the face (the direction field
-/// turns faster than the face: the projection is not one-to-one there).
-fn project_onto_slave(
-    ctx: &SegmentContext<'_>,
-    line: &SlaveLine<'_>,
-    y: &Vector3<f64>,
-) -> Result<f64> {
-    try_project_onto_slave(ctx, line, y).ok_or_else(|| MortarError::ProjectionFailed {
-        face: line.face.location(),
-        point: (*y).into(),
-        iterations: 0,
-        residual: f64::INFINITY,
-    })
-}
-
-/// [`project_onto_slave`] without the error (`None` where it fails): a plain `f64` comes
-/// back in a register.
+/// curvature (no extrapolation, no absolute tolerance). `None` when `F` decreases across the
+/// face (the direction field turns faster than the face: the projection is not one-to-one
+/// there); [`SlaveLine::project`] names that as [`MortarError::ProjectionFailed`]. A plain
+/// `f64` comes back in a register, which the fused kernel's loop needs.
 fn try_project_onto_slave(
     ctx: &SegmentContext<'_>,
     line: &SlaveLine<'_>,
@@ -345,13 +329,19 @@ impl<'a> SlaveLine<'a> {
         }
     }
 
-    /// [`project_onto_slave`], remembered for the last few points (by the bits of their
+    /// [`try_project_onto_slave`], remembered for the last few points (by the bits of their
     /// coordinates).
+    ///
+    /// # Errors
+    /// [`MortarError::ProjectionFailed`] where the projection is not one-to-one.
     fn project(&mut self, ctx: &SegmentContext<'_>, y: &Vector3<f64>) -> Result<f64> {
-        match self.try_project(ctx, y) {
-            Some(xi) => Ok(xi),
-            None => project_onto_slave(ctx, self, y),
-        }
+        self.try_project(ctx, y)
+            .ok_or_else(|| MortarError::ProjectionFailed {
+                face: self.face.location(),
+                point: (*y).into(),
+                iterations: 0,
+                residual: f64::INFINITY,
+            })
     }
 
     /// [`project`](Self::project) without the error (`None` where it fails).
