@@ -190,14 +190,9 @@ impl MasterFaces {
                 out[..b - a].copy_from_slice(&p.coords[a..b]);
                 b - a
             }
-            None => {
-                let mesh = interface.master();
-                let nodes = mesh.face_nodes(self.face[s] as usize);
-                for (o, &n) in out.iter_mut().zip(nodes) {
-                    *o = mesh.coords()[n as usize];
-                }
-                nodes.len()
-            }
+            None => interface
+                .master()
+                .face_coords_into(self.face[s] as usize, out),
         }
     }
 

@@ -202,11 +202,11 @@ impl SurfaceMesh {
     /// # Panics
     /// If `face >= face_count()`.
     pub fn face_coords_into(&self, face: usize, out: &mut [Vector3<f64>; MAX_FACE_NODES]) -> usize {
-        let view = self.face(face);
-        for (o, &n) in out.iter_mut().zip(view.nodes) {
+        let nodes = self.face_nodes(face);
+        for (o, &n) in out.iter_mut().zip(nodes) {
             *o = self.nodes.coords[n as usize];
         }
-        view.nodes.len()
+        nodes.len()
     }
 
     /// Reverses the orientation of face `face` (its normal), by
