@@ -8,6 +8,7 @@
 mod properties {
     pub mod common;
 
+    mod closed_form;
     mod conservation;
     mod curved;
     mod dual;

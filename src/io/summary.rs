@@ -291,6 +291,10 @@ pub struct CouplingSummary {
     /// segment-based), the others by the integration strategy.
     #[serde(default)]
     pub fused_line_faces: usize,
+    /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles,
+    /// segment-based), the others by the integration strategy's points.
+    #[serde(default)]
+    pub closed_form_faces: usize,
     /// The sum of the entries of D as written: the area (3D) or length (2D) of the slave side
     /// coupled.
     pub area: f64,
@@ -341,6 +345,7 @@ impl CouplingSummary {
             faces_without_partner: s.faces_without_partner,
             faces_partly_covered: s.faces_partly_covered,
             fused_line_faces: s.fused_line_faces,
+            closed_form_faces: s.closed_form_faces,
             area: s.area,
             warnings: coupling
                 .warnings

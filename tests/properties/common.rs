@@ -2,7 +2,10 @@
 //! the slave nodal areas computed independently of the mortar integration.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
+use mortar::core::integration::{IntegrationStrategy, PairedRule, SegmentBased, SegmentContext};
+use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
 use mortar::testing::MeshPair;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
@@ -138,4 +141,104 @@ pub fn nodal_values(
         .map(&f)
         .collect();
     (fs, fm)
+}
+
+/// [`SegmentBased`] without [`IntegrationStrategy::line_segments`] and
+/// [`IntegrationStrategy::polygon_segments`]: the general path (the strategy's points,
+/// integrated by the coupling), as a user's strategy reaches it. The reference of the fused
+/// 2D kernel and of the 3D closed form.
+#[derive(Debug)]
+pub struct Plain(pub SegmentBased);
+
+impl IntegrationStrategy for Plain {
+    fn name(&self) -> String {
+        self.0.name()
+    }
+
+    fn paired_rule_into(
+        &self,
+        ctx: &SegmentContext<'_>,
+        slave: &FaceGeometry,
+        candidates: &[u32],
+        out: &mut PairedRule,
+    ) -> mortar::core::Result<()> {
+        self.0.paired_rule_into(ctx, slave, candidates, out)
+    }
+
+    fn splits_over_candidates(&self) -> bool {
+        self.0.splits_over_candidates()
+    }
+}
+
+/// `options` with the general path of the default [`SegmentBased`] instead of the fused
+/// kernel and the closed form.
+pub fn plain(options: &CouplingOptions) -> CouplingOptions {
+    plain_with(options, SegmentBased::default())
+}
+
+/// `options` with the general path of `strategy`.
+pub fn plain_with(options: &CouplingOptions, strategy: SegmentBased) -> CouplingOptions {
+    let mut o = options.clone();
+    o.integration = Arc::new(Plain(strategy));
+    o
+}
+
+/// Couples `interface` with `options` (of the default [`SegmentBased`]) and by the general
+/// path; checks that D and M agree to `1e-13` of their largest entry and that the counts and
+/// warnings are the same; returns the run of `options`.
+pub fn both_ways(interface: &Interface, options: &CouplingOptions, what: &str) -> Coupling {
+    both_ways_with(interface, options, &plain(options), what)
+}
+
+/// [`both_ways`] against the given general path.
+pub fn both_ways_with(
+    interface: &Interface,
+    options: &CouplingOptions,
+    general: &CouplingOptions,
+    what: &str,
+) -> Coupling {
+    let fused = assemble_coupling(interface, options).unwrap();
+    let general = assemble_coupling(interface, general).unwrap();
+    assert_eq!(general.stats.fused_line_faces, 0, "{what}");
+    assert_eq!(general.stats.closed_form_faces, 0, "{what}");
+    for (a, b, name) in [(&general.d, &fused.d, "D"), (&general.m, &fused.m, "M")] {
+        let cols = if name == "D" {
+            &general.slave_nodes
+        } else {
+            &general.master_nodes
+        };
+        let dev = compare_mapped(
+            &by_tags(a, &general.slave_nodes, cols),
+            &by_tags(b, &fused.slave_nodes, cols),
+            |t| t,
+            |t| t,
+            1.0,
+        );
+        assert!(dev <= 1e-13, "{what}: {name} deviates by {dev:e}");
+    }
+    assert_eq!(fused.stats.pairs, general.stats.pairs, "{what}");
+    assert_eq!(fused.stats.back_facing, general.stats.back_facing, "{what}");
+    assert_eq!(
+        fused.stats.degrees_used, general.stats.degrees_used,
+        "{what}"
+    );
+    assert_eq!(
+        fused.stats.skipped_pairs, general.stats.skipped_pairs,
+        "{what}"
+    );
+    assert_eq!(
+        (
+            fused.stats.faces_without_partner,
+            fused.stats.faces_partly_covered
+        ),
+        (
+            general.stats.faces_without_partner,
+            general.stats.faces_partly_covered
+        ),
+        "{what}"
+    );
+    let (u, g) = (fused.stats.uncovered_area, general.stats.uncovered_area);
+    assert!((u - g).abs() <= 1e-13 * (1.0 + g), "{what}: {u} vs {g}");
+    assert_eq!(fused.warnings.len(), general.warnings.len(), "{what}");
+    fused
 }

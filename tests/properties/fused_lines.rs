@@ -2,100 +2,22 @@
 //! against the general path it replaces: the same D and M, to round-off, on every interface
 //! it takes, and the same warnings where it hands faces back.
 //!
-//! Reference: the general path, forced by [`Plain`], a strategy that wraps [`SegmentBased`]
+//! Reference: the general path, forced by `common::Plain`, a strategy that wraps [`SegmentBased`]
 //! without claiming its 2D segmentation (a user's strategy reaches the coupling the same
 //! way). The fused kernel does the same operations on the same numbers, in another order of
 //! summation (slave faces along their chain instead of in Morton order): D and M agree to
 //! 1e-13 of their largest entry, the counts of pairs and the uncovered area exactly.
 
 use std::f64::consts::PI;
-use std::sync::Arc;
 
-use mortar::core::integration::{
-    IntegrationStrategy, LineSegments, PairedRule, SegmentBased, SegmentContext,
-};
-use mortar::core::interface::FaceGeometry;
+use mortar::core::integration::{IntegrationStrategy, LineSegments, SegmentBased};
 use mortar::elements::{LINE2, LINE3};
 use mortar::testing::{covered_pair_2d, polyline, shuffled, MeshPair};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use super::common::{by_tags, compare_mapped, config, ok};
-
-/// [`SegmentBased`] without [`IntegrationStrategy::line_segments`]: the general path.
-#[derive(Debug)]
-struct Plain(SegmentBased);
-
-impl IntegrationStrategy for Plain {
-    fn name(&self) -> String {
-        self.0.name()
-    }
-
-    fn paired_rule_into(
-        &self,
-        ctx: &SegmentContext<'_>,
-        slave: &FaceGeometry,
-        candidates: &[u32],
-        out: &mut PairedRule,
-    ) -> mortar::core::Result<()> {
-        self.0.paired_rule_into(ctx, slave, candidates, out)
-    }
-
-    fn splits_over_candidates(&self) -> bool {
-        self.0.splits_over_candidates()
-    }
-}
-
-/// `options` with the general path instead of the fused kernel.
-fn plain(options: &CouplingOptions) -> CouplingOptions {
-    let mut o = options.clone();
-    o.integration = Arc::new(Plain(SegmentBased::default()));
-    o
-}
-
-/// Couples `interface` both ways; checks that D and M agree to `1e-13` of their largest
-/// entry and that the counts and warnings are the same; returns the fused run.
-fn both_ways(interface: &Interface, options: &CouplingOptions, what: &str) -> Coupling {
-    let fused = assemble_coupling(interface, options).unwrap();
-    let general = assemble_coupling(interface, &plain(options)).unwrap();
-    assert_eq!(general.stats.fused_line_faces, 0, "{what}");
-    for (a, b, name) in [(&general.d, &fused.d, "D"), (&general.m, &fused.m, "M")] {
-        let cols = if name == "D" {
-            &general.slave_nodes
-        } else {
-            &general.master_nodes
-        };
-        let dev = compare_mapped(
-            &by_tags(a, &general.slave_nodes, cols),
-            &by_tags(b, &fused.slave_nodes, cols),
-            |t| t,
-            |t| t,
-            1.0,
-        );
-        assert!(dev <= 1e-13, "{what}: {name} deviates by {dev:e}");
-    }
-    assert_eq!(fused.stats.pairs, general.stats.pairs, "{what}");
-    assert_eq!(
-        fused.stats.skipped_pairs, general.stats.skipped_pairs,
-        "{what}"
-    );
-    assert_eq!(
-        (
-            fused.stats.faces_without_partner,
-            fused.stats.faces_partly_covered
-        ),
-        (
-            general.stats.faces_without_partner,
-            general.stats.faces_partly_covered
-        ),
-        "{what}"
-    );
-    let (u, g) = (fused.stats.uncovered_area, general.stats.uncovered_area);
-    assert!((u - g).abs() <= 1e-13 * (1.0 + g), "{what}: {u} vs {g}");
-    assert_eq!(fused.warnings.len(), general.warnings.len(), "{what}");
-    fused
-}
+use super::common::{both_ways, config, ok, plain};
 
 /// `n + 1` points from `a` to `b` on the x-axis at height `y`, graded by `t -> t^p`.
 fn points(a: f64, b: f64, y: f64, n: usize, p: f64) -> Vec<[f64; 2]> {

@@ -10,8 +10,11 @@ use super::local::{integrate_batch_into, LocalBlocks};
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
+use crate::integration::closed_form::{self, closed_form_into};
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
-use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
+use crate::integration::{
+    LineSegments, PairedRule, PolygonSegments, SegmentContext, CANDIDATE_BATCH,
+};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use crate::search::{spatial_order, ChainSearch, LineChains, MasterTree, WALK_LIMIT};
@@ -71,6 +74,11 @@ pub struct CouplingStats {
     /// Slave faces coupled by the fused kernel for straight two-node lines (2D; see
     /// [`assemble_coupling`]); the others went through the integration strategy.
     pub fused_line_faces: usize,
+    /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles on
+    /// both sides, with a strategy that segments them exactly; see
+    /// [`IntegrationStrategy::polygon_segments`](crate::integration::IntegrationStrategy::polygon_segments));
+    /// the others went through the integration strategy's points.
+    pub closed_form_faces: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
     /// Off-diagonal entries of a dual D at most 1e-12 times their row's diagonal entry,
@@ -219,8 +227,13 @@ struct FaceBuffers {
 
 /// How a coupling finds each slave face's master faces.
 enum Search {
-    /// The tree over the master faces, queried face by face.
-    Tree(MasterTree),
+    /// The tree over the master faces, queried face by face; with the strategy's exact
+    /// segmentation when the clip polygons are integrated in closed form (3D, linear
+    /// triangles on both sides).
+    Tree {
+        tree: MasterTree,
+        closed_form: Option<PolygonSegments>,
+    },
     /// Straight two-node lines in chains on both sides, with a strategy that segments them
     /// exactly: a walk along the master's chains, and the fused kernel.
     Lines {
@@ -261,7 +274,12 @@ impl Search {
             .map(|f| slave.coords()[slave.face(f).nodes[0] as usize])
             .collect();
         let order = spatial_order(&anchors, interface.dim() == SpatialDim::Two);
-        (Search::Tree(tree), masters, order)
+        let closed_form = options
+            .integration
+            .polygon_segments()
+            .filter(|rule| closed_form::applies(interface, *rule));
+        let search = Search::Tree { tree, closed_form };
+        (search, masters, order)
     }
 }
 
@@ -298,6 +316,7 @@ struct ChunkStats {
     without_partner: usize,
     partly_covered: usize,
     fused: usize,
+    closed_form: usize,
     degrees: u32,
     seconds_search: f64,
     seconds_segments: f64,
@@ -315,6 +334,7 @@ impl ChunkStats {
         self.without_partner += o.without_partner;
         self.partly_covered += o.partly_covered;
         self.fused += o.fused;
+        self.closed_form += o.closed_form;
         self.degrees |= o.degrees;
         self.seconds_search += o.seconds_search;
         self.seconds_segments += o.seconds_segments;
@@ -607,6 +627,7 @@ fn assemble_on_pool(
             faces_without_partner: stats.without_partner,
             faces_partly_covered: stats.partly_covered,
             fused_line_faces: stats.fused,
+            closed_form_faces: stats.closed_form,
             area,
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
@@ -707,7 +728,7 @@ fn chunk(
     }));
     for (i, face) in geometry.iter().enumerate() {
         match search {
-            Search::Tree(tree) => tree.candidates_of(interface, face, scratch),
+            Search::Tree { tree, .. } => tree.candidates_of(interface, face, scratch),
             Search::Lines {
                 search, follows, ..
             } => {
@@ -761,9 +782,14 @@ fn chunk(
             note_uncovered(&mut uncovered, face.tag);
             continue;
         }
+        let closed_form = match search {
+            Search::Tree { closed_form, .. } => *closed_form,
+            Search::Lines { .. } => None,
+        };
         general_face(
             options,
             ctx,
+            closed_form,
             face,
             rows,
             cands,
@@ -837,6 +863,7 @@ fn fused_face(
 fn general_face(
     options: &CouplingOptions,
     ctx: &SegmentContext<'_>,
+    closed_form: Option<PolygonSegments>,
     face: &FaceGeometry,
     rows: &[u32],
     cands: &[u32],
@@ -873,7 +900,13 @@ fn general_face(
     col_vals.clear();
     col_index.clear();
     let ks = rows.len();
-    let mut basis = None;
+    // The closed form needs the basis first; a face whose basis cannot be built goes to the
+    // strategy (which reports that if the face has any overlap).
+    let mut closed_form = closed_form.and_then(|rule| {
+        let basis = options.multipliers.basis_for(face, tol, options.geometry);
+        basis.ok().map(|b| (rule, b))
+    });
+    let mut basis = closed_form.map(|(_, b)| b);
     let mut any_points = false;
     // The covered fraction, summed over batches (`None` if a batch did not measure
     // it), and the sum of the weights, for when it is `None`.
@@ -882,9 +915,19 @@ fn general_face(
     let mut first_skipped = None;
     for part in cands.chunks(batch) {
         let ta = Instant::now();
-        options
-            .integration
-            .paired_rule_into(ctx, face, part, rule)?;
+        // The closed form does the segmentation and the integration at once (its time counts
+        // as segmentation); a face it leaves (not integrated in the plane) goes to the
+        // strategy.
+        let closed = match closed_form {
+            Some((cf, b)) => closed_form_into(ctx, face, part, cf.degree, &b, blocks, rule)?,
+            None => false,
+        };
+        if !closed {
+            closed_form = None;
+            options
+                .integration
+                .paired_rule_into(ctx, face, part, rule)?;
+        }
         out.pairs += rule.pairs as usize;
         out.segments += rule.cells as usize;
         out.back_facing += rule.back_facing as usize;
@@ -898,22 +941,26 @@ fn general_face(
             weights += rule.points.iter().map(|p| p.weight).sum::<f64>();
         }
         out.seconds_segments += ta.elapsed().as_secs_f64();
-        if rule.points.is_empty() {
-            continue;
-        }
-        any_points = true;
-        if options.geometry.is_axisymmetric() {
-            // The measure of the revolved surface, 2 pi r at the slave point (after the
-            // coverage, which compares lengths of the meridian).
-            for p in rule.points.iter_mut() {
-                p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
+        if closed {
+            any_points |= rule.pairs > 0;
+        } else {
+            if rule.points.is_empty() {
+                continue;
             }
+            any_points = true;
+            if options.geometry.is_axisymmetric() {
+                // The measure of the revolved surface, 2 pi r at the slave point (after the
+                // coverage, which compares lengths of the meridian).
+                for p in rule.points.iter_mut() {
+                    p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
+                }
+            }
+            let basis = match &basis {
+                Some(b) => b,
+                None => basis.insert(options.multipliers.basis_for(face, tol, options.geometry)?),
+            };
+            integrate_batch_into(interface, ctx.masters, face, basis, &rule.points, blocks);
         }
-        let basis = match &basis {
-            Some(b) => b,
-            None => basis.insert(options.multipliers.basis_for(face, tol, options.geometry)?),
-        };
-        integrate_batch_into(interface, ctx.masters, face, basis, &rule.points, blocks);
         // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
         // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
         // first met (found through `col_index`), so the sums are the same whatever the
@@ -957,7 +1004,11 @@ fn general_face(
         out.uncovered_area += face.measure();
         note_uncovered(uncovered, face.tag);
         return Ok(());
-    } else if missing > tol.coverage {
+    }
+    if closed_form.is_some() {
+        out.closed_form += 1;
+    }
+    if missing > tol.coverage {
         out.partly_covered += 1;
         out.uncovered_area += missing * face.measure();
         note_uncovered(uncovered, face.tag);

@@ -21,12 +21,13 @@
 //!   clipping or flat sub-faces (slow).
 
 mod adaptive;
+pub(crate) mod closed_form;
 pub mod curved_3d;
 mod degree;
 mod element_based;
 mod segment_based;
 pub(crate) mod segments_2d;
-mod segments_3d;
+pub(crate) mod segments_3d;
 
 use nalgebra::{Vector2, Vector3};
 
@@ -184,6 +185,26 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     fn line_segments(&self) -> Option<LineSegments> {
         None
     }
+
+    /// Whether this strategy, on a 3D interface of flat first-order faces, is the exact
+    /// segmentation of [`SegmentBased`] (both faces projected onto the auxiliary plane of the
+    /// slave face, clipped, each clip polygon integrated exactly for the integrands' degree)
+    /// and with which degree. The coupling may then integrate the clip polygons of linear
+    /// triangles in closed form ([`CouplingStats::closed_form_faces`](crate::CouplingStats::closed_form_faces))
+    /// instead of calling [`paired_rule_into`](Self::paired_rule_into): the integrals of
+    /// any exact quadrature, to round-off. The default, `None`, always calls the strategy.
+    fn polygon_segments(&self) -> Option<PolygonSegments> {
+        None
+    }
+}
+
+/// What the closed-form integration of clip polygons needs to know of a strategy that
+/// segments 3D faces exactly ([`IntegrationStrategy::polygon_segments`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PolygonSegments {
+    /// The quadrature degree on each clip triangle; `None`: [`default_degree`]. A degree below
+    /// the integrands' keeps the strategy (its quadrature is then not exact).
+    pub degree: Option<u32>,
 }
 
 /// What the fused kernel for straight two-node lines needs to know of a strategy that

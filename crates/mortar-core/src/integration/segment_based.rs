@@ -1,6 +1,7 @@
 use super::curved_3d::{self, subdivision_level, DEFAULT_CURVED_TOLERANCE, MAX_SUBDIVISION};
 use super::{
-    segments_2d, segments_3d, IntegrationStrategy, LineSegments, PairedRule, SegmentContext,
+    segments_2d, segments_3d, IntegrationStrategy, LineSegments, PairedRule, PolygonSegments,
+    SegmentContext,
 };
 use crate::error::{MortarError, Result};
 use crate::interface::{FaceGeometry, SpatialDim};
@@ -161,6 +162,14 @@ impl IntegrationStrategy for SegmentBased {
     /// Its own 2D segmentation, of its degree.
     fn line_segments(&self) -> Option<LineSegments> {
         Some(LineSegments {
+            degree: self.degree,
+        })
+    }
+
+    /// Its own 3D segmentation, of its degree (the quad and curved-face options do not touch
+    /// linear triangles, the only faces the closed form takes).
+    fn polygon_segments(&self) -> Option<PolygonSegments> {
+        Some(PolygonSegments {
             degree: self.degree,
         })
     }

@@ -4,13 +4,177 @@ use arrayvec::ArrayVec;
 use nalgebra::{Vector2, Vector3};
 
 use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
-use crate::element::{ReferenceDomain, MAX_FACE_NODES};
+use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
     clip_convex, AuxiliaryPlane, InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
 };
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
+
+/// A slave face's set-up in its auxiliary plane, shared by the strategy's segmentation
+/// ([`segments_into`]) and the closed form ([`closed_form`](super::closed_form)): the plane,
+/// the face's projection and the measures the clipping of each candidate needs.
+pub(crate) struct SlavePlane {
+    /// The auxiliary plane through the face's centre.
+    pub plane: AuxiliaryPlane,
+    /// The face's nodes in the plane.
+    pub sp: [Vector2<f64>; MAX_FACE_NODES],
+    /// The face's corners in the plane (counter-clockwise).
+    pub spoly: Polygon,
+    /// Its area in the plane (positive).
+    pub area_s: f64,
+    /// The face's map into the plane.
+    pub slave_map: PlanarMap,
+    /// Whether the face is integrated in its reference coordinates (its map into space or
+    /// its projection is not affine).
+    pub in_reference: bool,
+    /// The degree added to the integrands' for a face integrated in its reference coordinates.
+    pub extra_degree: u32,
+    /// The ratio of the face's area element to the plane's (an affine face; 1 otherwise).
+    pub measure: f64,
+    /// The in-plane bounding box of the face.
+    s_lo: Vector2<f64>,
+    s_hi: Vector2<f64>,
+    /// The clipping's merge tolerance.
+    merge: f64,
+    /// The area the rounding of the coordinates alone can give a zero-measure overlap.
+    area_noise: f64,
+    /// The smallest overlap area, relative to the smaller face's, that counts.
+    clip_area: f64,
+}
+
+impl SlavePlane {
+    /// The set-up of `slave`.
+    ///
+    /// # Errors
+    /// [`MortarError::DegenerateFace`] when the projection direction at the centre is zero;
+    /// [`MortarError::InvertedFace`] when the face's projection turns against the plane's
+    /// normal.
+    pub fn new(ctx: &SegmentContext<'_>, slave: &FaceGeometry) -> Result<Self> {
+        let tol = ctx.interface.tolerances();
+        let el = slave.element;
+        let centre = el.domain().centre();
+        let (plane, x0) = auxiliary_plane(ctx, slave)?;
+
+        let ks = slave.node_count();
+        let mut sp = [Vector2::zeros(); MAX_FACE_NODES];
+        for i in 0..ks {
+            sp[i] = plane.project(&slave.nodes[i]);
+        }
+        let spoly = Polygon::from_slice(&sp[..el.corner_count()]);
+        let area_s = spoly.signed_area();
+        if area_s <= 0.0 {
+            return Err(MortarError::InvertedFace {
+                face: slave.location(),
+                kind: crate::error::Inversion::AgainstProjection,
+                reason: "its normal points against the projection direction at its centre".into(),
+            });
+        }
+        let slave_map = PlanarMap::new(el, &sp[..ks]);
+        // A slave face is integrated in the plane only when both its map into space and its
+        // projection are affine (a triangle, a flat parallelogram): then the plane's area
+        // element differs from the face's by one constant factor, `measure`, the ratio of the
+        // face's Jacobian to its projection's (1 when the face lies in the plane; `1 / cos` of
+        // the tilt on a curved surface, where the plane follows the averaged nodal normals).
+        // Any other slave face is integrated in its reference coordinates with its own
+        // Jacobian.
+        let in_reference = !(slave_map.is_affine() && slave.is_affine());
+        // The degree added to the integrands' for a slave face integrated in its reference
+        // coordinates: one for a flat face (its Jacobian a polynomial), WARPED_EXTRA_DEGREE
+        // for a warped or curved one (its Jacobian the norm of a polynomial vector).
+        let extra_degree = if !in_reference {
+            0
+        } else if slave.is_flat() {
+            1
+        } else {
+            WARPED_EXTRA_DEGREE
+        };
+        let measure = if in_reference {
+            1.0
+        } else {
+            let (_, jac_plane) = slave_map.eval(&centre);
+            el.jacobian_det(slave.node_coords(), &centre) / jac_plane
+        };
+        let (s_lo, s_hi) = spoly
+            .vertices
+            .iter()
+            .fold((sp[0], sp[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+        // Coordinates far from the origin carry an absolute rounding of a few ulps of their
+        // magnitude: the merge tolerance cannot be finer than that.
+        let rounding = 8.0 * f64::EPSILON * x0.amax();
+        let merge = (tol.merge * spoly.diameter()).max(rounding);
+        Ok(Self {
+            plane,
+            sp,
+            area_noise: rounding * spoly.diameter(),
+            spoly,
+            area_s,
+            slave_map,
+            in_reference,
+            extra_degree,
+            measure,
+            s_lo,
+            s_hi,
+            merge,
+            clip_area: tol.clip_area,
+        })
+    }
+
+    /// Projects the master face in slot `m` into the plane (its nodes into `mp`) and clips it
+    /// against the slave face into `clip`: its element and node count when the overlap
+    /// counts, `None` when the face is out of the slave's box, seen edge-on, facing the same
+    /// way as the slave (counted in `back_facing`) or overlapping by less than the tolerance.
+    pub fn clip_master(
+        &self,
+        ctx: &SegmentContext<'_>,
+        m: u32,
+        mp: &mut [Vector2<f64>; MAX_FACE_NODES],
+        clip: &mut Polygon,
+        back_facing: &mut u32,
+    ) -> Option<(ElementRef, usize)> {
+        let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
+        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut xm);
+        for (p, x) in mp.iter_mut().zip(&xm[..km]) {
+            *p = self.plane.project(x);
+        }
+        // Quick rejection by in-plane bounding boxes before clipping.
+        let corners = &mp[..mel.corner_count()];
+        let (lo, hi) = corners
+            .iter()
+            .fold((corners[0], corners[0]), |(lo, hi), p| {
+                (lo.inf(p), hi.sup(p))
+            });
+        let (s_lo, s_hi, merge) = (self.s_lo, self.s_hi, self.merge);
+        if lo.x > s_hi.x + merge
+            || lo.y > s_hi.y + merge
+            || hi.x < s_lo.x - merge
+            || hi.y < s_lo.y - merge
+        {
+            return None;
+        }
+        let mut mpoly = Polygon::from_slice(corners);
+        let area_m = mpoly.signed_area();
+        if area_m.abs() <= self.clip_area * self.area_s {
+            return None; // seen edge-on from the plane
+        }
+        if area_m > 0.0 {
+            // Counter-clockwise about the slave normal: the master face looks the same way as
+            // the slave, so it is not the surface facing it.
+            *back_facing += 1;
+            return None;
+        }
+        mpoly.reverse();
+        clip_convex(&mpoly, &self.spoly, merge, clip);
+        if clip.len() < 3
+            || clip.signed_area()
+                <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise)
+        {
+            return None;
+        }
+        Some((mel, km))
+    }
+}
 
 /// `quad_subdivision`: see [`SegmentBased::with_quad_subdivision`](super::SegmentBased::with_quad_subdivision).
 pub(super) fn segments_into(
@@ -23,59 +187,17 @@ pub(super) fn segments_into(
 ) -> Result<()> {
     let tol = ctx.interface.tolerances();
     let el = slave.element;
-    let centre = el.domain().centre();
-    let (plane, x0) = auxiliary_plane(ctx, slave)?;
-
-    let ks = slave.node_count();
-    let mut sp = [Vector2::zeros(); MAX_FACE_NODES];
-    for i in 0..ks {
-        sp[i] = plane.project(&slave.nodes[i]);
-    }
-    let spoly = Polygon::from_slice(&sp[..el.corner_count()]);
-    let area_s = spoly.signed_area();
-    if area_s <= 0.0 {
-        return Err(MortarError::InvertedFace {
-            face: slave.location(),
-            kind: crate::error::Inversion::AgainstProjection,
-            reason: "its normal points against the projection direction at its centre".into(),
-        });
-    }
-    let slave_map = PlanarMap::new(el, &sp[..ks]);
-    // A slave face is integrated in the plane only when both its map into space and its
-    // projection are affine (a triangle, a flat parallelogram): then the plane's area element
-    // differs from the face's by one constant factor, `measure`, the ratio of the face's
-    // Jacobian to its projection's (1 when the face lies in the plane; `1 / cos` of the tilt
-    // on a curved surface, where the plane follows the averaged nodal normals). Any other slave
-    // face is integrated in its reference coordinates with its own Jacobian.
-    let in_reference = !(slave_map.is_affine() && slave.is_affine());
-    // The degree added to the integrands' for a slave face integrated in its reference
-    // coordinates: one for a flat face (its Jacobian a polynomial), WARPED_EXTRA_DEGREE for a
-    // warped or curved one (its Jacobian the norm of a polynomial vector).
-    let extra_degree = if !in_reference {
-        0
-    } else if slave.is_flat() {
-        1
-    } else {
-        WARPED_EXTRA_DEGREE
-    };
-    let measure = if in_reference {
-        1.0
-    } else {
-        let (_, jac_plane) = slave_map.eval(&centre);
-        el.jacobian_det(slave.node_coords(), &centre) / jac_plane
-    };
-    let (s_lo, s_hi) = spoly
-        .vertices
-        .iter()
-        .fold((sp[0], sp[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
-    // Coordinates far from the origin carry an absolute rounding of a few ulps of their
-    // magnitude: the merge tolerance cannot be finer than that.
-    let rounding = 8.0 * f64::EPSILON * x0.amax();
-    let merge = (tol.merge * spoly.diameter()).max(rounding);
-    // The area the rounding of the coordinates alone can give a zero-measure overlap.
-    let area_noise = rounding * spoly.diameter();
+    let setup = SlavePlane::new(ctx, slave)?;
+    let SlavePlane {
+        plane,
+        area_s,
+        slave_map,
+        in_reference,
+        extra_degree,
+        measure,
+        ..
+    } = setup;
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
-    let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
     // The cut triangles of a non-parallelogram quad (`quad_subdivision > 1`), in the slave's
@@ -85,42 +207,10 @@ pub(super) fn segments_into(
     let mut covered = 0.0;
 
     for &m in candidates {
-        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut xm);
-        for (p, x) in mp.iter_mut().zip(&xm[..km]) {
-            *p = plane.project(x);
-        }
-        // Quick rejection by in-plane bounding boxes before clipping.
-        let corners = &mp[..mel.corner_count()];
-        let (lo, hi) = corners
-            .iter()
-            .fold((corners[0], corners[0]), |(lo, hi), p| {
-                (lo.inf(p), hi.sup(p))
-            });
-        if lo.x > s_hi.x + merge
-            || lo.y > s_hi.y + merge
-            || hi.x < s_lo.x - merge
-            || hi.y < s_lo.y - merge
-        {
+        let Some((mel, km)) = setup.clip_master(ctx, m, &mut mp, &mut clip, &mut out.back_facing)
+        else {
             continue;
-        }
-        let mut mpoly = Polygon::from_slice(corners);
-        let area_m = mpoly.signed_area();
-        if area_m.abs() <= tol.clip_area * area_s {
-            continue; // seen edge-on from the plane
-        }
-        if area_m > 0.0 {
-            // Counter-clockwise about the slave normal: the master face looks the same way as
-            // the slave, so it is not the surface facing it.
-            out.back_facing += 1;
-            continue;
-        }
-        mpoly.reverse();
-        clip_convex(&mpoly, &spoly, merge, &mut clip);
-        if clip.len() < 3
-            || clip.signed_area() <= (tol.clip_area * area_s.min(area_m.abs())).max(area_noise)
-        {
-            continue;
-        }
+        };
         // A slave face whose Jacobian varies is integrated in its reference coordinates with
         // the Jacobian as a factor: `extra_degree` more.
         let deg = degree.unwrap_or_else(|| default_degree(el, mel) + extra_degree);
