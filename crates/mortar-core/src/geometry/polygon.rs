@@ -37,19 +37,7 @@ impl Polygon {
 
     /// Signed area (positive for counter-clockwise order).
     pub fn signed_area(&self) -> f64 {
-        let n = self.vertices.len();
-        if n < 3 {
-            return 0.0;
-        }
-        // Relative to the first vertex, to keep round-off small.
-        let o = self.vertices[0];
-        let mut twice = 0.0;
-        for i in 1..n - 1 {
-            let a = self.vertices[i] - o;
-            let b = self.vertices[i + 1] - o;
-            twice += a.x * b.y - a.y * b.x;
-        }
-        0.5 * twice
+        signed_area(&self.vertices)
     }
 
     /// Reverses the vertex order.
@@ -133,79 +121,117 @@ impl Polygon {
     }
 }
 
+/// The signed area of the polygon of vertices `v` (positive for counter-clockwise order), as
+/// [`Polygon::signed_area`].
+pub fn signed_area(v: &[Vector2<f64>]) -> f64 {
+    let n = v.len();
+    if n < 3 {
+        return 0.0;
+    }
+    // Relative to the first vertex, to keep round-off small.
+    let o = v[0];
+    let mut twice = 0.0;
+    for i in 1..n - 1 {
+        let a = v[i] - o;
+        let b = v[i + 1] - o;
+        twice += a.x * b.y - a.y * b.x;
+    }
+    0.5 * twice
+}
+
 /// Clips `subject` by the convex, counter-clockwise polygon `clip` (Sutherland-Hodgman).
 ///
 /// Both polygons must be counter-clockwise; `subject` should be convex too, so that the
 /// result is a single convex polygon. A point counts as inside an edge when it lies on it or to
 /// its left within `tol` (a length). Consecutive vertices closer than `tol` are merged. The
-/// result is written into `out` (cleared first).
+/// result is written into `out` (cleared first). To clip many polygons by the same `clip`,
+/// build its [`ConvexClipper`] once.
 pub fn clip_convex(subject: &Polygon, clip: &Polygon, tol: f64, out: &mut Polygon) {
-    // Two stack buffers used in turn, so no polygon is copied per edge.
-    let mut buf = [[Vector2::zeros(); MAX_POLYGON_VERTICES]; 2];
-    let mut len = [subject.len(), 0];
-    buf[0][..subject.len()].copy_from_slice(&subject.vertices);
-    let mut cur = 0usize;
-    let n = clip.vertices.len();
-    for i in 0..n {
-        if len[cur] == 0 {
-            break;
-        }
-        let a = clip.vertices[i];
-        let e = clip.vertices[(i + 1) % n] - a;
-        let elen = e.norm();
-        if elen == 0.0 {
-            continue;
-        }
-        let inv = 1.0 / elen;
-        let (src, dst) = if cur == 0 {
-            let (x, y) = buf.split_at_mut(1);
-            (&x[0], &mut y[0])
-        } else {
-            let (x, y) = buf.split_at_mut(1);
-            (&y[0], &mut x[0])
-        };
-        let m = len[cur];
-        let mut k = 0usize;
-        // Signed distance to the left of the edge.
-        let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;
-        let mut p = src[m - 1];
-        let mut dp = dist(&p);
-        for &q in &src[..m] {
-            let dq = dist(&q);
-            let p_in = dp >= -tol;
-            let q_in = dq >= -tol;
-            if p_in != q_in && k < MAX_POLYGON_VERTICES {
-                // A point inside only by the tolerance can put the crossing of the zero line
-                // outside the segment: clamp, so the vertex stays on the subject's edge.
-                let t = (dp / (dp - dq)).clamp(0.0, 1.0);
-                dst[k] = p + (q - p) * t;
-                k += 1;
+    ConvexClipper::new(clip).clip(&subject.vertices, tol, out);
+}
+
+/// A convex, counter-clockwise clip polygon ready to clip many subjects: its edges with their
+/// inverse lengths, computed once ([`clip_convex`] with one clip polygon, the same bits).
+#[derive(Debug, Clone, Default)]
+pub struct ConvexClipper {
+    /// Per edge of positive length: its start, its vector and its inverse length.
+    edges: ArrayVec<(Vector2<f64>, Vector2<f64>, f64), MAX_POLYGON_VERTICES>,
+}
+
+impl ConvexClipper {
+    /// The clipper of `clip` (convex, counter-clockwise).
+    pub fn new(clip: &Polygon) -> Self {
+        let n = clip.vertices.len();
+        let mut edges = ArrayVec::new();
+        for i in 0..n {
+            let a = clip.vertices[i];
+            let e = clip.vertices[(i + 1) % n] - a;
+            let elen = e.norm();
+            if elen != 0.0 {
+                edges.push((a, e, 1.0 / elen));
             }
-            if q_in && k < MAX_POLYGON_VERTICES {
-                dst[k] = q;
-                k += 1;
-            }
-            p = q;
-            dp = dq;
         }
-        cur = 1 - cur;
-        len[cur] = k;
+        Self { edges }
     }
-    out.vertices.clear();
-    // Distances, not their squares: `tol` squared underflows for the smallest faces of a mesh
-    // at 1e-140 (see `stable_norm`).
-    for v in &buf[cur][..len[cur]] {
-        if out
-            .vertices
-            .last()
-            .is_none_or(|l: &Vector2<f64>| stable_norm(&(v - l)) > tol)
+
+    /// Clips the polygon of vertices `subject` (counter-clockwise, convex; at most
+    /// [`MAX_POLYGON_VERTICES`] are read) into `out`, as [`clip_convex`] does.
+    pub fn clip(&self, subject: &[Vector2<f64>], tol: f64, out: &mut Polygon) {
+        // Two stack buffers used in turn, so no polygon is copied per edge.
+        let mut buf: [ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES>; 2] =
+            [ArrayVec::new(), ArrayVec::new()];
+        buf[0].extend(subject.iter().take(MAX_POLYGON_VERTICES).copied());
+        let mut cur = 0usize;
+        for &(a, e, inv) in &self.edges {
+            if buf[cur].is_empty() {
+                break;
+            }
+            let (x, y) = buf.split_at_mut(1);
+            let (src, dst) = if cur == 0 {
+                (&x[0], &mut y[0])
+            } else {
+                (&y[0], &mut x[0])
+            };
+            dst.clear();
+            // Signed distance to the left of the edge.
+            let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;
+            let mut p = src[src.len() - 1];
+            let mut dp = dist(&p);
+            for &q in src.iter() {
+                let dq = dist(&q);
+                let p_in = dp >= -tol;
+                let q_in = dq >= -tol;
+                if p_in != q_in && !dst.is_full() {
+                    // A point inside only by the tolerance can put the crossing of the zero
+                    // line outside the segment: clamp, so the vertex stays on the subject's
+                    // edge.
+                    let t = (dp / (dp - dq)).clamp(0.0, 1.0);
+                    dst.push(p + (q - p) * t);
+                }
+                if q_in && !dst.is_full() {
+                    dst.push(q);
+                }
+                p = q;
+                dp = dq;
+            }
+            cur = 1 - cur;
+        }
+        out.vertices.clear();
+        // Distances, not their squares: `tol` squared underflows for the smallest faces of a
+        // mesh at 1e-140 (see `stable_norm`).
+        for v in &buf[cur] {
+            if out
+                .vertices
+                .last()
+                .is_none_or(|l: &Vector2<f64>| stable_norm(&(v - l)) > tol)
+            {
+                out.vertices.push(*v);
+            }
+        }
+        while out.vertices.len() > 1
+            && stable_norm(&(out.vertices[0] - out.vertices[out.vertices.len() - 1])) <= tol
         {
-            out.vertices.push(*v);
+            out.vertices.pop();
         }
-    }
-    while out.vertices.len() > 1
-        && stable_norm(&(out.vertices[0] - out.vertices[out.vertices.len() - 1])) <= tol
-    {
-        out.vertices.pop();
     }
 }

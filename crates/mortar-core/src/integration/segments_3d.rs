@@ -7,7 +7,8 @@ use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
-    clip_convex, AuxiliaryPlane, InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
+    signed_area, AuxiliaryPlane, ConvexClipper, InverseMapFailure, PlanarMap, Polygon,
+    MAX_POLYGON_VERTICES,
 };
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -42,6 +43,8 @@ pub(crate) struct SlavePlane {
     area_noise: f64,
     /// The smallest overlap area, relative to the smaller face's, that counts.
     clip_area: f64,
+    /// The clipper of `spoly`.
+    clipper: ConvexClipper,
 }
 
 impl SlavePlane {
@@ -106,9 +109,9 @@ impl SlavePlane {
         let merge = (tol.merge * spoly.diameter()).max(rounding);
         Ok(Self {
             plane,
+            spoly: spoly.clone(),
             sp,
             area_noise: rounding * spoly.diameter(),
-            spoly,
             area_s,
             slave_map,
             in_reference,
@@ -118,6 +121,7 @@ impl SlavePlane {
             s_hi,
             merge,
             clip_area: tol.clip_area,
+            clipper: ConvexClipper::new(&spoly),
         })
     }
 
@@ -153,8 +157,7 @@ impl SlavePlane {
         {
             return None;
         }
-        let mut mpoly = Polygon::from_slice(corners);
-        let area_m = mpoly.signed_area();
+        let area_m = signed_area(corners);
         if area_m.abs() <= self.clip_area * self.area_s {
             return None; // seen edge-on from the plane
         }
@@ -164,8 +167,10 @@ impl SlavePlane {
             *back_facing += 1;
             return None;
         }
-        mpoly.reverse();
-        clip_convex(&mpoly, &self.spoly, merge, clip);
+        // Clockwise about the slave normal: reversed, it is the subject of the clipping.
+        let reversed: ArrayVec<Vector2<f64>, MAX_FACE_NODES> =
+            corners.iter().rev().copied().collect();
+        self.clipper.clip(&reversed, merge, clip);
         if clip.len() < 3
             || clip.signed_area()
                 <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise)
