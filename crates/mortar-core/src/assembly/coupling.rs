@@ -16,7 +16,7 @@ use crate::integration::{
     LineSegments, PairedRule, PolygonSegments, SegmentContext, CANDIDATE_BATCH,
 };
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
-use crate::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
+use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
 use crate::search::{spatial_order, ChainSearch, LineChains, MasterTree, WALK_LIMIT};
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -205,10 +205,9 @@ struct ChunkWorkspace {
     all: Vec<u32>,
     scratch: Vec<u32>,
     face: FaceBuffers,
-    sort: CompressWorkspace,
 }
 
-/// The buffers of one slave face's work, and the chunk's triplets.
+/// The buffers of one slave face's work, and the chunk's entries of D and M, summed as they come.
 #[derive(Default)]
 struct FaceBuffers {
     rule: PairedRule,
@@ -221,8 +220,8 @@ struct FaceBuffers {
     col_index: KeyIndex,
     /// The fused kernel's result.
     line: LineFace,
-    d: Triplets,
-    m: Triplets,
+    d: RowAccumulator,
+    m: RowAccumulator,
 }
 
 /// How a coupling finds each slave face's master faces.
@@ -703,7 +702,6 @@ fn chunk(
         all,
         scratch,
         face: buffers,
-        sort,
     } = &mut acc.ws;
     // A chunk that failed may have left triplets behind.
     buffers.d.clear();
@@ -800,8 +798,8 @@ fn chunk(
             &mut uncovered,
         )?;
     }
-    acc.d.push_compressed(key, &mut buffers.d, sort);
-    acc.m.push_compressed(key, &mut buffers.m, sort);
+    acc.d.push_rows(key, &mut buffers.d);
+    acc.m.push_rows(key, &mut buffers.m);
     out.seconds_integration = t0.elapsed().as_secs_f64() - out.seconds_segments;
     acc.stats.add(&out);
     acc.add_uncovered(&uncovered);
@@ -849,8 +847,10 @@ fn fused_face(
             buffers.d.push(r, c, line.d[j][k]);
         }
     }
-    for (&c, vals) in line.cols.iter().zip(&line.vals) {
-        for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
+    // Row by row (each entry is pushed once per face: the order of a face's pushes does not
+    // change the sums).
+    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
+        for (&c, vals) in line.cols.iter().zip(&line.vals) {
             buffers.m.push(r, c, vals[j]);
         }
     }
@@ -1026,9 +1026,11 @@ fn general_face(
             d.push(r, c, blocks.d[j][k]);
         }
     }
-    for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
-        for ((&r, &v), _) in rows.iter().zip(vals).zip(&carries).filter(|(_, c)| **c) {
-            m.push(r, c, v);
+    // Row by row (each entry is pushed once per face: the order of a face's pushes does not
+    // change the sums).
+    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
+        for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
+            m.push(r, c, vals[j]);
         }
     }
     Ok(())

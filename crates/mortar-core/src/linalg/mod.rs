@@ -27,7 +27,7 @@ pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
 };
 pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};
-pub use triplets::{CompressWorkspace, PartList, Triplets};
+pub use triplets::{CompressWorkspace, PartList, RowAccumulator, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.
 pub type SparseMatrix = sprs::CsMat<f64>;

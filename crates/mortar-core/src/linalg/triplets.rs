@@ -1,4 +1,5 @@
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::SparseMatrix;
 
@@ -138,6 +139,66 @@ impl Triplets {
     }
 }
 
+/// The triplets of one part summed as they come, row by row: what
+/// [`PartList::push_compressed`] makes of the same triplets (rows ascending, columns
+/// ascending within a row, duplicates summed in insertion order), bit for bit, without
+/// storing and sorting them. A triplet finds its row through a hash map, skipped when it is
+/// in the same row as the one before (push a face's entries row by row), and its column by a
+/// linear search of the row's columns so far (a slave node's row meets a few dozen columns
+/// in a chunk of faces).
+#[derive(Debug, Clone, Default)]
+pub struct RowAccumulator {
+    /// The slot in `rows` of each row touched.
+    slot_of_row: FxHashMap<u32, usize>,
+    /// The row of the last push, and its slot.
+    last: Option<(u32, usize)>,
+    /// The rows touched, in the order first touched.
+    rows: Vec<u32>,
+    /// Per slot, the row's `(column, sum)` entries in the order first met (the vectors are
+    /// kept from part to part, so that accumulating allocates nothing once they have grown).
+    entries: Vec<Vec<(u32, f64)>>,
+}
+
+impl RowAccumulator {
+    /// Adds `val` to the entry `(row, col)`.
+    #[inline]
+    pub fn push(&mut self, row: u32, col: u32, val: f64) {
+        let slot = match self.last {
+            Some((r, slot)) if r == row => slot,
+            _ => {
+                let next = self.rows.len();
+                let slot = *self.slot_of_row.entry(row).or_insert(next);
+                if slot == next {
+                    self.rows.push(row);
+                    if self.entries.len() == next {
+                        self.entries.push(Vec::new());
+                    }
+                    self.entries[slot].clear();
+                }
+                self.last = Some((row, slot));
+                slot
+            }
+        };
+        let row_entries = &mut self.entries[slot];
+        match row_entries.iter_mut().find(|(c, _)| *c == col) {
+            Some((_, v)) => *v += val,
+            None => row_entries.push((col, val)),
+        }
+    }
+
+    /// Forgets every entry (keeping the allocations).
+    pub fn clear(&mut self) {
+        self.slot_of_row.clear();
+        self.last = None;
+        self.rows.clear();
+    }
+
+    /// Whether no entry was pushed since the last clear.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+}
+
 /// Compressed triplet parts, each with a key, stored back to back in a few large buffers.
 ///
 /// Parallel assembly gives each worker one `PartList` and merges the lists at the end; the
@@ -161,6 +222,27 @@ impl PartList {
         let buf = &mut self.buffers[b];
         let start = buf.len();
         raw.compress_into(ws, buf);
+        self.parts.push((key, b as u32, start, buf.len()));
+    }
+
+    /// Stores the entries of `acc` as part `key` (rows ascending, columns ascending within a
+    /// row) and clears `acc`.
+    pub fn push_rows(&mut self, key: u64, acc: &mut RowAccumulator) {
+        if self.buffers.is_empty() {
+            self.buffers.push(Vec::new());
+        }
+        let b = self.buffers.len() - 1;
+        let buf = &mut self.buffers[b];
+        let start = buf.len();
+        let mut order: Vec<(u32, usize)> = acc.rows.iter().copied().zip(0..).collect();
+        order.sort_unstable();
+        for (row, slot) in order {
+            let entries = &mut acc.entries[slot];
+            // Each column once in a row: any sort gives the same order.
+            entries.sort_unstable_by_key(|e| e.0);
+            buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
+        }
+        acc.clear();
         self.parts.push((key, b as u32, start, buf.len()));
     }
 
@@ -375,4 +457,50 @@ fn merge_row(cols: &mut [u32], vals: &mut [f64]) -> usize {
         }
     }
     w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The rows of a [`RowAccumulator`] are bit for bit the part that
+        /// [`PartList::push_compressed`] makes of the same triplets (rows and columns
+        /// ascending, duplicates summed in insertion order), over two parts in a row (the
+        /// accumulator reused), whatever the values' magnitudes (so that the order of
+        /// summation shows in the bits).
+        #[test]
+        fn accumulated_rows_are_the_compressed_triplets(
+            parts in prop::collection::vec(
+                prop::collection::vec((0u32..40, 0u32..25, -1e3..1e3f64, -8i32..8), 0..300),
+                1..3,
+            ),
+        ) {
+            let (mut sorted, mut summed) = (PartList::default(), PartList::default());
+            let (mut ws, mut acc) = (CompressWorkspace::default(), RowAccumulator::default());
+            for (k, part) in parts.iter().enumerate() {
+                let mut raw = Triplets::default();
+                for &(r, c, v, e) in part {
+                    let v = v * 2f64.powi(6 * e);
+                    raw.push(r, c, v);
+                    acc.push(r, c, v);
+                }
+                sorted.push_compressed(k as u64, &mut raw, &mut ws);
+                summed.push_rows(k as u64, &mut acc);
+                prop_assert!(acc.is_empty());
+            }
+            let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
+                l.parts
+                    .iter()
+                    .flat_map(|&(k, b, s, e)| {
+                        l.buffers[b as usize][s..e]
+                            .iter()
+                            .map(move |x| (k, x.row, x.col, x.val.to_bits()))
+                    })
+                    .collect()
+            };
+            prop_assert_eq!(bits(&sorted), bits(&summed));
+        }
+    }
 }
