@@ -212,16 +212,63 @@ struct ChunkWorkspace {
 struct FaceBuffers {
     rule: PairedRule,
     blocks: LocalBlocks,
-    /// The master columns a slave face meets, in the order first met.
-    cols: Vec<u32>,
-    /// Their M values, `ks` per column (one per node of the face).
-    col_vals: Vec<f64>,
-    /// Where each column is in `cols`.
-    col_index: KeyIndex,
+    /// The face's M entries merged by master node.
+    columns: MergedColumns,
     /// The fused kernel's result.
     line: LineFace,
     d: RowAccumulator,
     m: RowAccumulator,
+}
+
+/// One slave face's M entries merged by master node: a slave face meets ~10 master faces
+/// sharing far fewer nodes, so this cuts the entries about threefold. Columns in the order
+/// first met (found through `index`), so the sums are the same whatever the count.
+#[derive(Default)]
+struct MergedColumns {
+    /// The master columns the face meets, in the order first met.
+    cols: Vec<u32>,
+    /// Their M values, `ks` per column (one per node of the face).
+    vals: Vec<f64>,
+    /// Where each column is in `cols`.
+    index: KeyIndex,
+    /// The face's node count.
+    ks: usize,
+}
+
+impl MergedColumns {
+    /// Starts a slave face of `ks` nodes.
+    fn start_face(&mut self, ks: usize) {
+        self.cols.clear();
+        self.vals.clear();
+        self.index.clear();
+        self.ks = ks;
+    }
+
+    /// Adds the `ks x km` block (row-major) of the master face in slot `mf` to its columns.
+    fn add(&mut self, ctx: &SegmentContext<'_>, mf: u32, km: usize, block: &[f64]) {
+        let ks = self.ks;
+        let mut mcols = [0u32; MAX_FACE_NODES];
+        let kc = ctx
+            .masters
+            .columns_into(ctx.interface, mf as usize, &mut mcols);
+        debug_assert_eq!(kc, km);
+        for (l, &c) in mcols[..kc].iter().enumerate() {
+            let cols = &self.cols;
+            let at = match self.index.find(cols.len(), |i| cols[i], c) {
+                Some(at) => at,
+                None => {
+                    self.cols.push(c);
+                    self.vals.resize(self.vals.len() + ks, 0.0);
+                    self.index.pushed(c, self.cols.len() - 1);
+                    self.cols.len() - 1
+                }
+            };
+            let vals = &mut self.vals[at * ks..(at + 1) * ks];
+            for (j, v) in vals.iter_mut().enumerate() {
+                *v += block[j * km + l];
+            }
+        }
+    }
 }
 
 /// How a coupling finds each slave face's master faces.
@@ -878,9 +925,7 @@ fn general_face(
     let FaceBuffers {
         rule,
         blocks,
-        cols,
-        col_vals,
-        col_index,
+        columns,
         d,
         m,
         ..
@@ -896,10 +941,8 @@ fn general_face(
         cands.len()
     };
     blocks.start_face(face.node_count());
-    cols.clear();
-    col_vals.clear();
-    col_index.clear();
     let ks = rows.len();
+    columns.start_face(ks);
     // The closed form needs the basis first; a face whose basis cannot be built goes to the
     // strategy (which reports that if the face has any overlap).
     let mut closed_form = closed_form.and_then(|rule| {
@@ -918,8 +961,13 @@ fn general_face(
         // The closed form does the segmentation and the integration at once (its time counts
         // as segmentation); a face it leaves (not integrated in the plane) goes to the
         // strategy.
+        // Its M blocks go straight to the columns (each master face once per face: the
+        // same sums as through the blocks).
         let closed = match closed_form {
-            Some((cf, b)) => closed_form_into(ctx, face, part, cf.degree, &b, blocks, rule)?,
+            Some((cf, b)) => {
+                let add = |mf, km, block: &[f64]| columns.add(ctx, mf, km, block);
+                closed_form_into(ctx, face, part, cf.degree, &b, &mut blocks.d, add, rule)?
+            }
             None => false,
         };
         if !closed {
@@ -965,25 +1013,8 @@ fn general_face(
         // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
         // first met (found through `col_index`), so the sums are the same whatever the
         // count.
-        let mut mcols = [0u32; MAX_FACE_NODES];
         for (mf, km, block) in blocks.m_blocks() {
-            let kc = ctx.masters.columns_into(interface, mf as usize, &mut mcols);
-            debug_assert_eq!(kc, km);
-            for (l, &c) in mcols[..kc].iter().enumerate() {
-                let at = match col_index.find(cols.len(), |i| cols[i], c) {
-                    Some(at) => at,
-                    None => {
-                        cols.push(c);
-                        col_vals.resize(col_vals.len() + ks, 0.0);
-                        col_index.pushed(c, cols.len() - 1);
-                        cols.len() - 1
-                    }
-                };
-                let vals = &mut col_vals[at * ks..(at + 1) * ks];
-                for (j, v) in vals.iter_mut().enumerate() {
-                    *v += block[j * km + l];
-                }
-            }
+            columns.add(ctx, mf, km, block);
         }
         blocks.clear_m_blocks();
     }
@@ -1029,7 +1060,7 @@ fn general_face(
     // Row by row (each entry is pushed once per face: the order of a face's pushes does not
     // change the sums).
     for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
-        for (&c, vals) in cols.iter().zip(col_vals.chunks_exact(ks)) {
+        for (&c, vals) in columns.cols.iter().zip(columns.vals.chunks_exact(ks)) {
             m.push(r, c, vals[j]);
         }
     }

@@ -51,12 +51,6 @@ impl LocalBlocks {
         }
     }
 
-    /// The M block of `master` (with `km` nodes), `ks x km` row-major, created zero if new.
-    pub(crate) fn m_block_mut(&mut self, master: u32, km: usize) -> &mut [f64] {
-        let off = self.block_offset(master, km);
-        &mut self.vals[off..off + self.ks * km]
-    }
-
     /// The M blocks: `(master face, its node count km, the ks x km block row-major)`.
     pub fn m_blocks(&self) -> impl Iterator<Item = (u32, usize, &[f64])> + '_ {
         self.masters

@@ -25,7 +25,6 @@ use nalgebra::Vector2;
 
 use super::segments_3d::SlavePlane;
 use super::{default_degree, PairedRule, PolygonSegments, SegmentContext};
-use crate::assembly::LocalBlocks;
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::Result;
 use crate::geometry::Polygon;
@@ -174,9 +173,9 @@ impl Weighted {
 }
 
 /// D and M of a slave linear triangle against its `candidates` (linear triangles, as slots of
-/// `ctx.masters`) in closed form, added to `blocks` (started with
-/// [`LocalBlocks::start_face`]): the work of the strategy's segmentation and the coupling's
-/// integration of its points. `out` gets the counts the strategy would give (pairs, back-facing
+/// `ctx.masters`) in closed form: D added to `d`, each master face's `3 x 3` M block
+/// (row-major) given to `add_m` with the face's slot and node count, in candidate order. The
+/// work of the strategy's segmentation and the coupling's integration of its points. `out` gets the counts the strategy would give (pairs, back-facing
 /// candidates, the covered fraction, the degree the strategy would have used; one cell per
 /// clip polygon) and no points. The caller checks [`applies`].
 ///
@@ -186,13 +185,15 @@ impl Weighted {
 /// # Errors
 /// As the strategy's segmentation: a slave face with a zero projection direction or one that
 /// turns against it.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn closed_form_into(
     ctx: &SegmentContext<'_>,
     slave: &FaceGeometry,
     candidates: &[u32],
     degree: Option<u32>,
     basis: &LmBasis,
-    blocks: &mut LocalBlocks,
+    d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
+    mut add_m: impl FnMut(u32, usize, &[f64]),
     out: &mut PairedRule,
 ) -> Result<bool> {
     out.clear();
@@ -221,7 +222,7 @@ pub(crate) fn closed_form_into(
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut covered = 0.0;
-    let mut d = [[0.0; 3]; 3];
+    let mut dface = [[0.0; 3]; 3];
     for &m in candidates {
         let Some((mel, km)) = setup.clip_master(ctx, m, &mut mp, &mut clip, &mut out.back_facing)
         else {
@@ -237,22 +238,23 @@ pub(crate) fn closed_form_into(
         }
         let o = clip.vertices[0] * scale;
         let nm = barycentric(&mp[..3], scale);
-        let block = blocks.m_block_mut(m, km);
+        let mut block = [0.0; 9];
         for (j, p) in phi.iter().enumerate() {
             let w = Weighted::of(p, &o, &mom);
             for (k, n) in ns.iter().enumerate() {
-                d[j][k] += w.times(n, &o);
+                dface[j][k] += w.times(n, &o);
             }
             for (l, n) in nm.iter().enumerate() {
-                block[j * km + l] += w.times(n, &o);
+                block[j * 3 + l] = w.times(n, &o);
             }
         }
+        add_m(m, km, &block);
         out.pairs += 1;
         out.cells += 1;
         out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, mel));
         covered += clip.signed_area();
     }
-    for (row, dr) in blocks.d.iter_mut().zip(&d) {
+    for (row, dr) in d.iter_mut().zip(&dface) {
         for (v, dv) in row.iter_mut().zip(dr) {
             *v += dv;
         }
