@@ -253,8 +253,7 @@ impl MergedColumns {
             .columns_into(ctx.interface, mf as usize, &mut mcols);
         debug_assert_eq!(kc, km);
         for (l, &c) in mcols[..kc].iter().enumerate() {
-            let cols = &self.cols;
-            let at = match self.index.find(cols.len(), |i| cols[i], c) {
+            let at = match self.index.find_in(&self.cols, c) {
                 Some(at) => at,
                 None => {
                     self.cols.push(c);

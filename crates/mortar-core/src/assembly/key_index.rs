@@ -56,6 +56,26 @@ impl KeyIndex {
         if len <= Self::LINEAR {
             return (0..len).find(|&i| key_of(i) == key);
         }
+        self.find_in_map(len, key_of, key)
+    }
+
+    /// The position of `key` in `keys` (the list itself, so that the short search runs over
+    /// a slice without bounds checks).
+    #[inline]
+    pub fn find_in(&mut self, keys: &[u32], key: u32) -> Option<usize> {
+        if keys.len() <= Self::LINEAR {
+            return keys.iter().position(|&k| k == key);
+        }
+        self.find_in_map(keys.len(), |i| keys[i], key)
+    }
+
+    /// The search through the map, built on first use.
+    fn find_in_map(
+        &mut self,
+        len: usize,
+        key_of: impl Fn(usize) -> u32,
+        key: u32,
+    ) -> Option<usize> {
         if self.map.is_empty() {
             self.map.extend((0..len).map(|i| (key_of(i), i)));
         }
