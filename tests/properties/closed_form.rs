@@ -20,7 +20,7 @@ use mortar::{assemble_coupling, CouplingOptions, Interface};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use super::common::{both_ways, both_ways_with, config, ok, plain_with};
+use super::common::{both_ways, both_ways_with, config, dm_bits, ok, plain_with};
 
 /// Triangles on both sides, any size and jitter of the default configuration.
 fn triangles() -> PairConfig {
@@ -178,10 +178,7 @@ fn closed_form_is_bit_identical_across_thread_counts() {
     let bits = |t: usize| {
         let c = assemble_coupling(&interface, &CouplingOptions::default().threads(t)).unwrap();
         assert_eq!(c.stats.closed_form_faces, 2 * 38 * 38);
-        let mut v: Vec<u64> = c.d.data().iter().map(|x| x.to_bits()).collect();
-        v.extend(c.m.data().iter().map(|x| x.to_bits()));
-        v.extend(c.m.indices().iter().map(|&i| i as u64));
-        v
+        dm_bits(&c)
     };
     let one = bits(1);
     assert_eq!(one, bits(2));

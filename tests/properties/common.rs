@@ -242,3 +242,12 @@ pub fn both_ways_with(
     assert_eq!(fused.warnings.len(), general.warnings.len(), "{what}");
     fused
 }
+
+/// The bits of D's and M's values and of M's column indices (for comparisons across thread
+/// counts).
+pub fn dm_bits(c: &Coupling) -> Vec<u64> {
+    let mut v: Vec<u64> = c.d.data().iter().map(|x| x.to_bits()).collect();
+    v.extend(c.m.data().iter().map(|x| x.to_bits()));
+    v.extend(c.m.indices().iter().map(|&i| i as u64));
+    v
+}

@@ -17,7 +17,7 @@ use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use super::common::{both_ways, config, ok, plain};
+use super::common::{both_ways, config, dm_bits, ok, plain};
 
 /// `n + 1` points from `a` to `b` on the x-axis at height `y`, graded by `t -> t^p`.
 fn points(a: f64, b: f64, y: f64, n: usize, p: f64) -> Vec<[f64; 2]> {
@@ -230,10 +230,7 @@ fn fused_lines_are_bit_identical_across_thread_counts() {
     let bits = |t: usize| {
         let c = assemble_coupling(&interface, &CouplingOptions::default().threads(t)).unwrap();
         assert_eq!(c.stats.fused_line_faces, 3000);
-        let mut v: Vec<u64> = c.d.data().iter().map(|x| x.to_bits()).collect();
-        v.extend(c.m.data().iter().map(|x| x.to_bits()));
-        v.extend(c.m.indices().iter().map(|&i| i as u64));
-        v
+        dm_bits(&c)
     };
     let one = bits(1);
     assert_eq!(one, bits(2));

@@ -45,7 +45,9 @@ pub struct PhaseSeconds {
 pub struct ThreadSeconds {
     /// Search queries.
     pub search: f64,
-    /// Segmentation (clipping, triangulation, point pairing).
+    /// Segmentation (clipping, triangulation, point pairing); with the closed form
+    /// ([`CouplingStats::closed_form_faces`]) also its integration and the merge of its M
+    /// blocks by master node, which it does in the same loop.
     pub segments: f64,
     /// Integration of the local blocks.
     pub integration: f64,
