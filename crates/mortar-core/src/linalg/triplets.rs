@@ -144,8 +144,12 @@ impl Triplets {
 /// ascending within a row, duplicates summed in insertion order), bit for bit, without
 /// storing and sorting them. A triplet finds its row through a hash map, skipped when it is
 /// in the same row as the one before (push a face's entries row by row), and its column by a
-/// linear search of the row's columns so far (a slave node's row meets a few dozen columns
-/// in a chunk of faces).
+/// linear search of the row's columns so far while the row has at most [`Self::LINEAR`] of
+/// them (a slave node's row meets a few dozen columns in a chunk of faces). A longer row (a
+/// coarse slave face against a million master faces, where the search would be quadratic in
+/// the row's length) takes its further entries as they come, and they are merged when the
+/// part is stored: a stable sort by column and the sums in insertion order, as
+/// [`PartList::push_compressed`] does.
 #[derive(Debug, Clone, Default)]
 pub struct RowAccumulator {
     /// The slot in `rows` of each row touched.
@@ -157,6 +161,13 @@ pub struct RowAccumulator {
     /// Per slot, the row's `(column, sum)` entries in the order first met (the vectors are
     /// kept from part to part, so that accumulating allocates nothing once they have grown).
     entries: Vec<Vec<(u32, f64)>>,
+    /// Per slot, whether the row outgrew the linear search (its entries after the first
+    /// [`Self::LINEAR`] are unmerged).
+    long: Vec<bool>,
+    /// Comparisons and lookups made by the column searches (tests check that they stay
+    /// linear in the pushes).
+    #[cfg(test)]
+    probes: u64,
 }
 
 impl RowAccumulator {
@@ -172,19 +183,35 @@ impl RowAccumulator {
                     self.rows.push(row);
                     if self.entries.len() == next {
                         self.entries.push(Vec::new());
+                        self.long.push(false);
                     }
                     self.entries[slot].clear();
+                    self.long[slot] = false;
                 }
                 self.last = Some((row, slot));
                 slot
             }
         };
         let row_entries = &mut self.entries[slot];
+        if self.long[slot] {
+            row_entries.push((col, val));
+            return;
+        }
+        #[cfg(test)]
+        {
+            self.probes += row_entries.len() as u64;
+        }
         match row_entries.iter_mut().find(|(c, _)| *c == col) {
             Some((_, v)) => *v += val,
-            None => row_entries.push((col, val)),
+            None => {
+                row_entries.push((col, val));
+                self.long[slot] = row_entries.len() > Self::LINEAR;
+            }
         }
     }
+
+    /// Columns of a row searched linearly.
+    pub const LINEAR: usize = 32;
 
     /// Forgets every entry (keeping the allocations).
     pub fn clear(&mut self) {
@@ -238,9 +265,24 @@ impl PartList {
         order.sort_unstable();
         for (row, slot) in order {
             let entries = &mut acc.entries[slot];
-            // Each column once in a row: any sort gives the same order.
-            entries.sort_unstable_by_key(|e| e.0);
-            buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
+            if acc.long[slot] {
+                // Columns may repeat: a stable sort keeps them in insertion order, and they
+                // are summed in that order.
+                entries.sort_by_key(|e| e.0);
+                let base = buf.len();
+                for &(col, val) in entries.iter() {
+                    let n = buf.len();
+                    if n > base && buf[n - 1].col == col {
+                        buf[n - 1].val += val;
+                    } else {
+                        buf.push(Entry { row, col, val });
+                    }
+                }
+            } else {
+                // Each column once in a row: any sort gives the same order.
+                entries.sort_unstable_by_key(|e| e.0);
+                buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
+            }
         }
         acc.clear();
         self.parts.push((key, b as u32, start, buf.len()));
@@ -469,11 +511,12 @@ mod tests {
         /// [`PartList::push_compressed`] makes of the same triplets (rows and columns
         /// ascending, duplicates summed in insertion order), over two parts in a row (the
         /// accumulator reused), whatever the values' magnitudes (so that the order of
-        /// summation shows in the bits).
+        /// summation shows in the bits); rows of up to 60 columns, so that some outgrow the
+        /// linear search and merge their repeated columns when stored.
         #[test]
         fn accumulated_rows_are_the_compressed_triplets(
             parts in prop::collection::vec(
-                prop::collection::vec((0u32..40, 0u32..25, -1e3..1e3f64, -8i32..8), 0..300),
+                prop::collection::vec((0u32..8, 0u32..60, -1e3..1e3f64, -8i32..8), 0..400),
                 1..3,
             ),
         ) {
@@ -502,5 +545,32 @@ mod tests {
             };
             prop_assert_eq!(bits(&sorted), bits(&summed));
         }
+    }
+
+    /// Regression: a row of many columns (one coarse slave face against 20,000 master faces)
+    /// made the accumulator's linear column search quadratic (2e8 comparisons here, seconds
+    /// for 1e5 columns); the searches now stay within a few probes per push, and the part is
+    /// still the sorted triplets'.
+    #[test]
+    fn long_rows_stay_linear() {
+        let n = 20_000u32;
+        let (mut acc, mut raw) = (RowAccumulator::default(), Triplets::default());
+        for pass in 0..2 {
+            for row in 0..2 {
+                for k in 0..n {
+                    let col = (k * 7919) % n;
+                    let val = f64::from(k + pass) * 0.5;
+                    acc.push(row, col, val);
+                    raw.push(row, col, val);
+                }
+            }
+        }
+        let pushes = 4 * u64::from(n);
+        assert!(acc.probes <= 2 * pushes, "{} probes", acc.probes);
+        let (mut a, mut b) = (PartList::default(), PartList::default());
+        a.push_rows(0, &mut acc);
+        b.push_compressed(0, &mut raw, &mut CompressWorkspace::default());
+        assert_eq!(a.parts, b.parts);
+        assert_eq!(a.buffers, b.buffers);
     }
 }
