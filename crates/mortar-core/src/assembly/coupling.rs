@@ -797,6 +797,10 @@ fn chunk(
     out.seconds_search = (t0 - t_search).as_secs_f64();
     // Each face is segmented and integrated at once, while its points are in cache.
     let mut uncovered: ArrayVec<u64, { CouplingWarning::EXAMPLES }> = ArrayVec::new();
+    let closed_form = match search {
+        Search::Tree { closed_form, .. } => *closed_form,
+        Search::Lines { .. } => None,
+    };
     for i in 0..faces.len() {
         let mut cands = &all[offsets[i]..offsets[i + 1]];
         let face = &geometry[i];
@@ -828,10 +832,6 @@ fn chunk(
             note_uncovered(&mut uncovered, face.tag);
             continue;
         }
-        let closed_form = match search {
-            Search::Tree { closed_form, .. } => *closed_form,
-            Search::Lines { .. } => None,
-        };
         general_face(
             options,
             ctx,
@@ -1010,10 +1010,7 @@ fn general_face(
             };
             integrate_batch_into(interface, ctx.masters, face, basis, &rule.points, blocks);
         }
-        // Merge the M blocks by master node: a slave face meets ~10 master faces sharing
-        // far fewer nodes, so this cuts the triplets about threefold. Columns in the order
-        // first met (found through `col_index`), so the sums are the same whatever the
-        // count.
+        // The M blocks merged by master node (see `MergedColumns`).
         for (mf, km, block) in blocks.m_blocks() {
             columns.add(ctx, mf, km, block);
         }

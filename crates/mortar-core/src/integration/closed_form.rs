@@ -165,19 +165,20 @@ impl Weighted {
         }
     }
 
-    /// `int Phi f` for the affine `f`.
+    /// `int Phi f` for the affine `f` whose value at `o` is `at_o`.
     #[inline]
-    fn times(&self, f: &Affine, o: &Vector2<f64>) -> f64 {
-        f.at(o) * self.w0 + f.g.dot(&self.w1)
+    fn times(&self, at_o: f64, f: &Affine) -> f64 {
+        at_o * self.w0 + f.g.dot(&self.w1)
     }
 }
 
 /// D and M of a slave linear triangle against its `candidates` (linear triangles, as slots of
 /// `ctx.masters`) in closed form: D added to `d`, each master face's `3 x 3` M block
 /// (row-major) given to `add_m` with the face's slot and node count, in candidate order. The
-/// work of the strategy's segmentation and the coupling's integration of its points. `out` gets the counts the strategy would give (pairs, back-facing
-/// candidates, the covered fraction, the degree the strategy would have used; one cell per
-/// clip polygon) and no points. The caller checks [`applies`].
+/// work of the strategy's segmentation and the coupling's integration of its points. `out`
+/// gets the counts the strategy would give (pairs, back-facing candidates, the covered
+/// fraction, the degree the strategy would have used; one cell per clip polygon) and no
+/// points. The caller checks [`applies`].
 ///
 /// Returns `false`, with nothing added, when the slave face is not integrated in the plane
 /// (its projection is not affine): the strategy then takes it.
@@ -204,7 +205,7 @@ pub(crate) fn closed_form_into(
     // The plane's coordinates scaled by a power of two (exactly) to the face's size: the
     // second moments are products of four lengths, which would under- or overflow for faces
     // of 1e-80 or 1e80; the area unit comes back as a factor of the moments.
-    let scale = pow2_near_inverse(setup.spoly.diameter());
+    let scale = pow2_near_inverse(setup.diameter);
     let unit = setup.measure / scale / scale;
     let ns = barycentric(&setup.sp[..3], scale);
     // The multipliers as affine functions, `Phi_j = sum_k a_jk N_k`.
@@ -238,14 +239,16 @@ pub(crate) fn closed_form_into(
         }
         let o = clip.vertices[0] * scale;
         let nm = barycentric(&mp[..3], scale);
+        // The shape functions at `o`, once for the three multipliers.
+        let (ns_o, nm_o) = (ns.map(|n| n.at(&o)), nm.map(|n| n.at(&o)));
         let mut block = [0.0; 9];
         for (j, p) in phi.iter().enumerate() {
             let w = Weighted::of(p, &o, &mom);
             for (k, n) in ns.iter().enumerate() {
-                dface[j][k] += w.times(n, &o);
+                dface[j][k] += w.times(ns_o[k], n);
             }
             for (l, n) in nm.iter().enumerate() {
-                block[j * 3 + l] = w.times(n, &o);
+                block[j * 3 + l] = w.times(nm_o[l], n);
             }
         }
         add_m(m, km, &block);

@@ -21,10 +21,10 @@ pub(crate) struct SlavePlane {
     pub plane: AuxiliaryPlane,
     /// The face's nodes in the plane.
     pub sp: [Vector2<f64>; MAX_FACE_NODES],
-    /// The face's corners in the plane (counter-clockwise).
-    pub spoly: Polygon,
     /// Its area in the plane (positive).
     pub area_s: f64,
+    /// The largest distance between two of its corners in the plane.
+    pub diameter: f64,
     /// The face's map into the plane.
     pub slave_map: PlanarMap,
     /// Whether the face is integrated in its reference coordinates (its map into space or
@@ -106,12 +106,13 @@ impl SlavePlane {
         // Coordinates far from the origin carry an absolute rounding of a few ulps of their
         // magnitude: the merge tolerance cannot be finer than that.
         let rounding = 8.0 * f64::EPSILON * x0.amax();
-        let merge = (tol.merge * spoly.diameter()).max(rounding);
+        let diameter = spoly.diameter();
+        let merge = (tol.merge * diameter).max(rounding);
         Ok(Self {
             plane,
-            spoly: spoly.clone(),
             sp,
-            area_noise: rounding * spoly.diameter(),
+            area_noise: rounding * diameter,
+            diameter,
             area_s,
             slave_map,
             in_reference,

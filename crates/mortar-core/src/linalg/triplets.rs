@@ -105,13 +105,7 @@ impl Triplets {
         self.entries.clear();
         let base = out.len();
         for e in sorted.iter() {
-            // Merge only within this part: `out` may hold earlier parts.
-            let n = out.len();
-            if n > base && out[n - 1].row == e.row && out[n - 1].col == e.col {
-                out[n - 1].val += e.val;
-            } else {
-                out.push(*e);
-            }
+            push_merged(out, base, *e);
         }
     }
 
@@ -226,6 +220,18 @@ impl RowAccumulator {
     }
 }
 
+/// Appends `e` to `out`, or adds it to the last entry if that has the same row and column and
+/// lies at or after `base` (merges stay within one part: `out` may hold earlier parts).
+#[inline]
+fn push_merged(out: &mut Vec<Entry>, base: usize, e: Entry) {
+    let n = out.len();
+    if n > base && out[n - 1].row == e.row && out[n - 1].col == e.col {
+        out[n - 1].val += e.val;
+    } else {
+        out.push(e);
+    }
+}
+
 /// Compressed triplet parts, each with a key, stored back to back in a few large buffers.
 ///
 /// Parallel assembly gives each worker one `PartList` and merges the lists at the end; the
@@ -242,50 +248,45 @@ pub struct PartList {
 impl PartList {
     /// Compresses `raw` (emptying it, keeping its allocation) and stores it as part `key`.
     pub fn push_compressed(&mut self, key: u64, raw: &mut Triplets, ws: &mut CompressWorkspace) {
+        self.push_part(key, |buf| raw.compress_into(ws, buf));
+    }
+
+    /// Stores as part `key` the entries `fill` appends to the last buffer.
+    fn push_part(&mut self, key: u64, fill: impl FnOnce(&mut Vec<Entry>)) {
         if self.buffers.is_empty() {
             self.buffers.push(Vec::new());
         }
         let b = self.buffers.len() - 1;
         let buf = &mut self.buffers[b];
         let start = buf.len();
-        raw.compress_into(ws, buf);
+        fill(buf);
         self.parts.push((key, b as u32, start, buf.len()));
     }
 
     /// Stores the entries of `acc` as part `key` (rows ascending, columns ascending within a
     /// row) and clears `acc`.
     pub fn push_rows(&mut self, key: u64, acc: &mut RowAccumulator) {
-        if self.buffers.is_empty() {
-            self.buffers.push(Vec::new());
-        }
-        let b = self.buffers.len() - 1;
-        let buf = &mut self.buffers[b];
-        let start = buf.len();
         let mut order: Vec<(u32, usize)> = acc.rows.iter().copied().zip(0..).collect();
         order.sort_unstable();
-        for (row, slot) in order {
-            let entries = &mut acc.entries[slot];
-            if acc.long[slot] {
-                // Columns may repeat: a stable sort keeps them in insertion order, and they
-                // are summed in that order.
-                entries.sort_by_key(|e| e.0);
-                let base = buf.len();
-                for &(col, val) in entries.iter() {
-                    let n = buf.len();
-                    if n > base && buf[n - 1].col == col {
-                        buf[n - 1].val += val;
-                    } else {
-                        buf.push(Entry { row, col, val });
+        self.push_part(key, |buf| {
+            for (row, slot) in order {
+                let entries = &mut acc.entries[slot];
+                if acc.long[slot] {
+                    // Columns may repeat: a stable sort keeps them in insertion order, and
+                    // they are summed in that order.
+                    entries.sort_by_key(|e| e.0);
+                    let base = buf.len();
+                    for &(col, val) in entries.iter() {
+                        push_merged(buf, base, Entry { row, col, val });
                     }
+                } else {
+                    // Each column once in a row: any sort gives the same order.
+                    entries.sort_unstable_by_key(|e| e.0);
+                    buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
                 }
-            } else {
-                // Each column once in a row: any sort gives the same order.
-                entries.sort_unstable_by_key(|e| e.0);
-                buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
             }
-        }
+        });
         acc.clear();
-        self.parts.push((key, b as u32, start, buf.len()));
     }
 
     /// Moves the parts of `other` into this list.
