@@ -155,6 +155,30 @@ fn closed_chains_with_an_open_gap() {
     }
 }
 
+/// More master lines than the walk's cache holds (1,024 by slot modulo 1,024): closed
+/// chains of 2,600 master faces under 1,500 slave faces, numbered as in the mesh and at
+/// random (the masters then copied in chain order), on one and two threads, so that lines
+/// are evicted and read again: D and M as the general path's.
+#[test]
+fn more_master_lines_than_the_cache_holds() {
+    let slave = circle([0.0, 0.0], 1.0, 1500, 0.0, 1, false);
+    let master = circle([0.0, 0.0], 1.0005, 2600, 0.7, 10_000, true);
+    let numbered = [
+        (slave.clone(), master.clone()),
+        (shuffled(&slave, 3).unwrap(), shuffled(&master, 5).unwrap()),
+    ];
+    for (s, m) in numbered {
+        let interface = Interface::new(s, m).unwrap();
+        for options in options() {
+            for threads in [1, 2] {
+                let options = options.clone().threads(threads);
+                let fused = both_ways(&interface, &options, "large circles");
+                assert_eq!(fused.stats.fused_line_faces, 1500);
+            }
+        }
+    }
+}
+
 /// A slave face over more master faces than a walk follows (200, against 64): the
 /// exhaustive query gives its candidates and the strategy couples it (the fused kernel is
 /// for faces with few partners); D and M as the general path's.

@@ -17,7 +17,9 @@ use crate::integration::{
 };
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
-use crate::search::{spatial_order, ChainSearch, LineChains, MasterTree, WALK_LIMIT};
+use crate::search::{
+    spatial_order, ChainSearch, LineChains, MasterLineCache, MasterTree, WALK_LIMIT,
+};
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
 /// and M) does not depend on the thread count.
@@ -218,6 +220,8 @@ struct FaceBuffers {
     columns: MergedColumns,
     /// The fused kernel's result.
     line: LineFace,
+    /// The master lines of the chain walk and the fused kernel.
+    lines: MasterLineCache,
     d: RowAccumulator,
     m: RowAccumulator,
 }
@@ -784,7 +788,10 @@ fn chunk(
                 } else {
                     &[]
                 };
-                if seeds.is_empty() || !search.walk(interface, ctx.masters, face, seeds, scratch) {
+                let lines = &mut buffers.lines;
+                if seeds.is_empty()
+                    || !search.walk(interface, ctx.masters, lines, face, seeds, scratch)
+                {
                     search.exhaustive(interface, ctx.masters, face, scratch);
                 }
             }
@@ -886,6 +893,7 @@ fn fused_face(
         rule.degree,
         &basis,
         options.geometry,
+        &mut buffers.lines,
         line,
     )? {
         return Ok(false);

@@ -9,6 +9,7 @@ use crate::geometry::{bracketed_root, invert_line_map, ModelGeometry};
 use crate::interface::FaceGeometry;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
+use crate::search::{MasterLine, MasterLineCache};
 
 /// z-component of the cross product of two vectors of the xy-plane.
 #[inline]
@@ -399,7 +400,7 @@ pub(crate) struct LineFace {
 }
 
 /// One slave face of two-node linear lines against its candidates (two-node linear lines, as
-/// slots of `ctx.masters`), segmented and integrated in one loop: the work of
+/// slots of `ctx.masters`, read through `lines`), segmented and integrated in one loop: the work of
 /// [`segments_into`] followed by the coupling's integration of the paired points, the same
 /// operations on the same numbers, without the points in between. The caller checks that the
 /// faces are linear lines ([`is_linear_line`]).
@@ -411,6 +412,7 @@ pub(crate) struct LineFace {
 ///
 /// # Errors
 /// A quadrature rule that cannot be built for `degree`.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn fused_line_face(
     ctx: &SegmentContext<'_>,
     slave: &FaceGeometry,
@@ -418,6 +420,7 @@ pub(crate) fn fused_line_face(
     degree: Option<u32>,
     basis: &LmBasis,
     geometry: ModelGeometry,
+    lines: &mut MasterLineCache,
     out: &mut LineFace,
 ) -> Result<bool> {
     out.d = [[0.0; 2]; 2];
@@ -438,13 +441,15 @@ pub(crate) fn fused_line_face(
     let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
     out.degree = deg;
     let mut covered = 0.0;
-    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
-    let mut cols = [0u32; MAX_FACE_NODES];
     // D in registers, not through `out` (which the compiler must assume aliased).
     let mut dl = [[0.0; 2]; 2];
     for &m in candidates {
-        let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut y);
-        let n_m = mel.unit_normal(&y[..km], &centre);
+        let &MasterLine {
+            nodes: y,
+            normal: n_m,
+            cols,
+            ..
+        } = lines.get(ctx.interface, ctx.masters, m);
         if n_m.dot(&n_s) >= 0.0 {
             out.back_facing += 1;
             continue;
@@ -496,9 +501,7 @@ pub(crate) fn fused_line_face(
                 }
             }
         }
-        ctx.masters
-            .columns_into(ctx.interface, m as usize, &mut cols);
-        for (l, &c) in cols[..2].iter().enumerate() {
+        for (l, &c) in cols.iter().enumerate() {
             let at = match out.cols.iter().position(|&k| k == c) {
                 Some(at) => at,
                 None => {

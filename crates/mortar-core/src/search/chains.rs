@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::bvh::{Box3, BoxTree};
 use super::candidates::{overlaps, points_box, slave_search_box, union, EMPTY};
+use super::master_lines::MasterLineCache;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::mesh::SurfaceMesh;
@@ -198,7 +199,8 @@ impl ChainSearch {
     /// A run of master faces whose boxes meet the search box of `face`, connected along
     /// their chain: from the first of `seeds` (the previous slave face's candidates) that
     /// meets it, or else the first of their neighbours that does, back and forth along the
-    /// chain as far as the faces meet it, into `out` (cleared first; in walk order).
+    /// chain as far as the faces meet it, into `out` (cleared first; in walk order). The master
+    /// lines are read through `lines`.
     /// `false` when neither the seeds nor their neighbours meet the box, or the run passes
     /// [`WALK_LIMIT`] faces: the caller then asks [`exhaustive`](Self::exhaustive).
     ///
@@ -210,12 +212,13 @@ impl ChainSearch {
         &self,
         interface: &Interface,
         masters: &MasterFaces,
+        lines: &mut MasterLineCache,
         face: &FaceGeometry,
         seeds: &[u32],
         out: &mut Vec<u32>,
     ) -> bool {
         let b = slave_search_box(interface, face);
-        let meets = |s: u32| self.meets(interface, masters, s, &b);
+        let mut meets = |s: u32| overlaps(&b, &lines.get(interface, masters, s).bx, true);
         out.clear();
         let first = seeds.iter().copied().find(|&s| meets(s)).or_else(|| {
             seeds.iter().find_map(|&s| {
