@@ -17,6 +17,7 @@ mod properties {
     mod extremes;
     mod facing;
     mod fused_lines;
+    mod gather;
     mod invariance;
     mod patch;
     mod rounding;

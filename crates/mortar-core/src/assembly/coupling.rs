@@ -764,8 +764,15 @@ fn chunk(
     // The chunk's slave faces are gathered first, in a loop of independent reads (a file
     // whose nodes are numbered far apart then costs its cache misses in parallel rather than
     // one after the other between tree queries), and kept for the per-face work.
-    geometry.clear();
-    geometry.extend(faces.iter().map(|&s| interface.slave_face(s as usize)));
+    // Into the faces of the chunk before, where there is one (a face is ~460 bytes, most of
+    // them unused).
+    for (i, &s) in faces.iter().enumerate() {
+        match geometry.get_mut(i) {
+            Some(g) => interface.slave_face_into(s as usize, g),
+            None => geometry.push(interface.slave_face(s as usize)),
+        }
+    }
+    geometry.truncate(faces.len());
     face_rows.clear();
     face_rows.extend(faces.iter().map(|&s| {
         let mut rows = [0u32; MAX_FACE_NODES];

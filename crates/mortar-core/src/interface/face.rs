@@ -56,6 +56,34 @@ impl FaceGeometry {
         }
     }
 
+    /// [`gather`](Self::gather) into `self`, which holds a face gathered before: the same
+    /// value, without building it on the stack and copying it (the arrays hold nine nodes;
+    /// a line has two). The entries past the new face's nodes are zeroed as far as the old
+    /// face's reached, so they are zero as [`gather`](Self::gather) leaves them.
+    pub fn gather_into(
+        &mut self,
+        mesh: &SurfaceMesh,
+        side: Side,
+        index: usize,
+        nodal_normals: Option<&[Vector3<f64>]>,
+    ) {
+        let view = mesh.face(index);
+        let old = self.node_count();
+        let k = view.nodes.len();
+        for (i, &n) in view.nodes.iter().enumerate() {
+            self.nodes[i] = mesh.coords()[n as usize];
+            self.normals[i] = nodal_normals.map_or(Vector3::zeros(), |nn| nn[n as usize]);
+        }
+        for i in k..old.max(k) {
+            self.nodes[i] = Vector3::zeros();
+            self.normals[i] = Vector3::zeros();
+        }
+        self.index = index as u32;
+        self.tag = view.tag;
+        self.side = side;
+        self.element = view.element;
+    }
+
     /// Number of nodes.
     #[inline]
     pub fn node_count(&self) -> usize {

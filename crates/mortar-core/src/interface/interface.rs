@@ -156,6 +156,12 @@ impl Interface {
         FaceGeometry::gather(&self.slave, Side::Slave, face, Some(&self.slave_normals))
     }
 
+    /// Gathers a slave face into `out`, which holds a face gathered before (see
+    /// [`FaceGeometry::gather_into`]).
+    pub fn slave_face_into(&self, face: usize, out: &mut FaceGeometry) {
+        out.gather_into(&self.slave, Side::Slave, face, Some(&self.slave_normals));
+    }
+
     /// Gathers a master face.
     pub fn master_face(&self, face: usize) -> FaceGeometry {
         FaceGeometry::gather(&self.master, Side::Master, face, None)
