@@ -906,16 +906,13 @@ fn fused_face(
         return Ok(false);
     }
     for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
-        for (k, &c) in rows.iter().enumerate() {
-            buffers.d.push(r, c, line.d[j][k]);
-        }
+        buffers.d.push_row(r, rows.iter().copied().zip(line.d[j]));
     }
     // Row by row (each entry is pushed once per face: the order of a face's pushes does not
     // change the sums).
     for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
-        for (&c, vals) in line.cols.iter().zip(&line.vals) {
-            buffers.m.push(r, c, vals[j]);
-        }
+        let vals = line.vals.iter().map(|v| v[j]);
+        buffers.m.push_row(r, line.cols.iter().copied().zip(vals));
     }
     Ok(true)
 }
@@ -1066,16 +1063,13 @@ fn general_face(
         }
     }
     for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
-        for (k, &c) in rows.iter().enumerate() {
-            d.push(r, c, blocks.d[j][k]);
-        }
+        d.push_row(r, rows.iter().copied().zip(blocks.d[j].iter().copied()));
     }
     // Row by row (each entry is pushed once per face: the order of a face's pushes does not
     // change the sums).
     for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
-        for (&c, vals) in columns.cols.iter().zip(columns.vals.chunks_exact(ks)) {
-            m.push(r, c, vals[j]);
-        }
+        let vals = columns.vals.chunks_exact(ks).map(|v| v[j]);
+        m.push_row(r, columns.cols.iter().copied().zip(vals));
     }
     Ok(())
 }

@@ -168,7 +168,24 @@ impl RowAccumulator {
     /// Adds `val` to the entry `(row, col)`.
     #[inline]
     pub fn push(&mut self, row: u32, col: u32, val: f64) {
-        let slot = match self.last {
+        let slot = self.slot_of(row);
+        self.add(slot, col, val);
+    }
+
+    /// Adds each `(col, val)` of `entries` to the entry `(row, col)`, in order: what
+    /// [`push`](Self::push) of each does, with the row looked up once.
+    #[inline]
+    pub fn push_row(&mut self, row: u32, entries: impl IntoIterator<Item = (u32, f64)>) {
+        let slot = self.slot_of(row);
+        for (col, val) in entries {
+            self.add(slot, col, val);
+        }
+    }
+
+    /// The slot of `row`, opened if it is new.
+    #[inline]
+    fn slot_of(&mut self, row: u32) -> usize {
+        match self.last {
             Some((r, slot)) if r == row => slot,
             _ => {
                 let next = self.rows.len();
@@ -185,7 +202,12 @@ impl RowAccumulator {
                 self.last = Some((row, slot));
                 slot
             }
-        };
+        }
+    }
+
+    /// Adds `val` to the column `col` of the row in `slot`.
+    #[inline]
+    fn add(&mut self, slot: usize, col: u32, val: f64) {
         let row_entries = &mut self.entries[slot];
         if self.long[slot] {
             row_entries.push((col, val));
