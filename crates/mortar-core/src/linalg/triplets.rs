@@ -530,9 +530,9 @@ mod tests {
     use proptest::prelude::*;
 
     proptest! {
-        /// The rows of a [`RowAccumulator`] are bit for bit the part that
-        /// [`PartList::push_compressed`] makes of the same triplets (rows and columns
-        /// ascending, duplicates summed in insertion order), over two parts in a row (the
+        /// The rows of a [`RowAccumulator`] (fed by `push` or by `push_row`) are bit for bit
+        /// the part that [`PartList::push_compressed`] makes of the same triplets (rows and
+        /// columns ascending, duplicates summed in insertion order), over two parts in a row (the
         /// accumulator reused), whatever the values' magnitudes (so that the order of
         /// summation shows in the bits); rows of up to 60 columns, so that some outgrow the
         /// linear search and merge their repeated columns when stored.
@@ -544,16 +544,26 @@ mod tests {
             ),
         ) {
             let (mut sorted, mut summed) = (PartList::default(), PartList::default());
+            let mut by_rows = PartList::default();
             let (mut ws, mut acc) = (CompressWorkspace::default(), RowAccumulator::default());
+            let mut row_acc = RowAccumulator::default();
             for (k, part) in parts.iter().enumerate() {
                 let mut raw = Triplets::default();
-                for &(r, c, v, e) in part {
-                    let v = v * 2f64.powi(6 * e);
+                let scaled: Vec<(u32, u32, f64)> = part
+                    .iter()
+                    .map(|&(r, c, v, e)| (r, c, v * 2f64.powi(6 * e)))
+                    .collect();
+                for &(r, c, v) in &scaled {
                     raw.push(r, c, v);
                     acc.push(r, c, v);
                 }
+                // The same triplets through push_row, a run of equal rows at a time.
+                for run in scaled.chunk_by(|a, b| a.0 == b.0) {
+                    row_acc.push_row(run[0].0, run.iter().map(|&(_, c, v)| (c, v)));
+                }
                 sorted.push_compressed(k as u64, &mut raw, &mut ws);
                 summed.push_rows(k as u64, &mut acc);
+                by_rows.push_rows(k as u64, &mut row_acc);
                 prop_assert!(acc.is_empty());
             }
             let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
@@ -567,6 +577,7 @@ mod tests {
                     .collect()
             };
             prop_assert_eq!(bits(&sorted), bits(&summed));
+            prop_assert_eq!(bits(&sorted), bits(&by_rows));
         }
     }
 
