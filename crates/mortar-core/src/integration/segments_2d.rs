@@ -361,6 +361,81 @@ impl<'a> SlaveLine<'a> {
     }
 }
 
+/// The slave line of [`fused_line_face`]: the affine line and direction field of
+/// [`SlaveLine`] (the same calls on the same numbers), without what only the bracketed root
+/// needs (the tangents and the direction's derivative at the ends), and the projections of
+/// the last few master nodes remembered by their column in M (a node's column names it as
+/// its coordinates do). A projection that [`SlaveLine`] would find by the bracketed root
+/// (rounding put the closed-form root out of reach) is `None` here: the face then goes to
+/// the general path.
+struct FusedLine {
+    orientation: f64,
+    /// Position and direction at the ends.
+    ends: [(Vector3<f64>, Vector3<f64>); 2],
+    affine: AffineLine,
+    /// `(column, xi)` of the last projections, `u32::MAX` where none, filled round robin.
+    last: [(u32, f64); REMEMBERED],
+    next: usize,
+}
+
+impl FusedLine {
+    /// `None` where the line or its direction field is not affine.
+    fn new(ctx: &SegmentContext<'_>, face: &FaceGeometry, orientation: f64) -> Option<Self> {
+        if !(face.element.is_affine()
+            && face.element.shape_degree() == 1
+            && ctx.projector.direction_is_affine(face))
+        {
+            return None;
+        }
+        let end = |xi: f64| {
+            let xi = Vector2::new(xi, 0.0);
+            (face.map(&xi), ctx.projector.direction(face, &xi).0)
+        };
+        let ends = [end(-1.0), end(1.0)];
+        let [(x0, d0), (x1, d1)] = ends;
+        let affine = AffineLine {
+            x0,
+            e: x1 - x0,
+            d0,
+            dd: d1 - d0,
+            det: face
+                .element
+                .jacobian_det(face.node_coords(), &Vector2::zeros()),
+        };
+        Some(Self {
+            orientation,
+            ends,
+            affine,
+            last: [(u32::MAX, 0.0); REMEMBERED],
+            next: 0,
+        })
+    }
+
+    /// [`try_project_onto_slave`] of the master node `y` in column `col` on the affine path,
+    /// remembered by `col`.
+    #[inline]
+    fn project(&mut self, y: &Vector3<f64>, col: u32) -> Option<f64> {
+        if let Some(&(_, xi)) = self.last.iter().find(|(c, _)| *c == col) {
+            return Some(xi);
+        }
+        let g = |(x, d): &(Vector3<f64>, Vector3<f64>)| self.orientation * cross2(&(y - x), d);
+        let (ga, gb) = (g(&self.ends[0]), g(&self.ends[1]));
+        if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
+            return None;
+        }
+        let xi = if ga >= 0.0 {
+            -1.0
+        } else if gb <= 0.0 {
+            1.0
+        } else {
+            self.affine.root(y, self.orientation)?
+        };
+        self.last[self.next] = (col, xi);
+        self.next = (self.next + 1) % REMEMBERED;
+        Some(xi)
+    }
+}
+
 /// Whether `element` is the two-node line with the linear Lagrange shape functions
 /// `N_0 = (1 - xi) / 2`, `N_1 = (1 + xi) / 2` (checked bit for bit at a few points, so that
 /// [`fused_line_face`] may use them in closed form): straight (affine), of shape degree one.
@@ -433,10 +508,10 @@ pub(crate) fn fused_line_face(
     let (n_s, _) = ctx.projector.direction(slave, &centre);
     let [t, _] = slave.element.tangents(slave.node_coords(), &centre);
     let orientation = -cross2(&t, &n_s).signum();
-    let mut line = SlaveLine::new(ctx, slave, orientation);
-    let Some(affine) = line.affine else {
+    let Some(mut line) = FusedLine::new(ctx, slave, orientation) else {
         return Ok(false);
     };
+    let affine = line.affine;
     let deg = degree.unwrap_or_else(|| default_degree(slave.element, slave.element));
     let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
     out.degree = deg;
@@ -454,7 +529,7 @@ pub(crate) fn fused_line_face(
             out.back_facing += 1;
             continue;
         }
-        let (Some(a), Some(b)) = (line.try_project(ctx, &y[0]), line.try_project(ctx, &y[1]))
+        let (Some(a), Some(b)) = (line.project(&y[0], cols[0]), line.project(&y[1], cols[1]))
         else {
             return Ok(false);
         };
