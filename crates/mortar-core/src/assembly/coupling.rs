@@ -18,7 +18,8 @@ use crate::integration::{
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
 use crate::search::{
-    spatial_order, ChainSearch, LineChains, MasterLineCache, MasterTree, WALK_LIMIT,
+    spatial_order, ChainSearch, LineChains, MasterLineCache, MasterTree, MasterTriangleCache,
+    WALK_LIMIT,
 };
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -222,6 +223,8 @@ struct FaceBuffers {
     line: LineFace,
     /// The master lines of the chain walk and the fused kernel.
     lines: MasterLineCache,
+    /// The master triangles of the closed form.
+    triangles: MasterTriangleCache,
     d: RowAccumulator,
     m: RowAccumulator,
 }
@@ -252,13 +255,19 @@ impl MergedColumns {
 
     /// Adds the `ks x km` block (row-major) of the master face in slot `mf` to its columns.
     fn add(&mut self, ctx: &SegmentContext<'_>, mf: u32, km: usize, block: &[f64]) {
-        let ks = self.ks;
         let mut mcols = [0u32; MAX_FACE_NODES];
         let kc = ctx
             .masters
             .columns_into(ctx.interface, mf as usize, &mut mcols);
         debug_assert_eq!(kc, km);
-        for (l, &c) in mcols[..kc].iter().enumerate() {
+        self.add_cols(&mcols[..kc], block);
+    }
+
+    /// Adds the `ks x km` block (row-major) of a master face whose nodes have the columns
+    /// `mcols` (`km` of them).
+    fn add_cols(&mut self, mcols: &[u32], block: &[f64]) {
+        let (ks, km) = (self.ks, mcols.len());
+        for (l, &c) in mcols.iter().enumerate() {
             let at = match self.index.find_in(&self.cols, c) {
                 Some(at) => at,
                 None => {
@@ -939,6 +948,7 @@ fn general_face(
         rule,
         blocks,
         columns,
+        triangles,
         d,
         m,
         ..
@@ -978,8 +988,9 @@ fn general_face(
         // same sums as through the blocks).
         let closed = match closed_form {
             Some((cf, b)) => {
-                let add = |mf, km, block: &[f64]| columns.add(ctx, mf, km, block);
-                closed_form_into(ctx, face, part, cf.degree, &b, &mut blocks.d, add, rule)?
+                let add = |cols: &[u32], block: &[f64]| columns.add_cols(cols, block);
+                let (d, tris) = (&mut blocks.d, &mut *triangles);
+                closed_form_into(ctx, face, part, cf.degree, &b, d, tris, add, rule)?
             }
             None => false,
         };

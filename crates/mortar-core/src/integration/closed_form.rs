@@ -30,6 +30,7 @@ use crate::error::Result;
 use crate::geometry::Polygon;
 use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::multiplier::LmBasis;
+use crate::search::{MasterTriangle, MasterTriangleCache};
 
 /// Whether `element` is the three-node triangle with linear shape functions, bit for bit:
 /// nodes at `(0, 0)`, `(1, 0)`, `(0, 1)` and `N = (1 - xi - eta, xi, eta)`, so that each
@@ -173,8 +174,9 @@ impl Weighted {
 }
 
 /// D and M of a slave linear triangle against its `candidates` (linear triangles, as slots of
-/// `ctx.masters`) in closed form: D added to `d`, each master face's `3 x 3` M block
-/// (row-major) given to `add_m` with the face's slot and node count, in candidate order. The
+/// `ctx.masters`, read through `masters`) in closed form: D added to `d`, each master face's
+/// `3 x 3` M block (row-major) given to `add_m` with the columns of the face's nodes, in
+/// candidate order. The
 /// work of the strategy's segmentation and the coupling's integration of its points. `out`
 /// gets the counts the strategy would give (pairs, back-facing candidates, the covered
 /// fraction, the degree the strategy would have used; one cell per clip polygon) and no
@@ -194,7 +196,8 @@ pub(crate) fn closed_form_into(
     degree: Option<u32>,
     basis: &LmBasis,
     d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
-    mut add_m: impl FnMut(u32, usize, &[f64]),
+    masters: &mut MasterTriangleCache,
+    mut add_m: impl FnMut(&[u32], &[f64]),
     out: &mut PairedRule,
 ) -> Result<bool> {
     out.clear();
@@ -225,8 +228,13 @@ pub(crate) fn closed_form_into(
     let mut covered = 0.0;
     let mut dface = [[0.0; 3]; 3];
     for &m in candidates {
-        let Some((mel, km)) = setup.clip_master(ctx, m, &mut mp, &mut clip, &mut out.back_facing)
-        else {
+        let &MasterTriangle {
+            element,
+            nodes,
+            cols,
+        } = masters.get(ctx.interface, ctx.masters, m);
+        let bf = &mut out.back_facing;
+        let Some((mel, _)) = setup.clip_face(element, &nodes, &mut mp, &mut clip, bf) else {
             continue;
         };
         let mut mom = Moments::of(&clip, scale);
@@ -251,7 +259,7 @@ pub(crate) fn closed_form_into(
                 block[j * 3 + l] = w.times(nm_o[l], n);
             }
         }
-        add_m(m, km, &block);
+        add_m(&cols, &block);
         out.pairs += 1;
         out.cells += 1;
         out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, mel));

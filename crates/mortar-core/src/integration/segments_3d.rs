@@ -140,7 +140,21 @@ impl SlavePlane {
     ) -> Option<(ElementRef, usize)> {
         let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
         let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut xm);
-        for (p, x) in mp.iter_mut().zip(&xm[..km]) {
+        self.clip_face(mel, &xm[..km], mp, clip, back_facing)
+    }
+
+    /// [`clip_master`](Self::clip_master) of a master face given by its element type and
+    /// node coordinates `xm`.
+    pub fn clip_face(
+        &self,
+        mel: ElementRef,
+        xm: &[Vector3<f64>],
+        mp: &mut [Vector2<f64>; MAX_FACE_NODES],
+        clip: &mut Polygon,
+        back_facing: &mut u32,
+    ) -> Option<(ElementRef, usize)> {
+        let km = xm.len();
+        for (p, x) in mp.iter_mut().zip(xm) {
             *p = self.plane.project(x);
         }
         // Quick rejection by in-plane bounding boxes before clipping.

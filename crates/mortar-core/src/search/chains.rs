@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::bvh::{Box3, BoxTree};
 use super::candidates::{overlaps, points_box, slave_search_box, union, EMPTY};
-use super::master_lines::MasterLineCache;
+use super::master_cache::MasterLineCache;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::mesh::SurfaceMesh;

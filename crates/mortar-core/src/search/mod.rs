@@ -19,10 +19,10 @@
 mod bvh;
 mod candidates;
 mod chains;
-mod master_lines;
+mod master_cache;
 mod morton;
 
 pub use candidates::{find_candidates, Candidates, MasterTree};
 pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
-pub(crate) use master_lines::{MasterLine, MasterLineCache};
+pub(crate) use master_cache::{MasterLine, MasterLineCache, MasterTriangle, MasterTriangleCache};
 pub(crate) use morton::spatial_order;

@@ -1,0 +1,144 @@
+//! The master faces of the fast paths (the 1D merge with its fused kernel, the 3D closed form)
+//! as those paths read them, kept per worker in a small direct-mapped cache by slot: a master
+//! face is met by the searches of several neighbouring slave faces (two or three in the 1D
+//! merge, about nine on a 3D interface whose master is finer), and reading it from the mesh
+//! each time (its face view, its nodes, its columns, and in 2D its box and its normal through
+//! the element type) cost more than the arithmetic done with it.
+
+use nalgebra::{Vector2, Vector3};
+
+use super::bvh::Box3;
+use super::candidates::points_box;
+use crate::element::{ElementRef, MAX_FACE_NODES};
+use crate::interface::{Interface, MasterFaces};
+
+/// Entries of a cache: a power of two, more than the master faces a chunk of slave faces
+/// meets, so that the faces met by consecutive slave faces rarely evict each other.
+const WAYS: usize = 1024;
+
+/// Values by slot, direct-mapped (`slot mod WAYS`): master faces of neighbouring slots
+/// (the search's spatial order, or the chain order in 1D) do not collide.
+#[derive(Debug, Clone)]
+pub(crate) struct SlotCache<T> {
+    entries: Vec<Option<(u32, T)>>,
+}
+
+impl<T> Default for SlotCache<T> {
+    fn default() -> Self {
+        Self {
+            entries: Vec::new(),
+        }
+    }
+}
+
+impl<T> SlotCache<T> {
+    /// The value of slot `s`, from `read` unless it is held.
+    #[inline]
+    pub(crate) fn get(&mut self, s: u32, read: impl FnOnce(u32) -> T) -> &T {
+        if self.entries.is_empty() {
+            self.entries.resize_with(WAYS, || None);
+        }
+        let e = &mut self.entries[s as usize & (WAYS - 1)];
+        if !matches!(e, Some((k, _)) if *k == s) {
+            *e = Some((s, read(s)));
+        }
+        match e {
+            Some((_, v)) => v,
+            None => unreachable!("filled above"),
+        }
+    }
+}
+
+/// One master line: what [`MasterFaces`] gives of the face in its slot, and what is computed
+/// from that, with the same calls as where it is read uncached (so the same bits).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MasterLine {
+    /// The two node coordinates.
+    pub nodes: [Vector3<f64>; 2],
+    /// The inflated box of the nodes (the search's `points_box`).
+    pub bx: Box3,
+    /// The unit normal at the centre, from the element type.
+    pub normal: Vector3<f64>,
+    /// The columns in M of the two nodes.
+    pub cols: [u32; 2],
+}
+
+/// The master lines of the 1D merge, by slot ([`MasterFaces`] in chain order: the lines met
+/// by consecutive slave faces have consecutive slots).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct MasterLineCache(SlotCache<MasterLine>);
+
+impl MasterLineCache {
+    /// The master line in slot `s` of `masters` (built for `interface`, every face a two-node
+    /// line).
+    #[inline]
+    pub(crate) fn get(
+        &mut self,
+        interface: &Interface,
+        masters: &MasterFaces,
+        s: u32,
+    ) -> &MasterLine {
+        self.0.get(s, |s| read_line(interface, masters, s))
+    }
+}
+
+/// Reads the line in slot `s` from the mesh.
+#[inline(never)]
+fn read_line(interface: &Interface, masters: &MasterFaces, s: u32) -> MasterLine {
+    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+    let (el, k) = masters.coords_into(interface, s as usize, &mut y);
+    debug_assert_eq!(k, 2, "a two-node line");
+    let mut cols = [0u32; MAX_FACE_NODES];
+    masters.columns_into(interface, s as usize, &mut cols);
+    MasterLine {
+        nodes: [y[0], y[1]],
+        bx: points_box(&y[..k], interface.tolerances()),
+        normal: el.unit_normal(&y[..k], &Vector2::zeros()),
+        cols: [cols[0], cols[1]],
+    }
+}
+
+/// One master triangle: its element type, node coordinates and columns in M, as
+/// [`MasterFaces`] gives them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct MasterTriangle {
+    /// The element type.
+    pub element: ElementRef,
+    /// The three node coordinates.
+    pub nodes: [Vector3<f64>; 3],
+    /// The columns in M of the three nodes.
+    pub cols: [u32; 3],
+}
+
+/// The master triangles of the 3D closed form, by slot.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct MasterTriangleCache(SlotCache<MasterTriangle>);
+
+impl MasterTriangleCache {
+    /// The master triangle in slot `s` of `masters` (built for `interface`, every face a
+    /// three-node triangle).
+    #[inline]
+    pub(crate) fn get(
+        &mut self,
+        interface: &Interface,
+        masters: &MasterFaces,
+        s: u32,
+    ) -> &MasterTriangle {
+        self.0.get(s, |s| read_triangle(interface, masters, s))
+    }
+}
+
+/// Reads the triangle in slot `s` from the mesh.
+#[inline(never)]
+fn read_triangle(interface: &Interface, masters: &MasterFaces, s: u32) -> MasterTriangle {
+    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+    let (element, k) = masters.coords_into(interface, s as usize, &mut y);
+    debug_assert_eq!(k, 3, "a three-node triangle");
+    let mut cols = [0u32; MAX_FACE_NODES];
+    masters.columns_into(interface, s as usize, &mut cols);
+    MasterTriangle {
+        element,
+        nodes: [y[0], y[1], y[2]],
+        cols: [cols[0], cols[1], cols[2]],
+    }
+}
