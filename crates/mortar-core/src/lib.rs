@@ -48,6 +48,7 @@ pub mod geometry;
 pub mod integration;
 pub mod interface;
 pub mod linalg;
+mod memory;
 pub mod mesh;
 pub mod multiplier;
 pub mod projector;

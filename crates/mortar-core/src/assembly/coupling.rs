@@ -417,6 +417,15 @@ struct Accumulator {
 }
 
 impl Accumulator {
+    /// An accumulator for about `chunks` chunks.
+    fn expecting(chunks: usize) -> Self {
+        Self {
+            d: PartList::expecting(chunks),
+            m: PartList::expecting(chunks),
+            ..Self::default()
+        }
+    }
+
     /// Keeps the earlier of two first-skipped records.
     fn keep_first_skipped(&mut self, at: usize, e: MortarError) {
         if self.first_skipped.as_ref().is_none_or(|(k, _)| at < *k) {
@@ -583,26 +592,32 @@ fn assemble_on_pool(
     // first failing chunk in slave-face order decides the error, and chunks after a known
     // failure are skipped.
     let first_error = AtomicUsize::new(usize::MAX);
-    let accs: Vec<Accumulator> = (0..faces.div_ceil(CHUNK))
+    let chunks = faces.div_ceil(CHUNK);
+    // Each worker's share of the chunks, for the size of its part buffers.
+    let share = chunks.div_ceil(threads);
+    let accs: Vec<Accumulator> = (0..chunks)
         .into_par_iter()
-        .fold(Accumulator::default, |mut acc, c| {
-            if c > first_error.load(Ordering::Relaxed) {
-                return acc;
-            }
-            let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
-            match chunk(
-                interface, options, &ctx, &search, &order, range, c as u64, &mut acc,
-            ) {
-                Ok(()) => {}
-                Err(e) => {
-                    first_error.fetch_min(c, Ordering::Relaxed);
-                    if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
-                        acc.error = Some((c, e));
+        .fold(
+            || Accumulator::expecting(share),
+            |mut acc, c| {
+                if c > first_error.load(Ordering::Relaxed) {
+                    return acc;
+                }
+                let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
+                match chunk(
+                    interface, options, &ctx, &search, &order, range, c as u64, &mut acc,
+                ) {
+                    Ok(()) => {}
+                    Err(e) => {
+                        first_error.fetch_min(c, Ordering::Relaxed);
+                        if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
+                            acc.error = Some((c, e));
+                        }
                     }
                 }
-            }
-            acc
-        })
+                acc
+            },
+        )
         .collect();
 
     // What only the per-face work needed goes before the matrices are built.

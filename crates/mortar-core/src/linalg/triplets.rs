@@ -52,8 +52,9 @@ impl Triplets {
     }
 
     /// Sorts the triplets by row, then column, and sums duplicates in insertion order,
-    /// appending the result to `out`; empties `self` (keeping its allocation).
-    fn compress_into(&mut self, ws: &mut CompressWorkspace, out: &mut Vec<Entry>) {
+    /// appending the result to `out` as a part that starts at `run0` (its first run);
+    /// empties `self` (keeping its allocation).
+    fn compress_into(&mut self, ws: &mut CompressWorkspace, out: &mut RunBuffer, run0: usize) {
         let Some(first) = self.entries.first() else {
             return;
         };
@@ -103,9 +104,8 @@ impl Triplets {
             }
         }
         self.entries.clear();
-        let base = out.len();
         for e in sorted.iter() {
-            push_merged(out, base, *e);
+            out.push_merged(run0, e.row, e.col, e.val);
         }
     }
 
@@ -242,15 +242,61 @@ impl RowAccumulator {
     }
 }
 
-/// Appends `e` to `out`, or adds it to the last entry if that has the same row and column and
-/// lies at or after `base` (merges stay within one part: `out` may hold earlier parts).
-#[inline]
-fn push_merged(out: &mut Vec<Entry>, base: usize, e: Entry) {
-    let n = out.len();
-    if n > base && out[n - 1].row == e.row && out[n - 1].col == e.col {
-        out[n - 1].val += e.val;
-    } else {
-        out.push(e);
+/// Compressed entries stored row by row: a run per row of each part, `(row, end)` (the row's
+/// entries end at `end` in `cols` and `vals`, and start where the run before ends), so that an
+/// entry takes 12 bytes and a row 8, where `(row, column, value)` took 16 an entry.
+#[derive(Debug, Clone, Default)]
+struct RunBuffer {
+    runs: Vec<(u32, u32)>,
+    cols: Vec<u32>,
+    vals: Vec<f64>,
+}
+
+impl RunBuffer {
+    /// Entries a buffer holds at most (its run ends are `u32`).
+    const MAX_ENTRIES: usize = u32::MAX as usize;
+
+    /// Where the entries of run `i` start.
+    #[inline]
+    fn run_start(&self, i: usize) -> usize {
+        if i == 0 {
+            0
+        } else {
+            self.runs[i - 1].1 as usize
+        }
+    }
+
+    /// Appends the entry `(row, col, val)` to the part whose first run is `run0` (rows
+    /// ascending, columns ascending within a row), or adds it to the part's last entry if that
+    /// has the same row and column.
+    ///
+    /// # Panics
+    /// If the buffer would hold more than [`Self::MAX_ENTRIES`] entries.
+    #[inline]
+    fn push_merged(&mut self, run0: usize, row: u32, col: u32, val: f64) {
+        let n = self.runs.len();
+        if n > run0 && self.runs[n - 1].0 == row {
+            let last = self.cols.len() - 1;
+            if self.cols[last] == col {
+                self.vals[last] += val;
+                return;
+            }
+        } else {
+            self.runs.push((row, 0));
+        }
+        self.cols.push(col);
+        self.vals.push(val);
+        let end = u32::try_from(self.cols.len()).expect("fewer than 2^32 entries in a part buffer");
+        self.runs.last_mut().expect("a run was opened").1 = end;
+    }
+
+    /// Appends the row `row` of a part (a new run), its columns ascending and distinct.
+    #[inline]
+    fn push_row(&mut self, row: u32, entries: &[(u32, f64)]) {
+        self.cols.extend(entries.iter().map(|e| e.0));
+        self.vals.extend(entries.iter().map(|e| e.1));
+        let end = u32::try_from(self.cols.len()).expect("fewer than 2^32 entries in a part buffer");
+        self.runs.push((row, end));
     }
 }
 
@@ -262,27 +308,57 @@ fn push_merged(out: &mut Vec<Entry>, base: usize, e: Entry) {
 /// the allocator from fragmenting and go back to the system as soon as they are dropped.
 #[derive(Debug, Clone, Default)]
 pub struct PartList {
-    buffers: Vec<Vec<Entry>>,
-    /// `(key, buffer, start, end)`.
+    buffers: Vec<RunBuffer>,
+    /// `(key, buffer, first run, end of runs)`.
     parts: Vec<(u64, u32, usize, usize)>,
+    /// Parts this list expects (0: unknown).
+    expected: usize,
 }
 
 impl PartList {
-    /// Compresses `raw` (emptying it, keeping its allocation) and stores it as part `key`.
-    pub fn push_compressed(&mut self, key: u64, raw: &mut Triplets, ws: &mut CompressWorkspace) {
-        self.push_part(key, |buf| raw.compress_into(ws, buf));
+    /// A list that expects about `parts` parts of about the same size: its buffers are sized
+    /// after the first part for all of them at once, instead of doubling as they fill (a large
+    /// buffer then comes straight from the system, and goes straight back when the list is
+    /// dropped; grown by doubling, glibc keeps the smaller copies it leaves behind). More parts
+    /// than expected, or larger ones, grow the buffers as before.
+    pub fn expecting(parts: usize) -> Self {
+        Self {
+            expected: parts,
+            ..Self::default()
+        }
     }
 
-    /// Stores as part `key` the entries `fill` appends to the last buffer.
-    fn push_part(&mut self, key: u64, fill: impl FnOnce(&mut Vec<Entry>)) {
-        if self.buffers.is_empty() {
-            self.buffers.push(Vec::new());
+    /// Compresses `raw` (emptying it, keeping its allocation) and stores it as part `key`.
+    pub fn push_compressed(&mut self, key: u64, raw: &mut Triplets, ws: &mut CompressWorkspace) {
+        let more = raw.len();
+        self.push_part(key, more, |buf, run0| raw.compress_into(ws, buf, run0));
+    }
+
+    /// Stores as part `key` the runs `fill` appends to the last buffer (given the part's first
+    /// run), a new buffer when `more` entries could take the last past
+    /// [`RunBuffer::MAX_ENTRIES`].
+    fn push_part(&mut self, key: u64, more: usize, fill: impl FnOnce(&mut RunBuffer, usize)) {
+        if self
+            .buffers
+            .last()
+            .is_none_or(|b| b.cols.len() + more > RunBuffer::MAX_ENTRIES)
+        {
+            self.buffers.push(RunBuffer::default());
         }
         let b = self.buffers.len() - 1;
         let buf = &mut self.buffers[b];
-        let start = buf.len();
-        fill(buf);
-        self.parts.push((key, b as u32, start, buf.len()));
+        let run0 = buf.runs.len();
+        fill(buf, run0);
+        if self.parts.is_empty() && self.expected > 1 {
+            // Room for the expected parts, a tenth more, as large as the first.
+            let times = self.expected + self.expected.div_ceil(10);
+            let entries = (buf.cols.len() * times).min(RunBuffer::MAX_ENTRIES);
+            buf.cols.reserve_exact(entries - buf.cols.len());
+            buf.vals.reserve_exact(entries - buf.vals.len());
+            buf.runs
+                .reserve_exact(buf.runs.len() * times - buf.runs.len());
+        }
+        self.parts.push((key, b as u32, run0, buf.runs.len()));
     }
 
     /// Stores the entries of `acc` as part `key` (rows ascending, columns ascending within a
@@ -290,21 +366,21 @@ impl PartList {
     pub fn push_rows(&mut self, key: u64, acc: &mut RowAccumulator) {
         let mut order: Vec<(u32, usize)> = acc.rows.iter().copied().zip(0..).collect();
         order.sort_unstable();
-        self.push_part(key, |buf| {
+        let more = order.iter().map(|&(_, slot)| acc.entries[slot].len()).sum();
+        self.push_part(key, more, |buf, run0| {
             for (row, slot) in order {
                 let entries = &mut acc.entries[slot];
                 if acc.long[slot] {
                     // Columns may repeat: a stable sort keeps them in insertion order, and
                     // they are summed in that order.
                     entries.sort_by_key(|e| e.0);
-                    let base = buf.len();
                     for &(col, val) in entries.iter() {
-                        push_merged(buf, base, Entry { row, col, val });
+                        buf.push_merged(run0, row, col, val);
                     }
                 } else {
                     // Each column once in a row: any sort gives the same order.
                     entries.sort_unstable_by_key(|e| e.0);
-                    buf.extend(entries.iter().map(|&(col, val)| Entry { row, col, val }));
+                    buf.push_row(row, entries);
                 }
             }
         });
@@ -323,9 +399,22 @@ impl PartList {
         );
     }
 
+    /// The entries of part `(buffer, first run, end of runs)`: its runs, and where its entries
+    /// start.
+    fn part_entries(&self, b: u32, r0: usize, r1: usize) -> (&RunBuffer, usize, usize) {
+        let buf = &self.buffers[b as usize];
+        (buf, buf.run_start(r0), buf.run_start(r1))
+    }
+
     /// Number of stored triplets.
     pub fn len(&self) -> usize {
-        self.parts.iter().map(|p| p.3 - p.2).sum()
+        self.parts
+            .iter()
+            .map(|&(_, b, r0, r1)| {
+                let (_, a, z) = self.part_entries(b, r0, r1);
+                z - a
+            })
+            .sum()
     }
 
     /// Whether no triplet is stored.
@@ -333,8 +422,33 @@ impl PartList {
         self.len() == 0
     }
 
+    /// Bytes the part buffers hold (their capacity).
+    fn bytes(&self) -> usize {
+        self.buffers
+            .iter()
+            .map(|b| b.runs.capacity() * 8 + b.cols.capacity() * 4 + b.vals.capacity() * 8)
+            .sum()
+    }
+
+    /// Every stored entry, `(key, row, column, value)`, part after part in the order stored.
+    #[cfg(test)]
+    fn entries(&self) -> Vec<(u64, u32, u32, f64)> {
+        let mut out = Vec::new();
+        for &(k, b, r0, r1) in &self.parts {
+            let buf = &self.buffers[b as usize];
+            for i in r0..r1 {
+                let row = buf.runs[i].0;
+                for e in buf.run_start(i)..buf.run_start(i + 1) {
+                    out.push((k, row, buf.cols[e], buf.vals[e]));
+                }
+            }
+        }
+        out
+    }
+
     /// The `nrows x ncols` CSR matrix of the parts in key order, duplicates summed in that
-    /// order. The parts are freed before the matrix arrays are filled.
+    /// order. The parts are freed before the matrix arrays are filled (and, from
+    /// `RELEASE_BYTES` of them, their pages given back to the system).
     ///
     /// # Panics
     /// If an index is out of range, or two parts have the same key.
@@ -345,26 +459,57 @@ impl PartList {
             "two triplet parts with the same key"
         );
         let blocks = {
-            let slices: Vec<&[Entry]> = self
+            let parts: Vec<PartRuns> = self
                 .parts
                 .iter()
-                .map(|&(_, b, s, e)| &self.buffers[b as usize][s..e])
+                .map(|&(_, b, r0, r1)| PartRuns {
+                    buf: &self.buffers[b as usize],
+                    runs: r0..r1,
+                })
                 .collect();
-            for sl in &slices {
-                if let Some(e) = sl
-                    .iter()
-                    .find(|e| e.row as usize >= nrows || e.col as usize >= ncols)
-                {
+            for p in &parts {
+                let (runs, a, z) = (&p.buf.runs[p.runs.clone()], p.start(), p.end());
+                let bad_row = runs.iter().find(|r| r.0 as usize >= nrows);
+                let bad_col = (a..z).find(|&i| p.buf.cols[i] as usize >= ncols);
+                if let Some(r) = bad_row {
+                    panic!("entry in row {} outside a {nrows}x{ncols} matrix", r.0);
+                }
+                if let Some(i) = bad_col {
+                    let row = runs[runs.partition_point(|r| (r.1 as usize) <= i)].0;
                     panic!(
-                        "entry ({}, {}) outside a {nrows}x{ncols} matrix",
-                        e.row, e.col
+                        "entry ({row}, {}) outside a {nrows}x{ncols} matrix",
+                        p.buf.cols[i]
                     );
                 }
             }
-            row_blocks(&slices, nrows)
+            row_blocks(&parts, nrows)
         };
+        let bytes = self.bytes();
         drop(self);
+        // The parts' pages back to the system before the matrix arrays take theirs (glibc
+        // would keep them: see `crate::memory`).
+        if bytes >= crate::memory::RELEASE_BYTES {
+            crate::memory::release_free_memory();
+        }
         concat_blocks(blocks, nrows, ncols)
+    }
+}
+
+/// One part's runs in its buffer.
+struct PartRuns<'a> {
+    buf: &'a RunBuffer,
+    runs: std::ops::Range<usize>,
+}
+
+impl PartRuns<'_> {
+    /// Where the part's entries start in its buffer.
+    fn start(&self) -> usize {
+        self.buf.run_start(self.runs.start)
+    }
+
+    /// Where the part's entries end in its buffer.
+    fn end(&self) -> usize {
+        self.buf.run_start(self.runs.end)
     }
 }
 
@@ -374,61 +519,80 @@ type RowBlock = (Vec<usize>, Vec<u32>, Vec<f64>);
 /// Per-thread buffers of the row blocks.
 #[derive(Default)]
 struct BlockWorkspace {
-    local: Vec<Entry>,
+    /// The block's runs, in part order: `(row, buffer index in parts, entry range)`.
+    local: Vec<(u32, u32, usize, usize)>,
     start: Vec<usize>,
     next: Vec<usize>,
+    /// Runs per row of the block.
+    count: Vec<u32>,
     cols: Vec<u32>,
     vals: Vec<f64>,
 }
 
-/// Merges the row-sorted `slices` into blocks of [`ROW_BLOCK`] rows, in parallel; within a
-/// row, entries are summed in slice order, then in their order within a slice.
-fn row_blocks(slices: &[&[Entry]], nrows: usize) -> Vec<RowBlock> {
+/// Merges the row-sorted `parts` into blocks of [`ROW_BLOCK`] rows, in parallel; within a
+/// row, entries are summed in part order, then in their order within a part.
+fn row_blocks(parts: &[PartRuns<'_>], nrows: usize) -> Vec<RowBlock> {
     (0..nrows.div_ceil(ROW_BLOCK))
         .into_par_iter()
         .map_init(BlockWorkspace::default, |ws, b| {
             let (r0, r1) = (b * ROW_BLOCK, ((b + 1) * ROW_BLOCK).min(nrows));
-            // This block's entries, slice after slice (each sorted by row).
+            let rows = r1 - r0;
+            // This block's runs, part after part (each sorted by row).
             ws.local.clear();
-            for e in slices {
-                // Most slices (the entries of a chunk of cells) lie in a few rows: skip those
+            for (k, p) in parts.iter().enumerate() {
+                let runs = &p.buf.runs[p.runs.clone()];
+                // Most parts (the entries of a chunk of cells) lie in a few rows: skip those
                 // outside the block without searching them.
-                match (e.first(), e.last()) {
-                    (Some(f), Some(l)) if (l.row as usize) >= r0 && (f.row as usize) < r1 => {}
+                match (runs.first(), runs.last()) {
+                    (Some(f), Some(l)) if (l.0 as usize) >= r0 && (f.0 as usize) < r1 => {}
                     _ => continue,
                 }
-                let a = e.partition_point(|x| (x.row as usize) < r0);
-                let z = e.partition_point(|x| (x.row as usize) < r1);
-                ws.local.extend_from_slice(&e[a..z]);
+                let a = runs.partition_point(|x| (x.0 as usize) < r0);
+                let z = runs.partition_point(|x| (x.0 as usize) < r1);
+                for i in p.runs.start + a..p.runs.start + z {
+                    let (row, end) = p.buf.runs[i];
+                    ws.local
+                        .push((row, k as u32, p.buf.run_start(i), end as usize));
+                }
             }
-            // Stable counting sort by row, then per row a stable sort by column and the sums
-            // in that order.
-            let rows = r1 - r0;
+            // Each row's runs copied into its place, in part order (a stable counting sort
+            // of the runs by row), then per row a stable sort by column and the sums in that
+            // order where more than one part reaches it.
             ws.start.clear();
             ws.start.resize(rows + 1, 0);
-            for e in &ws.local {
-                ws.start[e.row as usize - r0 + 1] += 1;
+            ws.count.clear();
+            ws.count.resize(rows, 0);
+            for &(row, _, a, z) in &ws.local {
+                ws.start[row as usize - r0 + 1] += z - a;
+                ws.count[row as usize - r0] += 1;
             }
             for r in 0..rows {
                 ws.start[r + 1] += ws.start[r];
             }
+            let n = ws.start[rows];
             ws.cols.clear();
-            ws.cols.resize(ws.local.len(), 0);
+            ws.cols.resize(n, 0);
             ws.vals.clear();
-            ws.vals.resize(ws.local.len(), 0.0);
+            ws.vals.resize(n, 0.0);
             ws.next.clear();
-            ws.next.extend_from_slice(&ws.start);
-            for e in &ws.local {
-                let at = &mut ws.next[e.row as usize - r0];
-                ws.cols[*at] = e.col;
-                ws.vals[*at] = e.val;
-                *at += 1;
+            ws.next.extend_from_slice(&ws.start[..rows]);
+            for &(row, k, a, z) in &ws.local {
+                let buf = parts[k as usize].buf;
+                let at = &mut ws.next[row as usize - r0];
+                ws.cols[*at..*at + z - a].copy_from_slice(&buf.cols[a..z]);
+                ws.vals[*at..*at + z - a].copy_from_slice(&buf.vals[a..z]);
+                *at += z - a;
             }
             let mut lens = Vec::with_capacity(rows);
             let mut w = 0usize;
             for r in 0..rows {
                 let (a, z) = (ws.start[r], ws.start[r + 1]);
-                let len = merge_row(&mut ws.cols[a..z], &mut ws.vals[a..z]);
+                // A row of one part is sorted, each column once.
+                let len = if ws.count[r] > 1 {
+                    merge_row(&mut ws.cols[a..z], &mut ws.vals[a..z])
+                } else {
+                    z - a
+                };
                 ws.cols.copy_within(a..a + len, w);
                 ws.vals.copy_within(a..a + len, w);
                 w += len;
@@ -544,7 +708,8 @@ mod tests {
             ),
         ) {
             let (mut sorted, mut summed) = (PartList::default(), PartList::default());
-            let mut by_rows = PartList::default();
+            // Sized for the parts after the first (`expecting`): the same entries.
+            let mut by_rows = PartList::expecting(parts.len());
             let (mut ws, mut acc) = (CompressWorkspace::default(), RowAccumulator::default());
             let mut row_acc = RowAccumulator::default();
             for (k, part) in parts.iter().enumerate() {
@@ -567,14 +732,7 @@ mod tests {
                 prop_assert!(acc.is_empty());
             }
             let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
-                l.parts
-                    .iter()
-                    .flat_map(|&(k, b, s, e)| {
-                        l.buffers[b as usize][s..e]
-                            .iter()
-                            .map(move |x| (k, x.row, x.col, x.val.to_bits()))
-                    })
-                    .collect()
+                l.entries().into_iter().map(|(k, r, c, v)| (k, r, c, v.to_bits())).collect()
             };
             prop_assert_eq!(bits(&sorted), bits(&summed));
             prop_assert_eq!(bits(&sorted), bits(&by_rows));
@@ -605,6 +763,12 @@ mod tests {
         a.push_rows(0, &mut acc);
         b.push_compressed(0, &mut raw, &mut CompressWorkspace::default());
         assert_eq!(a.parts, b.parts);
-        assert_eq!(a.buffers, b.buffers);
+        let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
+            l.entries()
+                .into_iter()
+                .map(|(k, r, c, v)| (k, r, c, v.to_bits()))
+                .collect()
+        };
+        assert_eq!(bits(&a), bits(&b));
     }
 }

@@ -1,0 +1,33 @@
+//! Giving memory freed by a large phase back to the operating system.
+//!
+//! glibc's allocator keeps what a thread frees in that thread's arena and returns only the
+//! top of each arena to the system, so the part buffers of an assembly, freed before the
+//! matrix arrays are filled, would stay resident beside them: the process's peak would be
+//! the sum of both, not what is live. `malloc_trim` gives the free pages of every arena
+//! back (with `madvise`). Elsewhere (musl, macOS, Windows, or another global allocator in
+//! the program) this does nothing. glibc's API stays inside this module.
+
+/// Bytes freed at once from which a release is worth its walk over the arenas and the page
+/// faults of what is allocated after it (the parts of a coupling of 10^5 line faces are
+/// about this large).
+pub(crate) const RELEASE_BYTES: usize = 32 << 20;
+
+/// Asks the C allocator to give the memory it holds free back to the system; whether any
+/// came back (always `false` off glibc).
+#[cfg(all(target_os = "linux", target_env = "gnu"))]
+#[allow(unsafe_code)]
+pub(crate) fn release_free_memory() -> bool {
+    // SAFETY: malloc_trim has no precondition: it only returns free pages of the allocator's
+    // arenas to the system (and takes each arena's lock while it does).
+    let t = std::time::Instant::now();
+    let r = unsafe { libc::malloc_trim(0) != 0 };
+    eprintln!("TRIM {:.4}", t.elapsed().as_secs_f64());
+    r
+}
+
+/// Asks the C allocator to give the memory it holds free back to the system; whether any
+/// came back (always `false` off glibc).
+#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+pub(crate) fn release_free_memory() -> bool {
+    false
+}
