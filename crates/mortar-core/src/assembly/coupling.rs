@@ -590,35 +590,36 @@ fn assemble_on_pool(
     let tree_seconds = start.elapsed().as_secs_f64();
     // Each worker folds its chunks into one accumulator (its buffers and its part lists); the
     // first failing chunk in slave-face order decides the error, and chunks after a known
-    // failure are skipped.
+    // failure are skipped. Parts are keyed by chunk, so which worker took which chunk does not
+    // change a bit of D and M.
     let first_error = AtomicUsize::new(usize::MAX);
     let chunks = faces.div_ceil(CHUNK);
-    // Each worker's share of the chunks, for the size of its part buffers.
+    // One accumulator per worker, the chunks handed out one at a time from a counter (each
+    // worker takes the next as it finishes one, whatever the faces cost), so that each
+    // worker's part buffers can be sized for its share at once.
     let share = chunks.div_ceil(threads);
-    let accs: Vec<Accumulator> = (0..chunks)
-        .into_par_iter()
-        .fold(
-            || Accumulator::expecting(share),
-            |mut acc, c| {
-                if c > first_error.load(Ordering::Relaxed) {
-                    return acc;
+    let next = AtomicUsize::new(0);
+    let accs: Vec<Accumulator> = rayon::broadcast(|_| {
+        let mut acc = Accumulator::expecting(share);
+        loop {
+            let c = next.fetch_add(1, Ordering::Relaxed);
+            if c >= chunks {
+                return acc;
+            }
+            if c > first_error.load(Ordering::Relaxed) {
+                continue;
+            }
+            let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
+            if let Err(e) = chunk(
+                interface, options, &ctx, &search, &order, range, c as u64, &mut acc,
+            ) {
+                first_error.fetch_min(c, Ordering::Relaxed);
+                if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
+                    acc.error = Some((c, e));
                 }
-                let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
-                match chunk(
-                    interface, options, &ctx, &search, &order, range, c as u64, &mut acc,
-                ) {
-                    Ok(()) => {}
-                    Err(e) => {
-                        first_error.fetch_min(c, Ordering::Relaxed);
-                        if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
-                            acc.error = Some((c, e));
-                        }
-                    }
-                }
-                acc
-            },
-        )
-        .collect();
+            }
+        }
+    });
 
     // What only the per-face work needed goes before the matrices are built.
     drop((search, order, masters));

@@ -350,13 +350,15 @@ impl PartList {
         let run0 = buf.runs.len();
         fill(buf, run0);
         if self.parts.is_empty() && self.expected > 1 {
-            // Room for the expected parts, a tenth more, as large as the first.
+            // Room for the expected parts, a tenth more, as large as the first (where the
+            // system grants it: the buffers grow as needed otherwise).
             let times = self.expected + self.expected.div_ceil(10);
-            let entries = (buf.cols.len() * times).min(RunBuffer::MAX_ENTRIES);
-            buf.cols.reserve_exact(entries - buf.cols.len());
-            buf.vals.reserve_exact(entries - buf.vals.len());
-            buf.runs
-                .reserve_exact(buf.runs.len() * times - buf.runs.len());
+            let entries = buf.cols.len().saturating_mul(times);
+            let entries = entries.min(RunBuffer::MAX_ENTRIES);
+            let runs = buf.runs.len().saturating_mul(times);
+            let _ = buf.cols.try_reserve_exact(entries - buf.cols.len());
+            let _ = buf.vals.try_reserve_exact(entries - buf.vals.len());
+            let _ = buf.runs.try_reserve_exact(runs - buf.runs.len());
         }
         self.parts.push((key, b as u32, run0, buf.runs.len()));
     }
