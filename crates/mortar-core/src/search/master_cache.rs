@@ -16,14 +16,20 @@ use crate::interface::{Interface, MasterFaces};
 /// meets, so that the faces met by consecutive slave faces rarely evict each other.
 const WAYS: usize = 1024;
 
-/// Values by slot, direct-mapped (`slot mod WAYS`): master faces of neighbouring slots
+/// What a cache of master faces keeps of each face, read from the mesh once per worker.
+pub(crate) trait MasterRead {
+    /// Reads the face in slot `s` of `masters` (built for `interface`).
+    fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self;
+}
+
+/// Master faces by slot, direct-mapped (`slot mod WAYS`): master faces of neighbouring slots
 /// (the search's spatial order, or the chain order in 1D) do not collide.
 #[derive(Debug, Clone)]
-pub(crate) struct SlotCache<T> {
+pub(crate) struct MasterCache<T> {
     entries: Vec<Option<(u32, T)>>,
 }
 
-impl<T> Default for SlotCache<T> {
+impl<T> Default for MasterCache<T> {
     fn default() -> Self {
         Self {
             entries: Vec::new(),
@@ -31,22 +37,41 @@ impl<T> Default for SlotCache<T> {
     }
 }
 
-impl<T> SlotCache<T> {
-    /// The value of slot `s`, from `read` unless it is held.
+impl<T: MasterRead> MasterCache<T> {
+    /// The master face in slot `s` of `masters` (built for `interface`), read unless it is
+    /// held.
     #[inline]
-    pub(crate) fn get(&mut self, s: u32, read: impl FnOnce(u32) -> T) -> &T {
+    pub(crate) fn get(&mut self, interface: &Interface, masters: &MasterFaces, s: u32) -> &T {
         if self.entries.is_empty() {
             self.entries.resize_with(WAYS, || None);
         }
         let e = &mut self.entries[s as usize & (WAYS - 1)];
         if !matches!(e, Some((k, _)) if *k == s) {
-            *e = Some((s, read(s)));
+            *e = Some((s, T::read(interface, masters, s)));
         }
         match e {
             Some((_, v)) => v,
             None => unreachable!("filled above"),
         }
     }
+}
+
+/// The element type, node coordinates and node columns of the face in slot `s`.
+fn read_face(
+    interface: &Interface,
+    masters: &MasterFaces,
+    s: u32,
+) -> (
+    ElementRef,
+    [Vector3<f64>; MAX_FACE_NODES],
+    usize,
+    [u32; MAX_FACE_NODES],
+) {
+    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+    let (el, k) = masters.coords_into(interface, s as usize, &mut y);
+    let mut cols = [0u32; MAX_FACE_NODES];
+    masters.columns_into(interface, s as usize, &mut cols);
+    (el, y, k, cols)
 }
 
 /// One master line: what [`MasterFaces`] gives of the face in its slot, and what is computed
@@ -63,40 +88,23 @@ pub(crate) struct MasterLine {
     pub cols: [u32; 2],
 }
 
+impl MasterRead for MasterLine {
+    #[inline(never)]
+    fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
+        let (el, y, k, cols) = read_face(interface, masters, s);
+        debug_assert_eq!(k, 2, "a two-node line");
+        Self {
+            nodes: [y[0], y[1]],
+            bx: points_box(&y[..k], interface.tolerances()),
+            normal: el.unit_normal(&y[..k], &Vector2::zeros()),
+            cols: [cols[0], cols[1]],
+        }
+    }
+}
+
 /// The master lines of the 1D merge, by slot ([`MasterFaces`] in chain order: the lines met
 /// by consecutive slave faces have consecutive slots).
-#[derive(Debug, Clone, Default)]
-pub(crate) struct MasterLineCache(SlotCache<MasterLine>);
-
-impl MasterLineCache {
-    /// The master line in slot `s` of `masters` (built for `interface`, every face a two-node
-    /// line).
-    #[inline]
-    pub(crate) fn get(
-        &mut self,
-        interface: &Interface,
-        masters: &MasterFaces,
-        s: u32,
-    ) -> &MasterLine {
-        self.0.get(s, |s| read_line(interface, masters, s))
-    }
-}
-
-/// Reads the line in slot `s` from the mesh.
-#[inline(never)]
-fn read_line(interface: &Interface, masters: &MasterFaces, s: u32) -> MasterLine {
-    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
-    let (el, k) = masters.coords_into(interface, s as usize, &mut y);
-    debug_assert_eq!(k, 2, "a two-node line");
-    let mut cols = [0u32; MAX_FACE_NODES];
-    masters.columns_into(interface, s as usize, &mut cols);
-    MasterLine {
-        nodes: [y[0], y[1]],
-        bx: points_box(&y[..k], interface.tolerances()),
-        normal: el.unit_normal(&y[..k], &Vector2::zeros()),
-        cols: [cols[0], cols[1]],
-    }
-}
+pub(crate) type MasterLineCache = MasterCache<MasterLine>;
 
 /// One master triangle: its element type, node coordinates and columns in M, as
 /// [`MasterFaces`] gives them.
@@ -110,35 +118,18 @@ pub(crate) struct MasterTriangle {
     pub cols: [u32; 3],
 }
 
+impl MasterRead for MasterTriangle {
+    #[inline(never)]
+    fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
+        let (element, y, k, cols) = read_face(interface, masters, s);
+        debug_assert_eq!(k, 3, "a three-node triangle");
+        Self {
+            element,
+            nodes: [y[0], y[1], y[2]],
+            cols: [cols[0], cols[1], cols[2]],
+        }
+    }
+}
+
 /// The master triangles of the 3D closed form, by slot.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct MasterTriangleCache(SlotCache<MasterTriangle>);
-
-impl MasterTriangleCache {
-    /// The master triangle in slot `s` of `masters` (built for `interface`, every face a
-    /// three-node triangle).
-    #[inline]
-    pub(crate) fn get(
-        &mut self,
-        interface: &Interface,
-        masters: &MasterFaces,
-        s: u32,
-    ) -> &MasterTriangle {
-        self.0.get(s, |s| read_triangle(interface, masters, s))
-    }
-}
-
-/// Reads the triangle in slot `s` from the mesh.
-#[inline(never)]
-fn read_triangle(interface: &Interface, masters: &MasterFaces, s: u32) -> MasterTriangle {
-    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
-    let (element, k) = masters.coords_into(interface, s as usize, &mut y);
-    debug_assert_eq!(k, 3, "a three-node triangle");
-    let mut cols = [0u32; MAX_FACE_NODES];
-    masters.columns_into(interface, s as usize, &mut cols);
-    MasterTriangle {
-        element,
-        nodes: [y[0], y[1], y[2]],
-        cols: [cols[0], cols[1], cols[2]],
-    }
-}
+pub(crate) type MasterTriangleCache = MasterCache<MasterTriangle>;
