@@ -1,5 +1,6 @@
 //! A fill-reducing ordering by nested dissection (METIS, through `metis-sys`): the one module
-//! of the toolkit that names METIS, and its one `unsafe` call.
+//! of the toolkit that names METIS, and one of its two `unsafe` calls (the other is glibc's
+//! `malloc_trim`, in `memory.rs`).
 //!
 //! For the stiffness matrices of 3D meshes, nested dissection leaves several times less fill
 //! in a Cholesky factor than approximate minimum degree (faer's default), and the factor's
