@@ -56,24 +56,6 @@ impl<T: MasterRead> MasterCache<T> {
     }
 }
 
-/// The element type, node coordinates and node columns of the face in slot `s`.
-fn read_face(
-    interface: &Interface,
-    masters: &MasterFaces,
-    s: u32,
-) -> (
-    ElementRef,
-    [Vector3<f64>; MAX_FACE_NODES],
-    usize,
-    [u32; MAX_FACE_NODES],
-) {
-    let mut y = [Vector3::zeros(); MAX_FACE_NODES];
-    let (el, k) = masters.coords_into(interface, s as usize, &mut y);
-    let mut cols = [0u32; MAX_FACE_NODES];
-    masters.columns_into(interface, s as usize, &mut cols);
-    (el, y, k, cols)
-}
-
 /// One master line: what [`MasterFaces`] gives of the face in its slot, and what is computed
 /// from that, with the same calls as where it is read uncached (so the same bits).
 #[derive(Debug, Clone, Copy)]
@@ -91,8 +73,11 @@ pub(crate) struct MasterLine {
 impl MasterRead for MasterLine {
     #[inline(never)]
     fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
-        let (el, y, k, cols) = read_face(interface, masters, s);
+        let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+        let (el, k) = masters.coords_into(interface, s as usize, &mut y);
         debug_assert_eq!(k, 2, "a two-node line");
+        let mut cols = [0u32; MAX_FACE_NODES];
+        masters.columns_into(interface, s as usize, &mut cols);
         Self {
             nodes: [y[0], y[1]],
             bx: points_box(&y[..k], interface.tolerances()),
@@ -121,8 +106,11 @@ pub(crate) struct MasterTriangle {
 impl MasterRead for MasterTriangle {
     #[inline(never)]
     fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
-        let (element, y, k, cols) = read_face(interface, masters, s);
+        let mut y = [Vector3::zeros(); MAX_FACE_NODES];
+        let (element, k) = masters.coords_into(interface, s as usize, &mut y);
         debug_assert_eq!(k, 3, "a three-node triangle");
+        let mut cols = [0u32; MAX_FACE_NODES];
+        masters.columns_into(interface, s as usize, &mut cols);
         Self {
             element,
             nodes: [y[0], y[1], y[2]],
