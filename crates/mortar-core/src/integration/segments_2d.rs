@@ -173,16 +173,8 @@ fn try_project_onto_slave(
             LinePoint::at(ctx, slave, xi).g(y, line.orientation)
         }
     };
-    let (ga, _) = g(-1.0);
-    let (gb, _) = g(1.0);
-    if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
-        return None;
-    }
-    if ga >= 0.0 {
-        return Some(-1.0);
-    }
-    if gb <= 0.0 {
-        return Some(1.0);
+    if let Some(end) = root_beyond_ends(g(-1.0).0, g(1.0).0)? {
+        return Some(end);
     }
     if let Some(xi) = line
         .affine
@@ -192,6 +184,31 @@ fn try_project_onto_slave(
         return Some(xi);
     }
     bracketed_root(g, -1.0, 1.0, ROOT_TOL, ROOT_STEPS)
+}
+
+/// What `orientation F` at the ends of the slave line, `ga` at `-1` and `gb` at `1`, says of
+/// its root: `None` where it is not finite or decreases across the face (the projection is
+/// not one-to-one there), `Some(Some(end))` where the root lies at or beyond that end (the
+/// point projects onto it), `Some(None)` where it lies inside.
+#[inline]
+fn root_beyond_ends(ga: f64, gb: f64) -> Option<Option<f64>> {
+    if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
+        None
+    } else if ga >= 0.0 {
+        Some(Some(-1.0))
+    } else if gb <= 0.0 {
+        Some(Some(1.0))
+    } else {
+        Some(None)
+    }
+}
+
+/// Whether the slave line `face` and the projector's direction field on it are both affine
+/// in the reference coordinate (so that [`AffineLine`] describes them).
+fn is_affine_line(ctx: &SegmentContext<'_>, face: &FaceGeometry) -> bool {
+    face.element.is_affine()
+        && face.element.shape_degree() == 1
+        && ctx.projector.direction_is_affine(face)
 }
 
 /// What `F` needs at one point of the slave line: position, tangent, direction and its
@@ -256,13 +273,13 @@ struct AffineLine {
 }
 
 impl AffineLine {
-    fn new(face: &FaceGeometry, ends: &[LinePoint; 2]) -> Self {
-        let [a, b] = ends;
+    /// The line of `face` from the positions and directions `(x, d)` at its ends.
+    fn new(face: &FaceGeometry, [(x0, d0), (x1, d1)]: [(Vector3<f64>, Vector3<f64>); 2]) -> Self {
         Self {
-            x0: a.x,
-            e: b.x - a.x,
-            d0: a.d,
-            dd: b.d - a.d,
+            x0,
+            e: x1 - x0,
+            d0,
+            dd: d1 - d0,
             det: face
                 .element
                 .jacobian_det(face.node_coords(), &Vector2::zeros()),
@@ -317,10 +334,8 @@ impl<'a> SlaveLine<'a> {
             LinePoint::at(ctx, face, -1.0),
             LinePoint::at(ctx, face, 1.0),
         ];
-        let affine = (face.element.is_affine()
-            && face.element.shape_degree() == 1
-            && ctx.projector.direction_is_affine(face))
-        .then(|| AffineLine::new(face, &ends));
+        let affine =
+            is_affine_line(ctx, face).then(|| AffineLine::new(face, ends.map(|p| (p.x, p.d))));
         Self {
             face,
             orientation,
@@ -381,10 +396,7 @@ struct FusedLine {
 impl FusedLine {
     /// `None` where the line or its direction field is not affine.
     fn new(ctx: &SegmentContext<'_>, face: &FaceGeometry, orientation: f64) -> Option<Self> {
-        if !(face.element.is_affine()
-            && face.element.shape_degree() == 1
-            && ctx.projector.direction_is_affine(face))
-        {
+        if !is_affine_line(ctx, face) {
             return None;
         }
         let end = |xi: f64| {
@@ -392,20 +404,10 @@ impl FusedLine {
             (face.map(&xi), ctx.projector.direction(face, &xi).0)
         };
         let ends = [end(-1.0), end(1.0)];
-        let [(x0, d0), (x1, d1)] = ends;
-        let affine = AffineLine {
-            x0,
-            e: x1 - x0,
-            d0,
-            dd: d1 - d0,
-            det: face
-                .element
-                .jacobian_det(face.node_coords(), &Vector2::zeros()),
-        };
         Some(Self {
             orientation,
             ends,
-            affine,
+            affine: AffineLine::new(face, ends),
             last: [(u32::MAX, 0.0); REMEMBERED],
             next: 0,
         })
@@ -419,16 +421,9 @@ impl FusedLine {
             return Some(xi);
         }
         let g = |(x, d): &(Vector3<f64>, Vector3<f64>)| self.orientation * cross2(&(y - x), d);
-        let (ga, gb) = (g(&self.ends[0]), g(&self.ends[1]));
-        if !(ga.is_finite() && gb.is_finite()) || (ga > 0.0 && gb < 0.0) {
-            return None;
-        }
-        let xi = if ga >= 0.0 {
-            -1.0
-        } else if gb <= 0.0 {
-            1.0
-        } else {
-            self.affine.root(y, self.orientation)?
+        let xi = match root_beyond_ends(g(&self.ends[0]), g(&self.ends[1]))? {
+            Some(end) => end,
+            None => self.affine.root(y, self.orientation)?,
         };
         self.last[self.next] = (col, xi);
         self.next = (self.next + 1) % REMEMBERED;
