@@ -3,7 +3,7 @@ use nalgebra::{Vector2, Vector3};
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{FaceLocation, Side};
 use crate::geometry::stable_normalize;
-use crate::mesh::SurfaceMesh;
+use crate::mesh::{FaceView, SurfaceMesh};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
 /// The quadrature degree added for a warped or curved face (see [`FaceGeometry::is_flat`]):
@@ -38,22 +38,16 @@ impl FaceGeometry {
         nodal_normals: Option<&[Vector3<f64>]>,
     ) -> Self {
         let view = mesh.face(index);
-        let mut nodes = [Vector3::zeros(); MAX_FACE_NODES];
-        let mut normals = [Vector3::zeros(); MAX_FACE_NODES];
-        for (i, &n) in view.nodes.iter().enumerate() {
-            nodes[i] = mesh.coords()[n as usize];
-            if let Some(nn) = nodal_normals {
-                normals[i] = nn[n as usize];
-            }
-        }
-        Self {
-            index: index as u32,
-            tag: view.tag,
+        let mut face = Self {
+            index: 0,
+            tag: 0,
             side,
             element: view.element,
-            nodes,
-            normals,
-        }
+            nodes: [Vector3::zeros(); MAX_FACE_NODES],
+            normals: [Vector3::zeros(); MAX_FACE_NODES],
+        };
+        face.fill(mesh, view, side, index, nodal_normals);
+        face
     }
 
     /// [`gather`](Self::gather) into `self`, which holds a face gathered before: the same
@@ -70,13 +64,27 @@ impl FaceGeometry {
         let view = mesh.face(index);
         let old = self.node_count();
         let k = view.nodes.len();
-        for (i, &n) in view.nodes.iter().enumerate() {
-            self.nodes[i] = mesh.coords()[n as usize];
-            self.normals[i] = nodal_normals.map_or(Vector3::zeros(), |nn| nn[n as usize]);
-        }
+        self.fill(mesh, view, side, index, nodal_normals);
         for i in k..old.max(k) {
             self.nodes[i] = Vector3::zeros();
             self.normals[i] = Vector3::zeros();
+        }
+    }
+
+    /// Writes the face `view` (face `index` of `mesh`) into `self`: its nodes and normals
+    /// (zero where `nodal_normals` is not given) over the first entries, and its identity.
+    #[inline(always)]
+    fn fill(
+        &mut self,
+        mesh: &SurfaceMesh,
+        view: FaceView<'_>,
+        side: Side,
+        index: usize,
+        nodal_normals: Option<&[Vector3<f64>]>,
+    ) {
+        for (i, &n) in view.nodes.iter().enumerate() {
+            self.nodes[i] = mesh.coords()[n as usize];
+            self.normals[i] = nodal_normals.map_or(Vector3::zeros(), |nn| nn[n as usize]);
         }
         self.index = index as u32;
         self.tag = view.tag;
