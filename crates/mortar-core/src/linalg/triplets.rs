@@ -286,8 +286,16 @@ impl RunBuffer {
         }
         self.cols.push(col);
         self.vals.push(val);
-        let end = u32::try_from(self.cols.len()).expect("fewer than 2^32 entries in a part buffer");
-        self.runs.last_mut().expect("a run was opened").1 = end;
+        self.runs.last_mut().expect("a run was opened").1 = self.end();
+    }
+
+    /// Where the next entry goes, as a run's end.
+    ///
+    /// # Panics
+    /// If the buffer holds more than [`Self::MAX_ENTRIES`] entries.
+    #[inline]
+    fn end(&self) -> u32 {
+        u32::try_from(self.cols.len()).expect("fewer than 2^32 entries in a part buffer")
     }
 
     /// Appends the row `row` of a part (a new run), its columns ascending and distinct.
@@ -295,8 +303,7 @@ impl RunBuffer {
     fn push_row(&mut self, row: u32, entries: &[(u32, f64)]) {
         self.cols.extend(entries.iter().map(|e| e.0));
         self.vals.extend(entries.iter().map(|e| e.1));
-        let end = u32::try_from(self.cols.len()).expect("fewer than 2^32 entries in a part buffer");
-        self.runs.push((row, end));
+        self.runs.push((row, self.end()));
     }
 }
 
@@ -401,20 +408,21 @@ impl PartList {
         );
     }
 
-    /// The entries of part `(buffer, first run, end of runs)`: its runs, and where its entries
-    /// start.
-    fn part_entries(&self, b: u32, r0: usize, r1: usize) -> (&RunBuffer, usize, usize) {
-        let buf = &self.buffers[b as usize];
-        (buf, buf.run_start(r0), buf.run_start(r1))
+    /// The runs of the part `(key, buffer, first run, end of runs)`.
+    fn runs_of(&self, &(_, b, r0, r1): &(u64, u32, usize, usize)) -> PartRuns<'_> {
+        PartRuns {
+            buf: &self.buffers[b as usize],
+            runs: r0..r1,
+        }
     }
 
     /// Number of stored triplets.
     pub fn len(&self) -> usize {
         self.parts
             .iter()
-            .map(|&(_, b, r0, r1)| {
-                let (_, a, z) = self.part_entries(b, r0, r1);
-                z - a
+            .map(|p| {
+                let p = self.runs_of(p);
+                p.end() - p.start()
             })
             .sum()
     }
@@ -426,9 +434,14 @@ impl PartList {
 
     /// Bytes the part buffers hold (their capacity).
     fn bytes(&self) -> usize {
+        use std::mem::size_of;
         self.buffers
             .iter()
-            .map(|b| b.runs.capacity() * 8 + b.cols.capacity() * 4 + b.vals.capacity() * 8)
+            .map(|b| {
+                b.runs.capacity() * size_of::<(u32, u32)>()
+                    + b.cols.capacity() * size_of::<u32>()
+                    + b.vals.capacity() * size_of::<f64>()
+            })
             .sum()
     }
 
@@ -436,12 +449,12 @@ impl PartList {
     #[cfg(test)]
     fn entries(&self) -> Vec<(u64, u32, u32, f64)> {
         let mut out = Vec::new();
-        for &(k, b, r0, r1) in &self.parts {
-            let buf = &self.buffers[b as usize];
-            for i in r0..r1 {
+        for part in &self.parts {
+            let PartRuns { buf, runs } = self.runs_of(part);
+            for i in runs {
                 let row = buf.runs[i].0;
                 for e in buf.run_start(i)..buf.run_start(i + 1) {
-                    out.push((k, row, buf.cols[e], buf.vals[e]));
+                    out.push((part.0, row, buf.cols[e], buf.vals[e]));
                 }
             }
         }
@@ -461,14 +474,7 @@ impl PartList {
             "two triplet parts with the same key"
         );
         let blocks = {
-            let parts: Vec<PartRuns> = self
-                .parts
-                .iter()
-                .map(|&(_, b, r0, r1)| PartRuns {
-                    buf: &self.buffers[b as usize],
-                    runs: r0..r1,
-                })
-                .collect();
+            let parts: Vec<PartRuns> = self.parts.iter().map(|p| self.runs_of(p)).collect();
             for p in &parts {
                 let (runs, a, z) = (&p.buf.runs[p.runs.clone()], p.start(), p.end());
                 let bad_row = runs.iter().find(|r| r.0 as usize >= nrows);
@@ -521,7 +527,8 @@ type RowBlock = (Vec<usize>, Vec<u32>, Vec<f64>);
 /// Per-thread buffers of the row blocks.
 #[derive(Default)]
 struct BlockWorkspace {
-    /// The block's runs, in part order: `(row, buffer index in parts, entry range)`.
+    /// The block's runs, in part order: `(row, index of the part, start and end of its
+    /// entries in the part's buffer)`.
     local: Vec<(u32, u32, usize, usize)>,
     start: Vec<usize>,
     next: Vec<usize>,
