@@ -36,3 +36,6 @@ mod affine_faces;
 
 #[path = "integration/second_order.rs"]
 mod second_order;
+
+#[path = "integration/quiet_library.rs"]
+mod quiet_library;

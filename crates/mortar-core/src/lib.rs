@@ -41,6 +41,12 @@
 //! println!("area {} over {} pairs", coupling.stats.area, coupling.stats.pairs);
 //! ```
 
+// What a run has to say goes into its results; only the command-line program prints.
+#![cfg_attr(
+    not(test),
+    deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro)
+)]
+
 pub mod assembly;
 pub mod element;
 pub mod error;

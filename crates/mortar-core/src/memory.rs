@@ -19,10 +19,7 @@ pub(crate) const RELEASE_BYTES: usize = 32 << 20;
 pub(crate) fn release_free_memory() -> bool {
     // SAFETY: malloc_trim has no precondition: it only returns free pages of the allocator's
     // arenas to the system (and takes each arena's lock while it does).
-    let t = std::time::Instant::now();
-    let r = unsafe { libc::malloc_trim(0) != 0 };
-    eprintln!("TRIM {:.4}", t.elapsed().as_secs_f64());
-    r
+    unsafe { libc::malloc_trim(0) != 0 }
 }
 
 /// Asks the C allocator to give the memory it holds free back to the system; whether any

@@ -55,6 +55,12 @@
 //! assert_eq!(registry.by_gmsh_type(8).unwrap().name(), "Line3");
 //! ```
 
+// What a run has to say goes into its results; only the command-line program prints.
+#![cfg_attr(
+    not(test),
+    deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro)
+)]
+
 mod lagrange;
 mod line2;
 mod line3;

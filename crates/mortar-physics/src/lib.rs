@@ -38,6 +38,12 @@
 //! println!("{}", solution.formulation); // dual-condensed SPD (...): D is diagonal ...; sparse Cholesky
 //! ```
 
+// What a run has to say goes into its results; only the command-line program prints.
+#![cfg_attr(
+    not(test),
+    deny(clippy::print_stdout, clippy::print_stderr, clippy::dbg_macro)
+)]
+
 pub mod contact;
 pub mod elastic;
 pub mod error;
