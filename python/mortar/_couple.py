@@ -76,7 +76,8 @@ class Coupling:
             validation, assembly), ``seconds_by_phase``, ``seconds_call`` (the whole Python
             call, conversions included), ``uncovered_area``, ``faces_without_partner``,
             ``faces_partly_covered``, ``skipped_pairs``, ``fused_line_faces`` (slave faces
-            done by the fused kernel for straight 2D lines), ``closed_form_faces`` (3D slave
+            done by the fused kernel for straight 2D lines), ``straight_line_faces`` (slave
+            faces done by the sorted merge of a straight 2D interface), ``closed_form_faces`` (3D slave
             faces whose clip polygons were integrated in closed form), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
         warnings: list of str: uncovered slave area, skipped pairs (each also warned of with

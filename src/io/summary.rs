@@ -291,6 +291,9 @@ pub struct CouplingSummary {
     /// segment-based), the others by the integration strategy.
     #[serde(default)]
     pub fused_line_faces: usize,
+    /// Slave faces coupled by the sorted merge of a straight 2D interface (all or none).
+    #[serde(default)]
+    pub straight_line_faces: usize,
     /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles,
     /// segment-based), the others by the integration strategy's points.
     #[serde(default)]
@@ -345,6 +348,7 @@ impl CouplingSummary {
             faces_without_partner: s.faces_without_partner,
             faces_partly_covered: s.faces_partly_covered,
             fused_line_faces: s.fused_line_faces,
+            straight_line_faces: s.straight_line_faces,
             closed_form_faces: s.closed_form_faces,
             area: s.area,
             warnings: coupling

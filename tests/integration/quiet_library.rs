@@ -47,5 +47,9 @@ fn library_crates_do_not_print() {
             }
         }
     }
-    assert!(prints.is_empty(), "library code prints:\n{}", prints.join("\n"));
+    assert!(
+        prints.is_empty(),
+        "library code prints:\n{}",
+        prints.join("\n")
+    );
 }

@@ -7,6 +7,7 @@ use std::sync::Arc;
 use mortar::core::integration::{IntegrationStrategy, PairedRule, SegmentBased, SegmentContext};
 use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
+use mortar::core::projector::{NodalNormalField, Projector};
 use mortar::testing::MeshPair;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
@@ -183,6 +184,50 @@ pub fn plain_with(options: &CouplingOptions, strategy: SegmentBased) -> Coupling
     o
 }
 
+/// Vertical lines at r = 0.7, of 13 and 19 faces graded differently, the slave facing the
+/// master: an axisymmetric (r-z) interface for the 2D line paths.
+pub fn vertical_lines() -> Interface {
+    let vertical = |n: usize, p: f64| -> Vec<[f64; 2]> {
+        (0..=n)
+            .map(|i| [0.7, (i as f64 / n as f64).powf(p)])
+            .collect()
+    };
+    let slave = mortar::testing::polyline(&vertical(13, 1.2), 1, true);
+    let master = mortar::testing::polyline(&vertical(19, 0.9), 1000, false);
+    Interface::new(slave, master).unwrap()
+}
+
+/// The nodal normal field without its claim of a uniform direction
+/// ([`Projector::uniform_direction`]): a straight 2D interface then takes the fused kernel
+/// instead of the sorted merge, as it does under a user's projector that makes no such claim.
+#[derive(Debug)]
+pub struct NotUniform;
+
+impl Projector for NotUniform {
+    fn name(&self) -> &'static str {
+        NodalNormalField.name()
+    }
+
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        xi: &nalgebra::Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        NodalNormalField.direction(slave, xi)
+    }
+
+    fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
+        NodalNormalField.direction_is_affine(slave)
+    }
+}
+
+/// `options` with the [`NotUniform`] projector: the fused kernel on straight lines.
+pub fn not_uniform(options: &CouplingOptions) -> CouplingOptions {
+    let mut o = options.clone();
+    o.projector = Arc::new(NotUniform);
+    o
+}
+
 /// Couples `interface` with `options` (of the default [`SegmentBased`]) and by the general
 /// path; checks that D and M agree to `1e-13` of their largest entry and that the counts and
 /// warnings are the same; returns the run of `options`.
@@ -200,6 +245,7 @@ pub fn both_ways_with(
     let fused = assemble_coupling(interface, options).unwrap();
     let general = assemble_coupling(interface, general).unwrap();
     assert_eq!(general.stats.fused_line_faces, 0, "{what}");
+    assert_eq!(general.stats.straight_line_faces, 0, "{what}");
     assert_eq!(general.stats.closed_form_faces, 0, "{what}");
     for (a, b, name) in [(&general.d, &fused.d, "D"), (&general.m, &fused.m, "M")] {
         let cols = if name == "D" {

@@ -7,6 +7,10 @@
 //! way). The fused kernel does the same operations on the same numbers, in another order of
 //! summation (slave faces along their chain instead of in Morton order): D and M agree to
 //! 1e-13 of their largest entry, the counts of pairs and the uncovered area exactly.
+//!
+//! A straight interface takes the sorted merge before the fused kernel (`straight_lines.rs`):
+//! these tests run under `common::NotUniform`, the default projector without its claim of a
+//! uniform direction, so that straight lines reach the fused kernel.
 
 use std::f64::consts::PI;
 
@@ -17,7 +21,7 @@ use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use super::common::{both_ways, config, dm_bits, ok, plain};
+use super::common::{both_ways, config, dm_bits, not_uniform, ok, plain, vertical_lines};
 
 /// `n + 1` points from `a` to `b` on the x-axis at height `y`, graded by `t -> t^p`.
 fn points(a: f64, b: f64, y: f64, n: usize, p: f64) -> Vec<[f64; 2]> {
@@ -46,11 +50,13 @@ fn circle(c: [f64; 2], r: f64, n: usize, phase: f64, first_tag: u64, reverse: bo
     m
 }
 
-/// Standard and dual multipliers, Cartesian.
+/// Standard and dual multipliers, Cartesian, under a projector that does not claim a
+/// uniform direction: straight interfaces take the fused kernel, not the sorted merge
+/// (`straight_lines.rs`).
 fn options() -> [CouplingOptions; 2] {
     [
-        CouplingOptions::default(),
-        CouplingOptions::default().dual(),
+        not_uniform(&CouplingOptions::default()),
+        not_uniform(&CouplingOptions::default().dual()),
     ]
 }
 
@@ -86,7 +92,7 @@ proptest! {
             Vector3::new(c * q.x - s * q.y, s * q.x + c * q.y, 0.0)
         }))?;
         let interface = ok(moved.interface())?;
-        let options = if dual { CouplingOptions::default().dual() } else { CouplingOptions::default() };
+        let options = options()[usize::from(dual)].clone();
         let fused = both_ways(&interface, &options, "random pair");
         prop_assert!(fused.stats.fused_line_faces > 0);
         prop_assert_eq!(
@@ -197,14 +203,7 @@ fn a_coarse_slave_face_over_many_master_faces_goes_to_the_strategy() {
 /// path does (vertical lines at r = 0.7, differently graded).
 #[test]
 fn axisymmetric_measure() {
-    let vertical = |n: usize, p: f64| -> Vec<[f64; 2]> {
-        (0..=n)
-            .map(|i| [0.7, (i as f64 / n as f64).powf(p)])
-            .collect()
-    };
-    let slave = polyline(&vertical(13, 1.2), 1, true);
-    let master = polyline(&vertical(19, 0.9), 1000, false);
-    let interface = Interface::new(slave, master).unwrap();
+    let interface = vertical_lines();
     for options in options() {
         let fused = both_ways(&interface, &options.axisymmetric(), "axisymmetric");
         assert_eq!(fused.stats.fused_line_faces, 13);
@@ -236,7 +235,7 @@ fn three_node_lines_or_another_strategy_take_the_general_path() {
     let interface = Interface::new(slave, straight).unwrap();
     let c = assemble_coupling(&interface, &plain(&CouplingOptions::default())).unwrap();
     assert_eq!(c.stats.fused_line_faces, 0);
-    let c = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    let c = assemble_coupling(&interface, &options()[0]).unwrap();
     assert_eq!(c.stats.fused_line_faces, 6);
     assert_eq!(
         SegmentBased::default().line_segments(),
@@ -252,7 +251,7 @@ fn fused_lines_are_bit_identical_across_thread_counts() {
     let master = polyline(&points(0.0, 1.0, 0.0, 4001, 0.9), 10_000, true);
     let interface = Interface::new(slave, master).unwrap();
     let bits = |t: usize| {
-        let c = assemble_coupling(&interface, &CouplingOptions::default().threads(t)).unwrap();
+        let c = assemble_coupling(&interface, &options()[0].clone().threads(t)).unwrap();
         assert_eq!(c.stats.fused_line_faces, 3000);
         dm_bits(&c)
     };

@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use super::key_index::KeyIndex;
 use super::local::{integrate_batch_into, LocalBlocks};
+use super::straight_line::{self, Outcome};
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
@@ -79,6 +80,10 @@ pub struct CouplingStats {
     /// Slave faces coupled by the fused kernel for straight two-node lines (2D; see
     /// [`assemble_coupling`]); the others went through the integration strategy.
     pub fused_line_faces: usize,
+    /// Slave faces coupled by the sorted merge of a straight 2D interface (both sides one
+    /// chain of straight two-node lines along one line, a uniform projection direction; see
+    /// [`assemble_coupling`]): all of them or none.
+    pub straight_line_faces: usize,
     /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles on
     /// both sides, with a strategy that segments them exactly; see
     /// [`IntegrationStrategy::polygon_segments`](crate::integration::IntegrationStrategy::polygon_segments));
@@ -309,8 +314,13 @@ enum Search {
 impl Search {
     /// The search of `interface` for `options`, the master faces by slot and the order in
     /// which the slave faces are processed.
-    fn build(interface: &Interface, options: &CouplingOptions) -> (Self, MasterFaces, Vec<u32>) {
-        if let Some((rule, slave, master)) = line_chains(interface, options) {
+    /// `lines` are [`line_chains`]'s.
+    fn build(
+        interface: &Interface,
+        options: &CouplingOptions,
+        lines: Option<(LineSegments, LineChains, LineChains)>,
+    ) -> (Self, MasterFaces, Vec<u32>) {
+        if let Some((rule, slave, master)) = lines {
             let masters = MasterFaces::new(interface, master.order.iter().copied());
             let search = ChainSearch::new(interface, &masters, master);
             let follows = (0..slave.order.len())
@@ -343,25 +353,27 @@ impl Search {
     }
 }
 
-/// The chains of both sides and the strategy's rule when the fused kernel applies: a 2D
-/// interface whose faces are all straight two-node lines with linear shape functions, in
-/// chains (no branch, oriented alike), and a strategy that segments such lines exactly.
-fn line_chains(
-    interface: &Interface,
-    options: &CouplingOptions,
-) -> Option<(LineSegments, LineChains, LineChains)> {
+/// The strategy's rule when the fused kernel (and the sorted merge of a straight interface)
+/// may apply: a 2D interface whose faces are all straight two-node lines with linear shape
+/// functions, and a strategy that segments such lines exactly.
+fn line_rule(interface: &Interface, options: &CouplingOptions) -> Option<LineSegments> {
     if interface.dim() != SpatialDim::Two {
         return None;
     }
     let rule = options.integration.line_segments()?;
     let (slave, master) = (interface.slave(), interface.master());
     let types = slave.element_types().iter().chain(master.element_types());
-    if !types.copied().all(is_linear_line) {
-        return None;
-    }
+    types.copied().all(is_linear_line).then_some(rule)
+}
+
+/// The chains of both sides, if both are chains (no branch, oriented alike).
+fn line_chains(interface: &Interface) -> Option<(LineChains, LineChains)> {
     // Both sides at once: each chain walk is sequential.
-    let (slave, master) = rayon::join(|| LineChains::of(slave), || LineChains::of(master));
-    Some((rule, slave?, master?))
+    let (slave, master) = rayon::join(
+        || LineChains::of(interface.slave()),
+        || LineChains::of(interface.master()),
+    );
+    slave.zip(master)
 }
 
 /// Counts and timings summed over chunks.
@@ -376,6 +388,7 @@ struct ChunkStats {
     without_partner: usize,
     partly_covered: usize,
     fused: usize,
+    straight: usize,
     closed_form: usize,
     degrees: u32,
     seconds_search: f64,
@@ -394,6 +407,7 @@ impl ChunkStats {
         self.without_partner += o.without_partner;
         self.partly_covered += o.partly_covered;
         self.fused += o.fused;
+        self.straight += o.straight;
         self.closed_form += o.closed_form;
         self.degrees |= o.degrees;
         self.seconds_search += o.seconds_search;
@@ -580,7 +594,23 @@ fn assemble_on_pool(
     threads: usize,
 ) -> Result<Coupling> {
     let start = Instant::now();
-    let (search, masters, order) = Search::build(interface, options);
+    // A straight interface by the sorted merge; else the chains for the walk.
+    let mut lines = None;
+    if let Some(rule) = line_rule(interface, options) {
+        let mut outcome = straight_line::couple(interface, options, rule, None)?;
+        let mut chains = None;
+        if !matches!(outcome, Outcome::Merged(_)) {
+            chains = line_chains(interface);
+        }
+        if let (Outcome::NeedsChains, Some((s, m))) = (&outcome, &chains) {
+            outcome = straight_line::couple(interface, options, rule, Some((s, m)))?;
+        }
+        if let Outcome::Merged(merged) = outcome {
+            return Ok(merged_coupling(interface, options, *merged, threads, start));
+        }
+        lines = chains.map(|(s, m)| (rule, s, m));
+    }
+    let (search, masters, order) = Search::build(interface, options, lines);
     let ctx = SegmentContext {
         interface,
         projector: options.projector.as_ref(),
@@ -660,32 +690,108 @@ fn assemble_on_pool(
     }
     let ns = interface.slave_nodes().len();
     let nm = interface.master_nodes().len();
-    let mut d = total.d.to_csr(ns, ns);
+    let d = total.d.to_csr(ns, ns);
     let m = total.m.to_csr(ns, nm);
+    let seconds = PhaseSeconds {
+        tree: tree_seconds,
+        faces: faces_seconds,
+        assembly: 0.0,
+        total: 0.0,
+        thread: ThreadSeconds {
+            search: stats.seconds_search,
+            segments: stats.seconds_segments,
+            integration: stats.seconds_integration,
+        },
+    };
+    Ok(finish(
+        interface, options, d, m, &stats, warnings, threads, seconds, start, t_asm,
+    ))
+}
+
+/// The coupling of a straight 2D interface from the sorted merge's D and M.
+fn merged_coupling(
+    interface: &Interface,
+    options: &CouplingOptions,
+    merged: straight_line::Merged,
+    threads: usize,
+    start: Instant,
+) -> Coupling {
+    let faces = interface.slave().face_count();
+    let merge = (merged.rows_start - merged.merge_start).as_secs_f64();
+    let stats = ChunkStats {
+        candidates: merged.pairs,
+        pairs: merged.pairs,
+        segments: merged.pairs,
+        straight: faces,
+        degrees: 1 << merged.degree,
+        seconds_search: merge,
+        ..ChunkStats::default()
+    };
+    let seconds = PhaseSeconds {
+        tree: (merged.merge_start - start).as_secs_f64(),
+        faces: merge,
+        assembly: 0.0,
+        total: 0.0,
+        thread: ThreadSeconds {
+            search: merge,
+            segments: 0.0,
+            integration: 0.0,
+        },
+    };
+    let t_asm = merged.rows_start;
+    finish(
+        interface,
+        options,
+        merged.d,
+        merged.m,
+        &stats,
+        Vec::new(),
+        threads,
+        seconds,
+        start,
+        t_asm,
+    )
+}
+
+/// The coupling from D and M (a dual D's round-off dropped here), the counts, the warnings
+/// and the phases' seconds (`assembly` and `total` measured here from `t_asm` and `start`).
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    interface: &Interface,
+    options: &CouplingOptions,
+    mut d: SparseMatrix,
+    m: SparseMatrix,
+    stats: &ChunkStats,
+    warnings: Vec<CouplingWarning>,
+    threads: usize,
+    mut seconds: PhaseSeconds,
+    start: Instant,
+    t_asm: Instant,
+) -> Coupling {
     let mut roundoff = RoundoffDropped::default();
     if options.multipliers.diagonal_d() {
         (d, roundoff) = drop_roundoff(&d, ROUNDOFF);
     }
-    let assembly = t_asm.elapsed().as_secs_f64();
-
+    seconds.assembly = t_asm.elapsed().as_secs_f64();
     let slave_tags = interface.slave().node_tags();
     let master_tags = interface.master().node_tags();
     let normals = interface.slave_nodal_normals();
+    // The sum in order (rayon's would depend on the thread count).
     let area = d.data().iter().sum();
-    Ok(Coupling {
+    Coupling {
         slave_nodes: interface
             .slave_nodes()
-            .iter()
+            .par_iter()
             .map(|&n| slave_tags[n as usize])
             .collect(),
         master_nodes: interface
             .master_nodes()
-            .iter()
+            .par_iter()
             .map(|&n| master_tags[n as usize])
             .collect(),
         slave_normals: interface
             .slave_nodes()
-            .iter()
+            .par_iter()
             .map(|&n| normals[n as usize])
             .collect(),
         d,
@@ -703,24 +809,18 @@ fn assemble_on_pool(
             faces_without_partner: stats.without_partner,
             faces_partly_covered: stats.partly_covered,
             fused_line_faces: stats.fused,
+            straight_line_faces: stats.straight,
             closed_form_faces: stats.closed_form,
             area,
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
             seconds: PhaseSeconds {
-                tree: tree_seconds,
-                faces: faces_seconds,
-                assembly,
                 total: start.elapsed().as_secs_f64(),
-                thread: ThreadSeconds {
-                    search: stats.seconds_search,
-                    segments: stats.seconds_segments,
-                    integration: stats.seconds_integration,
-                },
+                ..seconds
             },
         },
         warnings,
-    })
+    }
 }
 
 /// The warnings of a run: uncovered slave area above the coverage tolerance (relative to the

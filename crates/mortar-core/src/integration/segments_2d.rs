@@ -452,6 +452,41 @@ pub(crate) fn is_linear_line(element: ElementRef) -> bool {
     })
 }
 
+/// Adds one point of a pair of two-node linear lines, at slave coordinate `xi` and master
+/// coordinate `eta`, to D's block `d` and the pair's M block `m`: `weight Phi_j N_k^s` and
+/// `weight Phi_j N_l^m`, `Phi = basis N^s` (the coupling's integration of a paired point, in
+/// its order of operations).
+#[inline(always)]
+pub(crate) fn add_line_point(
+    basis: &LmBasis,
+    weight: f64,
+    xi: f64,
+    eta: f64,
+    d: &mut [[f64; 2]; 2],
+    m: &mut [[f64; 2]; 2],
+) {
+    let ns = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
+    let phi = if basis.identity {
+        ns
+    } else {
+        let mut phi = [0.0; 2];
+        for (j, p) in phi.iter_mut().enumerate() {
+            *p = 0.0 + basis.a[j][0] * ns[0] + basis.a[j][1] * ns[1];
+        }
+        phi
+    };
+    let nm = [0.5 * (1.0 - eta), 0.5 * (1.0 + eta)];
+    for j in 0..2 {
+        let wp = weight * phi[j];
+        for k in 0..2 {
+            d[j][k] += wp * ns[k];
+        }
+        for l in 0..2 {
+            m[j][l] += wp * nm[l];
+        }
+    }
+}
+
 /// What [`fused_line_face`] computes for one slave face.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct LineFace {
@@ -550,26 +585,7 @@ pub(crate) fn fused_line_face(
             if geometry.is_axisymmetric() {
                 weight *= geometry.weight(&slave.map(&Vector2::new(xi, 0.0)));
             }
-            let ns = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
-            let phi = if basis.identity {
-                ns
-            } else {
-                let mut phi = [0.0; 2];
-                for (j, p) in phi.iter_mut().enumerate() {
-                    *p = 0.0 + basis.a[j][0] * ns[0] + basis.a[j][1] * ns[1];
-                }
-                phi
-            };
-            let nm = [0.5 * (1.0 - eta), 0.5 * (1.0 + eta)];
-            for j in 0..2 {
-                let wp = weight * phi[j];
-                for k in 0..2 {
-                    dl[j][k] += wp * ns[k];
-                }
-                for l in 0..2 {
-                    mb[j][l] += wp * nm[l];
-                }
-            }
+            add_line_point(basis, weight, xi, eta, &mut dl, &mut mb);
         }
         for (l, &c) in cols.iter().enumerate() {
             let at = match out.cols.iter().position(|&k| k == c) {

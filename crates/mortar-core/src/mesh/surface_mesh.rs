@@ -197,6 +197,13 @@ impl SurfaceMesh {
         &self.face_nodes[self.face_offsets[face] as usize..self.face_offsets[face + 1] as usize]
     }
 
+    /// The node indices of all faces, face after face (face `f`'s are
+    /// [`face_nodes`](Self::face_nodes)`(f)`): `2 f` and `2 f + 1` in a mesh of two-node
+    /// faces.
+    pub(crate) fn all_face_nodes(&self) -> &[u32] {
+        &self.face_nodes
+    }
+
     /// Copies the coordinates of a face's nodes into `out` and returns the node count.
     ///
     /// # Panics

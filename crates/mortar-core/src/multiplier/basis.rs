@@ -1,4 +1,4 @@
-use crate::element::MAX_FACE_NODES;
+use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
 use crate::geometry::ModelGeometry;
 use crate::interface::FaceGeometry;
@@ -106,6 +106,17 @@ pub trait MultiplierSpace: Send + Sync + std::fmt::Debug {
     /// Whether D is diagonal for this space on a fully covered interface (so that the slave
     /// unknowns condense out cheaply).
     fn diagonal_d(&self) -> bool {
+        false
+    }
+
+    /// Whether [`basis_for`](MultiplierSpace::basis_for) gives every face of type `element`
+    /// the same basis (to round-off), whatever the face's position, size and orientation,
+    /// for the measure `geometry`: the coupling may then build it once for a whole interface
+    /// (the sorted merge of a straight 2D interface; see
+    /// [`assemble_coupling`](crate::assemble_coupling)). The default, `false`, is always
+    /// correct.
+    fn basis_is_uniform(&self, element: ElementRef, geometry: ModelGeometry) -> bool {
+        let _ = (element, geometry);
         false
     }
 }

@@ -1,7 +1,7 @@
 use nalgebra::SMatrix;
 
 use super::{LmBasis, MultiplierSpace};
-use crate::element::{SurfaceElement, MAX_FACE_NODES};
+use crate::element::{ElementRef, SurfaceElement, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
 use crate::geometry::ModelGeometry;
 use crate::interface::WARPED_EXTRA_DEGREE;
@@ -54,6 +54,12 @@ impl MultiplierSpace for DualMultipliers {
 
     fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
         dual_basis(face, ModelGeometry::Cartesian)
+    }
+
+    /// On an affine face in the Cartesian measure: the face's constant Jacobian cancels from
+    /// the coefficients (the axisymmetric measure weights them by the face's radii).
+    fn basis_is_uniform(&self, element: ElementRef, geometry: ModelGeometry) -> bool {
+        element.is_affine() && !geometry.is_axisymmetric()
     }
 
     fn basis_for(

@@ -1,5 +1,7 @@
 use super::{LmBasis, MultiplierSpace};
+use crate::element::ElementRef;
 use crate::error::Result;
+use crate::geometry::ModelGeometry;
 use crate::interface::FaceGeometry;
 use crate::tolerances::Tolerances;
 
@@ -14,5 +16,10 @@ impl MultiplierSpace for StandardMultipliers {
 
     fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
         Ok(LmBasis::identity(face.node_count()))
+    }
+
+    /// The identity on every face.
+    fn basis_is_uniform(&self, _element: ElementRef, _geometry: ModelGeometry) -> bool {
+        true
     }
 }

@@ -7,7 +7,9 @@
 
 use nalgebra::{Vector2, Vector3};
 
-use crate::interface::FaceGeometry;
+use rayon::prelude::*;
+
+use crate::interface::{FaceGeometry, Interface};
 
 /// A projection direction field on a slave face.
 pub trait Projector: Send + Sync + std::fmt::Debug {
@@ -30,6 +32,31 @@ pub trait Projector: Send + Sync + std::fmt::Debug {
         let _ = slave;
         false
     }
+
+    /// The direction when it is one vector at every point of every slave face of
+    /// `interface`, unit directions differing by at most `tol` (the coupling passes the
+    /// resolution of the coordinates: the nodal normals of a straight line computed in
+    /// floating point differ by a few rounding errors of the coordinates over the shortest
+    /// face). The coupling then projects by a dot product along it (the sorted merge of a
+    /// straight 2D interface; see [`assemble_coupling`](crate::assemble_coupling)). The
+    /// default, `None`, is always correct.
+    fn uniform_direction(&self, interface: &Interface, tol: f64) -> Option<Vector3<f64>> {
+        let _ = (interface, tol);
+        None
+    }
+}
+
+/// `direction(0)` when each of `direction(i)`, `i < count`, is within `tol` of it.
+fn uniform(
+    count: usize,
+    tol: f64,
+    direction: impl Fn(usize) -> Vector3<f64> + Sync,
+) -> Option<Vector3<f64>> {
+    let first = (count > 0).then(|| direction(0))?;
+    (0..count)
+        .into_par_iter()
+        .all(|i| (direction(i) - first).amax() <= tol)
+        .then_some(first)
 }
 
 /// The slave face's own normal at its centre, constant over the face.
@@ -44,6 +71,14 @@ impl Projector for ElementNormal {
     /// Constant over the face.
     fn direction_is_affine(&self, _slave: &FaceGeometry) -> bool {
         true
+    }
+
+    /// The face normal when all of the slave's faces have one.
+    fn uniform_direction(&self, interface: &Interface, tol: f64) -> Option<Vector3<f64>> {
+        uniform(interface.slave().face_count(), tol, |f| {
+            let face = interface.slave_face(f);
+            self.direction(&face, &Vector2::zeros()).0
+        })
     }
 
     fn direction(
@@ -74,6 +109,14 @@ impl Projector for NodalNormalField {
     /// interpolated nodal normals are affine in `xi`.
     fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
         slave.element.is_affine() && slave.element.shape_degree() == 1
+    }
+
+    /// The nodal normal when all of the slave's are one (the field interpolates them with
+    /// shape functions that sum to one).
+    fn uniform_direction(&self, interface: &Interface, tol: f64) -> Option<Vector3<f64>> {
+        let normals = interface.slave_nodal_normals();
+        let nodes = interface.slave_nodes();
+        uniform(nodes.len(), tol, |i| normals[nodes[i] as usize])
     }
 
     fn direction(
