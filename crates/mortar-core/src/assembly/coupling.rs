@@ -518,6 +518,20 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// [`CouplingStats::fused_line_faces`] says how many faces the fused kernel took (line2d at
 /// 10^6 slave faces, one thread: 1.44x faster end to end).
 ///
+/// A straight 2D interface goes before that to a sorted merge: both sides one open chain of
+/// such lines, a projector whose direction is one vector on the whole slave
+/// ([`Projector::uniform_direction`](crate::projector::Projector::uniform_direction): the
+/// built-in ones on a straight slave), a multiplier space with one basis for every face
+/// ([`MultiplierSpace::basis_is_uniform`](crate::multiplier::MultiplierSpace::basis_is_uniform):
+/// standard, and dual in the Cartesian measure), the master facing the slave within the
+/// search radius and covering every slave face. Projection is then a coordinate along the
+/// line: the pairs come from merging the two sides' sorted node coordinates, and each row of
+/// D and M is computed from the two slave faces about its node and written in place (the
+/// same Gauss points of each overlap as the general path; D and M agree with it to
+/// round-off). [`CouplingStats::straight_line_faces`] says whether it ran (all the slave
+/// faces or none; line2d at 10^6 slave faces, one thread: 3.1x faster than the fused kernel
+/// end to end).
+///
 /// # Errors
 /// [`MortarError::NoOverlap`] when no slave face overlaps a master face; the errors of the
 /// integration strategy and the multiplier space (the first in slave-face order);
