@@ -177,49 +177,50 @@ impl ConvexClipper {
     /// Clips the polygon of vertices `subject` (counter-clockwise, convex; at most
     /// [`MAX_POLYGON_VERTICES`] are read) into `out`, as [`clip_convex`] does.
     pub fn clip(&self, subject: &[Vector2<f64>], tol: f64, out: &mut Polygon) {
-        // Two stack buffers used in turn, so no polygon is copied per edge.
-        let mut buf: [ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES>; 2] =
-            [ArrayVec::new(), ArrayVec::new()];
-        buf[0].extend(subject.iter().take(MAX_POLYGON_VERTICES).copied());
+        const N: usize = MAX_POLYGON_VERTICES;
+        // Two stack buffers used in turn (plain arrays and a length: the clip runs once per
+        // overlapping pair, and a vector's capacity checks cost as much as its arithmetic).
+        let mut buf = [[Vector2::zeros(); N]; 2];
+        let mut len = subject.len().min(N);
+        buf[0][..len].copy_from_slice(&subject[..len]);
         let mut cur = 0usize;
         for &(a, e, inv) in &self.edges {
-            if buf[cur].is_empty() {
+            if len == 0 {
                 break;
             }
-            let (x, y) = buf.split_at_mut(1);
-            let (src, dst) = if cur == 0 {
-                (&x[0], &mut y[0])
-            } else {
-                (&y[0], &mut x[0])
-            };
-            dst.clear();
+            let [x, y] = &mut buf;
+            let (src, dst) = if cur == 0 { (&*x, y) } else { (&*y, x) };
             // Signed distance to the left of the edge.
             let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;
-            let mut p = src[src.len() - 1];
+            let mut n = 0;
+            let mut p = src[len - 1];
             let mut dp = dist(&p);
-            for &q in src.iter() {
+            for &q in &src[..len] {
                 let dq = dist(&q);
                 let p_in = dp >= -tol;
                 let q_in = dq >= -tol;
-                if p_in != q_in && !dst.is_full() {
+                if p_in != q_in && n < N {
                     // A point inside only by the tolerance can put the crossing of the zero
                     // line outside the segment: clamp, so the vertex stays on the subject's
                     // edge.
                     let t = (dp / (dp - dq)).clamp(0.0, 1.0);
-                    dst.push(p + (q - p) * t);
+                    dst[n] = p + (q - p) * t;
+                    n += 1;
                 }
-                if q_in && !dst.is_full() {
-                    dst.push(q);
+                if q_in && n < N {
+                    dst[n] = q;
+                    n += 1;
                 }
                 p = q;
                 dp = dq;
             }
+            len = n;
             cur = 1 - cur;
         }
         out.vertices.clear();
         // Distances, not their squares: `tol` squared underflows for the smallest faces of a
         // mesh at 1e-140 (see `stable_norm`).
-        for v in &buf[cur] {
+        for v in &buf[cur][..len] {
             if out
                 .vertices
                 .last()
