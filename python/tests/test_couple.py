@@ -71,6 +71,9 @@ def test_2d_edges_of_two_squares(multipliers):
     assert c.master_nodes.tolist() == list(range(12))
     # Normals are unit and perpendicular to the line (along x).
     assert np.allclose(np.abs(c.normals[:, 0]), 1.0)
+    # A straight interface: coupled by the sorted merge, every slave face.
+    assert c.stats["straight_line_faces"] == 7
+    assert c.stats["fused_line_faces"] == 0
     if multipliers == "dual":
         offdiag = c.D - scipy.sparse.diags_array(c.D.diagonal())
         assert abs(offdiag).max() <= 1e-13 * c.D.diagonal().max()
