@@ -95,14 +95,20 @@ proptest! {
     /// a master edge crosses a slave edge at a shallow angle the clip vertex moves by that
     /// over the angle's sine. A saved case (Tri3 meshes, translation 9.4e5; found by a full run
     /// of the test command) moves M by 7.7 `eps |t| / h`
-    /// (1.8e-8): the tolerance allows 16, as for any cells below.
+    /// (1.8e-8): the tolerance allows 16, as for any cells below. Dual multipliers amplify it:
+    /// the dual basis of Tri3, `Phi_j = 3 N_j - N_k - N_l`, makes each entry a difference of
+    /// integrals up to `3 + 1 + 1 = 5` times larger than itself, so their perturbation is up to
+    /// 5 times that of the standard entries; a saved case (Tri3, translation 1.1e5, dual)
+    /// moves M by 24.7 `eps |t| / h` (4.9e-9, found by a full run of the properties): the
+    /// tolerance allows 16 x 5 for them.
     #[test]
     fn rigid_motion_3d_leaves_d_and_m_unchanged(
         pair in triangle_pair(),
         motion in rigid_motion_3d(),
         dual in any::<bool>(),
     ) {
-        check_rigid(&pair, &motion, &segment_options(dual), 16.0)?;
+        let factor = if dual { 16.0 * 5.0 } else { 16.0 };
+        check_rigid(&pair, &motion, &segment_options(dual), factor)?;
     }
 
     /// Any cell kinds. On a jittered Quad4 the integrands are not polynomials on the clip
