@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use super::key_index::KeyIndex;
 use super::local::{integrate_batch_into, LocalBlocks};
-use super::straight_line::{self, Outcome};
+use super::straight_line;
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
@@ -611,18 +611,10 @@ fn assemble_on_pool(
     // A straight interface by the sorted merge; else the chains for the walk.
     let mut lines = None;
     if let Some(rule) = line_rule(interface, options) {
-        let mut outcome = straight_line::couple(interface, options, rule, None)?;
-        let mut chains = None;
-        if !matches!(outcome, Outcome::Merged(_)) {
-            chains = line_chains(interface);
+        if let Some(merged) = straight_line::couple(interface, options, rule)? {
+            return Ok(merged_coupling(interface, options, merged, threads, start));
         }
-        if let (Outcome::NeedsChains, Some((s, m))) = (&outcome, &chains) {
-            outcome = straight_line::couple(interface, options, rule, Some((s, m)))?;
-        }
-        if let Outcome::Merged(merged) = outcome {
-            return Ok(merged_coupling(interface, options, *merged, threads, start));
-        }
-        lines = chains.map(|(s, m)| (rule, s, m));
+        lines = line_chains(interface).map(|(s, m)| (rule, s, m));
     }
     let (search, masters, order) = Search::build(interface, options, lines);
     let ctx = SegmentContext {

@@ -19,8 +19,9 @@
 //! - each side one open chain of straight two-node lines of one element type, the slave's
 //!   `t` strictly increasing along its chain, the master's strictly monotone (so that its
 //!   faces are disjoint intervals). A side whose faces are stored along its chain (forwards
-//!   or backwards, as generators and Gmsh write a line) is read as it is; otherwise the
-//!   caller's [`LineChains`] give the order;
+//!   or backwards, as generators and Gmsh write a line) is read as it is; otherwise its
+//!   nodes are sorted along the line and its faces must join consecutive ones (no chain is
+//!   walked: a walk over faces numbered at random is a chase of cache misses);
 //! - the projector's [`uniform_direction`](crate::projector::Projector::uniform_direction);
 //! - a multiplier space whose basis is the same on every face
 //!   ([`basis_is_uniform`](crate::multiplier::MultiplierSpace::basis_is_uniform));
@@ -30,8 +31,7 @@
 //!   the face lies in the region the face's search box holds);
 //! - every slave face covered to the coverage tolerance.
 //!
-//! Anything else gives [`Outcome::NotApplicable`], and the interface takes the chain walk
-//! and the fused kernel.
+//! Anything else gives `None`, and the interface takes the chain walk and the fused kernel.
 //!
 //! Each row is computed from the two slave faces around its node, left face first, whatever
 //! the thread count or the block a row falls in: D and M are bit-identical across thread
@@ -53,7 +53,6 @@ use crate::linalg::SparseMatrix;
 use crate::mesh::SurfaceMesh;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
-use crate::search::LineChains;
 
 /// Slave faces (the merge) or rows (the rows) per parallel task.
 const BLOCK: usize = 4096;
@@ -72,16 +71,6 @@ pub(super) struct Merged {
     pub merge_start: Instant,
     /// When the rows started.
     pub rows_start: Instant,
-}
-
-/// What [`couple`] made of an interface.
-pub(super) enum Outcome {
-    /// D and M.
-    Merged(Box<Merged>),
-    /// A side's faces are not stored along a chain: call again with the chains.
-    NeedsChains,
-    /// The merge does not apply (see the module's documentation).
-    NotApplicable,
 }
 
 /// How rows follow the slave chain.
@@ -151,8 +140,7 @@ impl Default for FaceValues {
 }
 
 /// D and M of `interface` by the sorted merge (see the module's documentation), with the
-/// strategy's 2D segmentation `segments`; `chains`, the chains of the two sides, where their
-/// faces are not stored along them.
+/// strategy's 2D segmentation `segments`; `None` when the merge does not apply.
 ///
 /// # Errors
 /// A quadrature rule that cannot be built for the strategy's degree.
@@ -160,41 +148,71 @@ pub(super) fn couple(
     interface: &Interface,
     options: &CouplingOptions,
     segments: LineSegments,
-    chains: Option<(&LineChains, &LineChains)>,
-) -> Result<Outcome> {
-    let nodes = match chains {
-        Some((s, m)) => chain_nodes(interface.slave(), s).zip(chain_nodes(interface.master(), m)),
-        None => {
-            let (s, m) = rayon::join(
-                || stored_chain(interface.slave()),
-                || stored_chain(interface.master()),
-            );
-            match s.zip(m) {
-                Some(nodes) => Some(nodes),
-                None => return Ok(Outcome::NeedsChains),
-            }
-        }
+) -> Result<Option<Merged>> {
+    let (smesh, mmesh) = (interface.slave(), interface.master());
+    if smesh.element_types().len() != 1 || mmesh.element_types().len() != 1 {
+        return Ok(None);
+    }
+    if !options
+        .multipliers
+        .basis_is_uniform(smesh.element_types()[0], options.geometry)
+    {
+        return Ok(None);
+    }
+    let (Some(slave_faces), Some(master_faces)) = (two_node_faces(smesh), two_node_faces(mmesh))
+    else {
+        return Ok(None);
     };
-    let Some((s_node, m_node)) = nodes else {
-        return Ok(Outcome::NotApplicable);
+    // The shortest slave face (a two-node face's box diagonal is its length: the search
+    // radius is the smallest for it) and the largest coordinate of a slave node.
+    let sx = smesh.coords();
+    let (shortest, largest) = slave_faces
+        .par_iter()
+        .map(|&[a, b]| {
+            let (a, b) = (&sx[a as usize], &sx[b as usize]);
+            ((b - a).norm(), a.amax().max(b.amax()))
+        })
+        .reduce(|| (f64::INFINITY, 0.0), |p, q| (p.0.min(q.0), p.1.max(q.1)));
+    let Some(n) = options
+        .projector
+        .uniform_direction(interface, direction_resolution(shortest, largest))
+    else {
+        return Ok(None);
     };
-    let Some(line) = Line::new(interface, options, segments, s_node, m_node)? else {
-        return Ok(Outcome::NotApplicable);
+    let n = n.normalize();
+    if !n.iter().all(|v| v.is_finite()) {
+        return Ok(None);
+    }
+    // Each side's nodes along its chain: as its faces are stored, or sorted along the line.
+    let tau = Vector3::new(n.y, -n.x, 0.0);
+    let along = |mesh: &SurfaceMesh, faces: &[[u32; 2]], nodes: &[u32]| {
+        stored_chain(faces).or_else(|| sorted_chain(mesh, faces, nodes, &tau))
+    };
+    let (s_node, m_node) = rayon::join(
+        || along(smesh, slave_faces, interface.slave_nodes()),
+        || along(mmesh, master_faces, interface.master_nodes()),
+    );
+    let (Some(s_node), Some(m_node)) = (s_node, m_node) else {
+        return Ok(None);
+    };
+    let radius = interface.tolerances().search_radius.for_face(shortest);
+    let Some(line) = Line::new(interface, options, segments, s_node, m_node, n, radius)? else {
+        return Ok(None);
     };
     let merge_start = Instant::now();
     let Some((ranges, pairs)) = line.pairs() else {
-        return Ok(Outcome::NotApplicable);
+        return Ok(None);
     };
     let rows_start = Instant::now();
     let (d, m) = line.rows(&ranges);
-    Ok(Outcome::Merged(Box::new(Merged {
+    Ok(Some(Merged {
         d,
         m,
         pairs,
         degree: line.degree,
         merge_start,
         rows_start,
-    })))
+    }))
 }
 
 /// The two nodes of each face of `mesh`, if every face has two.
@@ -203,12 +221,10 @@ fn two_node_faces(mesh: &SurfaceMesh) -> Option<&[[u32; 2]]> {
     (rest.is_empty() && pairs.len() == mesh.face_count()).then_some(pairs)
 }
 
-/// The nodes of `mesh`'s two-node faces along their chain when the faces are stored along
-/// it, forwards (each face starting where the one before it ends) or backwards (each ending
+/// The nodes of two-node `faces` along their chain when the faces are stored along it, forwards (each face starting where the one before it ends) or backwards (each ending
 /// where the one before it starts); `None` otherwise. (A chain that closes or crosses itself
 /// passes here and fails the strictly increasing `t`.)
-fn stored_chain(mesh: &SurfaceMesh) -> Option<Vec<u32>> {
-    let faces = two_node_faces(mesh)?;
+fn stored_chain(faces: &[[u32; 2]]) -> Option<Vec<u32>> {
     let n = faces.len();
     let linked = |follows: fn(&[[u32; 2]]) -> bool| faces.par_windows(2).all(follows);
     let mut nodes = Vec::with_capacity(n + 1);
@@ -224,20 +240,53 @@ fn stored_chain(mesh: &SurfaceMesh) -> Option<Vec<u32>> {
     Some(nodes)
 }
 
-/// The nodes of `chains` (of `mesh`'s two-node faces) in chain order, if they form one open
-/// chain.
-fn chain_nodes(mesh: &SurfaceMesh, chains: &LineChains) -> Option<Vec<u32>> {
-    let faces = two_node_faces(mesh)?;
-    if !chains.is_single_open() {
+/// The nodes of `mesh`'s two-node `faces` along their chain, found by sorting `nodes` (the
+/// side's interface nodes) by their coordinate along `tau`: when the faces join consecutive
+/// nodes of that order, each pair once, all oriented alike (one open chain along the line,
+/// however its faces and nodes are numbered); `None` otherwise, or where two nodes have the
+/// same coordinate.
+fn sorted_chain(
+    mesh: &SurfaceMesh,
+    faces: &[[u32; 2]],
+    nodes: &[u32],
+    tau: &Vector3<f64>,
+) -> Option<Vec<u32>> {
+    if faces.len() + 1 != nodes.len() {
         return None;
     }
-    let mut nodes: Vec<u32> = chains
-        .order
+    let x = mesh.coords();
+    let o = x[nodes[0] as usize];
+    let mut keyed: Vec<(f64, u32)> = nodes
         .par_iter()
-        .map(|&f| faces[f as usize][0])
+        .map(|&k| ((x[k as usize] - o).dot(tau), k))
         .collect();
-    nodes.push(faces[*chains.order.last()? as usize][1]);
-    Some(nodes)
+    keyed.par_sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    if !keyed.par_windows(2).all(|w| w[0].0 < w[1].0) {
+        return None;
+    }
+    let mut rank = vec![u32::MAX; x.len()];
+    for (r, &(_, k)) in keyed.iter().enumerate() {
+        rank[k as usize] = r as u32;
+    }
+    let rank = |k: u32| rank[k as usize];
+    let joins = |step: fn(u32, u32) -> bool| faces.par_iter().all(|&[a, b]| step(rank(a), rank(b)));
+    let forward = joins(|a, b| b == a.wrapping_add(1));
+    if !forward && !joins(|a, b| a == b.wrapping_add(1)) {
+        return None;
+    }
+    // Consecutive nodes joined, each pair once: `faces.len()` distinct pairs cover all.
+    let mut joined = vec![false; faces.len()];
+    for &[a, b] in faces {
+        let first = rank(a).min(rank(b)) as usize;
+        if std::mem::replace(&mut joined[first], true) {
+            return None;
+        }
+    }
+    let mut chain: Vec<u32> = keyed.into_iter().map(|(_, k)| k).collect();
+    if !forward {
+        chain.reverse();
+    }
+    Some(chain)
 }
 
 /// How far apart the unit nodal normals of a straight line may be, computed in floating
@@ -265,45 +314,22 @@ fn descending(v: &[u32]) -> bool {
 }
 
 impl<'a> Line<'a> {
-    /// The line of `interface` through the slave nodes `s_node` and the master nodes
-    /// `m_node`, each in chain order, or `None` when the merge does not apply.
+    /// The line of `interface` of unit normal `n` through the slave nodes `s_node` and the
+    /// master nodes `m_node`, each in chain order, with `radius` the smallest slave face's
+    /// search radius; `None` when the merge does not apply.
     fn new(
         interface: &'a Interface,
         options: &CouplingOptions,
         segments: LineSegments,
         s_node: Vec<u32>,
         mut m_node: Vec<u32>,
+        n: Vector3<f64>,
+        radius: f64,
     ) -> Result<Option<Self>> {
         let (smesh, mmesh) = (interface.slave(), interface.master());
-        if smesh.element_types().len() != 1 || mmesh.element_types().len() != 1 {
-            return Ok(None);
-        }
         let (s_el, m_el) = (smesh.element_types()[0], mmesh.element_types()[0]);
-        if !options.multipliers.basis_is_uniform(s_el, options.geometry) {
-            return Ok(None);
-        }
         let tol = interface.tolerances();
         let (sx, mx) = (smesh.coords(), mmesh.coords());
-        // The shortest slave face, its search radius (a two-node face's box diagonal is its
-        // length), and the largest coordinate of a slave node.
-        let (shortest, largest) = s_node
-            .par_windows(2)
-            .map(|w| {
-                let (a, b) = (&sx[w[0] as usize], &sx[w[1] as usize]);
-                ((b - a).norm(), a.amax().max(b.amax()))
-            })
-            .reduce(|| (f64::INFINITY, 0.0), |p, q| (p.0.min(q.0), p.1.max(q.1)));
-        let radius = tol.search_radius.for_face(shortest);
-        let Some(n) = options
-            .projector
-            .uniform_direction(interface, direction_resolution(shortest, largest))
-        else {
-            return Ok(None);
-        };
-        let n = n.normalize();
-        if !n.iter().all(|v| v.is_finite()) {
-            return Ok(None);
-        }
         let x0 = sx[s_node[0] as usize];
         // `tau` such that t grows along the slave chain.
         let mut tau = Vector3::new(n.y, -n.x, 0.0);

@@ -34,19 +34,6 @@ pub(crate) struct LineChains {
 }
 
 impl LineChains {
-    /// Whether the faces form one open chain (each face but the last followed by the next in
-    /// `order`).
-    pub(crate) fn is_single_open(&self) -> bool {
-        self.prev.first() == Some(&NONE)
-            && self.next.last() == Some(&NONE)
-            && self
-                .prev
-                .par_iter()
-                .enumerate()
-                .skip(1)
-                .all(|(p, &q)| q as usize == p - 1)
-    }
-
     /// The chains of `mesh`, or `None` if a face does not have two distinct nodes or a node
     /// starts or ends two faces.
     pub(crate) fn of(mesh: &SurfaceMesh) -> Option<Self> {
