@@ -10,10 +10,13 @@
 //! matrices (no triplets).
 //!
 //! What it computes is the segment-based method's D and M: the same Gauss rule at the same
-//! reference points of each overlap, the master coordinate of each point found from `t`
-//! rather than from the cross products of [`fused_line_face`](crate::integration), which for
-//! a uniform direction are the same affine functions (so D and M agree to round-off; the
-//! tests compare them with the general path's). The merge takes an interface only when the
+//! reference points of each overlap, the overlap and the master coordinate of each point
+//! found from offsets along the line measured from the slave face's first node (so that their
+//! rounding is relative to the face, as in the general path) rather than from the cross
+//! products of the fused kernel (`segments_2d::fused_line_face`), which for a uniform
+//! direction are the same affine functions (so D and M agree to round-off; the tests compare
+//! them with the general path's). `t` itself only orders the nodes and finds each face's
+//! candidates. The merge takes an interface only when the
 //! general path would couple every slave face, in full, with every master face overlapping
 //! it:
 //! - each side one open chain of straight two-node lines of one element type, the slave's
