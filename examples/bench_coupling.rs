@@ -12,7 +12,10 @@
 //!   (0,0)-(1,1) diagonal, master `floor(1.5 n) + 1` cells per side cut along the other one;
 //! - `cylinder`: the lateral surface of the unit cylinder (radius 1, height 1); slave `n` x
 //!   `n / 4` quads, master `floor(1.5 n) + 1` x `floor(1.5 n / 4) + 1` cells cut into triangles;
-//! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements;
+//! - `line2d`: [0, 1] with `n` and `floor(1.5 n) + 1` two-node elements (straight: the sorted
+//!   merge);
+//! - `arc2d`: the upper half of the unit circle with `n` and `floor(1.5 n) + 1` two-node
+//!   chords (curved: the chain walk and the fused kernel);
 //! - `ratio2d`, `ratio3d`: one slave face (a line, a Quad4) against `n` master lines or
 //!   `n x n` master quads covering it: the work of one face must stay linear in its partners.
 //!
@@ -57,9 +60,10 @@ use std::process::Command;
 use std::time::Instant;
 
 use clap::Parser;
+use mortar::elements::LINE2;
 use mortar::generate::{cylinder_surface, line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::testing::{shuffled, shuffled_faces};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
+use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -95,7 +99,7 @@ struct Args {
     /// Compare D and M of each case with those saved in this folder by `--save-reference`.
     #[arg(long)]
     reference: Option<PathBuf>,
-    /// Run only these cases (comma-separated: plane3d, cylinder, line2d, ratio2d, ratio3d).
+    /// Run only these cases (comma-separated: plane3d, cylinder, line2d, arc2d, ratio2d, ratio3d).
     #[arg(long, value_delimiter = ',')]
     cases: Vec<String>,
     /// Internal: run one case in this process and print one JSON line.
@@ -140,6 +144,7 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
             )
         }
         "line2d" => (line_mesh(n, false, 1)?, line_mesh(master_n(n), true, 1)?),
+        "arc2d" => (arc_mesh(n, false)?, arc_mesh(master_n(n), true)?),
         // One slave face against n master lines (2D) or n x n master quads (3D): the work of
         // a face must stay linear in its partners (issue 14, item 1).
         "ratio2d" => (line_mesh(1, false, 1)?, line_mesh(n, true, 1)?),
@@ -237,6 +242,21 @@ fn repeats_for(case: &str, n: usize, repeats: usize) -> usize {
     }
 }
 
+/// The upper half of the unit circle as `n` two-node chords from angle 0 to pi (normal
+/// outwards), or with `flip` the other way round (normal inwards), nodes tagged from 1.
+fn arc_mesh(n: usize, flip: bool) -> Res<SurfaceMesh> {
+    let mut mesh = SurfaceMesh::with_capacity(n + 1, n);
+    for i in 0..=n {
+        let a = std::f64::consts::PI * i as f64 / n as f64;
+        mesh.add_node(1 + i as u64, [a.cos(), a.sin(), 0.0])?;
+    }
+    for i in 1..=n as u64 {
+        let (a, b) = (i + 1, i);
+        mesh.add_face(&LINE2, &if flip { [b, a] } else { [a, b] })?;
+    }
+    Ok(mesh)
+}
+
 /// One (case, n, threads), in this process.
 fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res<Value> {
     let repeats = args.repeats;
@@ -283,6 +303,9 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
         "master_faces": interface.master().face_count(),
         "slave_nodes": c.slave_nodes.len(), "master_nodes": c.master_nodes.len(),
         "candidates": med.candidates, "pairs": med.pairs, "segments": med.segments,
+        "straight_line_faces": med.straight_line_faces,
+        "fused_line_faces": med.fused_line_faces,
+        "closed_form_faces": med.closed_form_faces,
         "area": med.area,
         "seconds": {"tree": s.tree, "faces": s.faces, "assembly": s.assembly, "total": s.total},
         "thread_seconds": {"search": s.thread.search, "segments": s.thread.segments,
@@ -314,6 +337,7 @@ fn bench(args: &Args) -> Res<()> {
             ("plane3d", vec![16, 32, 100]),
             ("cylinder", vec![64]),
             ("line2d", vec![1_000, 10_000]),
+            ("arc2d", vec![1_000, 10_000]),
             ("ratio2d", vec![10_000]),
             ("ratio3d", vec![100]),
         ]
@@ -322,6 +346,7 @@ fn bench(args: &Args) -> Res<()> {
             ("plane3d", vec![16, 32, 100, 316, 708, 1000]),
             ("cylinder", vec![64, 256, 1024]),
             ("line2d", vec![1_000, 10_000, 100_000, 1_000_000]),
+            ("arc2d", vec![1_000, 10_000, 100_000, 1_000_000]),
             ("ratio2d", vec![100_000, 1_000_000]),
             ("ratio3d", vec![316, 1000]),
         ]
