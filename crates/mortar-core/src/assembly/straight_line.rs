@@ -295,10 +295,12 @@ fn sorted_chain(
 /// How far apart the unit nodal normals of a straight line may be, computed in floating
 /// point from nodes of coordinates up to `largest` and faces from `shortest` long: the
 /// normal of a face turns by the coordinates' rounding over its length (a few of them, and
-/// the averaging at a node); 1e-14 at least. The direction of a line is known no better: a
-/// slave whose normals differ by less is straight to the resolution of its coordinates.
+/// the averaging at a node: `8 eps |x| / h`, 1e-14 at least; on 3,000 random turned and moved
+/// lines of the property test the merge took every one at `2 eps |x| / h` already). The
+/// direction of a line is known no better: a slave whose normals differ by less is straight
+/// to the resolution of its coordinates; a larger turn (a kink) is not taken.
 fn direction_resolution(shortest: f64, largest: f64) -> f64 {
-    (32.0 * f64::EPSILON * largest / shortest).max(1e-14)
+    (8.0 * f64::EPSILON * largest / shortest).max(1e-14)
 }
 
 /// Whether `t` strictly increases (`false` where it holds a NaN).
