@@ -168,7 +168,8 @@ fn axisymmetric_measure() {
 
 /// Interfaces the merge leaves to the walk and the fused kernel, with the general path's
 /// results and warnings: a slave longer than its master, a master beyond the search radius
-/// in part, a kinked slave, a master in two bodies, closed chains; and a master facing away,
+/// in part, a kinked slave (by 0.02 and by 1e-9), a master in two bodies, closed chains; and a
+/// master facing away,
 /// the general path's error.
 #[test]
 fn what_the_merge_leaves() {
@@ -189,6 +190,16 @@ fn what_the_merge_leaves() {
         (
             "kinked slave",
             polyline(&[[0.0, 0.0], [0.5, 0.0], [1.0, 0.01]], 1, false),
+            line(-0.1, 1.1, 0.0, 7, 1000, true),
+        ),
+        (
+            // A turn of 1e-9, far above the coordinates' resolution here (1e-15).
+            "slightly kinked slave",
+            polyline(
+                &[[0.0, 0.0], [0.25, 0.0], [0.5, 0.0], [1.0, 5e-10]],
+                1,
+                false,
+            ),
             line(-0.1, 1.1, 0.0, 7, 1000, true),
         ),
     ];
