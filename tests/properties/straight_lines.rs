@@ -169,8 +169,7 @@ fn axisymmetric_measure() {
 /// Interfaces the merge leaves to the walk and the fused kernel, with the general path's
 /// results and warnings: a slave longer than its master, a master beyond the search radius
 /// in part, a kinked slave (by 0.02 and by 1e-9), a master in two bodies, closed chains; and a
-/// master facing away,
-/// the general path's error.
+/// master facing away, the general path's error.
 #[test]
 fn what_the_merge_leaves() {
     let line = |a: f64, b: f64, y: f64, n: usize, tag: u64, rev: bool| {
