@@ -310,6 +310,34 @@ pub struct CouplingSummary {
 }
 
 impl CouplingSummary {
+    /// Which code computed the slave faces: the sorted merge of a straight 2D interface, the
+    /// fused kernel of straight 2D lines, the closed form of 3D triangles, and the integration
+    /// strategy's points for the others.
+    pub fn path(&self) -> String {
+        let n = self.slave_faces;
+        let fast = [
+            (
+                self.straight_line_faces,
+                "the sorted merge of a straight line",
+            ),
+            (self.fused_line_faces, "the fused line kernel"),
+            (self.closed_form_faces, "the closed form"),
+        ];
+        let mut parts: Vec<String> = fast
+            .iter()
+            .filter(|(k, _)| *k > 0)
+            .map(|(k, what)| format!("{what} for {k} of {n} slave faces"))
+            .collect();
+        let rest = n.saturating_sub(fast.iter().map(|(k, _)| k).sum());
+        if parts.is_empty() {
+            return format!("the integration strategy's points for all {n} slave faces");
+        }
+        if rest > 0 {
+            parts.push(format!("the integration strategy's points for {rest}"));
+        }
+        parts.join("; ")
+    }
+
     /// The summary of `coupling`, computed on `interface` with `settings`.
     pub fn new(interface: &Interface, coupling: &Coupling, settings: &CouplingSettings) -> Self {
         let s = &coupling.stats;
@@ -443,6 +471,7 @@ impl fmt::Display for CouplingSummary {
             "M",
             format!("{ns} x {nm}, {}", plural(self.m_nonzeros, "nonzero")),
         ));
+        lines.push(("path", self.path()));
         lines.push((
             "pairs",
             format!(

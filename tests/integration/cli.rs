@@ -166,6 +166,18 @@ fn couples_a_2d_interface_of_lines_with_dual_multipliers() {
             assert!(r == c || v.abs() < 1e-14, "D[{r},{c}] = {v}");
         }
     }
+    // A straight interface: the sorted merge took every face, and the summary says so.
+    assert_eq!(summary["straight_line_faces"], 6);
+    let out2 = dir.join("out2").to_string_lossy().into_owned();
+    let args = [
+        "couple", "--slave", &s, "--master", &m, "--lm", "dual", "--out", &out2,
+    ];
+    let run = mortar(&args);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        text.contains("path     the sorted merge of a straight line for 6 of 6 slave faces"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -283,6 +295,8 @@ fn demo_couples_the_built_in_pair() {
         "time",
         "standard multipliers",
         "1.0000000000",
+        // Tri3 against Quad4: no closed form, the strategy's points.
+        "path     the integration strategy's points for all 1152 slave faces",
     ] {
         assert!(text.contains(needle), "no {needle:?} in\n{text}");
     }
