@@ -730,7 +730,6 @@ fn merged_coupling(
         segments: merged.pairs,
         straight: faces,
         degrees: 1 << merged.degree,
-        seconds_search: merge,
         ..ChunkStats::default()
     };
     let seconds = PhaseSeconds {

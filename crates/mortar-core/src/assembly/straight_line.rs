@@ -224,9 +224,10 @@ fn two_node_faces(mesh: &SurfaceMesh) -> Option<&[[u32; 2]]> {
     (rest.is_empty() && pairs.len() == mesh.face_count()).then_some(pairs)
 }
 
-/// The nodes of two-node `faces` along their chain when the faces are stored along it, forwards (each face starting where the one before it ends) or backwards (each ending
-/// where the one before it starts); `None` otherwise. (A chain that closes or crosses itself
-/// passes here and fails the strictly increasing `t`.)
+/// The nodes of two-node `faces` along their chain when the faces are stored along it,
+/// forwards (each face starting where the one before it ends) or backwards (each ending where
+/// the one before it starts); `None` otherwise. (A chain that closes or crosses itself passes
+/// here and fails the strictly increasing `t`.)
 fn stored_chain(faces: &[[u32; 2]]) -> Option<Vec<u32>> {
     let n = faces.len();
     let linked = |follows: fn(&[[u32; 2]]) -> bool| faces.par_windows(2).all(follows);
