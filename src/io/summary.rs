@@ -311,8 +311,8 @@ pub struct CouplingSummary {
 
 impl CouplingSummary {
     /// Which code computed the slave faces: the sorted merge of a straight 2D interface, the
-    /// fused kernel of straight 2D lines, the closed form of 3D triangles, and the integration
-    /// strategy's points for the others.
+    /// fused kernel of straight 2D lines, the closed form of 3D triangles, the integration
+    /// strategy's points for the others but those without a master face.
     pub fn path(&self) -> String {
         let n = self.slave_faces;
         let fast = [
@@ -328,12 +328,17 @@ impl CouplingSummary {
             .filter(|(k, _)| *k > 0)
             .map(|(k, what)| format!("{what} for {k} of {n} slave faces"))
             .collect();
-        let rest = n.saturating_sub(fast.iter().map(|(k, _)| k).sum());
-        if parts.is_empty() {
+        // Faces without a master face are integrated by nothing.
+        let alone = self.faces_without_partner;
+        let rest = n.saturating_sub(fast.iter().map(|(k, _)| k).sum::<usize>() + alone);
+        if parts.is_empty() && alone == 0 {
             return format!("the integration strategy's points for all {n} slave faces");
         }
         if rest > 0 {
             parts.push(format!("the integration strategy's points for {rest}"));
+        }
+        if alone > 0 {
+            parts.push(format!("no master face for {alone}"));
         }
         parts.join("; ")
     }
@@ -530,5 +535,47 @@ pub(crate) fn plural(n: usize, noun: &str) -> String {
         format!("{n} {stem}ries")
     } else {
         format!("{n} {noun}s")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::line_mesh;
+    use mortar_core::{assemble_coupling, SurfaceMesh};
+
+    /// The summary's path line names what computed each slave face: the sorted merge on a
+    /// straight line; the fused kernel, the strategy and nothing on a slave that reaches past
+    /// its master (faces without a master face are integrated by nothing).
+    #[test]
+    fn the_path_line_names_what_computed_the_faces() {
+        let settings = CouplingSettings::default();
+        let summary = |slave: SurfaceMesh, master: SurfaceMesh| {
+            let interface = Interface::new(slave, master).unwrap();
+            let c = assemble_coupling(&interface, &settings.options().unwrap()).unwrap();
+            CouplingSummary::new(&interface, &c, &settings).path()
+        };
+        let straight = summary(
+            line_mesh(6, false, 1).unwrap(),
+            line_mesh(7, true, 100).unwrap(),
+        );
+        assert_eq!(
+            straight,
+            "the sorted merge of a straight line for 6 of 6 slave faces"
+        );
+        // The slave [0, 2] in 8 faces over the master [0, 1]: 4 faces covered, 4 beyond (the
+        // one from x = 1 only touches the master).
+        let mut long = SurfaceMesh::new();
+        for i in 0..=8u64 {
+            long.add_node(1 + i, [0.25 * i as f64, 0.0, 0.0]).unwrap();
+        }
+        for i in 1..=8u64 {
+            long.add_face(&mortar_elements::LINE2, &[i, i + 1]).unwrap();
+        }
+        let partial = summary(long, line_mesh(7, true, 100).unwrap());
+        assert_eq!(
+            partial,
+            "the fused line kernel for 4 of 8 slave faces; no master face for 4"
+        );
     }
 }
