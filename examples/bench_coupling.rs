@@ -172,10 +172,16 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
 
 /// The peak resident set size of this process (`VmHWM`), in bytes.
 fn peak_memory() -> u64 {
+    status_bytes("VmHWM:")
+}
+
+/// A size in `/proc/self/status` (the line starting with `key`), in bytes; 0 where there is
+/// none.
+fn status_bytes(key: &str) -> u64 {
     let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
     status
         .lines()
-        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .find_map(|l| l.strip_prefix(key))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
         .map_or(0, |kb| kb * 1024)
 }
@@ -269,6 +275,7 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
     // the peak starts again from what is resident (the meshes).
     let peak_before_coupling = peak_memory();
     let peak_reset = reset_peak_memory();
+    let resident_before_coupling = status_bytes("VmRSS:");
     let options = CouplingOptions::default().threads(threads);
     let mut runs = Vec::new();
     let mut digests = Vec::new();
@@ -321,6 +328,7 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
         "peak_memory_bytes": peak,
         "peak_before_coupling_bytes": peak_before_coupling,
         "peak_reset_before_coupling": peak_reset,
+        "resident_before_coupling_bytes": resident_before_coupling,
         "mesh_bytes": mesh, "output_bytes": out,
         "memory_ratio": (peak.saturating_sub(baseline)) as f64 / (mesh + out) as f64,
         "memory_ratio_note": "(peak - baseline) / (mesh_bytes + output_bytes)",

@@ -70,11 +70,41 @@ fn keyed_operators(
     (key(&c.d, &c.slave_nodes), key(&c.m, &c.master_nodes))
 }
 
+/// The unit square at height 0, `n x n` cells: Quad4, and every third cell cut into two Tri3
+/// (two element types of different node counts on one surface).
+fn mixed_square(n: usize, flip: bool) -> mortar::SurfaceMesh {
+    use mortar::elements::{QUAD4, TRI3};
+    let mut mesh = mortar::SurfaceMesh::new();
+    let id = |i: usize, j: usize| 1 + (j * (n + 1) + i) as u64;
+    for j in 0..=n {
+        for i in 0..=n {
+            let h = 1.0 / n as f64;
+            mesh.add_node(id(i, j), [i as f64 * h, j as f64 * h, 0.0])
+                .unwrap();
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            let q = if flip { [q[0], q[3], q[2], q[1]] } else { q };
+            if (i + j) % 3 == 0 {
+                mesh.add_face(&TRI3, &[q[0], q[1], q[2]]).unwrap();
+                mesh.add_face(&TRI3, &[q[0], q[2], q[3]]).unwrap();
+            } else {
+                mesh.add_face(&QUAD4, &q).unwrap();
+            }
+        }
+    }
+    mesh
+}
+
 /// Files whose nodes and faces are numbered far apart (a seeded shuffle, as a mesher that
 /// numbers faces in its own order writes them) give the operators of the sorted file: the
 /// same entries by node tags, to round-off (the search and the per-face work run in a spatial
 /// order of their own, and the master faces are copied in it). Sizes that take several
-/// blocks and waves of the master copy (more than 64 x 4096 faces in 2D).
+/// blocks and waves of the master copy (more than 64 x 4096 faces in 2D); a master of two
+/// element types of different node counts (the copy then keeps each face's type and where
+/// its nodes start).
 #[test]
 fn shuffled_files_give_the_operators_of_sorted_ones() {
     use mortar::generate::{line_mesh, square_triangles, Diagonal};
@@ -87,6 +117,10 @@ fn shuffled_files_give_the_operators_of_sorted_ones() {
         (
             square_triangles(40, Diagonal::Main, 0.0, false, 1).unwrap(),
             square_triangles(61, Diagonal::Anti, 0.0, true, 1).unwrap(),
+        ),
+        (
+            square_triangles(30, Diagonal::Main, 0.0, false, 1).unwrap(),
+            mixed_square(47, true),
         ),
     ];
     for (slave, master) in cases {

@@ -13,9 +13,11 @@ use crate::element::{ElementRef, MAX_FACE_NODES};
 /// When the file's face numbering is already spatially coherent (most consecutive faces are
 /// near each other in the order), a face is read from the mesh itself. When it is not (a
 /// mesher that numbers faces far apart, or a shuffled file), reading the mesh would jump all
-/// over memory (1.4x to 2x the per-face work): the faces are then copied face after face in
-/// slot order (element, tag, column of each node in M, node coordinates), at a cost of about
-/// 120 bytes per Tri3 face. [`MasterFaces::is_packed`] says which.
+/// over memory (1.4x to 2x the per-face work): the faces are then copied in slot order, and
+/// their nodes with them, renumbered as first met in that order (each node's coordinates and
+/// column in M once, however many faces share it), at a cost of about 40 bytes per Tri3 face
+/// (the slot's face, its tag, three node indices, and half a node). [`MasterFaces::is_packed`]
+/// says which.
 #[derive(Debug, Clone, Default)]
 pub struct MasterFaces {
     /// Per slot, the face's index in the master mesh.
@@ -24,18 +26,34 @@ pub struct MasterFaces {
     packed: Option<Packed>,
 }
 
+/// The faces in slot order, their nodes renumbered as first met in that order.
 #[derive(Debug, Clone, Default)]
 struct Packed {
-    /// Per slot, where its nodes start in `columns` and `coords` (one more than the faces).
+    /// The node count of every face when they all have the same; else 0, and `start` says.
+    stride: usize,
+    /// Per slot, where its nodes start in `nodes` (one more than the faces); empty with a
+    /// stride.
     start: Vec<u32>,
-    /// Per slot, the element type.
-    element: Vec<ElementRef>,
+    /// Per slot, the index of its element type in the master mesh's
+    /// [`element_types`](crate::mesh::SurfaceMesh::element_types); empty when there is one.
+    types: Vec<u8>,
     /// Per slot, the face tag.
     tag: Vec<u64>,
-    /// Per packed node, its column in M.
-    columns: Vec<u32>,
+    /// Per node of each face, in slot order: the node's index in `coords` and `columns`.
+    nodes: Vec<u32>,
     /// Per packed node, its coordinates.
     coords: Vec<Vector3<f64>>,
+    /// Per packed node, its column in M.
+    columns: Vec<u32>,
+}
+
+/// One block of faces as read from the mesh: their nodes (mesh indices), where each face's
+/// nodes end (relative to the block), their type indices and tags.
+struct Block {
+    nodes: Vec<u32>,
+    ends: Vec<u32>,
+    types: Vec<u8>,
+    tag: Vec<u64>,
 }
 
 /// Slot distance beyond which two faces consecutive in the file count as far apart.
@@ -45,52 +63,98 @@ const NEAR_SLOTS: u32 = 256;
 const COPY_BLOCK: usize = 4096;
 const COPY_WAVE: usize = 64;
 
-impl Packed {
-    /// The faces `faces` of `interface`'s master surface copied in the given order (`start`
-    /// relative to the block, without its leading zero).
-    fn copy(interface: &Interface, faces: &[u32]) -> Self {
+impl Block {
+    /// The faces `faces` of `interface`'s master surface, in the given order.
+    fn read(interface: &Interface, faces: &[u32]) -> Self {
         let mesh = interface.master();
-        let xyz = mesh.coords();
-        let mut out = Packed {
-            start: Vec::with_capacity(faces.len()),
-            element: Vec::with_capacity(faces.len()),
+        let mut out = Block {
+            nodes: Vec::with_capacity(faces.len() * 4),
+            ends: Vec::with_capacity(faces.len()),
+            types: Vec::with_capacity(faces.len()),
             tag: Vec::with_capacity(faces.len()),
-            columns: Vec::with_capacity(faces.len() * 4),
-            coords: Vec::with_capacity(faces.len() * 4),
         };
-        // In three sweeps of independent reads (the faces, their node lists, the nodes), so
-        // that the cache misses of many faces overlap instead of queueing behind each other.
-        let views: Vec<_> = faces.iter().map(|&f| mesh.face(f as usize)).collect();
-        let mut nodes: Vec<u32> = Vec::with_capacity(faces.len() * 4);
-        for view in &views {
-            out.element.push(view.element);
+        for &f in faces {
+            let view = mesh.face(f as usize);
+            out.nodes.extend_from_slice(view.nodes);
+            out.ends.push(out.nodes.len() as u32);
+            out.types.push(mesh.face_type_index(f as usize));
             out.tag.push(view.tag);
-            nodes.extend_from_slice(view.nodes);
-            out.start.push(nodes.len() as u32);
         }
-        out.coords.extend(nodes.iter().map(|&i| xyz[i as usize]));
-        out.columns.extend(nodes.iter().map(|&i| {
-            interface
-                .master_col(i)
-                .expect("the nodes of a master face are on the interface")
-        }));
         out
     }
+}
 
-    /// Appends a block made by [`copy`](Self::copy).
+impl Packed {
+    /// The range of slot `s`'s nodes in `nodes`.
+    #[inline]
+    fn range(&self, s: usize) -> (usize, usize) {
+        if self.stride > 0 {
+            (s * self.stride, (s + 1) * self.stride)
+        } else {
+            (self.start[s] as usize, self.start[s + 1] as usize)
+        }
+    }
+
+    /// The element type of slot `s`.
+    #[inline]
+    fn element(&self, interface: &Interface, s: usize) -> ElementRef {
+        let types = interface.master().element_types();
+        match self.types.get(s) {
+            Some(&t) => types[t as usize],
+            None => types[0],
+        }
+    }
+
+    /// Appends a block read by [`Block::read`].
     ///
     /// # Panics
     /// If the faces have 2^32 nodes or more in all.
-    fn append(&mut self, block: Packed) {
+    fn append(&mut self, block: Block) {
         let base = *self.start.last().unwrap_or(&0);
-        self.start.extend(block.start.iter().map(|&e| {
+        self.start.extend(block.ends.iter().map(|&e| {
             base.checked_add(e)
                 .expect("fewer than 2^32 master face nodes")
         }));
-        self.element.extend_from_slice(&block.element);
+        self.types.extend_from_slice(&block.types);
         self.tag.extend_from_slice(&block.tag);
-        self.columns.extend_from_slice(&block.columns);
-        self.coords.extend_from_slice(&block.coords);
+        self.nodes.extend_from_slice(&block.nodes);
+    }
+
+    /// Renumbers `nodes` (mesh indices until then) as first met in slot order and copies
+    /// each node's coordinates and column once; drops `start` and `types` where a stride and
+    /// a single type say as much.
+    fn finish(&mut self, interface: &Interface) {
+        let mesh = interface.master();
+        let mut local = vec![u32::MAX; mesh.node_count()];
+        let mut order: Vec<u32> = Vec::new();
+        for n in self.nodes.iter_mut() {
+            let l = &mut local[*n as usize];
+            if *l == u32::MAX {
+                *l = order.len() as u32;
+                order.push(*n);
+            }
+            *n = *l;
+        }
+        drop(local);
+        let xyz = mesh.coords();
+        self.coords = order.par_iter().map(|&n| xyz[n as usize]).collect();
+        self.columns = order
+            .par_iter()
+            .map(|&n| {
+                interface
+                    .master_col(n)
+                    .expect("the nodes of a master face are on the interface")
+            })
+            .collect();
+        let counts = mesh.element_types().iter().map(|e| e.node_count());
+        let first = mesh.element_types().first().map_or(0, |e| e.node_count());
+        if counts.clone().all(|k| k == first) {
+            self.stride = first;
+            self.start = Vec::new();
+        }
+        if mesh.element_types().len() <= 1 {
+            self.types = Vec::new();
+        }
     }
 }
 
@@ -126,21 +190,21 @@ impl MasterFaces {
         // copy is the same whatever the thread count and the transient memory is a wave's.
         let mut packed = Packed {
             start: Vec::with_capacity(n + 1),
-            element: Vec::with_capacity(n),
+            types: Vec::with_capacity(n),
             tag: Vec::with_capacity(n),
-            columns: Vec::new(),
-            coords: Vec::new(),
+            ..Default::default()
         };
         packed.start.push(0);
         for wave in face.chunks(COPY_BLOCK * COPY_WAVE) {
-            let parts: Vec<Packed> = wave
+            let parts: Vec<Block> = wave
                 .par_chunks(COPY_BLOCK)
-                .map(|faces| Packed::copy(interface, faces))
+                .map(|faces| Block::read(interface, faces))
                 .collect();
             for part in parts {
                 packed.append(part);
             }
         }
+        packed.finish(interface);
         Self {
             face,
             packed: Some(packed),
@@ -159,9 +223,11 @@ impl MasterFaces {
     ) -> (ElementRef, usize) {
         match &self.packed {
             Some(p) => {
-                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
-                out[..b - a].copy_from_slice(&p.coords[a..b]);
-                (p.element[s], b - a)
+                let (a, b) = p.range(s);
+                for (o, &i) in out.iter_mut().zip(&p.nodes[a..b]) {
+                    *o = p.coords[i as usize];
+                }
+                (p.element(interface, s), b - a)
             }
             None => {
                 let mesh = interface.master();
@@ -186,8 +252,10 @@ impl MasterFaces {
     ) -> usize {
         match &self.packed {
             Some(p) => {
-                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
-                out[..b - a].copy_from_slice(&p.coords[a..b]);
+                let (a, b) = p.range(s);
+                for (o, &i) in out.iter_mut().zip(&p.nodes[a..b]) {
+                    *o = p.coords[i as usize];
+                }
                 b - a
             }
             None => interface
@@ -207,8 +275,10 @@ impl MasterFaces {
     ) -> usize {
         match &self.packed {
             Some(p) => {
-                let (a, b) = (p.start[s] as usize, p.start[s + 1] as usize);
-                out[..b - a].copy_from_slice(&p.columns[a..b]);
+                let (a, b) = p.range(s);
+                for (o, &i) in out.iter_mut().zip(&p.nodes[a..b]) {
+                    *o = p.columns[i as usize];
+                }
                 b - a
             }
             None => {
@@ -235,7 +305,7 @@ impl MasterFaces {
     #[inline]
     pub fn element(&self, interface: &Interface, s: usize) -> ElementRef {
         match &self.packed {
-            Some(p) => p.element[s],
+            Some(p) => p.element(interface, s),
             None => interface.master().face(self.face[s] as usize).element,
         }
     }
@@ -267,8 +337,9 @@ impl MasterFaces {
         self.face.len() * 4
             + self.packed.as_ref().map_or(0, |p| {
                 p.start.len() * 4
-                    + p.element.len() * std::mem::size_of::<ElementRef>()
+                    + p.types.len()
                     + p.tag.len() * 8
+                    + p.nodes.len() * 4
                     + p.columns.len() * 4
                     + p.coords.len() * 24
             })

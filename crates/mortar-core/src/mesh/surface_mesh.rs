@@ -182,6 +182,14 @@ impl SurfaceMesh {
         }
     }
 
+    /// The index of face `face`'s element type in [`element_types`](Self::element_types).
+    ///
+    /// # Panics
+    /// If `face >= face_count()`.
+    pub(crate) fn face_type_index(&self, face: usize) -> u8 {
+        self.face_types[face]
+    }
+
     /// The distinct element types of the faces (each face's type is one of these).
     pub fn element_types(&self) -> &[ElementRef] {
         &self.element_types
