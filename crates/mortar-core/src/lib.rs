@@ -5,7 +5,7 @@
 //! ```text
 //! SurfaceMesh (slave), SurfaceMesh (master)
 //!   -> Interface        validated faces, node maps, averaged slave nodal normals
-//!   -> search           parry BVH over inflated face boxes -> candidate pairs
+//!   -> search           BVH over inflated face boxes -> candidate pairs
 //!   -> integration      per slave face: paired quadrature rule (segment- or element-based)
 //!   -> assembly         Phi_j, N_k^s, N_l^m -> local blocks -> sparse D and M
 //! ```

@@ -1,7 +1,7 @@
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::bvh::{Box3, BoxTree};
+use super::bvh::{union, Box3, BoxTree};
 use super::morton::morton_code;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
@@ -39,8 +39,9 @@ impl Candidates {
 /// The master faces are cut into slabs of equal width along the longest axis of their
 /// bounding box (by first node) and one tree is built per slab, in parallel. Within a slab
 /// the faces follow the Morton order of their first nodes (whatever the file's numbering),
-/// and each leaf holds up to eight consecutive ones (`LEAF_FACES`), which makes the trees
-/// several times cheaper to build; a hit leaf's faces are then tested one by one. A query
+/// and each leaf holds up to eight consecutive ones (`LEAF_FACES`); the tree groups the
+/// leaves four by four in that order (see `bvh.rs`), and a hit leaf's faces are then tested
+/// one by one. A query
 /// visits the slabs whose bounds meet its box. The candidates are sorted, so they depend
 /// neither on the slab layout nor on the thread count.
 pub struct MasterTree {
@@ -150,10 +151,6 @@ impl std::fmt::Debug for MasterTree {
     }
 }
 
-pub(super) fn union(a: &Box3, b: &Box3) -> Box3 {
-    (a.0.inf(&b.0), a.1.sup(&b.1))
-}
-
 pub(super) const EMPTY: Box3 = (
     Vector3::new(f64::INFINITY, f64::INFINITY, f64::INFINITY),
     Vector3::new(f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY),
@@ -230,15 +227,14 @@ impl MasterTree {
                         points_box(&x[..k], tol)
                     })
                     .collect();
-                let leaves: Vec<(u32, Box3)> = boxes
+                let leaves: Vec<Box3> = boxes
                     .chunks(LEAF_FACES)
-                    .enumerate()
-                    .map(|(l, group)| (l as u32, group.iter().fold(EMPTY, |acc, b| union(&acc, b))))
+                    .map(|group| group.iter().fold(EMPTY, |acc, b| union(&acc, b)))
                     .collect();
-                let bounds = leaves.iter().fold(EMPTY, |acc, (_, b)| union(&acc, b));
+                let bounds = leaves.iter().fold(EMPTY, |acc, b| union(&acc, b));
                 let frame = Frame::of(&bounds);
                 Slab {
-                    tree: BoxTree::build(&leaves, planar),
+                    tree: BoxTree::build(leaves, planar),
                     bounds,
                     first_slot,
                     boxes: boxes.iter().map(|b| box_f32(&frame.apply(b))).collect(),
@@ -292,7 +288,7 @@ pub(super) fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
     (0..dims).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
-/// Finds the candidate pairs of a whole interface with parry's BVH (built over the master
+/// Finds the candidate pairs of a whole interface with the BVH (built over the master
 /// faces, queried with each slave face). Runs on the current rayon pool; the result does not
 /// depend on the thread count. (`assemble_coupling` queries chunk by chunk instead, without
 /// storing every candidate.)

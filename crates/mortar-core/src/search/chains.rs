@@ -6,8 +6,8 @@
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::bvh::{Box3, BoxTree};
-use super::candidates::{overlaps, points_box, slave_search_box, union, EMPTY};
+use super::bvh::{union, Box3, BoxTree};
+use super::candidates::{overlaps, points_box, slave_search_box, EMPTY};
 use super::master_cache::MasterLineCache;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
@@ -137,22 +137,21 @@ impl ChainSearch {
     /// The search over `masters` (in the chain order of `chains`, the master's chains).
     pub(crate) fn new(interface: &Interface, masters: &MasterFaces, chains: LineChains) -> Self {
         let tol = interface.tolerances();
-        let blocks: Vec<(u32, Box3)> = (0..masters.len().div_ceil(BLOCK))
+        let blocks: Vec<Box3> = (0..masters.len().div_ceil(BLOCK))
             .into_par_iter()
             .map(|b| {
                 let mut x = [Vector3::zeros(); MAX_FACE_NODES];
                 let slots = b * BLOCK..((b + 1) * BLOCK).min(masters.len());
-                let bx = slots.fold(EMPTY, |acc, s| {
+                slots.fold(EMPTY, |acc, s| {
                     let k = masters.node_coords_into(interface, s, &mut x);
                     union(&acc, &points_box(&x[..k], tol))
-                });
-                (b as u32, bx)
+                })
             })
             .collect();
         Self {
             next: chains.next,
             prev: chains.prev,
-            blocks: BoxTree::build(&blocks, true),
+            blocks: BoxTree::build(blocks, true),
         }
     }
 

@@ -1,12 +1,11 @@
 //! The candidate search: which master faces may overlap each slave face.
 //!
 //! Bounding boxes of the master faces, inflated by [`Tolerances::search_inflation`] times the
-//! face diameter, go into parry's BVH (`parry2d-f64` for 2D interfaces, `parry3d-f64` for 3D),
-//! its leaves grouping faces in the Morton order of their centres. Each slave face queries it
+//! face diameter, go into a BVH whose leaves group faces in the Morton order of their first
+//! nodes, four leaves to a node in that order (`bvh.rs`). Each slave face queries it
 //! with the box of its nodes swept along their nodal normals by the
 //! [`Tolerances::search_radius`] both ways (by default one face diameter: an open gap of the
-//! order of the element size is crossed). O(N log N); nothing is all-pairs. parry's API stays
-//! inside `bvh.rs`.
+//! order of the element size is crossed). O(N log N); nothing is all-pairs.
 //!
 //! A 2D interface of two-node lines in chains is searched as a merge instead (`chains.rs`):
 //! both sides in chain order, each slave face's partners found by walking along the master's
