@@ -40,8 +40,59 @@ fn options(dual: bool) -> CouplingOptions {
     }
 }
 
+/// Cells of any kind, parallelograms (no jitter) on one side or both, moved rigidly anywhere
+/// within 1e6 of the origin.
+fn flat_cells(slave_jitter: f64, master_jitter: f64) -> PairConfig {
+    PairConfig {
+        slave_jitter,
+        master_jitter,
+        ..PairConfig::default()
+    }
+}
+
 proptest! {
     #![proptest_config(config(48))]
+
+    /// Random covered pairs of quads, triangles or both, each cell a parallelogram: the
+    /// moments of the clip polygons (or, for triangles on both sides, the vertex formulas)
+    /// take every slave face and give the general path's D and M (the strategy's degree-4
+    /// points on each clip triangle against the moments' degree-4 rule on the polygon's fan
+    /// in the slave's reference coordinates). Moved rigidly anywhere within 1e6 of the
+    /// origin, the same D and M: far from the origin a quad's projection is affine only to
+    /// the rounding of its coordinates, finer than the test of an affine map
+    /// ([`PlanarMap`](mortar::core::geometry::PlanarMap), 1e-13 of its Jacobian), and such
+    /// faces go to the strategy.
+    #[test]
+    fn moments_give_the_general_paths_operators_on_parallelograms(
+        pair in covered_pair_3d_with(flat_cells(0.0, 0.0)),
+        motion in rigid_motion_3d(),
+        dual in any::<bool>(),
+    ) {
+        let interface = ok(pair.interface())?;
+        let c = both_ways(&interface, &options(dual), "parallelograms");
+        prop_assert_eq!(c.stats.closed_form_faces, interface.slave().face_count());
+        let moved = ok(pair.transformed(|x| motion.apply(x)))?;
+        both_ways(&ok(moved.interface())?, &options(dual), "moved parallelograms");
+    }
+
+    /// Jittered quads on one side (bilinear maps that are not affine): the faces the moments
+    /// cannot take (a warped slave quad, or a slave face over a warped master quad) go to the
+    /// strategy, the others are integrated by moments; either way, the general path's D and
+    /// M.
+    #[test]
+    fn moments_leave_warped_quads_to_the_strategy(
+        pair in covered_pair_3d_with(flat_cells(0.0, 0.3)),
+        swap in any::<bool>(),
+        dual in any::<bool>(),
+    ) {
+        let interface = if swap {
+            let (s, m) = (pair.master.clone(), pair.slave.clone());
+            ok(Interface::new(s, m))?
+        } else {
+            ok(pair.interface())?
+        };
+        both_ways(&interface, &options(dual), "warped quads");
+    }
 
     /// Random covered triangle pairs (jittered, either orientation), moved rigidly anywhere
     /// within 1e6 of the origin, standard or dual, nodal-normal or element-normal
@@ -133,8 +184,8 @@ fn uncovered_area_and_back_facing_faces_are_counted_alike() {
 }
 
 /// A fixed degree at least the integrands' (2) keeps the closed form; degree 1 (inexact on
-/// purpose) is the strategy's, as are quads on either side and a strategy that does not
-/// claim the segmentation.
+/// purpose) is the strategy's, as is a strategy that does not claim the segmentation; a
+/// triangle against quads takes the moments at its integrands' degree (3) and not below it.
 #[test]
 fn what_the_closed_form_takes() {
     let tris = |n, flip, tag, d| square_triangles(n, d, 0.0, flip, tag).unwrap();
@@ -158,9 +209,22 @@ fn what_the_closed_form_takes() {
     assert_eq!(c.stats.closed_form_faces, 0);
     let c = assemble_coupling(&interface, &plain_with(&low, SegmentBased::default())).unwrap();
     assert_eq!(c.stats.closed_form_faces, 0);
+    // Quad masters: the moments of the clip polygons, down to the integrands' degree (3 for a
+    // triangle against a quad).
     let quads = mortar::generate::square_quads(5, 0.0, true, 1000).unwrap();
     let interface = Interface::new(tris(6, false, 1, Diagonal::Main), quads).unwrap();
-    let c = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    let c = both_ways(&interface, &CouplingOptions::default(), "quad master");
+    assert_eq!(c.stats.closed_form_faces, 72);
+    let three = CouplingOptions::default().segment_based(Some(3)).unwrap();
+    let c = both_ways_with(
+        &interface,
+        &three,
+        &plain_with(&three, SegmentBased::new(Some(3)).unwrap()),
+        "degree 3",
+    );
+    assert_eq!(c.stats.closed_form_faces, 72);
+    let two = CouplingOptions::default().segment_based(Some(2)).unwrap();
+    let c = assemble_coupling(&interface, &two).unwrap();
     assert_eq!(c.stats.closed_form_faces, 0);
     assert_eq!(
         SegmentBased::default().polygon_segments(),
@@ -183,4 +247,39 @@ fn closed_form_is_bit_identical_across_thread_counts() {
     let one = bits(1);
     assert_eq!(one, bits(2));
     assert_eq!(one, bits(3));
+}
+
+/// A quad cylinder against a finer triangulated one (the benchmark's cylinder, small), each
+/// slave face a flat rectangle whose plane follows its averaged nodal normals, with an open
+/// gap of 1e-3 of the radius; and a quad cylinder against a quad cylinder: the moments take
+/// every slave face and give the general path's D and M, standard and dual, the same bits on
+/// 1, 2 and 3 threads.
+#[test]
+fn quad_cylinders_by_moments() {
+    let cases = [
+        (
+            cylinder_surface(1.0, 24, 5, false, false, 1).unwrap(),
+            cylinder_surface(1.001, 37, 7, true, true, 10_000).unwrap(),
+            "quads against triangles",
+        ),
+        (
+            cylinder_surface(1.0, 24, 5, false, false, 1).unwrap(),
+            cylinder_surface(1.001, 37, 7, false, true, 10_000).unwrap(),
+            "quads against quads",
+        ),
+    ];
+    for (slave, master, what) in cases {
+        let faces = slave.face_count();
+        let interface = Interface::new(slave, master).unwrap();
+        for dual in [false, true] {
+            let c = both_ways(&interface, &options(dual), what);
+            assert_eq!(c.stats.closed_form_faces, faces, "{what}");
+            let bits = |t: usize| {
+                dm_bits(&assemble_coupling(&interface, &options(dual).threads(t)).unwrap())
+            };
+            let one = bits(1);
+            assert_eq!(one, bits(2), "{what}");
+            assert_eq!(one, bits(3), "{what}");
+        }
+    }
 }

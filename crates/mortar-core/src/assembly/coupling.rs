@@ -11,15 +11,14 @@ use super::straight_line;
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
-use crate::integration::closed_form::{self, closed_form_into};
+use crate::integration::affine_moments::{affine_moments_into, PendingBlock};
+use crate::integration::closed_form::{self, closed_form_into, ClosedForm};
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
-use crate::integration::{
-    LineSegments, PairedRule, PolygonSegments, SegmentContext, CANDIDATE_BATCH,
-};
+use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
 use crate::search::{
-    spatial_order, ChainSearch, LineChains, MasterLineCache, MasterTree, MasterTriangleCache,
+    spatial_order, ChainSearch, LineChains, MasterCornersCache, MasterLineCache, MasterTree,
     WALK_LIMIT,
 };
 
@@ -228,8 +227,10 @@ struct FaceBuffers {
     line: LineFace,
     /// The master lines of the chain walk and the fused kernel.
     lines: MasterLineCache,
-    /// The master triangles of the closed form.
-    triangles: MasterTriangleCache,
+    /// The master faces of the closed forms.
+    triangles: MasterCornersCache,
+    /// The M blocks of a face by moments, until it is known to be integrated so.
+    pending: Vec<PendingBlock>,
     d: RowAccumulator,
     m: RowAccumulator,
 }
@@ -297,7 +298,7 @@ enum Search {
     /// triangles on both sides).
     Tree {
         tree: MasterTree,
-        closed_form: Option<PolygonSegments>,
+        closed_form: Option<ClosedForm>,
     },
     /// Straight two-node lines in chains on both sides, with a strategy that segments them
     /// exactly: a walk along the master's chains, and the fused kernel.
@@ -347,7 +348,7 @@ impl Search {
         let closed_form = options
             .integration
             .polygon_segments()
-            .filter(|rule| closed_form::applies(interface, *rule));
+            .and_then(|rule| closed_form::applies(interface, rule));
         let search = Search::Tree { tree, closed_form };
         (search, masters, order)
     }
@@ -1053,7 +1054,7 @@ fn fused_face(
 fn general_face(
     options: &CouplingOptions,
     ctx: &SegmentContext<'_>,
-    closed_form: Option<PolygonSegments>,
+    closed_form: Option<ClosedForm>,
     face: &FaceGeometry,
     rows: &[u32],
     cands: &[u32],
@@ -1070,6 +1071,7 @@ fn general_face(
         blocks,
         columns,
         triangles,
+        pending,
         d,
         m,
         ..
@@ -1110,8 +1112,14 @@ fn general_face(
         let closed = match closed_form {
             Some((cf, b)) => {
                 let add = |cols: &[u32], block: &[f64]| columns.add_cols(cols, block);
-                let (d, tris) = (&mut blocks.d, &mut *triangles);
-                closed_form_into(ctx, face, part, cf.degree, &b, d, tris, add, rule)?
+                let (d, tris, degree) = (&mut blocks.d, &mut *triangles, cf.rule.degree);
+                match (cf.triangles, cf.shape(face.element)) {
+                    (true, _) => closed_form_into(ctx, face, part, degree, &b, d, tris, add, rule)?,
+                    (false, Some(shape)) => affine_moments_into(
+                        ctx, face, shape, part, &cf, &b, d, tris, pending, add, rule,
+                    )?,
+                    (false, None) => false,
+                }
             }
             None => false,
         };

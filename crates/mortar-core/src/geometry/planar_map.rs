@@ -49,6 +49,13 @@ impl PlanarMap {
         self.affine.is_some()
     }
 
+    /// The affine map's parts, when it is affine: the reference centre `c`, its image `x` and
+    /// the inverse Jacobian `inv`, so that the reference coordinates of `p` are
+    /// `c + inv (p - x)` (what [`invert`](Self::invert) computes).
+    pub(crate) fn affine_parts(&self) -> Option<(Vector2<f64>, Vector2<f64>, Matrix2<f64>)> {
+        self.affine
+    }
+
     /// The in-plane point at reference coordinates `xi`, and the Jacobian determinant of the
     /// map there (in-plane area per reference area).
     #[inline]

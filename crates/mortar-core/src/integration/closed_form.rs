@@ -23,6 +23,7 @@
 
 use nalgebra::Vector2;
 
+use super::affine_moments::FlatShape;
 use super::segments_3d::SlavePlane;
 use super::{default_degree, PairedRule, PolygonSegments, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
@@ -30,7 +31,7 @@ use crate::error::Result;
 use crate::geometry::Polygon;
 use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::multiplier::LmBasis;
-use crate::search::{MasterTriangle, MasterTriangleCache};
+use crate::search::{MasterCorners, MasterCornersCache};
 
 /// Whether `element` is the three-node triangle with linear shape functions, bit for bit:
 /// nodes at `(0, 0)`, `(1, 0)`, `(0, 1)` and `N = (1 - xi - eta, xi, eta)`, so that each
@@ -60,25 +61,67 @@ pub(crate) fn is_linear_triangle(element: ElementRef) -> bool {
     })
 }
 
-/// Whether the coupling of `interface` may integrate in closed form for a strategy whose
-/// exact segmentation has the degree of `rule`: a 3D interface whose faces are all linear
-/// triangles ([`is_linear_triangle`]), and a degree (if fixed) at least the integrands'.
-pub(crate) fn applies(interface: &Interface, rule: PolygonSegments) -> bool {
+/// How the coupling integrates clip polygons in closed form.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ClosedForm {
+    /// The strategy's exact segmentation.
+    pub rule: PolygonSegments,
+    /// Whether every face of both sides is a linear triangle: the vertex formulas of
+    /// [`closed_form_into`]; else the moments of
+    /// [`affine_moments_into`](super::affine_moments::affine_moments_into).
+    pub triangles: bool,
+    /// The shapes of the interface's element types (the first few), so that a face's is a
+    /// pointer comparison rather than [`FlatShape::of`]'s sample evaluations.
+    shapes: [Option<(ElementRef, FlatShape)>; 4],
+}
+
+impl ClosedForm {
+    /// The shape of `element` (an element type of the interface's faces).
+    #[inline]
+    pub(crate) fn shape(&self, element: ElementRef) -> Option<FlatShape> {
+        self.shapes
+            .iter()
+            .flatten()
+            .find(|(e, _)| std::ptr::eq(*e, element))
+            .map(|(_, s)| *s)
+            .or_else(|| FlatShape::of(element))
+    }
+}
+
+/// How the coupling of `interface` may integrate in closed form for a strategy whose exact
+/// segmentation has the degree of `rule`: on a 3D interface whose faces are all linear
+/// triangles ([`is_linear_triangle`]) or bilinear quads
+/// ([`is_bilinear_quad`](super::affine_moments::is_bilinear_quad)), with a degree (if fixed)
+/// at least the integrands'. `None` where it may not.
+pub(crate) fn applies(interface: &Interface, rule: PolygonSegments) -> Option<ClosedForm> {
     if interface.dim() != SpatialDim::Three {
-        return false;
+        return None;
     }
     let (slave, master) = (interface.slave(), interface.master());
-    let linear = |types: &[ElementRef]| types.iter().copied().all(is_linear_triangle);
-    if !linear(slave.element_types()) || !linear(master.element_types()) {
-        return false;
+    let all = |types: &[ElementRef], f: fn(ElementRef) -> bool| types.iter().copied().all(f);
+    let flat = |e: ElementRef| FlatShape::of(e).is_some();
+    if !all(slave.element_types(), flat) || !all(master.element_types(), flat) {
+        return None;
     }
-    rule.degree.is_none_or(|d| {
+    let triangles = all(slave.element_types(), is_linear_triangle)
+        && all(master.element_types(), is_linear_triangle);
+    let exact = rule.degree.is_none_or(|d| {
         slave.element_types().iter().all(|s| {
             master
                 .element_types()
                 .iter()
                 .all(|m| d >= default_degree(*s, *m))
         })
+    });
+    let mut shapes = [None; 4];
+    let types = slave.element_types().iter().chain(master.element_types());
+    for (slot, &e) in shapes.iter_mut().zip(types) {
+        *slot = FlatShape::of(e).map(|s| (e, s));
+    }
+    exact.then_some(ClosedForm {
+        rule,
+        triangles,
+        shapes,
     })
 }
 
@@ -196,7 +239,7 @@ pub(crate) fn closed_form_into(
     degree: Option<u32>,
     basis: &LmBasis,
     d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
-    masters: &mut MasterTriangleCache,
+    masters: &mut MasterCornersCache,
     mut add_m: impl FnMut(&[u32], &[f64]),
     out: &mut PairedRule,
 ) -> Result<bool> {
@@ -228,13 +271,14 @@ pub(crate) fn closed_form_into(
     let mut covered = 0.0;
     let mut dface = [[0.0; 3]; 3];
     for &m in candidates {
-        let &MasterTriangle {
+        let &MasterCorners {
             element,
             nodes,
             cols,
+            ..
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, _)) = setup.clip_face(element, &nodes, &mut mp, &mut clip, bf) else {
+        let Some((mel, _)) = setup.clip_face(element, &nodes[..3], &mut mp, &mut clip, bf) else {
             continue;
         };
         let mut mom = Moments::of(&clip, scale);
@@ -259,7 +303,7 @@ pub(crate) fn closed_form_into(
                 block[j * 3 + l] = w.times(nm_o[l], n);
             }
         }
-        add_m(&cols, &block);
+        add_m(&cols[..3], &block);
         out.pairs += 1;
         out.cells += 1;
         out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, mel));

@@ -21,6 +21,7 @@
 //!   clipping or flat sub-faces (slow).
 
 mod adaptive;
+pub(crate) mod affine_moments;
 pub(crate) mod closed_form;
 pub mod curved_3d;
 mod degree;

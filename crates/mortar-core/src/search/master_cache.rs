@@ -91,33 +91,36 @@ impl MasterRead for MasterLine {
 /// by consecutive slave faces have consecutive slots).
 pub(crate) type MasterLineCache = MasterCache<MasterLine>;
 
-/// One master triangle: its element type, node coordinates and columns in M, as
-/// [`MasterFaces`] gives them.
+/// One master face of three or four nodes (a triangle or a quad of the 3D closed forms): its
+/// element type, node coordinates and columns in M, as [`MasterFaces`] gives them.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct MasterTriangle {
+pub(crate) struct MasterCorners {
     /// The element type.
     pub element: ElementRef,
-    /// The three node coordinates.
-    pub nodes: [Vector3<f64>; 3],
-    /// The columns in M of the three nodes.
-    pub cols: [u32; 3],
+    /// The node count, 3 or 4.
+    pub count: usize,
+    /// The node coordinates (the first `count`).
+    pub nodes: [Vector3<f64>; 4],
+    /// The columns in M of the nodes (the first `count`).
+    pub cols: [u32; 4],
 }
 
-impl MasterRead for MasterTriangle {
+impl MasterRead for MasterCorners {
     #[inline(never)]
     fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
         let mut y = [Vector3::zeros(); MAX_FACE_NODES];
         let (element, k) = masters.coords_into(interface, s as usize, &mut y);
-        debug_assert_eq!(k, 3, "a three-node triangle");
+        debug_assert!(k == 3 || k == 4, "a three- or four-node face");
         let mut cols = [0u32; MAX_FACE_NODES];
         masters.columns_into(interface, s as usize, &mut cols);
         Self {
             element,
-            nodes: [y[0], y[1], y[2]],
-            cols: [cols[0], cols[1], cols[2]],
+            count: k.min(4),
+            nodes: [y[0], y[1], y[2], y[3]],
+            cols: [cols[0], cols[1], cols[2], cols[3]],
         }
     }
 }
 
-/// The master triangles of the 3D closed form, by slot.
-pub(crate) type MasterTriangleCache = MasterCache<MasterTriangle>;
+/// The master faces of the 3D closed forms, by slot.
+pub(crate) type MasterCornersCache = MasterCache<MasterCorners>;

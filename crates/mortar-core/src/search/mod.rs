@@ -23,5 +23,5 @@ mod morton;
 
 pub use candidates::{find_candidates, Candidates, MasterTree};
 pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
-pub(crate) use master_cache::{MasterLine, MasterLineCache, MasterTriangle, MasterTriangleCache};
+pub(crate) use master_cache::{MasterCorners, MasterCornersCache, MasterLine, MasterLineCache};
 pub(crate) use morton::spatial_order;

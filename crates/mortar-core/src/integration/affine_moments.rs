@@ -1,0 +1,456 @@
+//! The mortar integrals of flat quads by the moments of their clip polygons (3D).
+//!
+//! Where a slave face is a linear triangle or a bilinear quad whose map into its auxiliary
+//! plane is affine (a flat parallelogram), and every master face it meets is a linear triangle
+//! or a bilinear quad whose projection into that plane is affine, every integrand of D and M
+//! is a polynomial of degree at most 4 in the slave's reference coordinates `r = (xi, eta)`:
+//! the slave's shape functions, and the multipliers (their combinations), lie in
+//! `P2 = {1, xi, eta, xi^2, xi eta, eta^2}` of `r`; a master's shape functions lie in `P2` of
+//! its own reference coordinates, which are an affine function of `r` (the composition of two
+//! affine maps through the plane), hence in `P2` of `r`. Each pair's integrals are therefore
+//! combinations of the clip polygon's fifteen moments `int xi^a eta^b dr` (`a + b <= 4`),
+//! which a degree-4 rule on the polygon's fan of triangles in `r` gives exactly (to
+//! round-off); D is the same combination of the moments summed over the face's pairs, formed
+//! once per face. This replaces the strategy's points on each clip triangle (their mapping
+//! back to both faces through the inverse maps and the shape functions evaluated at each) by
+//! one pass of a fixed rule over the polygon and a few dozen products per pair: the integrals
+//! of any exact quadrature, to round-off.
+//!
+//! Triangles against triangles keep the vertex formulas of [`closed_form`](super::closed_form)
+//! (degree 2, cheaper). The coupling runs this where the strategy says it is the exact
+//! segmentation of [`SegmentBased`](super::SegmentBased), with a degree that integrates these
+//! integrands exactly ([`closed_form::applies`](super::closed_form::applies)).
+
+use arrayvec::ArrayVec;
+use nalgebra::{Matrix2, Vector2};
+
+use super::closed_form::ClosedForm;
+use super::segments_3d::SlavePlane;
+use super::{default_degree, PairedRule, SegmentContext};
+use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
+use crate::error::Result;
+use crate::geometry::{PlanarMap, Polygon, MAX_POLYGON_VERTICES};
+use crate::interface::FaceGeometry;
+use crate::multiplier::LmBasis;
+use crate::quadrature::{Quadrature, QuadratureRule};
+use crate::search::{MasterCorners, MasterCornersCache};
+
+/// The monomials `xi^a eta^b` with `a + b <= 4`, the one of `(a, b)` at
+/// `(a + b)(a + b + 1) / 2 + b`: `1; xi, eta; xi^2, xi eta, eta^2; xi^3, ...; ..., eta^4`.
+const MONOMIALS: usize = 15;
+
+/// The first six monomials: a basis of `P2`.
+const P2: usize = 6;
+
+/// A polynomial of `P2` by its coefficients on `1, xi, eta, xi^2, xi eta, eta^2`.
+type Poly = [f64; P2];
+
+/// The exponents of the `P2` monomials.
+const EXPONENTS: [(usize, usize); P2] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+
+/// `PRODUCT[i][j]`: the monomial of the product of `P2` monomials `i` and `j`.
+const PRODUCT: [[usize; P2]; P2] = {
+    let mut t = [[0; P2]; P2];
+    let mut i = 0;
+    while i < P2 {
+        let mut j = 0;
+        while j < P2 {
+            let (a, b) = (
+                EXPONENTS[i].0 + EXPONENTS[j].0,
+                EXPONENTS[i].1 + EXPONENTS[j].1,
+            );
+            t[i][j] = (a + b) * (a + b + 1) / 2 + b;
+            j += 1;
+        }
+        i += 1;
+    }
+    t
+};
+
+/// The `P2` monomials a slave face's shape functions (and multipliers) may use: `1, xi, eta,
+/// xi eta` (a triangle's coefficient of `xi eta` is zero).
+const SLAVE_TERMS: [usize; 4] = [0, 1, 2, 4];
+
+/// The face shapes integrated here: whose shape functions lie in `P2` of their reference
+/// coordinates, bit for bit as their element types compute them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum FlatShape {
+    /// The linear triangle ([`is_linear_triangle`](super::closed_form::is_linear_triangle)).
+    Triangle,
+    /// The bilinear quad ([`is_bilinear_quad`]).
+    Quad,
+}
+
+impl FlatShape {
+    /// The shape of `element`, if it is one of these.
+    pub(crate) fn of(element: ElementRef) -> Option<Self> {
+        if super::closed_form::is_linear_triangle(element) {
+            Some(Self::Triangle)
+        } else if is_bilinear_quad(element) {
+            Some(Self::Quad)
+        } else {
+            None
+        }
+    }
+
+    /// How many of the `P2` monomials (in order) its shape functions use, and so do their
+    /// compositions with an affine map: three (affine) for the triangle, six for the quad.
+    fn monomials(self) -> usize {
+        match self {
+            Self::Triangle => 3,
+            Self::Quad => P2,
+        }
+    }
+
+    /// The shape functions of `element` (of this shape), node by node, in `P2` of its
+    /// reference coordinates.
+    fn polynomials(self, element: ElementRef) -> [Poly; 4] {
+        match self {
+            Self::Triangle => [
+                [1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+                [0.0; P2],
+            ],
+            Self::Quad => {
+                let c = element.node_reference_coords();
+                std::array::from_fn(|k| {
+                    let (x, y) = (c[k][0], c[k][1]);
+                    [0.25, 0.25 * x, 0.25 * y, 0.0, 0.25 * x * y, 0.0]
+                })
+            }
+        }
+    }
+}
+
+/// Whether `element` is the four-node quad with bilinear shape functions: corners at
+/// `(+-1, +-1)` and `N_k = (1 + xi_k xi)(1 + eta_k eta) / 4`, checked at sample points to
+/// four ulps.
+pub(crate) fn is_bilinear_quad(element: ElementRef) -> bool {
+    if element.node_count() != 4
+        || element.corner_count() != 4
+        || element.domain() != ReferenceDomain::Quadrilateral
+        || element.shape_degree() != 2
+    {
+        return false;
+    }
+    let nodes = element.node_reference_coords();
+    if nodes.len() != 4 || nodes.iter().any(|c| c[0].abs() != 1.0 || c[1].abs() != 1.0) {
+        return false;
+    }
+    let mut n = [0.0; 4];
+    [
+        [0.0, 0.0],
+        [0.3, -0.7],
+        [-0.45, 0.125],
+        [1.0, 1.0],
+        [-0.9, 0.6],
+    ]
+    .iter()
+    .all(|&[x, y]| {
+        element.shape_values_into(&Vector2::new(x, y), &mut n);
+        nodes.iter().zip(&n).all(|(c, v)| {
+            let want = 0.25 * (1.0 + c[0] * x) * (1.0 + c[1] * y);
+            (v - want).abs() <= 4.0 * f64::EPSILON
+        })
+    })
+}
+
+/// `p(c + B r)` as a polynomial of `r`, for `p` in `P2` of `s`.
+fn compose(p: &Poly, c: &Vector2<f64>, b: &Matrix2<f64>) -> Poly {
+    let sx = [c.x, b[(0, 0)], b[(0, 1)]];
+    let sy = [c.y, b[(1, 0)], b[(1, 1)]];
+    if p[3] == 0.0 && p[4] == 0.0 && p[5] == 0.0 {
+        // Affine (a triangle's shape functions): no products.
+        return [
+            p[0] + p[1] * sx[0] + p[2] * sy[0],
+            p[1] * sx[1] + p[2] * sy[1],
+            p[1] * sx[2] + p[2] * sy[2],
+            0.0,
+            0.0,
+            0.0,
+        ];
+    }
+    // The product of two affine functions `u0 + ux xi + uy eta`.
+    let mul = |u: [f64; 3], v: [f64; 3]| -> Poly {
+        [
+            u[0] * v[0],
+            u[0] * v[1] + u[1] * v[0],
+            u[0] * v[2] + u[2] * v[0],
+            u[1] * v[1],
+            u[1] * v[2] + u[2] * v[1],
+            u[2] * v[2],
+        ]
+    };
+    let terms: [Poly; P2] = [
+        [1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [sx[0], sx[1], sx[2], 0.0, 0.0, 0.0],
+        [sy[0], sy[1], sy[2], 0.0, 0.0, 0.0],
+        mul(sx, sx),
+        mul(sx, sy),
+        mul(sy, sy),
+    ];
+    let mut out = [0.0; P2];
+    for (&coef, t) in p.iter().zip(&terms) {
+        if coef != 0.0 {
+            for (o, v) in out.iter_mut().zip(t) {
+                *o += coef * v;
+            }
+        }
+    }
+    out
+}
+
+/// Adds the moments `int r^alpha dr` (all fifteen) of the polygon of vertices `v` to `out`,
+/// signed by its orientation (positive counter-clockwise), by `rule` (exact to degree 4) on
+/// the fan of triangles from its first vertex.
+fn add_moments(v: &[Vector2<f64>], rule: &QuadratureRule, out: &mut [f64; MONOMIALS]) {
+    let o = v[0];
+    for w in v[1..].windows(2) {
+        let (ea, eb) = (w[0] - o, w[1] - o);
+        // Twice the signed area: the reference triangle's weights sum to one half.
+        let twice = ea.x * eb.y - ea.y * eb.x;
+        for (q, &wq) in rule.points().iter().zip(rule.weights()) {
+            let r = o + ea * q.x + eb * q.y;
+            let f = wq * twice;
+            let (x, y) = (r.x, r.y);
+            let (x2, xy, y2) = (x * x, x * y, y * y);
+            let m = [
+                1.0,
+                x,
+                y,
+                x2,
+                xy,
+                y2,
+                x2 * x,
+                x2 * y,
+                x * y2,
+                y2 * y,
+                x2 * x2,
+                x2 * xy,
+                x2 * y2,
+                xy * y2,
+                y2 * y2,
+            ];
+            for (acc, mi) in out.iter_mut().zip(m) {
+                *acc += f * mi;
+            }
+        }
+    }
+}
+
+/// `int p q` over the region of moments `mom`, for `p` and `q` in `P2`.
+#[inline]
+fn integral(p: &Poly, q: &Poly, mom: &[f64; MONOMIALS]) -> f64 {
+    let mut s = 0.0;
+    for (i, &pi) in p.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+        for (j, &qj) in q.iter().enumerate() {
+            s += pi * qj * mom[PRODUCT[i][j]];
+        }
+    }
+    s
+}
+
+/// One pair's M block, kept until the face is known to be integrated here.
+pub(crate) type PendingBlock = ([u32; 4], usize, [f64; 16]);
+
+/// D and M of a slave face of shape `slave_shape` against its `candidates` (as slots of
+/// `ctx.masters`, read through `masters`), for the closed form `form`, by the moments of the
+/// clip polygons: D added to
+/// `d`, each master face's `ks x km` M block (row-major) given to `add_m` with the columns of
+/// its nodes, in candidate order; `out` gets the counts the strategy would give (pairs,
+/// back-facing candidates, the covered fraction, the degree the strategy would have used; one
+/// cell per clip polygon) and no points. `pending` is a buffer (its contents are replaced).
+///
+/// Returns `false`, with nothing added, when the slave face is not affine in its plane, a
+/// master face it overlaps is neither a linear triangle nor a bilinear quad, or that master
+/// face's projection is not affine: the strategy then takes the face.
+///
+/// # Errors
+/// As the strategy's segmentation: a slave face with a zero projection direction or one that
+/// turns against it.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn affine_moments_into(
+    ctx: &SegmentContext<'_>,
+    slave: &FaceGeometry,
+    slave_shape: FlatShape,
+    candidates: &[u32],
+    form: &ClosedForm,
+    basis: &LmBasis,
+    d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
+    masters: &mut MasterCornersCache,
+    pending: &mut Vec<PendingBlock>,
+    mut add_m: impl FnMut(&[u32], &[f64]),
+    out: &mut PairedRule,
+) -> Result<bool> {
+    out.clear();
+    pending.clear();
+    let setup = SlavePlane::new(ctx, slave)?;
+    if setup.in_reference {
+        return Ok(false);
+    }
+    let Some((centre, x_c, inv)) = setup.slave_map.affine_parts() else {
+        return Ok(false);
+    };
+    let Some(jac) = inv.try_inverse() else {
+        return Ok(false);
+    };
+    // Plane area per reference area, times the face's area element per the plane's.
+    let scale = jac.determinant() * setup.measure;
+    let ks = slave.node_count();
+    let ns = slave_shape.polynomials(slave.element);
+    let phi: [Poly; 4] = if basis.identity {
+        ns
+    } else {
+        std::array::from_fn(|j| {
+            let mut p = [0.0; P2];
+            for (k, n) in ns.iter().enumerate().take(ks) {
+                for (pv, nv) in p.iter_mut().zip(n) {
+                    *pv += basis.a[j][k] * nv;
+                }
+            }
+            p
+        })
+    };
+    let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4)?;
+    let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
+    let mut clip = Polygon::default();
+    let mut total = [0.0; MONOMIALS];
+    let mut covered = 0.0;
+    for &m in candidates {
+        let &MasterCorners {
+            element,
+            count,
+            nodes,
+            cols,
+        } = masters.get(ctx.interface, ctx.masters, m);
+        let bf = &mut out.back_facing;
+        let Some((mel, km)) = setup.clip_face(element, &nodes[..count], &mut mp, &mut clip, bf)
+        else {
+            continue;
+        };
+        let Some(mshape) = form.shape(mel) else {
+            return Ok(false);
+        };
+        // The master's reference coordinates `s = mc + minv (p - mx)` (a triangle's from its
+        // corners: the map of the linear triangle, `p = p0 + [p1 - p0, p2 - p0] s`).
+        let (mc, mx, minv) = match mshape {
+            FlatShape::Triangle => {
+                let e = Matrix2::from_columns(&[mp[1] - mp[0], mp[2] - mp[0]]);
+                let Some(minv) = e.try_inverse() else {
+                    return Ok(false);
+                };
+                (Vector2::zeros(), mp[0], minv)
+            }
+            FlatShape::Quad => match PlanarMap::new(mel, &mp[..km]).affine_parts() {
+                Some(parts) => parts,
+                None => return Ok(false),
+            },
+        };
+        // As an affine function of the slave's: s = mc + minv (x_c + jac (r - centre) - mx).
+        let b = minv * jac;
+        let c = mc + minv * (x_c - mx) - b * centre;
+        let mut nm = [[0.0; P2]; 4];
+        for (n, poly) in nm.iter_mut().zip(mshape.polynomials(mel)).take(km) {
+            *n = compose(&poly, &c, &b);
+        }
+        let rv: ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES> = clip
+            .vertices
+            .iter()
+            .map(|p| centre + inv * (p - x_c))
+            .collect();
+        let mut mom = [0.0; MONOMIALS];
+        add_moments(&rv, rule, &mut mom);
+        for (t, v) in total.iter_mut().zip(&mom) {
+            *t += v;
+        }
+        // `w[j][g] = int Phi_j r^g` for the monomials the master's shape functions use (the
+        // affine ones of a triangle, all of P2 for a quad), then each entry a dot product.
+        // The multipliers use 1, xi, eta and xi eta only.
+        let used = mshape.monomials();
+        let mut gathered = [[0.0; P2]; 4];
+        for (row, &a) in gathered.iter_mut().zip(&SLAVE_TERMS) {
+            for (v, &k) in row.iter_mut().zip(&PRODUCT[a]).take(used) {
+                *v = mom[k];
+            }
+        }
+        let mut w = [[0.0; P2]; 4];
+        for (wj, p) in w.iter_mut().zip(&phi).take(ks) {
+            for (t, &a) in SLAVE_TERMS.iter().enumerate() {
+                for (wg, v) in wj.iter_mut().zip(&gathered[t]).take(used) {
+                    *wg += p[a] * v;
+                }
+            }
+        }
+        let mut block = [0.0; 16];
+        for (j, wj) in w.iter().enumerate().take(ks) {
+            for (l, n) in nm.iter().enumerate().take(km) {
+                let s: f64 = (0..used).map(|g| n[g] * wj[g]).sum();
+                block[j * km + l] = scale * s;
+            }
+        }
+        pending.push((cols, km, block));
+        out.pairs += 1;
+        out.cells += 1;
+        out.degrees |= 1
+            << form
+                .rule
+                .degree
+                .unwrap_or_else(|| default_degree(slave.element, mel));
+        covered += clip.signed_area();
+    }
+    for (cols, km, block) in pending.iter() {
+        add_m(&cols[..*km], &block[..ks * km]);
+    }
+    for (j, p) in phi.iter().enumerate().take(ks) {
+        for (k, n) in ns.iter().enumerate().take(ks) {
+            d[j][k] += scale * integral(p, n, &total);
+        }
+    }
+    out.covered = Some(covered / setup.area_s);
+    Ok(true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The moments of the unit square `[0, 1]^2` from two fan triangles: `int x^a y^b =
+    /// 1 / ((a + 1)(b + 1))` (closed form), for every `a + b <= 4`.
+    #[test]
+    fn moments_of_the_unit_square() {
+        let sq = [
+            Vector2::new(0.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(1.0, 1.0),
+            Vector2::new(0.0, 1.0),
+        ];
+        let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4).unwrap();
+        let mut m = [0.0; MONOMIALS];
+        add_moments(&sq, rule, &mut m);
+        for d in 0..=4usize {
+            for b in 0..=d {
+                let a = d - b;
+                let want = 1.0 / ((a + 1) * (b + 1)) as f64;
+                let got = m[d * (d + 1) / 2 + b];
+                assert!((got - want).abs() < 1e-15, "x^{a} y^{b}: {got} vs {want}");
+            }
+        }
+    }
+
+    /// Composing with an affine map agrees with evaluating at the mapped point.
+    #[test]
+    fn composition_is_evaluation_at_the_mapped_point() {
+        let p: Poly = [0.3, -1.2, 0.7, 2.0, -0.5, 1.1];
+        let c = Vector2::new(0.2, -0.4);
+        let b = Matrix2::new(1.5, -0.3, 0.25, 0.8);
+        let q = compose(&p, &c, &b);
+        let eval = |p: &Poly, x: f64, y: f64| {
+            p[0] + p[1] * x + p[2] * y + p[3] * x * x + p[4] * x * y + p[5] * y * y
+        };
+        for (x, y) in [(0.0, 0.0), (1.0, -2.0), (0.37, 0.81)] {
+            let s = c + b * Vector2::new(x, y);
+            assert!((eval(&q, x, y) - eval(&p, s.x, s.y)).abs() < 1e-13);
+        }
+    }
+}
