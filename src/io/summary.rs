@@ -294,8 +294,8 @@ pub struct CouplingSummary {
     /// Slave faces coupled by the sorted merge of a straight 2D interface (all or none).
     #[serde(default)]
     pub straight_line_faces: usize,
-    /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles,
-    /// segment-based), the others by the integration strategy's points.
+    /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles and
+    /// flat bilinear quads, segment-based), the others by the integration strategy's points.
     #[serde(default)]
     pub closed_form_faces: usize,
     /// The sum of the entries of D as written: the area (3D) or length (2D) of the slave side
@@ -311,7 +311,7 @@ pub struct CouplingSummary {
 
 impl CouplingSummary {
     /// Which code computed the slave faces: the sorted merge of a straight 2D interface, the
-    /// fused kernel of straight 2D lines, the closed form of 3D triangles, the integration
+    /// fused kernel of straight 2D lines, the closed form of flat 3D faces, the integration
     /// strategy's points for the others but those without a master face.
     pub fn path(&self) -> String {
         let n = self.slave_faces;

@@ -83,8 +83,9 @@ pub struct CouplingStats {
     /// chain of straight two-node lines along one line, a uniform projection direction; see
     /// [`assemble_coupling`]): all of them or none.
     pub straight_line_faces: usize,
-    /// Slave faces whose clip polygons were integrated in closed form (3D linear triangles on
-    /// both sides, with a strategy that segments them exactly; see
+    /// Slave faces whose clip polygons were integrated in closed form (3D: linear triangles on
+    /// both sides by vertex formulas, flat bilinear quads on either side by the polygons'
+    /// moments; with a strategy that segments them exactly, see
     /// [`IntegrationStrategy::polygon_segments`](crate::integration::IntegrationStrategy::polygon_segments));
     /// the others went through the integration strategy's points.
     pub closed_form_faces: usize,
@@ -295,7 +296,7 @@ impl MergedColumns {
 enum Search {
     /// The tree over the master faces, queried face by face; with the strategy's exact
     /// segmentation when the clip polygons are integrated in closed form (3D, linear
-    /// triangles on both sides).
+    /// triangles and bilinear quads).
     Tree {
         tree: MasterTree,
         closed_form: Option<ClosedForm>,

@@ -8,13 +8,14 @@
 //! `P2 = {1, xi, eta, xi^2, xi eta, eta^2}` of `r`; a master's shape functions lie in `P2` of
 //! its own reference coordinates, which are an affine function of `r` (the composition of two
 //! affine maps through the plane), hence in `P2` of `r`. Each pair's integrals are therefore
-//! combinations of the clip polygon's fifteen moments `int xi^a eta^b dr` (`a + b <= 4`),
-//! which a degree-4 rule on the polygon's fan of triangles in `r` gives exactly (to
-//! round-off); D is the same combination of the moments summed over the face's pairs, formed
-//! once per face. This replaces the strategy's points on each clip triangle (their mapping
-//! back to both faces through the inverse maps and the shape functions evaluated at each) by
-//! one pass of a fixed rule over the polygon and a few dozen products per pair: the integrals
-//! of any exact quadrature, to round-off.
+//! combinations of the clip polygon's fifteen moments `int u^a v^b` (`a + b <= 4`) about its
+//! first vertex (`r = o + (u, v)`), which a degree-4 rule on the polygon's fan of triangles
+//! gives exactly (to round-off); the slave's functions are re-expanded about that vertex and
+//! the master's coordinates taken from there, so that a pair much smaller than the slave face
+//! keeps its relative accuracy. This replaces the strategy's points on each clip triangle
+//! (their mapping back to both faces through the inverse maps and the shape functions
+//! evaluated at each) by one pass of a fixed rule over the polygon and a few dozen products
+//! per pair: the integrals of any exact quadrature, to round-off.
 //!
 //! Triangles against triangles keep the vertex formulas of [`closed_form`](super::closed_form)
 //! (degree 2, cheaper). The coupling runs this where the strategy says it is the exact
@@ -239,16 +240,18 @@ fn add_moments(v: &[Vector2<f64>], rule: &QuadratureRule, out: &mut [f64; MONOMI
     }
 }
 
-/// `int p q` over the region of moments `mom`, for `p` and `q` in `P2`.
+/// `p(o + u)` as a polynomial of `u`, for `p` in the span of `1, xi, eta, xi eta` (the
+/// [`SLAVE_TERMS`]; so is the result).
 #[inline]
-fn integral(p: &Poly, q: &Poly, mom: &[f64; MONOMIALS]) -> f64 {
-    let mut s = 0.0;
-    for (i, &pi) in p.iter().enumerate().filter(|(_, v)| **v != 0.0) {
-        for (j, &qj) in q.iter().enumerate() {
-            s += pi * qj * mom[PRODUCT[i][j]];
-        }
-    }
-    s
+fn shift(p: &Poly, o: &Vector2<f64>) -> Poly {
+    [
+        p[0] + p[1] * o.x + p[2] * o.y + p[4] * o.x * o.y,
+        p[1] + p[4] * o.y,
+        p[2] + p[4] * o.x,
+        0.0,
+        p[4],
+        0.0,
+    ]
 }
 
 /// One pair's M block, kept until the face is known to be integrated here.
@@ -315,7 +318,7 @@ pub(crate) fn affine_moments_into(
     let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4)?;
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
-    let mut total = [0.0; MONOMIALS];
+    let mut dface = [[0.0; 4]; 4];
     let mut covered = 0.0;
     for &m in candidates {
         let &MasterCorners {
@@ -347,37 +350,44 @@ pub(crate) fn affine_moments_into(
                 None => return Ok(false),
             },
         };
-        // As an affine function of the slave's: s = mc + minv (x_c + jac (r - centre) - mx).
+        // Everything about the clip polygon's first vertex `p0` (`o` in the slave's reference
+        // coordinates): with `r = o + u`, the moments are those of `u`, small where the pair
+        // is small, and the master's coordinates `s = s0 + B u` start from `s0`, O(1), rather
+        // than from the slave's origin, where a master face 1000 times smaller than the slave
+        // gives coefficients of 1e3 and 1e6 whose sum cancels (M off by 1e-10).
+        let p0 = clip.vertices[0];
+        let o = centre + inv * (p0 - x_c);
         let b = minv * jac;
-        let c = mc + minv * (x_c - mx) - b * centre;
+        let s0 = mc + minv * (p0 - mx);
         let mut nm = [[0.0; P2]; 4];
         for (n, poly) in nm.iter_mut().zip(mshape.polynomials(mel)).take(km) {
-            *n = compose(&poly, &c, &b);
+            *n = compose(&poly, &s0, &b);
         }
-        let rv: ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES> = clip
-            .vertices
-            .iter()
-            .map(|p| centre + inv * (p - x_c))
-            .collect();
+        let uv: ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES> =
+            clip.vertices.iter().map(|p| inv * (p - p0)).collect();
         let mut mom = [0.0; MONOMIALS];
-        add_moments(&rv, rule, &mut mom);
-        for (t, v) in total.iter_mut().zip(&mom) {
-            *t += v;
-        }
-        // `w[j][g] = int Phi_j r^g` for the monomials the master's shape functions use (the
-        // affine ones of a triangle, all of P2 for a quad), then each entry a dot product.
-        // The multipliers use 1, xi, eta and xi eta only.
+        add_moments(&uv, rule, &mut mom);
+        // The multipliers and the slave's shape functions about `o`.
+        let phi_o = phi.map(|p| shift(&p, &o));
+        let ns_o = if basis.identity {
+            phi_o
+        } else {
+            ns.map(|p| shift(&p, &o))
+        };
+        // `w[j][g] = int Phi_j u^g` for the P2 monomials `g` (the master's shape functions use
+        // the first `used`, the slave's 1, xi, eta and xi eta), then each entry a dot
+        // product.
         let used = mshape.monomials();
         let mut gathered = [[0.0; P2]; 4];
         for (row, &a) in gathered.iter_mut().zip(&SLAVE_TERMS) {
-            for (v, &k) in row.iter_mut().zip(&PRODUCT[a]).take(used) {
+            for (v, &k) in row.iter_mut().zip(&PRODUCT[a]) {
                 *v = mom[k];
             }
         }
         let mut w = [[0.0; P2]; 4];
-        for (wj, p) in w.iter_mut().zip(&phi).take(ks) {
+        for (wj, p) in w.iter_mut().zip(&phi_o).take(ks) {
             for (t, &a) in SLAVE_TERMS.iter().enumerate() {
-                for (wg, v) in wj.iter_mut().zip(&gathered[t]).take(used) {
+                for (wg, v) in wj.iter_mut().zip(&gathered[t]) {
                     *wg += p[a] * v;
                 }
             }
@@ -387,6 +397,10 @@ pub(crate) fn affine_moments_into(
             for (l, n) in nm.iter().enumerate().take(km) {
                 let s: f64 = (0..used).map(|g| n[g] * wj[g]).sum();
                 block[j * km + l] = scale * s;
+            }
+            for (k, n) in ns_o.iter().enumerate().take(ks) {
+                let s: f64 = SLAVE_TERMS.iter().map(|&t| n[t] * wj[t]).sum();
+                dface[j][k] += s;
             }
         }
         pending.push((cols, km, block));
@@ -402,9 +416,9 @@ pub(crate) fn affine_moments_into(
     for (cols, km, block) in pending.iter() {
         add_m(&cols[..*km], &block[..ks * km]);
     }
-    for (j, p) in phi.iter().enumerate().take(ks) {
-        for (k, n) in ns.iter().enumerate().take(ks) {
-            d[j][k] += scale * integral(p, n, &total);
+    for (row, dr) in d.iter_mut().zip(&dface).take(ks) {
+        for (v, dv) in row.iter_mut().zip(dr).take(ks) {
+            *v += scale * dv;
         }
     }
     out.covered = Some(covered / setup.area_s);

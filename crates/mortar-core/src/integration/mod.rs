@@ -191,7 +191,7 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     /// segmentation of [`SegmentBased`] (both faces projected onto the auxiliary plane of the
     /// slave face, clipped, each clip polygon integrated exactly for the integrands' degree)
     /// and with which degree. The coupling may then integrate the clip polygons of linear
-    /// triangles in closed form ([`CouplingStats::closed_form_faces`](crate::CouplingStats::closed_form_faces))
+    /// triangles and flat bilinear quads in closed form ([`CouplingStats::closed_form_faces`](crate::CouplingStats::closed_form_faces))
     /// instead of calling [`paired_rule_into`](Self::paired_rule_into): the integrals of
     /// any exact quadrature, to round-off. The default, `None`, always calls the strategy.
     fn polygon_segments(&self) -> Option<PolygonSegments> {
