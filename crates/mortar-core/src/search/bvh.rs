@@ -54,7 +54,12 @@ impl BoxTree {
         let Some(top) = self.levels.len().checked_sub(1) else {
             return;
         };
-        // Nodes whose boxes meet the query, as (level, index), to be opened.
+        if top == 0 {
+            self.append_meeting(query, 0, 0..self.levels[0].len(), out);
+            return;
+        }
+        // Nodes above the leaves whose boxes meet the query, as (level, index), to be opened;
+        // the leaves under a node of level 1 go straight to `out`.
         let mut stack: Vec<(usize, usize)> = Vec::with_capacity(64);
         for (i, b) in self.levels[top].iter().enumerate() {
             if self.meets(query, b) {
@@ -62,14 +67,14 @@ impl BoxTree {
             }
         }
         while let Some((level, i)) = stack.pop() {
-            if level == 0 {
-                out.push(i as u32);
-                continue;
-            }
             let below = &self.levels[level - 1];
             let first = i * FANOUT;
-            let last = (first + FANOUT).min(below.len());
-            for (j, b) in (first..last).zip(&below[first..last]) {
+            let children = first..(first + FANOUT).min(below.len());
+            if level == 1 {
+                self.append_meeting(query, 0, children, out);
+                continue;
+            }
+            for (j, b) in children.clone().zip(&below[children]) {
                 if self.meets(query, b) {
                     stack.push((level - 1, j));
                 }
@@ -77,10 +82,28 @@ impl BoxTree {
         }
     }
 
+    /// Appends to `out` the nodes of `level` in `range` whose boxes meet `query`.
+    #[inline]
+    fn append_meeting(
+        &self,
+        query: &Box3,
+        level: usize,
+        range: std::ops::Range<usize>,
+        out: &mut Vec<u32>,
+    ) {
+        let nodes = &self.levels[level][range.clone()];
+        for (j, b) in range.zip(nodes) {
+            if self.meets(query, b) {
+                out.push(j as u32);
+            }
+        }
+    }
+
     /// Whether `a` meets `b` (boundaries included) on the tested axes.
     #[inline]
     fn meets(&self, a: &Box3, b: &Box3) -> bool {
-        (0..self.dims).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
+        let planar = a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y;
+        planar && (self.dims == 2 || (a.0.z <= b.1.z && b.0.z <= a.1.z))
     }
 }
 
