@@ -21,6 +21,7 @@ mod properties {
     mod invariance;
     mod patch;
     mod rounding;
+    mod search;
     mod straight_lines;
     mod strategies;
     mod threads;

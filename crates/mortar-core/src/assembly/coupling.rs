@@ -18,8 +18,8 @@ use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BAT
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
 use crate::search::{
-    spatial_order, ChainSearch, LineChains, MasterCornersCache, MasterLineCache, MasterTree,
-    WALK_LIMIT,
+    spatial_order, ChainSearch, GroupScratch, LineChains, MasterCornersCache, MasterLineCache,
+    MasterTree, WALK_LIMIT,
 };
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -214,6 +214,8 @@ struct ChunkWorkspace {
     offsets: Vec<usize>,
     all: Vec<u32>,
     scratch: Vec<u32>,
+    /// The tree's buffers for a group of slave faces.
+    group: GroupScratch,
     face: FaceBuffers,
 }
 
@@ -885,6 +887,7 @@ fn chunk(
         offsets,
         all,
         scratch,
+        group,
         face: buffers,
     } = &mut acc.ws;
     // A chunk that failed may have left triplets behind.
@@ -915,12 +918,14 @@ fn chunk(
         }
         rows
     }));
-    for (i, face) in geometry.iter().enumerate() {
-        match search {
-            Search::Tree { tree, .. } => tree.candidates_of(interface, face, scratch),
-            Search::Lines {
-                search, follows, ..
-            } => {
+    match search {
+        Search::Tree { tree, .. } => {
+            tree.candidates_of_group(interface, geometry, group, all, offsets);
+        }
+        Search::Lines {
+            search, follows, ..
+        } => {
+            for (i, face) in geometry.iter().enumerate() {
                 // From the previous face's candidates when it is this face's neighbour.
                 let seeds = if i > 0 && follows[positions.start + i] {
                     &all[offsets[i - 1]..offsets[i]]
@@ -933,10 +938,10 @@ fn chunk(
                 {
                     search.exhaustive(interface, ctx.masters, face, scratch);
                 }
+                all.extend_from_slice(scratch);
+                offsets.push(all.len());
             }
         }
-        all.extend_from_slice(scratch);
-        offsets.push(all.len());
     }
     out.candidates = all.len();
     let t0 = Instant::now();

@@ -99,9 +99,15 @@ impl BoxTree {
         }
     }
 
+    /// The box of leaf `i`.
+    #[inline]
+    pub(super) fn leaf_box(&self, i: usize) -> &Box3 {
+        &self.levels[0][i]
+    }
+
     /// Whether `a` meets `b` (boundaries included) on the tested axes.
     #[inline]
-    fn meets(&self, a: &Box3, b: &Box3) -> bool {
+    pub(super) fn meets(&self, a: &Box3, b: &Box3) -> bool {
         let planar = a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y;
         planar && (self.dims == 2 || (a.0.z <= b.1.z && b.0.z <= a.1.z))
     }

@@ -1,3 +1,4 @@
+use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -135,6 +136,16 @@ fn box_f32(b: &Box3) -> [f32; 6] {
 fn overlaps_f32(a: &Box3, b: &[f32; 6], planar: bool) -> bool {
     let dims = if planar { 2 } else { 3 };
     (0..dims).all(|k| a.0[k] <= b[k + 3] as f64 && b[k] as f64 <= a.1[k])
+}
+
+/// Slave faces per query of [`MasterTree::candidates_of_group`].
+const GROUP: usize = 4;
+
+/// Buffers of [`MasterTree::candidates_of_group`], kept from call to call.
+#[derive(Debug, Default)]
+pub struct GroupScratch {
+    leaves: Vec<u32>,
+    per_face: [Vec<u32>; GROUP],
 }
 
 /// Master faces per slab, on average.
@@ -280,6 +291,66 @@ impl MasterTree {
         }
         out.sort_unstable();
         out.dedup();
+    }
+    /// The candidates of each of `faces` (slave faces already gathered, with their nodal
+    /// normals; neighbours in space, for speed), as [`candidates_of`](Self::candidates_of)
+    /// gives them, appended one face after the other to `out`, and the end of each face's
+    /// (its index in `out`) appended to `ends`. The tree is queried once per group of
+    /// consecutive faces with the union of their search boxes, and each face tests the hit
+    /// leaves' boxes and then their faces' against its own box: the same candidates, fewer
+    /// descents.
+    pub fn candidates_of_group(
+        &self,
+        interface: &Interface,
+        faces: &[FaceGeometry],
+        scratch: &mut GroupScratch,
+        out: &mut Vec<u32>,
+        ends: &mut Vec<usize>,
+    ) {
+        let GroupScratch { leaves, per_face } = scratch;
+        let mut boxes: ArrayVec<Box3, GROUP> = ArrayVec::new();
+        for group in faces.chunks(GROUP) {
+            boxes.clear();
+            boxes.extend(group.iter().map(|f| slave_search_box(interface, f)));
+            let all = boxes[1..].iter().fold(boxes[0], |acc, b| union(&acc, b));
+            let first_end = ends.len();
+            ends.extend(std::iter::repeat_n(out.len(), group.len()));
+            // Per face, its candidates gathered slab after slab, then sorted.
+            for found in per_face.iter_mut() {
+                found.clear();
+            }
+            for slab in &self.slabs {
+                if !overlaps(&all, &slab.bounds, self.planar) {
+                    continue;
+                }
+                leaves.clear();
+                slab.tree.append_intersecting(&all, leaves);
+                for (b, found) in boxes.iter().zip(per_face.iter_mut()) {
+                    if !overlaps(b, &slab.bounds, self.planar) {
+                        continue;
+                    }
+                    let local = slab.frame.apply(b);
+                    for &l in leaves.iter() {
+                        if !slab.tree.meets(b, slab.tree.leaf_box(l as usize)) {
+                            continue;
+                        }
+                        let first = l as usize * LEAF_FACES;
+                        let last = (first + LEAF_FACES).min(slab.boxes.len());
+                        for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
+                            if overlaps_f32(&local, fb, self.planar) {
+                                found.push(slab.first_slot + k as u32);
+                            }
+                        }
+                    }
+                }
+            }
+            for (e, found) in ends[first_end..].iter_mut().zip(per_face.iter_mut()) {
+                found.sort_unstable();
+                found.dedup();
+                out.extend_from_slice(found);
+                *e = out.len();
+            }
+        }
     }
 }
 

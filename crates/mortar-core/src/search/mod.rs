@@ -21,7 +21,7 @@ mod chains;
 mod master_cache;
 mod morton;
 
-pub use candidates::{find_candidates, Candidates, MasterTree};
+pub use candidates::{find_candidates, Candidates, GroupScratch, MasterTree};
 pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
 pub(crate) use master_cache::{MasterCorners, MasterCornersCache, MasterLine, MasterLineCache};
 pub(crate) use morton::spatial_order;
