@@ -259,11 +259,11 @@ pub(crate) type PendingBlock = ([u32; 4], usize, [f64; 16]);
 
 /// D and M of a slave face of shape `slave_shape` against its `candidates` (as slots of
 /// `ctx.masters`, read through `masters`), for the closed form `form`, by the moments of the
-/// clip polygons: D added to
-/// `d`, each master face's `ks x km` M block (row-major) given to `add_m` with the columns of
-/// its nodes, in candidate order; `out` gets the counts the strategy would give (pairs,
-/// back-facing candidates, the covered fraction, the degree the strategy would have used; one
-/// cell per clip polygon) and no points. `pending` is a buffer (its contents are replaced).
+/// clip polygons: D added to `d`, each master face's `ks x km` M block (row-major) given to
+/// `add_m` with the columns of its nodes, in candidate order; `out` gets the counts the
+/// strategy would give (pairs, back-facing candidates, the covered fraction, the degree the
+/// strategy would have used; one cell per clip polygon) and no points. `pending` is a buffer
+/// (its contents are replaced).
 ///
 /// Returns `false`, with nothing added, when the slave face is not affine in its plane, a
 /// master face it overlaps is neither a linear triangle nor a bilinear quad, or that master
