@@ -146,13 +146,13 @@ impl Packed {
                     .expect("the nodes of a master face are on the interface")
             })
             .collect();
-        let counts = mesh.element_types().iter().map(|e| e.node_count());
-        let first = mesh.element_types().first().map_or(0, |e| e.node_count());
-        if counts.clone().all(|k| k == first) {
+        let types = mesh.element_types();
+        let first = types.first().map_or(0, |e| e.node_count());
+        if types.iter().all(|e| e.node_count() == first) {
             self.stride = first;
             self.start = Vec::new();
         }
-        if mesh.element_types().len() <= 1 {
+        if types.len() <= 1 {
             self.types = Vec::new();
         }
     }
