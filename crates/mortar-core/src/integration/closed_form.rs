@@ -98,13 +98,17 @@ pub(crate) fn applies(interface: &Interface, rule: PolygonSegments) -> Option<Cl
         return None;
     }
     let (slave, master) = (interface.slave(), interface.master());
-    let all = |types: &[ElementRef], f: fn(ElementRef) -> bool| types.iter().copied().all(f);
-    let flat = |e: ElementRef| FlatShape::of(e).is_some();
-    if !all(slave.element_types(), flat) || !all(master.element_types(), flat) {
-        return None;
+    // Every element type's shape, once; the first few kept for the faces' lookups.
+    let mut shapes = [None; 4];
+    let mut triangles = true;
+    let types = slave.element_types().iter().chain(master.element_types());
+    for (i, &e) in types.enumerate() {
+        let shape = FlatShape::of(e)?;
+        triangles &= shape == FlatShape::Triangle;
+        if let Some(slot) = shapes.get_mut(i) {
+            *slot = Some((e, shape));
+        }
     }
-    let triangles = all(slave.element_types(), is_linear_triangle)
-        && all(master.element_types(), is_linear_triangle);
     let exact = rule.degree.is_none_or(|d| {
         slave.element_types().iter().all(|s| {
             master
@@ -113,11 +117,6 @@ pub(crate) fn applies(interface: &Interface, rule: PolygonSegments) -> Option<Cl
                 .all(|m| d >= default_degree(*s, *m))
         })
     });
-    let mut shapes = [None; 4];
-    let types = slave.element_types().iter().chain(master.element_types());
-    for (slot, &e) in shapes.iter_mut().zip(types) {
-        *slot = FlatShape::of(e).map(|s| (e, s));
-    }
     exact.then_some(ClosedForm {
         rule,
         triangles,

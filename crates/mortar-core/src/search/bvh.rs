@@ -26,8 +26,8 @@ pub(super) struct BoxTree {
     /// `levels[k][FANOUT * i..FANOUT * (i + 1)]`. The last level has one box (none without
     /// leaves).
     levels: Vec<Vec<Box3>>,
-    /// Axes tested: 2 (planar) or 3.
-    dims: usize,
+    /// Whether z is ignored.
+    planar: bool,
 }
 
 impl BoxTree {
@@ -43,10 +43,7 @@ impl BoxTree {
                 .collect();
             levels.push(above);
         }
-        Self {
-            levels,
-            dims: if planar { 2 } else { 3 },
-        }
+        Self { levels, planar }
     }
 
     /// Appends to `out` the leaves whose boxes meet `query` (unordered).
@@ -55,14 +52,14 @@ impl BoxTree {
             return;
         };
         if top == 0 {
-            self.append_meeting(query, 0, 0..self.levels[0].len(), out);
+            self.append_leaves_meeting(query, 0..self.levels[0].len(), out);
             return;
         }
         // Nodes above the leaves whose boxes meet the query, as (level, index), to be opened;
         // the leaves under a node of level 1 go straight to `out`.
         let mut stack: Vec<(usize, usize)> = Vec::with_capacity(64);
         for (i, b) in self.levels[top].iter().enumerate() {
-            if self.meets(query, b) {
+            if overlaps(query, b, self.planar) {
                 stack.push((top, i));
             }
         }
@@ -71,46 +68,45 @@ impl BoxTree {
             let first = i * FANOUT;
             let children = first..(first + FANOUT).min(below.len());
             if level == 1 {
-                self.append_meeting(query, 0, children, out);
+                self.append_leaves_meeting(query, children, out);
                 continue;
             }
             for (j, b) in children.clone().zip(&below[children]) {
-                if self.meets(query, b) {
+                if overlaps(query, b, self.planar) {
                     stack.push((level - 1, j));
                 }
             }
         }
     }
 
-    /// Appends to `out` the nodes of `level` in `range` whose boxes meet `query`.
+    /// Appends to `out` the leaves in `range` whose boxes meet `query`.
     #[inline]
-    fn append_meeting(
+    fn append_leaves_meeting(
         &self,
         query: &Box3,
-        level: usize,
         range: std::ops::Range<usize>,
         out: &mut Vec<u32>,
     ) {
-        let nodes = &self.levels[level][range.clone()];
-        for (j, b) in range.zip(nodes) {
-            if self.meets(query, b) {
+        let leaves = &self.levels[0][range.clone()];
+        for (j, b) in range.zip(leaves) {
+            if overlaps(query, b, self.planar) {
                 out.push(j as u32);
             }
         }
     }
 
-    /// The box of leaf `i`.
+    /// Whether `b` meets the box of leaf `i` (as [`overlaps`] with the tree's axes).
     #[inline]
-    pub(super) fn leaf_box(&self, i: usize) -> &Box3 {
-        &self.levels[0][i]
+    pub(super) fn meets_leaf(&self, b: &Box3, i: usize) -> bool {
+        overlaps(b, &self.levels[0][i], self.planar)
     }
+}
 
-    /// Whether `a` meets `b` (boundaries included) on the tested axes.
-    #[inline]
-    pub(super) fn meets(&self, a: &Box3, b: &Box3) -> bool {
-        let planar = a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y;
-        planar && (self.dims == 2 || (a.0.z <= b.1.z && b.0.z <= a.1.z))
-    }
+/// Whether `a` meets `b`, boundaries included; `planar` ignores z.
+#[inline]
+pub(super) fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
+    let xy = a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y;
+    xy && (planar || (a.0.z <= b.1.z && b.0.z <= a.1.z))
 }
 
 /// The smallest box holding `a` and `b`.

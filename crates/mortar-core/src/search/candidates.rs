@@ -2,7 +2,7 @@ use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::bvh::{union, Box3, BoxTree};
+use super::bvh::{overlaps, union, Box3, BoxTree};
 use super::morton::morton_code;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
@@ -156,6 +156,21 @@ const SLAB_FACES: usize = 1 << 16;
 /// per-face tests a little longer; cylinder 2.97 -> 2.96-3.05 s); sixteen saves no more.
 const LEAF_FACES: usize = 8;
 
+impl Slab {
+    /// Pushes to `out` the slots of the faces of leaf `leaf` whose boxes meet `local` (a box
+    /// in the slab's frame).
+    #[inline]
+    fn push_faces_meeting(&self, leaf: u32, local: &Box3, planar: bool, out: &mut Vec<u32>) {
+        let first = leaf as usize * LEAF_FACES;
+        let last = (first + LEAF_FACES).min(self.boxes.len());
+        for (k, fb) in (first..last).zip(&self.boxes[first..last]) {
+            if overlaps_f32(local, fb, planar) {
+                out.push(self.first_slot + k as u32);
+            }
+        }
+    }
+}
+
 impl std::fmt::Debug for MasterTree {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "MasterTree({} slabs)", self.slabs.len())
@@ -279,19 +294,14 @@ impl MasterTree {
             let end = out.len();
             let local = slab.frame.apply(&b);
             for i in start..end {
-                let first = out[i] as usize * LEAF_FACES;
-                let last = (first + LEAF_FACES).min(slab.boxes.len());
-                for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
-                    if overlaps_f32(&local, fb, self.planar) {
-                        out.push(slab.first_slot + k as u32);
-                    }
-                }
+                slab.push_faces_meeting(out[i], &local, self.planar, out);
             }
             out.drain(start..end);
         }
         out.sort_unstable();
         out.dedup();
     }
+
     /// The candidates of each of `faces` (slave faces already gathered, with their nodal
     /// normals; neighbours in space, for speed), as [`candidates_of`](Self::candidates_of)
     /// gives them, appended one face after the other to `out`, and the end of each face's
@@ -331,15 +341,8 @@ impl MasterTree {
                     }
                     let local = slab.frame.apply(b);
                     for &l in leaves.iter() {
-                        if !slab.tree.meets(b, slab.tree.leaf_box(l as usize)) {
-                            continue;
-                        }
-                        let first = l as usize * LEAF_FACES;
-                        let last = (first + LEAF_FACES).min(slab.boxes.len());
-                        for (k, fb) in (first..last).zip(&slab.boxes[first..last]) {
-                            if overlaps_f32(&local, fb, self.planar) {
-                                found.push(slab.first_slot + k as u32);
-                            }
+                        if slab.tree.meets_leaf(b, l as usize) {
+                            slab.push_faces_meeting(l, &local, self.planar, found);
                         }
                     }
                 }
@@ -352,11 +355,6 @@ impl MasterTree {
             }
         }
     }
-}
-
-pub(super) fn overlaps(a: &Box3, b: &Box3, planar: bool) -> bool {
-    let dims = if planar { 2 } else { 3 };
-    (0..dims).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
 /// Finds the candidate pairs of a whole interface with the BVH (built over the master

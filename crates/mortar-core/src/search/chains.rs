@@ -6,8 +6,8 @@
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
-use super::bvh::{union, Box3, BoxTree};
-use super::candidates::{overlaps, points_box, slave_search_box, EMPTY};
+use super::bvh::{overlaps, union, Box3, BoxTree};
+use super::candidates::{points_box, slave_search_box, EMPTY};
 use super::master_cache::MasterLineCache;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
