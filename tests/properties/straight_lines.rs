@@ -128,13 +128,20 @@ fn a_straight_interface_takes_the_merge() {
 #[test]
 fn matching_nodes() {
     for (ns, nm) in [(10, 10), (10, 20), (12, 6)] {
-        let slave = polyline(&points(0.0, 1.0, 0.0, ns, 1.0), 1, false);
-        let master = polyline(&points(0.0, 1.0, 0.0, nm, 1.0), 1000, true);
-        let interface = Interface::new(slave, master).unwrap();
-        for options in options() {
-            let merged = both_ways(&interface, &options, "matching nodes");
-            assert_eq!(merged.stats.straight_line_faces, ns);
-        }
+        merged_like_the_general_path(ns, nm, (0.0, 1.0), "matching nodes");
+    }
+}
+
+/// `ns` uniform slave faces on `[0, 1]` against `nm` on `master` (the x span), facing each
+/// other: the merge takes every slave face, with the general path's D and M, standard and
+/// dual.
+fn merged_like_the_general_path(ns: usize, nm: usize, master: (f64, f64), what: &str) {
+    let slave = polyline(&points(0.0, 1.0, 0.0, ns, 1.0), 1, false);
+    let master = polyline(&points(master.0, master.1, 0.0, nm, 1.0), 1000, true);
+    let interface = Interface::new(slave, master).unwrap();
+    for options in options() {
+        let merged = both_ways(&interface, &options, what);
+        assert_eq!(merged.stats.straight_line_faces, ns, "{what}");
     }
 }
 
@@ -142,13 +149,7 @@ fn matching_nodes() {
 #[test]
 fn very_different_sizes() {
     for (ns, nm) in [(1, 500), (500, 1)] {
-        let slave = polyline(&points(0.0, 1.0, 0.0, ns, 1.0), 1, false);
-        let master = polyline(&points(-0.01, 1.01, 0.0, nm, 1.0), 1000, true);
-        let interface = Interface::new(slave, master).unwrap();
-        for options in options() {
-            let merged = both_ways(&interface, &options, "different sizes");
-            assert_eq!(merged.stats.straight_line_faces, ns);
-        }
+        merged_like_the_general_path(ns, nm, (-0.01, 1.01), "different sizes");
     }
 }
 
@@ -259,24 +260,17 @@ fn plug_ins_that_do_not_claim_it() {
     let slave = polyline(&points(0.0, 1.0, 0.0, 10, 1.0), 1, false);
     let master = polyline(&points(-0.1, 1.1, 0.0, 13, 1.0), 1000, true);
     let interface = Interface::new(slave, master).unwrap();
-    let c = assemble_coupling(
-        &interface,
-        &super::common::not_uniform(&CouplingOptions::default()),
-    )
-    .unwrap();
-    assert_eq!(
-        (c.stats.straight_line_faces, c.stats.fused_line_faces),
-        (0, 10)
-    );
-    let c = assemble_coupling(
-        &interface,
-        &super::common::plain(&CouplingOptions::default()),
-    )
-    .unwrap();
-    assert_eq!(
-        (c.stats.straight_line_faces, c.stats.fused_line_faces),
-        (0, 0)
-    );
+    let default = CouplingOptions::default();
+    for (options, want) in [
+        (super::common::not_uniform(&default), (0, 10)),
+        (super::common::plain(&default), (0, 0)),
+    ] {
+        let c = assemble_coupling(&interface, &options).unwrap();
+        assert_eq!(
+            (c.stats.straight_line_faces, c.stats.fused_line_faces),
+            want
+        );
+    }
 }
 
 /// The merge is bit-for-bit the same on 1, 2 and 3 threads (9,000 slave faces: three blocks
