@@ -280,10 +280,14 @@ impl MergedColumns {
             let at = match self.index.find_in(&self.cols, c) {
                 Some(at) => at,
                 None => {
+                    // The new column's sums start from zero (`0.0 + b`, as `+=` on a zeroed
+                    // entry gives: a block's -0.0 becomes 0.0).
                     self.cols.push(c);
-                    self.vals.resize(self.vals.len() + ks, 0.0);
+                    for j in 0..ks {
+                        self.vals.push(0.0 + block[j * km + l]);
+                    }
                     self.index.pushed(c, self.cols.len() - 1);
-                    self.cols.len() - 1
+                    continue;
                 }
             };
             let vals = &mut self.vals[at * ks..(at + 1) * ks];

@@ -150,6 +150,18 @@ pub fn clip_convex(subject: &Polygon, clip: &Polygon, tol: f64, out: &mut Polygo
     ConvexClipper::new(clip).clip(&subject.vertices, tol, out);
 }
 
+/// The two vertex buffers the clipping passes use in turn, kept from call to call by a
+/// caller that clips many polygons ([`ConvexClipper::clip_reversed_in`]): plain arrays, so
+/// that a call neither allocates nor fills them first.
+#[derive(Debug, Clone)]
+pub struct ClipBuffers([[Vector2<f64>; MAX_POLYGON_VERTICES]; 2]);
+
+impl Default for ClipBuffers {
+    fn default() -> Self {
+        Self([[Vector2::zeros(); MAX_POLYGON_VERTICES]; 2])
+    }
+}
+
 /// A convex, counter-clockwise clip polygon ready to clip many subjects: its edges with their
 /// inverse lengths, computed once ([`clip_convex`] with one clip polygon, the same bits).
 #[derive(Debug, Clone, Default)]
@@ -177,18 +189,41 @@ impl ConvexClipper {
     /// Clips the polygon of vertices `subject` (counter-clockwise, convex; at most
     /// [`MAX_POLYGON_VERTICES`] are read) into `out`, as [`clip_convex`] does.
     pub fn clip(&self, subject: &[Vector2<f64>], tol: f64, out: &mut Polygon) {
+        let mut bufs = ClipBuffers::default();
+        let len = subject.len().min(MAX_POLYGON_VERTICES);
+        bufs.0[0][..len].copy_from_slice(&subject[..len]);
+        self.clip_buffered(len, tol, &mut bufs, out);
+    }
+
+    /// [`clip`](Self::clip) of the polygon of vertices `subject` taken in reverse order (a
+    /// clockwise polygon, counter-clockwise reversed), with the caller's buffers: the same
+    /// bits as `clip` of the reversed vertices.
+    pub fn clip_reversed_in(
+        &self,
+        subject: &[Vector2<f64>],
+        tol: f64,
+        bufs: &mut ClipBuffers,
+        out: &mut Polygon,
+    ) {
+        let len = subject.len().min(MAX_POLYGON_VERTICES);
+        for (b, v) in bufs.0[0].iter_mut().zip(subject[..len].iter().rev()) {
+            *b = *v;
+        }
+        self.clip_buffered(len, tol, bufs, out);
+    }
+
+    /// Clips the first `len` vertices of `bufs.0[0]`.
+    fn clip_buffered(&self, mut len: usize, tol: f64, bufs: &mut ClipBuffers, out: &mut Polygon) {
         const N: usize = MAX_POLYGON_VERTICES;
-        // Two stack buffers used in turn (plain arrays and a length: the clip runs once per
+        // Two buffers used in turn (plain arrays and a length: the clip runs once per
         // overlapping pair, and a vector's capacity checks cost as much as its arithmetic).
-        let mut buf = [[Vector2::zeros(); N]; 2];
-        let mut len = subject.len().min(N);
-        buf[0][..len].copy_from_slice(&subject[..len]);
+        let buf = &mut bufs.0;
         let mut cur = 0usize;
         for &(a, e, inv) in &self.edges {
             if len == 0 {
                 break;
             }
-            let [x, y] = &mut buf;
+            let [x, y] = &mut *buf;
             let (src, dst) = if cur == 0 { (&*x, y) } else { (&*y, x) };
             // Signed distance to the left of the edge.
             let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;

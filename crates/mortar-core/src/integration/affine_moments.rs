@@ -22,7 +22,6 @@
 //! segmentation of [`SegmentBased`](super::SegmentBased), with a degree that integrates these
 //! integrands exactly ([`closed_form::applies`](super::closed_form::applies)).
 
-use arrayvec::ArrayVec;
 use nalgebra::{Matrix2, Vector2};
 
 use super::closed_form::ClosedForm;
@@ -91,15 +90,6 @@ impl FlatShape {
             Some(Self::Quad)
         } else {
             None
-        }
-    }
-
-    /// How many of the `P2` monomials (in order) its shape functions use, and so do their
-    /// compositions with an affine map: three (affine) for the triangle, six for the quad.
-    fn monomials(self) -> usize {
-        match self {
-            Self::Triangle => 3,
-            Self::Quad => P2,
         }
     }
 
@@ -207,17 +197,13 @@ fn compose(p: &Poly, c: &Vector2<f64>, b: &Matrix2<f64>) -> Poly {
 /// triangles from its first vertex: all fifteen with `ALL`, else only those of the products
 /// of `1, xi, eta, xi eta` with themselves and with `1, xi, eta` (the integrands against a
 /// triangle master: `xi^3`, `eta^3` and the quartics but `xi^2 eta^2` stay zero).
-fn add_moments<const ALL: bool>(
-    v: &[Vector2<f64>],
-    rule: &QuadratureRule,
-    out: &mut [f64; MONOMIALS],
-) {
+fn add_moments<const ALL: bool>(v: &[Vector2<f64>], rule: &FanRule, out: &mut [f64; MONOMIALS]) {
     let o = v[0];
     for w in v[1..].windows(2) {
         let (ea, eb) = (w[0] - o, w[1] - o);
         // Twice the signed area: the reference triangle's weights sum to one half.
         let twice = ea.x * eb.y - ea.y * eb.x;
-        for (q, &wq) in rule.points().iter().zip(rule.weights()) {
+        for &(q, wq) in rule {
             let r = o + ea * q.x + eb * q.y;
             let f = wq * twice;
             let (x, y) = (r.x, r.y);
@@ -276,6 +262,75 @@ fn shift(p: &Poly, o: &Vector2<f64>) -> Poly {
     ]
 }
 
+/// The arguments of [`pair_products`]: the clip polygon's moments about its first vertex
+/// `o`, the multipliers and the slave's shape functions about `o`, the master's shape
+/// functions in `u`, the area factor, the pair's M block (out) and the face's D (added to).
+type Products<'a> = (
+    &'a [f64; MONOMIALS],
+    &'a [Poly; 4],
+    &'a [Poly; 4],
+    &'a [Poly; 4],
+    f64,
+    &'a mut [f64; 16],
+    &'a mut [[f64; 4]; 4],
+);
+
+/// One pair's M block (`KS x KM`, row-major) and its terms of D, for a slave of `KS` nodes
+/// and a master of `KM` whose shape functions use the first `USED` monomials of `P2`: fixed
+/// counts, so that the loops unroll. `w[j][g] = int Phi_j u^g` for the `P2` monomials `g`
+/// (the master's shape functions use the first `USED`, the slave's `1, xi, eta, xi eta`),
+/// then each entry a dot product. (Against a triangle, `w[j][3]` and `w[j][5]` read moments
+/// left at zero and are not used.)
+#[inline(always)]
+fn pair_products<const KS: usize, const KM: usize, const USED: usize>(
+    (mom, phi_o, ns_o, nm, scale, block, dface): Products<'_>,
+) {
+    let mut gathered = [[0.0; P2]; 4];
+    for (row, &a) in gathered.iter_mut().zip(&SLAVE_TERMS) {
+        for (v, &k) in row.iter_mut().zip(&PRODUCT[a]) {
+            *v = mom[k];
+        }
+    }
+    let mut w = [[0.0; P2]; KS];
+    for (wj, p) in w.iter_mut().zip(phi_o) {
+        for (t, &a) in SLAVE_TERMS.iter().enumerate() {
+            for (wg, v) in wj.iter_mut().zip(&gathered[t]) {
+                *wg += p[a] * v;
+            }
+        }
+    }
+    for (j, wj) in w.iter().enumerate() {
+        for (l, n) in nm.iter().enumerate().take(KM) {
+            let s: f64 = (0..USED).map(|g| n[g] * wj[g]).sum();
+            block[j * KM + l] = scale * s;
+        }
+        for (k, n) in ns_o.iter().enumerate().take(KS) {
+            let s: f64 = SLAVE_TERMS.iter().map(|&t| n[t] * wj[t]).sum();
+            dface[j][k] += s;
+        }
+    }
+}
+
+/// The points of the fan's degree-4 rule on the reference triangle, with their weights: a
+/// fixed count, so that the loop over them unrolls.
+type FanRule = [(Vector2<f64>, f64); FAN_POINTS];
+
+/// The point count of the degree-4 rule on the triangle
+/// ([`QuadratureRule::cached`]`(Triangle, 4)`); a rule of another count leaves the faces to
+/// the strategy.
+const FAN_POINTS: usize = 6;
+
+/// The degree-4 rule as a [`FanRule`], if it has [`FAN_POINTS`] points.
+fn fan_rule() -> Result<Option<FanRule>> {
+    let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4)?;
+    if rule.points().len() != FAN_POINTS || rule.weights().len() != FAN_POINTS {
+        return Ok(None);
+    }
+    Ok(Some(std::array::from_fn(|i| {
+        (rule.points()[i], rule.weights()[i])
+    })))
+}
+
 /// One pair's M block, kept until the face is known to be integrated here.
 pub(crate) type PendingBlock = ([u32; 4], usize, [f64; 16]);
 
@@ -310,7 +365,7 @@ pub(crate) fn affine_moments_into(
 ) -> Result<bool> {
     out.clear();
     pending.clear();
-    let setup = SlavePlane::new(ctx, slave)?;
+    let mut setup = SlavePlane::new(ctx, slave)?;
     if setup.in_reference {
         return Ok(false);
     }
@@ -337,20 +392,22 @@ pub(crate) fn affine_moments_into(
             p
         })
     };
-    let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4)?;
+    let Some(rule) = fan_rule()? else {
+        return Ok(false);
+    };
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut dface = [[0.0; 4]; 4];
     let mut covered = 0.0;
     for &m in candidates {
-        let &MasterCorners {
+        let MasterCorners {
             element,
             count,
             nodes,
             cols,
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, km)) = setup.clip_face(element, &nodes[..count], &mut mp, &mut clip, bf)
+        let Some((mel, km)) = setup.clip_face(*element, &nodes[..*count], &mut mp, &mut clip, bf)
         else {
             continue;
         };
@@ -385,13 +442,15 @@ pub(crate) fn affine_moments_into(
         for (n, poly) in nm.iter_mut().zip(mshape.polynomials(mel)).take(km) {
             *n = compose(&poly, &s0, &b);
         }
-        let uv: ArrayVec<Vector2<f64>, MAX_POLYGON_VERTICES> =
-            clip.vertices.iter().map(|p| inv * (p - p0)).collect();
-        let used = mshape.monomials();
+        let mut uv = [Vector2::zeros(); MAX_POLYGON_VERTICES];
+        for (u, p) in uv.iter_mut().zip(&clip.vertices) {
+            *u = inv * (p - p0);
+        }
+        let uv = &uv[..clip.vertices.len()];
         let mut mom = [0.0; MONOMIALS];
         match mshape {
-            FlatShape::Triangle => add_moments::<false>(&uv, rule, &mut mom),
-            FlatShape::Quad => add_moments::<true>(&uv, rule, &mut mom),
+            FlatShape::Triangle => add_moments::<false>(uv, &rule, &mut mom),
+            FlatShape::Quad => add_moments::<true>(uv, &rule, &mut mom),
         }
         // The multipliers and the slave's shape functions about `o`.
         let phi_o = phi.map(|p| shift(&p, &o));
@@ -400,36 +459,15 @@ pub(crate) fn affine_moments_into(
         } else {
             ns.map(|p| shift(&p, &o))
         };
-        // `w[j][g] = int Phi_j u^g` for the P2 monomials `g` (the master's shape functions use
-        // the first `used`, the slave's 1, xi, eta and xi eta), then each entry a dot
-        // product. (Against a triangle, `w[j][3]` and `w[j][5]` read moments left at zero
-        // and are not used.)
-        let mut gathered = [[0.0; P2]; 4];
-        for (row, &a) in gathered.iter_mut().zip(&SLAVE_TERMS) {
-            for (v, &k) in row.iter_mut().zip(&PRODUCT[a]) {
-                *v = mom[k];
-            }
-        }
-        let mut w = [[0.0; P2]; 4];
-        for (wj, p) in w.iter_mut().zip(&phi_o).take(ks) {
-            for (t, &a) in SLAVE_TERMS.iter().enumerate() {
-                for (wg, v) in wj.iter_mut().zip(&gathered[t]) {
-                    *wg += p[a] * v;
-                }
-            }
-        }
         let mut block = [0.0; 16];
-        for (j, wj) in w.iter().enumerate().take(ks) {
-            for (l, n) in nm.iter().enumerate().take(km) {
-                let s: f64 = (0..used).map(|g| n[g] * wj[g]).sum();
-                block[j * km + l] = scale * s;
-            }
-            for (k, n) in ns_o.iter().enumerate().take(ks) {
-                let s: f64 = SLAVE_TERMS.iter().map(|&t| n[t] * wj[t]).sum();
-                dface[j][k] += s;
-            }
+        let products = (&mom, &phi_o, &ns_o, &nm, scale, &mut block, &mut dface);
+        match (slave_shape, mshape) {
+            (FlatShape::Quad, FlatShape::Triangle) => pair_products::<4, 3, 3>(products),
+            (FlatShape::Quad, FlatShape::Quad) => pair_products::<4, 4, P2>(products),
+            (FlatShape::Triangle, FlatShape::Triangle) => pair_products::<3, 3, 3>(products),
+            (FlatShape::Triangle, FlatShape::Quad) => pair_products::<3, 4, P2>(products),
         }
-        pending.push((cols, km, block));
+        pending.push((*cols, km, block));
         out.pairs += 1;
         out.cells += 1;
         out.degrees |= 1
@@ -465,9 +503,11 @@ mod tests {
             Vector2::new(1.0, 1.0),
             Vector2::new(0.0, 1.0),
         ];
-        let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4).unwrap();
+        let rule = fan_rule()
+            .unwrap()
+            .expect("the degree-4 rule has six points");
         let mut m = [0.0; MONOMIALS];
-        add_moments::<true>(&sq, rule, &mut m);
+        add_moments::<true>(&sq, &rule, &mut m);
         for d in 0..=4usize {
             for b in 0..=d {
                 let a = d - b;

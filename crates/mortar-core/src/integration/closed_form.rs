@@ -243,7 +243,7 @@ pub(crate) fn closed_form_into(
     out: &mut PairedRule,
 ) -> Result<bool> {
     out.clear();
-    let setup = SlavePlane::new(ctx, slave)?;
+    let mut setup = SlavePlane::new(ctx, slave)?;
     if setup.in_reference {
         return Ok(false);
     }
@@ -270,14 +270,14 @@ pub(crate) fn closed_form_into(
     let mut covered = 0.0;
     let mut dface = [[0.0; 3]; 3];
     for &m in candidates {
-        let &MasterCorners {
+        let MasterCorners {
             element,
             nodes,
             cols,
             ..
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, _)) = setup.clip_face(element, &nodes[..3], &mut mp, &mut clip, bf) else {
+        let Some((mel, _)) = setup.clip_face(*element, &nodes[..3], &mut mp, &mut clip, bf) else {
             continue;
         };
         let mut mom = Moments::of(&clip, scale);

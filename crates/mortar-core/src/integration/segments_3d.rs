@@ -7,7 +7,7 @@ use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
-    signed_area, AuxiliaryPlane, ConvexClipper, InverseMapFailure, PlanarMap, Polygon,
+    signed_area, AuxiliaryPlane, ClipBuffers, ConvexClipper, InverseMapFailure, PlanarMap, Polygon,
     MAX_POLYGON_VERTICES,
 };
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
@@ -45,6 +45,8 @@ pub(crate) struct SlavePlane {
     clip_area: f64,
     /// The clipper of `spoly`.
     clipper: ConvexClipper,
+    /// The clipper's buffers.
+    bufs: ClipBuffers,
 }
 
 impl SlavePlane {
@@ -123,6 +125,7 @@ impl SlavePlane {
             merge,
             clip_area: tol.clip_area,
             clipper: ConvexClipper::new(&spoly),
+            bufs: ClipBuffers::default(),
         })
     }
 
@@ -131,7 +134,7 @@ impl SlavePlane {
     /// counts, `None` when the face is out of the slave's box, seen edge-on, facing the same
     /// way as the slave (counted in `back_facing`) or overlapping by less than the tolerance.
     pub fn clip_master(
-        &self,
+        &mut self,
         ctx: &SegmentContext<'_>,
         m: u32,
         mp: &mut [Vector2<f64>; MAX_FACE_NODES],
@@ -146,7 +149,7 @@ impl SlavePlane {
     /// [`clip_master`](Self::clip_master) of a master face given by its element type and
     /// node coordinates `xm`.
     pub fn clip_face(
-        &self,
+        &mut self,
         mel: ElementRef,
         xm: &[Vector3<f64>],
         mp: &mut [Vector2<f64>; MAX_FACE_NODES],
@@ -183,9 +186,8 @@ impl SlavePlane {
             return None;
         }
         // Clockwise about the slave normal: reversed, it is the subject of the clipping.
-        let reversed: ArrayVec<Vector2<f64>, MAX_FACE_NODES> =
-            corners.iter().rev().copied().collect();
-        self.clipper.clip(&reversed, merge, clip);
+        self.clipper
+            .clip_reversed_in(corners, merge, &mut self.bufs, clip);
         if clip.len() < 3
             || clip.signed_area()
                 <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise)
@@ -207,7 +209,7 @@ pub(super) fn segments_into(
 ) -> Result<()> {
     let tol = ctx.interface.tolerances();
     let el = slave.element;
-    let setup = SlavePlane::new(ctx, slave)?;
+    let mut setup = SlavePlane::new(ctx, slave)?;
     let SlavePlane {
         plane,
         area_s,

@@ -240,6 +240,40 @@ impl MasterFaces {
         }
     }
 
+    /// The element type of the master face in slot `s`, its node count, and the coordinates
+    /// and columns of its first `nodes.len()` nodes written into `nodes` and `cols`:
+    /// [`coords_into`](Self::coords_into) and [`columns_into`](Self::columns_into) in one
+    /// read, for faces of few nodes.
+    pub(crate) fn corners_into(
+        &self,
+        interface: &Interface,
+        s: usize,
+        nodes: &mut [Vector3<f64>],
+        cols: &mut [u32],
+    ) -> (ElementRef, usize) {
+        match &self.packed {
+            Some(p) => {
+                let (a, b) = p.range(s);
+                for ((x, c), &i) in nodes.iter_mut().zip(cols.iter_mut()).zip(&p.nodes[a..b]) {
+                    *x = p.coords[i as usize];
+                    *c = p.columns[i as usize];
+                }
+                (p.element(interface, s), b - a)
+            }
+            None => {
+                let mesh = interface.master();
+                let view = mesh.face(self.face[s] as usize);
+                for ((x, c), &n) in nodes.iter_mut().zip(cols.iter_mut()).zip(view.nodes) {
+                    *x = mesh.coords()[n as usize];
+                    *c = interface
+                        .master_col(n)
+                        .expect("the nodes of a master face are on the interface");
+                }
+                (view.element, view.nodes.len())
+            }
+        }
+    }
+
     /// Writes the node coordinates of the master face in slot `s` into `out` and returns the
     /// node count: [`coords_into`](Self::coords_into) without the element type (which costs
     /// a read of its own where the faces are not copied).

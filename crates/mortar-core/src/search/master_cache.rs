@@ -20,6 +20,15 @@ const WAYS: usize = 1024;
 pub(crate) trait MasterRead {
     /// Reads the face in slot `s` of `masters` (built for `interface`).
     fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self;
+
+    /// Replaces `self` by the face in slot `s` ([`read`](Self::read) in place: a cache's
+    /// entries are refilled without moving a new value into them).
+    fn reread(&mut self, interface: &Interface, masters: &MasterFaces, s: u32)
+    where
+        Self: Sized,
+    {
+        *self = Self::read(interface, masters, s);
+    }
 }
 
 /// Master faces by slot, direct-mapped (`slot mod WAYS`): master faces of neighbouring slots
@@ -46,8 +55,14 @@ impl<T: MasterRead> MasterCache<T> {
             self.entries.resize_with(WAYS, || None);
         }
         let e = &mut self.entries[s as usize & (WAYS - 1)];
-        if !matches!(e, Some((k, _)) if *k == s) {
-            *e = Some((s, T::read(interface, masters, s)));
+        match e {
+            Some((k, v)) => {
+                if *k != s {
+                    *k = s;
+                    v.reread(interface, masters, s);
+                }
+            }
+            None => *e = Some((s, T::read(interface, masters, s))),
         }
         match e {
             Some((_, v)) => v,
@@ -108,17 +123,25 @@ pub(crate) struct MasterCorners {
 impl MasterRead for MasterCorners {
     #[inline(never)]
     fn read(interface: &Interface, masters: &MasterFaces, s: u32) -> Self {
-        let mut y = [Vector3::zeros(); MAX_FACE_NODES];
-        let (element, k) = masters.coords_into(interface, s as usize, &mut y);
+        let mut nodes = [Vector3::zeros(); 4];
+        let mut cols = [0u32; 4];
+        let (element, k) = masters.corners_into(interface, s as usize, &mut nodes, &mut cols);
         debug_assert!(k == 3 || k == 4, "a three- or four-node face");
-        let mut cols = [0u32; MAX_FACE_NODES];
-        masters.columns_into(interface, s as usize, &mut cols);
         Self {
             element,
             count: k.min(4),
-            nodes: [y[0], y[1], y[2], y[3]],
-            cols: [cols[0], cols[1], cols[2], cols[3]],
+            nodes,
+            cols,
         }
+    }
+
+    #[inline(never)]
+    fn reread(&mut self, interface: &Interface, masters: &MasterFaces, s: u32) {
+        let (element, k) =
+            masters.corners_into(interface, s as usize, &mut self.nodes, &mut self.cols);
+        debug_assert!(k == 3 || k == 4, "a three- or four-node face");
+        self.element = element;
+        self.count = k.min(4);
     }
 }
 
