@@ -10,6 +10,7 @@
 //! inclusive, so a query finds exactly the leaves whose boxes meet its box, whatever the
 //! tree's shape.
 
+use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 
 /// An axis-aligned box as `(min, max)`.
@@ -46,7 +47,7 @@ impl BoxTree {
         Self { levels, planar }
     }
 
-    /// Appends to `out` the leaves whose boxes meet `query` (unordered).
+    /// Appends to `out` the leaves whose boxes meet `query`, in ascending order.
     pub(super) fn append_intersecting(&self, query: &Box3, out: &mut Vec<u32>) {
         let Some(top) = self.levels.len().checked_sub(1) else {
             return;
@@ -55,15 +56,17 @@ impl BoxTree {
             self.append_leaves_meeting(query, 0..self.levels[0].len(), out);
             return;
         }
-        // Nodes above the leaves whose boxes meet the query, as (level, index), to be opened;
-        // the leaves under a node of level 1 go straight to `out`.
-        let mut stack: Vec<(usize, usize)> = Vec::with_capacity(64);
-        for (i, b) in self.levels[top].iter().enumerate() {
-            if overlaps(query, b, self.planar) {
-                stack.push((top, i));
-            }
+        // Nodes above the leaves whose boxes meet the query, as (level, index), to be opened
+        // depth first, children in ascending order (pushed last to first), so that the
+        // leaves come out ascending; the leaves under a node of level 1 go straight to
+        // `out`. The top level has one node and each level pushes at most FANOUT, so the
+        // stack holds at most 1 + FANOUT * levels nodes (u32 indices: at most 16 levels).
+        let mut stack: ArrayVec<(u8, u32), { 1 + FANOUT * 16 }> = ArrayVec::new();
+        if overlaps(query, &self.levels[top][0], self.planar) {
+            stack.push((top as u8, 0));
         }
         while let Some((level, i)) = stack.pop() {
+            let (level, i) = (level as usize, i as usize);
             let below = &self.levels[level - 1];
             let first = i * FANOUT;
             let children = first..(first + FANOUT).min(below.len());
@@ -71,9 +74,9 @@ impl BoxTree {
                 self.append_leaves_meeting(query, children, out);
                 continue;
             }
-            for (j, b) in children.clone().zip(&below[children]) {
+            for (j, b) in children.clone().zip(&below[children]).rev() {
                 if overlaps(query, b, self.planar) {
-                    stack.push((level - 1, j));
+                    stack.push(((level - 1) as u8, j as u32));
                 }
             }
         }
@@ -124,7 +127,7 @@ mod tests {
 
     /// A query finds exactly the leaves whose boxes meet it, touching ones included, for
     /// leaf counts that fill the levels partly (1, 4, 5, 17, 64 and 100 leaves), in 3D and in
-    /// the plane (where z is ignored): against the test of every leaf.
+    /// the plane (where z is ignored): against the test of every leaf, in ascending order.
     #[test]
     fn queries_find_exactly_the_leaves_that_meet_them() {
         for n in [1usize, 4, 5, 17, 64, 100] {
@@ -144,7 +147,6 @@ mod tests {
                 ] {
                     let mut got = Vec::new();
                     tree.append_intersecting(&q, &mut got);
-                    got.sort_unstable();
                     let want: Vec<u32> = (0..n as u32)
                         .filter(|&i| {
                             let b = &leaves[i as usize];
