@@ -207,7 +207,7 @@ impl MasterTree {
         let xyz = master.coords();
         let anchors: Vec<Vector3<f64>> = (0..n)
             .into_par_iter()
-            .map(|f| xyz[master.face(f).nodes[0] as usize])
+            .map(|f| xyz[master.face_nodes(f)[0] as usize])
             .collect();
         let (lo, hi) = anchors
             .iter()
@@ -218,7 +218,9 @@ impl MasterTree {
         let slab_count = n.div_ceil(SLAB_FACES).max(1);
         let axis = (hi - lo).imax();
         let width = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
-        let mut keyed: Vec<(u32, u64, u32)> = anchors
+        // (slab, code, face) packed into one integer, in that order of significance: one
+        // comparison per pair in the sort, the same order as the tuples'.
+        let mut keyed: Vec<u128> = anchors
             .par_iter()
             .enumerate()
             .map(|(f, c)| {
@@ -228,19 +230,21 @@ impl MasterTree {
                     ((((c[axis] - lo[axis]) / width) * slab_count as f64) as usize)
                         .min(slab_count - 1)
                 };
-                (k as u32, morton_code(c, &lo, &hi, planar), f as u32)
+                let code = morton_code(c, &lo, &hi, planar);
+                (k as u128) << 96 | (code as u128) << 32 | f as u128
             })
             .collect();
         drop(anchors);
         keyed.par_sort_unstable();
+        let slab_of = |key: u128| (key >> 96) as u32;
         let mut ranges: Vec<(u32, u32)> = Vec::new();
-        for (i, &(k, _, _)) in keyed.iter().enumerate() {
+        for (i, &key) in keyed.iter().enumerate() {
             match ranges.last_mut() {
-                Some((first, len)) if keyed[*first as usize].0 == k => *len += 1,
+                Some((first, len)) if slab_of(keyed[*first as usize]) == slab_of(key) => *len += 1,
                 _ => ranges.push((i as u32, 1)),
             }
         }
-        let masters = MasterFaces::new(interface, keyed.into_iter().map(|(_, _, f)| f));
+        let masters = MasterFaces::new(interface, keyed.into_iter().map(|key| key as u32));
         let slabs = ranges
             .into_par_iter()
             .map(|(first_slot, len)| {

@@ -66,13 +66,14 @@ pub(crate) fn spatial_order(centres: &[Vector3<f64>], planar: bool) -> Vec<u32> 
         ),
         |(lo, hi), c| (lo.inf(c), hi.sup(c)),
     );
-    let mut keyed: Vec<(u64, u32)> = centres
+    // (code, index) packed into one integer: one comparison per pair in the sort.
+    let mut keyed: Vec<u128> = centres
         .par_iter()
         .enumerate()
-        .map(|(i, c)| (morton_code(c, &lo, &hi, planar), i as u32))
+        .map(|(i, c)| (morton_code(c, &lo, &hi, planar) as u128) << 32 | i as u128)
         .collect();
     keyed.par_sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    keyed.into_iter().map(|key| key as u32).collect()
 }
 
 #[cfg(test)]
