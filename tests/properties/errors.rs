@@ -355,6 +355,27 @@ fn mesh_building_errors_name_the_node_or_face() {
     assert_eq!(mesh.face_count(), 0);
 }
 
+/// A refused duplicate node leaves the mesh as it was, in either way of numbering: the
+/// first node keeps its tag, and a face built after the refusal uses it. Regression: with
+/// tags out of sequence, the refusal replaced the tag's node by the refused one's index, one
+/// past the last node, and the face built after it read past the coordinates (a panic).
+#[test]
+fn a_refused_duplicate_node_changes_nothing() {
+    for tags in [[1u64, 2, 3], [5, 1, 9]] {
+        let mut mesh = SurfaceMesh::new();
+        for (k, &t) in tags.iter().enumerate() {
+            mesh.add_node(t, [k as f64, (k * k) as f64, 0.0]).unwrap();
+        }
+        let err = mesh.add_node(tags[0], [7.0, 7.0, 7.0]).unwrap_err();
+        assert_eq!(err, MortarError::DuplicateNode { tag: tags[0] });
+        assert_eq!(mesh.node_count(), 3);
+        mesh.add_face(&TRI3, &tags).unwrap();
+        let face = mesh.face(0);
+        let first = mesh.coords()[face.nodes[0] as usize];
+        assert_eq!([first.x, first.y, first.z], [0.0; 3], "tags {tags:?}");
+    }
+}
+
 #[test]
 fn empty_surfaces_and_invalid_options_are_refused() {
     let err = Interface::new(SurfaceMesh::new(), master()).unwrap_err();
