@@ -2,7 +2,7 @@
 //! symmetric, inside both, convex, additive over a split, and stable when the inputs share
 //! edges or vertices (exactly, or to within the tolerance).
 
-use mortar_core::geometry::{clip_convex, Polygon};
+use mortar_core::geometry::{clip_convex, ClipBuffers, ConvexClipper, Polygon};
 use nalgebra::Vector2;
 use proptest::prelude::*;
 
@@ -153,6 +153,30 @@ proptest! {
             (ab.signed_area() - ba.signed_area()).abs() <= area_slack(tol, &a, &b),
             "clip(A,B) = {}, clip(B,A) = {}", ab.signed_area(), ba.signed_area()
         );
+    }
+
+    /// `ConvexClipper::clip_reversed_in` (the coupling's: the caller's buffers, the subject
+    /// read backwards) gives the bits of `clip_convex` of the reversed subject, with buffers
+    /// reused from call to call (what a slave face's clips do).
+    #[test]
+    fn clip_reversed_in_is_clip_of_the_reversed_subject(
+        a in convex_polygon(8),
+        b in convex_polygon(8),
+        c in convex_polygon(8),
+        tol in tolerance(),
+    ) {
+        let clipper = ConvexClipper::new(&a);
+        let mut bufs = ClipBuffers::default();
+        for subject in [&b, &c, &b] {
+            let backwards: Vec<Vector2<f64>> = subject.vertices.iter().rev().copied().collect();
+            let mut got = Polygon::default();
+            clipper.clip_reversed_in(&backwards, tol, &mut bufs, &mut got);
+            let want = clip(subject, &a, tol);
+            prop_assert_eq!(got.vertices.len(), want.vertices.len());
+            for (g, w) in got.vertices.iter().zip(&want.vertices) {
+                prop_assert_eq!((g.x.to_bits(), g.y.to_bits()), (w.x.to_bits(), w.y.to_bits()));
+            }
+        }
     }
 
     #[test]
