@@ -56,6 +56,17 @@ struct Block {
     tag: Vec<u64>,
 }
 
+/// The column in M of master mesh node `n`, a node of a master face.
+///
+/// # Panics
+/// If `n` is on no master face (the interface maps every master face's nodes).
+#[inline]
+fn column(interface: &Interface, n: u32) -> u32 {
+    interface
+        .master_col(n)
+        .expect("the nodes of a master face are on the interface")
+}
+
 /// Slot distance beyond which two faces consecutive in the file count as far apart.
 const NEAR_SLOTS: u32 = 256;
 
@@ -138,14 +149,7 @@ impl Packed {
         drop(local);
         let xyz = mesh.coords();
         self.coords = order.par_iter().map(|&n| xyz[n as usize]).collect();
-        self.columns = order
-            .par_iter()
-            .map(|&n| {
-                interface
-                    .master_col(n)
-                    .expect("the nodes of a master face are on the interface")
-            })
-            .collect();
+        self.columns = order.par_iter().map(|&n| column(interface, n)).collect();
         let types = mesh.element_types();
         let first = types.first().map_or(0, |e| e.node_count());
         if types.iter().all(|e| e.node_count() == first) {
@@ -265,9 +269,7 @@ impl MasterFaces {
                 let view = mesh.face(self.face[s] as usize);
                 for ((x, c), &n) in nodes.iter_mut().zip(cols.iter_mut()).zip(view.nodes) {
                     *x = mesh.coords()[n as usize];
-                    *c = interface
-                        .master_col(n)
-                        .expect("the nodes of a master face are on the interface");
+                    *c = column(interface, n);
                 }
                 (view.element, view.nodes.len())
             }
@@ -318,9 +320,7 @@ impl MasterFaces {
             None => {
                 let nodes = interface.master().face(self.face[s] as usize).nodes;
                 for (o, &n) in out.iter_mut().zip(nodes) {
-                    *o = interface
-                        .master_col(n)
-                        .expect("the nodes of a master face are on the interface");
+                    *o = column(interface, n);
                 }
                 nodes.len()
             }
