@@ -12,14 +12,14 @@ use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
 use crate::integration::affine_moments::{affine_moments_into, PendingBlock};
-use crate::integration::closed_form::{self, closed_form_into, ClosedForm};
+use crate::integration::closed_form::{self, closed_form_into, ClosedForm, ClosedFormScratch};
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
 use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
+use crate::multiplier::LmBasis;
 use crate::search::{
-    spatial_order, ChainSearch, GroupScratch, LineChains, MasterCornersCache, MasterLineCache,
-    MasterTree, WALK_LIMIT,
+    spatial_order, ChainSearch, GroupScratch, LineChains, MasterLineCache, MasterTree, WALK_LIMIT,
 };
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -230,8 +230,8 @@ struct FaceBuffers {
     line: LineFace,
     /// The master lines of the chain walk and the fused kernel.
     lines: MasterLineCache,
-    /// The master faces of the closed forms.
-    triangles: MasterCornersCache,
+    /// The master faces and the slave face's set-up of the closed forms.
+    closed: ClosedFormScratch,
     /// The M blocks of a face by moments, until it is known to be integrated so.
     pending: Vec<PendingBlock>,
     d: RowAccumulator,
@@ -1080,7 +1080,7 @@ fn general_face(
         rule,
         blocks,
         columns,
-        triangles,
+        closed: scratch,
         pending,
         d,
         m,
@@ -1101,11 +1101,15 @@ fn general_face(
     columns.start_face(ks);
     // The closed form needs the basis first; a face whose basis cannot be built goes to the
     // strategy (which reports that if the face has any overlap).
-    let mut closed_form = closed_form.and_then(|rule| {
-        let basis = options.multipliers.basis_for(face, tol, options.geometry);
-        basis.ok().map(|b| (rule, b))
+    // (The basis, 664 bytes, is built in place and borrowed, not moved along.)
+    let mut basis: Option<LmBasis> = None;
+    let mut closed_form = closed_form.filter(|_| {
+        basis = options
+            .multipliers
+            .basis_for(face, tol, options.geometry)
+            .ok();
+        basis.is_some()
     });
-    let mut basis = closed_form.map(|(_, b)| b);
     let mut any_points = false;
     // The covered fraction, summed over batches (`None` if a batch did not measure
     // it), and the sum of the weights, for when it is `None`.
@@ -1119,19 +1123,19 @@ fn general_face(
         // strategy.
         // Its M blocks go straight to the columns (each master face once per face: the
         // same sums as through the blocks).
-        let closed = match closed_form {
-            Some((cf, b)) => {
+        let closed = match (&closed_form, &basis) {
+            (Some(cf), Some(b)) => {
                 let add = |cols: &[u32], block: &[f64]| columns.add_cols(cols, block);
-                let (d, tris, degree) = (&mut blocks.d, &mut *triangles, cf.rule.degree);
+                let (d, tris, degree) = (&mut blocks.d, &mut *scratch, cf.rule.degree);
                 match (cf.triangles, cf.shape(face.element)) {
-                    (true, _) => closed_form_into(ctx, face, part, degree, &b, d, tris, add, rule)?,
+                    (true, _) => closed_form_into(ctx, face, part, degree, b, d, tris, add, rule)?,
                     (false, Some(shape)) => affine_moments_into(
-                        ctx, face, shape, part, &cf, &b, d, tris, pending, add, rule,
+                        ctx, face, shape, part, cf, b, d, tris, pending, add, rule,
                     )?,
                     (false, None) => false,
                 }
             }
-            None => false,
+            _ => false,
         };
         if !closed {
             closed_form = None;

@@ -19,29 +19,43 @@ impl PlanarMap {
     /// element type is (Tri3), or when this face's Jacobian is the same at every node as at the
     /// centre (a parallelogram Quad4): then its inverse is one 2x2 product.
     pub fn new(element: ElementRef, nodes: &[Vector2<f64>]) -> Self {
+        let mut map = Self::unset(element);
+        map.set(element, nodes);
+        map
+    }
+
+    /// A map of `element` with every node at the origin and no inverse, to be
+    /// [`set`](Self::set) before use.
+    pub(crate) fn unset(element: ElementRef) -> Self {
+        Self {
+            element,
+            nodes: [Vector2::zeros(); MAX_FACE_NODES],
+            affine: None,
+        }
+    }
+
+    /// Makes this the map of `element` with projected nodes `nodes`, in place: what
+    /// [`new`](Self::new) returns, without building a new map and moving it here.
+    pub fn set(&mut self, element: ElementRef, nodes: &[Vector2<f64>]) {
         let k = element.node_count();
-        let mut all = [Vector2::zeros(); MAX_FACE_NODES];
-        all[..k].copy_from_slice(&nodes[..k]);
+        self.element = element;
+        self.nodes[..k].copy_from_slice(&nodes[..k]);
+        self.nodes[k..].fill(Vector2::zeros());
+        let all = &self.nodes[..k];
         let centre = element.domain().centre();
-        let (x, j) = planar_map_and_jacobian(element, &all[..k], &centre);
+        let (x, j) = planar_map_and_jacobian(element, all, &centre);
         let affine_shape = element.is_affine() || {
             let scale = j.abs().max();
             element.node_reference_coords().iter().all(|xi| {
-                let (_, jn) =
-                    planar_map_and_jacobian(element, &all[..k], &Vector2::new(xi[0], xi[1]));
+                let (_, jn) = planar_map_and_jacobian(element, all, &Vector2::new(xi[0], xi[1]));
                 (jn - j).abs().max() <= 1e-13 * scale
             })
         };
-        let affine = if affine_shape {
+        self.affine = if affine_shape {
             j.try_inverse().map(|inv| (centre, x, inv))
         } else {
             None
         };
-        Self {
-            element,
-            nodes: all,
-            affine,
-        }
     }
 
     /// Whether the map is affine (its inverse is exact in one step).

@@ -56,13 +56,7 @@ impl Polygon {
 
     /// The largest distance between two vertices.
     pub fn diameter(&self) -> f64 {
-        let mut d: f64 = 0.0;
-        for (i, a) in self.vertices.iter().enumerate() {
-            for b in &self.vertices[i + 1..] {
-                d = d.max((a - b).norm());
-            }
-        }
-        d
+        polygon_diameter(&self.vertices)
     }
 
     /// Triangulates the polygon: itself if it is a triangle, else a fan from the vertex
@@ -139,6 +133,17 @@ pub fn signed_area(v: &[Vector2<f64>]) -> f64 {
     0.5 * twice
 }
 
+/// The largest distance between two of the points `v`.
+pub fn polygon_diameter(v: &[Vector2<f64>]) -> f64 {
+    let mut d: f64 = 0.0;
+    for (i, a) in v.iter().enumerate() {
+        for b in &v[i + 1..] {
+            d = d.max((a - b).norm());
+        }
+    }
+    d
+}
+
 /// Clips `subject` by the convex, counter-clockwise polygon `clip` (Sutherland-Hodgman).
 ///
 /// Both polygons must be counter-clockwise; `subject` should be convex too, so that the
@@ -173,17 +178,25 @@ pub struct ConvexClipper {
 impl ConvexClipper {
     /// The clipper of `clip` (convex, counter-clockwise).
     pub fn new(clip: &Polygon) -> Self {
-        let n = clip.vertices.len();
-        let mut edges = ArrayVec::new();
+        let mut clipper = Self::default();
+        clipper.set(&clip.vertices);
+        clipper
+    }
+
+    /// Makes this the clipper of the convex, counter-clockwise polygon of vertices `clip` (at
+    /// most [`MAX_POLYGON_VERTICES`] are read), in place.
+    pub fn set(&mut self, clip: &[Vector2<f64>]) {
+        let clip = &clip[..clip.len().min(MAX_POLYGON_VERTICES)];
+        let n = clip.len();
+        self.edges.clear();
         for i in 0..n {
-            let a = clip.vertices[i];
-            let e = clip.vertices[(i + 1) % n] - a;
+            let a = clip[i];
+            let e = clip[(i + 1) % n] - a;
             let elen = e.norm();
             if elen != 0.0 {
-                edges.push((a, e, 1.0 / elen));
+                self.edges.push((a, e, 1.0 / elen));
             }
         }
-        Self { edges }
     }
 
     /// Clips the polygon of vertices `subject` (counter-clockwise, convex; at most

@@ -24,7 +24,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::closed_form::ClosedForm;
+use super::closed_form::{ClosedForm, ClosedFormScratch};
 use super::segments_3d::SlavePlane;
 use super::{default_degree, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
@@ -33,7 +33,7 @@ use crate::geometry::{PlanarMap, Polygon, MAX_POLYGON_VERTICES};
 use crate::interface::FaceGeometry;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
-use crate::search::{MasterCorners, MasterCornersCache};
+use crate::search::MasterCorners;
 
 /// The monomials `xi^a eta^b` with `a + b <= 4`, the one of `(a, b)` at
 /// `(a + b)(a + b + 1) / 2 + b`: `1; xi, eta; xi^2, xi eta, eta^2; xi^3, ...; ..., eta^4`.
@@ -358,14 +358,15 @@ pub(crate) fn affine_moments_into(
     form: &ClosedForm,
     basis: &LmBasis,
     d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
-    masters: &mut MasterCornersCache,
+    scratch: &mut ClosedFormScratch,
     pending: &mut Vec<PendingBlock>,
     mut add_m: impl FnMut(&[u32], &[f64]),
     out: &mut PairedRule,
 ) -> Result<bool> {
     out.clear();
     pending.clear();
-    let mut setup = SlavePlane::new(ctx, slave)?;
+    let ClosedFormScratch { masters, plane } = scratch;
+    let setup = SlavePlane::reuse(plane, ctx, slave)?;
     if setup.in_reference {
         return Ok(false);
     }

@@ -33,6 +33,16 @@ use crate::interface::{FaceGeometry, Interface, SpatialDim};
 use crate::multiplier::LmBasis;
 use crate::search::{MasterCorners, MasterCornersCache};
 
+/// What the closed forms keep from one slave face to the next (one per worker): the master
+/// faces read, and the set-up of the slave face in its plane.
+#[derive(Default)]
+pub(crate) struct ClosedFormScratch {
+    /// The master faces read, by slot.
+    pub masters: MasterCornersCache,
+    /// The last slave face's set-up (its clip buffers reused).
+    pub plane: Option<SlavePlane>,
+}
+
 /// Whether `element` is the three-node triangle with linear shape functions, bit for bit:
 /// nodes at `(0, 0)`, `(1, 0)`, `(0, 1)` and `N = (1 - xi - eta, xi, eta)`, so that each
 /// shape function of a face is the barycentric coordinate of its node.
@@ -238,12 +248,13 @@ pub(crate) fn closed_form_into(
     degree: Option<u32>,
     basis: &LmBasis,
     d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
-    masters: &mut MasterCornersCache,
+    scratch: &mut ClosedFormScratch,
     mut add_m: impl FnMut(&[u32], &[f64]),
     out: &mut PairedRule,
 ) -> Result<bool> {
     out.clear();
-    let mut setup = SlavePlane::new(ctx, slave)?;
+    let ClosedFormScratch { masters, plane } = scratch;
+    let setup = SlavePlane::reuse(plane, ctx, slave)?;
     if setup.in_reference {
         return Ok(false);
     }
