@@ -240,11 +240,26 @@ impl ConvexClipper {
             let (src, dst) = if cur == 0 { (&*x, y) } else { (&*y, x) };
             // Signed distance to the left of the edge.
             let dist = |p: &Vector2<f64>| (e.x * (p.y - a.y) - e.y * (p.x - a.x)) * inv;
+            let mut d = [0.0; N];
+            let mut inside = 0;
+            for (dq, q) in d.iter_mut().zip(&src[..len]) {
+                *dq = dist(q);
+                inside += usize::from(*dq >= -tol);
+            }
+            if inside == len {
+                // Every vertex inside: the pass would copy the polygon as it is (most edges
+                // of the slave face do not cut a small master face).
+                continue;
+            }
+            if inside == 0 {
+                // Every vertex outside: nothing is left.
+                len = 0;
+                break;
+            }
             let mut n = 0;
             let mut p = src[len - 1];
-            let mut dp = dist(&p);
-            for &q in &src[..len] {
-                let dq = dist(&q);
+            let mut dp = d[len - 1];
+            for (&q, &dq) in src[..len].iter().zip(&d) {
                 let p_in = dp >= -tol;
                 let q_in = dq >= -tol;
                 if p_in != q_in && n < N {
