@@ -347,11 +347,12 @@ impl Search {
         // (Ordered by their first nodes: one read of the node coordinates per face, in the
         // file's order, which may be random.)
         let slave = interface.slave();
-        let anchors: Vec<Vector3<f64>> = (0..slave.face_count())
-            .into_par_iter()
-            .map(|f| slave.coords()[slave.face(f).nodes[0] as usize])
-            .collect();
-        let order = spatial_order(&anchors, interface.dim() == SpatialDim::Two);
+        let anchor = |f: usize| slave.coords()[slave.face(f).nodes[0] as usize];
+        let order = spatial_order(
+            slave.face_count(),
+            anchor,
+            interface.dim() == SpatialDim::Two,
+        );
         let closed_form = options
             .integration
             .polygon_segments()

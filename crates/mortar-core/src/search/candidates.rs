@@ -3,7 +3,7 @@ use nalgebra::Vector3;
 use rayon::prelude::*;
 
 use super::bvh::{overlaps, union, Box3, BoxTree};
-use super::morton::morton_code;
+use super::morton::{bounds_of, morton_code};
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::tolerances::Tolerances;
@@ -205,13 +205,10 @@ impl MasterTree {
         let master = interface.master();
         let n = master.face_count();
         let xyz = master.coords();
-        let anchors: Vec<Vector3<f64>> = (0..n)
-            .into_par_iter()
-            .map(|f| xyz[master.face_nodes(f)[0] as usize])
-            .collect();
-        let (lo, hi) = anchors
-            .iter()
-            .fold((EMPTY.0, EMPTY.1), |(lo, hi), c| (lo.inf(c), hi.sup(c)));
+        // Each face by its first node, read twice (for the bounds, then for its key) rather
+        // than stored.
+        let anchor = |f: usize| xyz[master.face_nodes(f)[0] as usize];
+        let (lo, hi) = bounds_of(n, anchor);
         // Slabs of equal width along the longest axis (by anchor), Morton order within a
         // slab: one sort of (slab, code, face), so that the order depends on the coordinates
         // only, not on the thread count.
@@ -220,10 +217,10 @@ impl MasterTree {
         let width = (hi[axis] - lo[axis]).max(f64::MIN_POSITIVE);
         // (slab, code, face) packed into one integer, in that order of significance: one
         // comparison per pair in the sort, the same order as the tuples'.
-        let mut keyed: Vec<u128> = anchors
-            .par_iter()
-            .enumerate()
-            .map(|(f, c)| {
+        let mut keyed: Vec<u128> = (0..n)
+            .into_par_iter()
+            .map(|f| {
+                let c = &anchor(f);
                 let k = if slab_count == 1 {
                     0
                 } else {
@@ -234,7 +231,6 @@ impl MasterTree {
                 (k as u128) << 96 | (code as u128) << 32 | f as u128
             })
             .collect();
-        drop(anchors);
         keyed.par_sort_unstable();
         let slab_of = |key: u128| (key >> 96) as u32;
         let mut ranges: Vec<(u32, u32)> = Vec::new();

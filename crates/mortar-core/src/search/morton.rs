@@ -56,21 +56,42 @@ pub(crate) fn morton_code(
     }
 }
 
-/// The indices `0..centres.len()` sorted by the Morton code of `centres` (ties by index, so
-/// the order depends on the coordinates only, not on the thread count).
-pub(crate) fn spatial_order(centres: &[Vector3<f64>], planar: bool) -> Vec<u32> {
-    let (lo, hi) = centres.iter().fold(
+/// The bounding box `(lo, hi)` of the points `point(i)`, `i < n`, each computed once, in
+/// parallel, without storing them (the least and greatest coordinates: the same box whatever
+/// the thread count).
+pub(crate) fn bounds_of(
+    n: usize,
+    point: impl Fn(usize) -> Vector3<f64> + Sync,
+) -> (Vector3<f64>, Vector3<f64>) {
+    let empty = || {
         (
             Vector3::repeat(f64::INFINITY),
             Vector3::repeat(f64::NEG_INFINITY),
-        ),
-        |(lo, hi), c| (lo.inf(c), hi.sup(c)),
-    );
+        )
+    };
+    (0..n)
+        .into_par_iter()
+        .fold(empty, |(lo, hi), i| {
+            let p = point(i);
+            (lo.inf(&p), hi.sup(&p))
+        })
+        .reduce(empty, |(a, b), (c, d)| (a.inf(&c), b.sup(&d)))
+}
+
+/// The indices `0..n` sorted by the Morton code of the points `centre(i)` (ties by index, so
+/// the order depends on the coordinates only, not on the thread count). Each point is
+/// computed twice (for the bounds, then for its code) rather than stored: reading a face's
+/// first node again costs less than the pages of a vector of every point.
+pub(crate) fn spatial_order(
+    n: usize,
+    centre: impl Fn(usize) -> Vector3<f64> + Sync,
+    planar: bool,
+) -> Vec<u32> {
+    let (lo, hi) = bounds_of(n, &centre);
     // (code, index) packed into one integer: one comparison per pair in the sort.
-    let mut keyed: Vec<u128> = centres
-        .par_iter()
-        .enumerate()
-        .map(|(i, c)| (morton_code(c, &lo, &hi, planar) as u128) << 32 | i as u128)
+    let mut keyed: Vec<u128> = (0..n)
+        .into_par_iter()
+        .map(|i| (morton_code(&centre(i), &lo, &hi, planar) as u128) << 32 | i as u128)
         .collect();
     keyed.par_sort_unstable();
     keyed.into_iter().map(|key| key as u32).collect()
@@ -116,7 +137,7 @@ mod tests {
         for k in [5usize, 12, 0, 15, 9, 3, 6, 10, 1, 14, 7, 11, 2, 13, 4, 8] {
             pts.push(Vector3::new((k % 4) as f64, (k / 4) as f64, 0.0));
         }
-        let order = spatial_order(&pts, true);
+        let order = spatial_order(pts.len(), |i| pts[i], true);
         let quadrant = |i: u32| {
             let p = pts[i as usize];
             (p.x >= 2.0) as u8 + 2 * (p.y >= 2.0) as u8
