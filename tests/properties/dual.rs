@@ -261,12 +261,24 @@ proptest! {
         let total: f64 = mass.iter().sum();
         // On a bent face the Jacobian is not a polynomial: the basis is biorthogonal for its
         // own quadrature (WARPED_EXTRA_DEGREE more); this degree-20 check agrees to 3e-7 at
-        // worst in 400 cases (mid nodes 6% off, bent Quad9).
-        let bent = element.corner_count() > 2
-            && wobble[element.corner_count()..k].iter().any(|w| w[2] != 0.0);
-        let tol = if bent { 1e-5 } else { 1e-12 };
+        // worst in 400 cases (mid nodes 6% off, bent Quad9). A Line3 whose mid node leaves
+        // the chord is bent too (its length element the norm of a linear vector), but
+        // mildly (1.03e-12 in the case that failed the straight bound, mid node 6% off; none
+        // over 1e-10 in 3,000,000 cases), so it keeps a tighter bound.
+        let mid = &wobble[element.corner_count()..k];
+        let tol = if element.corner_count() == 2 {
+            if mid.iter().any(|w| w[0] != 0.0 || w[1] != 0.0) { 1e-10 } else { 1e-12 }
+        } else if mid.iter().any(|w| w[2] != 0.0) {
+            1e-5
+        } else {
+            1e-12
+        };
         for j in 0..k {
-            prop_assert!(mass[j] > 0.01 * total, "{}: int N~_{j} = {:e} of {total:e}", element.name(), mass[j]);
+            // Positive, which the dual basis needs (its functions are scaled by these
+            // integrals). Not a fixed share: a Quad9 corner's is 1/36 of an undistorted face
+            // and fell to 0.94 % with mid nodes 6 % off (a threshold of 1 % failed about one
+            // run in thirty).
+            prop_assert!(mass[j] > 0.0, "{}: int N~_{j} = {:e} of {total:e}", element.name(), mass[j]);
             for l in 0..k {
                 let want = if j == l { mass[j] } else { 0.0 };
                 prop_assert!(
