@@ -31,7 +31,10 @@
 //! resets that peak once its meshes are built (Linux `clear_refs`), so that it is the
 //! coupling's with the meshes resident, not the mesh shuffler's. The child assembles
 //! D and M (segment-based, standard multipliers) `--repeats` times (once for 1e6 slave faces and
-//! more) and prints one JSON line with the phases of the run of median total time. The parent
+//! more, unless `--repeat-large`: on a virtual machine the first write of gigabytes the
+//! system has not handed out lately can cost twice the coupling, and the runs after the first
+//! show the coupling's own time per pair) and prints one JSON line with the phases of the run
+//! of median total time. The parent
 //! writes the JSON array to `--json PATH` and prints a table. `bit_identical_to_1_thread`
 //! compares a SipHash digest of the bit patterns (`f64::to_bits`) of `data`, `indices` and
 //! `indptr` of D and M with the one of the 1-thread run of the same case.
@@ -78,6 +81,11 @@ struct Args {
     /// more run once.
     #[arg(long, default_value_t = 3)]
     repeats: usize,
+    /// Run sizes of 1e6 slave faces and more `--repeats` times too (each run after the first
+    /// then writes memory the process has written before; `totals_all_repeats` keeps every
+    /// run, the first included).
+    #[arg(long)]
+    repeat_large: bool,
     /// Largest n of the plane3d and cylinder cases (line2d is not capped).
     #[arg(long)]
     max_n: Option<usize>,
@@ -234,14 +242,14 @@ fn output_bytes(c: &Coupling) -> usize {
         .sum()
 }
 
-/// Sizes of 1e6 slave faces and more run once.
-fn repeats_for(case: &str, n: usize, repeats: usize) -> usize {
+/// Sizes of 1e6 slave faces and more run once (unless `repeat_large`).
+fn repeats_for(case: &str, n: usize, repeats: usize, repeat_large: bool) -> usize {
     let faces = match case {
         "plane3d" => 2 * n * n,
         "cylinder" => n * (n / 4).max(1),
         _ => n,
     };
-    if faces >= 1_000_000 {
+    if faces >= 1_000_000 && !repeat_large {
         1
     } else {
         repeats.max(1)
@@ -280,7 +288,7 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
     let mut runs = Vec::new();
     let mut digests = Vec::new();
     let mut last = None;
-    for _ in 0..repeats_for(case, n, repeats) {
+    for _ in 0..repeats_for(case, n, repeats, args.repeat_large) {
         drop(last.take()); // one coupling alive at a time
         let c = assemble_coupling(&interface, &options)?;
         runs.push(c.stats);
@@ -386,6 +394,7 @@ fn bench(args: &Args) -> Res<()> {
                             order,
                         ])
                         .args(["--repeats", &repeats.to_string()])
+                        .args(args.repeat_large.then_some("--repeat-large"))
                         .args(
                             args.save_reference
                                 .iter()
