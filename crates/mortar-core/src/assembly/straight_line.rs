@@ -53,6 +53,7 @@ use crate::integration::segments_2d::add_line_point;
 use crate::integration::{default_degree, LineSegments};
 use crate::interface::Interface;
 use crate::linalg::SparseMatrix;
+use crate::memory::zeroed_in_parallel;
 use crate::mesh::SurfaceMesh;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -613,10 +614,10 @@ impl<'a> Line<'a> {
             len as usize
         };
         let (d_ptr, m_ptr) = rayon::join(|| row_pointer(ns, d_len), || row_pointer(ns, m_len));
-        let mut d_idx = vec![0usize; d_ptr[ns]];
-        let mut d_val = vec![0.0; d_ptr[ns]];
-        let mut m_idx = vec![0usize; m_ptr[ns]];
-        let mut m_val = vec![0.0; m_ptr[ns]];
+        let mut d_idx = zeroed_in_parallel::<usize>(d_ptr[ns]);
+        let mut d_val = zeroed_in_parallel::<f64>(d_ptr[ns]);
+        let mut m_idx = zeroed_in_parallel::<usize>(m_ptr[ns]);
+        let mut m_val = zeroed_in_parallel::<f64>(m_ptr[ns]);
         let d_blocks = split_rows(&d_ptr, &mut d_idx, &mut d_val);
         let m_blocks = split_rows(&m_ptr, &mut m_idx, &mut m_val);
         d_blocks

@@ -623,8 +623,8 @@ fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMat
             indptr.push(indptr[indptr.len() - 1] + len);
         }
     }
-    let mut indices = vec![0usize; nnz];
-    let mut data = vec![0.0; nnz];
+    let mut indices = crate::memory::zeroed_in_parallel::<usize>(nnz);
+    let mut data = crate::memory::zeroed_in_parallel::<f64>(nnz);
     let mut targets = Vec::with_capacity(blocks.len());
     let (mut rest_i, mut rest_d) = (&mut indices[..], &mut data[..]);
     for (_, cols, _) in &blocks {
