@@ -45,7 +45,15 @@
 //! `--cases line2d,ratio2d` runs only the named cases.
 //!
 //! `--tradeoff` writes `docs/tradeoff.md` and `docs/tradeoff.png` instead (see `tradeoff.rs`).
+//!
+//! `--against OTHER --at cylinder:1024,plane3d:708 --threads-list 1,2 --rounds 3` runs this
+//! build and the `bench_coupling` at `OTHER` (a copy of the previous build's) alternately and
+//! prints the ratios of their medians and whether D and M are bit-identical (see
+//! `against.rs`): the measurement the speed issue asks for, each run beside one of the
+//! previous build.
 
+#[path = "bench_coupling/against.rs"]
+mod against;
 #[allow(dead_code)]
 #[path = "curved_segmentation.rs"]
 mod curved_segmentation;
@@ -110,6 +118,24 @@ struct Args {
     /// Run only these cases (comma-separated: plane3d, cylinder, line2d, arc2d, ratio2d, ratio3d).
     #[arg(long, value_delimiter = ',')]
     cases: Vec<String>,
+    /// Run this build and the `bench_coupling` binary at this path alternately, case by case
+    /// (`--at`, `--threads-list`, `--rounds`), and report the ratios of their times and
+    /// whether their D and M are bit-identical (see `against.rs`).
+    #[arg(long)]
+    against: Option<PathBuf>,
+    /// With `--against`: the cases and sizes, as CASE:N (comma-separated).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "cylinder:1024,plane3d:708"
+    )]
+    at: Vec<String>,
+    /// With `--against`: the thread counts (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "1")]
+    threads_list: Vec<usize>,
+    /// With `--against`: rounds (each runs every case with both builds, in alternating order).
+    #[arg(long, default_value_t = 3)]
+    rounds: usize,
     /// Internal: run one case in this process and print one JSON line.
     #[arg(long, num_args = 4, value_names = ["CASE", "N", "THREADS", "ORDER"], hide = true)]
     single: Option<Vec<String>>,
@@ -124,6 +150,27 @@ fn main() -> Res<()> {
     }
     if args.tradeoff {
         return tradeoff::run(&args.out_dir, args.tradeoff_repeats.max(1));
+    }
+    if let Some(other) = &args.against {
+        let at = args
+            .at
+            .iter()
+            .map(|s| {
+                let (case, n) = s.split_once(':').ok_or(format!("--at {s}: not CASE:N"))?;
+                Ok((case.to_owned(), n.parse()?))
+            })
+            .collect::<Res<Vec<(String, usize)>>>()?;
+        let this = std::env::current_exe()?;
+        return against::run(
+            &this,
+            other,
+            &at,
+            &args.threads_list,
+            args.rounds.max(1),
+            args.repeats.max(1),
+            args.repeat_large,
+            args.json.as_deref(),
+        );
     }
     bench(&args)
 }
