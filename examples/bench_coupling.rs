@@ -66,7 +66,7 @@ mod tradeoff;
 
 use std::ffi::OsStr;
 use std::hash::Hasher;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
@@ -289,6 +289,43 @@ fn output_bytes(c: &Coupling) -> usize {
         .sum()
 }
 
+/// Runs `exe --single CASE N THREADS ORDER` (this program, or another build's with
+/// `--against`) with `--repeats`, `--repeat-large` if asked and `extra` arguments, in its own
+/// process: the JSON record it prints last, or what failed (its exit status and standard
+/// error).
+fn run_single<'a>(
+    exe: &Path,
+    (case, n, threads, order): (&str, usize, usize, &str),
+    repeats: usize,
+    repeat_large: bool,
+    extra: impl IntoIterator<Item = &'a OsStr>,
+) -> Res<Value> {
+    let out = Command::new(exe)
+        .args([
+            "--single",
+            case,
+            &n.to_string(),
+            &threads.to_string(),
+            order,
+        ])
+        .args(["--repeats", &repeats.to_string()])
+        .args(repeat_large.then_some("--repeat-large"))
+        .args(extra)
+        .output()
+        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    match stdout.lines().last().map(serde_json::from_str::<Value>) {
+        Some(Ok(v)) if out.status.success() => Ok(v),
+        _ => Err(format!(
+            "{} --single {case} {n} {threads} {order} failed ({}): {}",
+            exe.display(),
+            out.status,
+            String::from_utf8_lossy(&out.stderr).trim()
+        )
+        .into()),
+    }
+}
+
 /// Sizes of 1e6 slave faces and more run once (unless `repeat_large`).
 fn repeats_for(case: &str, n: usize, repeats: usize, repeat_large: bool) -> usize {
     let faces = match case {
@@ -432,40 +469,20 @@ fn bench(args: &Args) -> Res<()> {
                 let mut one_thread_digest = None;
                 for threads in [1usize, 2] {
                     eprint!("{case} n={n} threads={threads} {order} ... ");
-                    let out = Command::new(&exe)
-                        .args([
-                            "--single",
-                            case,
-                            &n.to_string(),
-                            &threads.to_string(),
-                            order,
-                        ])
-                        .args(["--repeats", &repeats.to_string()])
-                        .args(args.repeat_large.then_some("--repeat-large"))
-                        .args(
-                            args.save_reference
-                                .iter()
-                                .flat_map(|d| [OsStr::new("--save-reference"), d.as_os_str()]),
-                        )
-                        .args(
-                            args.reference
-                                .iter()
-                                .flat_map(|d| [OsStr::new("--reference"), d.as_os_str()]),
-                        )
-                        .output()?;
-                    let line = String::from_utf8_lossy(&out.stdout);
-                    let Some(Ok(mut r)) = line
-                        .lines()
-                        .last()
-                        .map(serde_json::from_str::<Value>)
-                        .filter(|_| out.status.success())
-                    else {
-                        eprintln!(
-                            "failed ({}): {}",
-                            out.status,
-                            String::from_utf8_lossy(&out.stderr).trim()
-                        );
-                        continue;
+                    let references = [
+                        ("--save-reference", &args.save_reference),
+                        ("--reference", &args.reference),
+                    ];
+                    let extra = references.iter().flat_map(|(flag, dir)| {
+                        dir.iter().flat_map(|d| [OsStr::new(flag), d.as_os_str()])
+                    });
+                    let params = (*case, n, threads, order);
+                    let mut r = match run_single(&exe, params, repeats, args.repeat_large, extra) {
+                        Ok(r) => r,
+                        Err(e) => {
+                            eprintln!("{e}");
+                            continue;
+                        }
                     };
                     let dig = r["dm_digest"].as_str().map(str::to_owned);
                     if threads == 1 {

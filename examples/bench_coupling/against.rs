@@ -20,41 +20,10 @@
 //! run of both builds gave the same D and M digest (`dm_digest`: bit-identical operators).
 
 use std::path::Path;
-use std::process::Command;
 
 use serde_json::{json, Value};
 
-use super::Res;
-
-/// One process of `exe` for `(case, n, threads)`: its JSON record.
-fn run_one(
-    exe: &Path,
-    case: &str,
-    n: usize,
-    threads: usize,
-    repeats: usize,
-    repeat_large: bool,
-) -> Res<Value> {
-    let out = Command::new(exe)
-        .args(["--single", case, &n.to_string(), &threads.to_string()])
-        .arg("sorted")
-        .args(["--repeats", &repeats.to_string()])
-        .args(repeat_large.then_some("--repeat-large"))
-        .output()
-        .map_err(|e| format!("cannot run {}: {e}", exe.display()))?;
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    let line = stdout.lines().last().unwrap_or_default();
-    match serde_json::from_str::<Value>(line) {
-        Ok(v) if out.status.success() => Ok(v),
-        _ => Err(format!(
-            "{} --single {case} {n} {threads} sorted failed ({}): {}",
-            exe.display(),
-            out.status,
-            String::from_utf8_lossy(&out.stderr).trim()
-        )
-        .into()),
-    }
-}
+use super::{run_single, Res};
 
 /// The totals of every run of a record (`totals_all_repeats`).
 fn totals(record: &Value) -> Res<Vec<f64>> {
@@ -95,8 +64,11 @@ impl Runs {
         let t = totals(record)?;
         self.first.push(*t.first().ok_or("a record with no run")?);
         self.later.extend_from_slice(&t[1..]);
-        self.digests
-            .push(record["dm_digest"].as_str().unwrap_or_default().to_owned());
+        // A record without a digest must not pass for bit-identical.
+        let digest = record["dm_digest"]
+            .as_str()
+            .ok_or("a record without dm_digest")?;
+        self.digests.push(digest.to_owned());
         self.loads
             .push(record["load_average_1min"].as_f64().unwrap_or(f64::NAN));
         Ok(())
@@ -138,7 +110,8 @@ pub fn run(
                     } else {
                         (other, &mut theirs)
                     };
-                    runs.add(&run_one(exe, case, *n, t, repeats, repeat_large)?)?;
+                    let params = (case.as_str(), *n, t, "sorted");
+                    runs.add(&run_single(exe, params, repeats, repeat_large, [])?)?;
                 }
             }
             let same = mine
