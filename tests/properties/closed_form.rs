@@ -20,7 +20,9 @@ use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
-use super::common::{both_ways, both_ways_with, config, dm_bits, ok, plain_with};
+use super::common::{
+    both_ways, both_ways_with, both_ways_within, config, dm_bits, min_edge, ok, plain, plain_with,
+};
 
 /// Triangles on both sides, any size and jitter of the default configuration.
 fn triangles() -> PairConfig {
@@ -61,7 +63,13 @@ proptest! {
     /// origin, the same D and M: far from the origin a quad's projection is affine only to
     /// the rounding of its coordinates, finer than the test of an affine map
     /// ([`PlanarMap`](mortar::core::geometry::PlanarMap), 1e-13 of its Jacobian), and such
-    /// faces go to the strategy.
+    /// faces go to the strategy. Moved, each path computes from coordinates that carry a
+    /// rounding of `eps |t|`, `eps |t| / h` of the shortest edge `h`, and the two paths round
+    /// differently (the strategy maps its points back to both faces, the moments work about
+    /// the clip polygon's first vertex): the moved comparison allows `1e-13 + eps |t| / h`.
+    /// A saved case (translation 1.3e5, dual, from a run of 20,000 cases) deviates in D by
+    /// 5.0e-13, and one a clean-clone CI run found (translation 5.5e4, dual) by 3.1e-13:
+    /// 0.004 and 0.005 `eps |t| / h`, beyond the 1e-13 that the comparison allowed before.
     #[test]
     fn moments_give_the_general_paths_operators_on_parallelograms(
         pair in covered_pair_3d_with(flat_cells(0.0, 0.0)),
@@ -72,7 +80,11 @@ proptest! {
         let c = both_ways(&interface, &options(dual), "parallelograms");
         prop_assert_eq!(c.stats.closed_form_faces, interface.slave().face_count());
         let moved = ok(pair.transformed(|x| motion.apply(x)))?;
-        both_ways(&ok(moved.interface())?, &options(dual), "moved parallelograms");
+        let h = min_edge(&pair.slave).min(min_edge(&pair.master));
+        let tol = 1e-13 + f64::EPSILON * (motion.translation.norm() + 2.0) / h;
+        let options = options(dual);
+        let general = plain(&options);
+        both_ways_within(&ok(moved.interface())?, &options, &general, tol, "moved parallelograms");
     }
 
     /// Jittered quads on one side (bilinear maps that are not affine): the faces the moments

@@ -242,6 +242,17 @@ pub fn both_ways_with(
     general: &CouplingOptions,
     what: &str,
 ) -> Coupling {
+    both_ways_within(interface, options, general, 1e-13, what)
+}
+
+/// [`both_ways_with`], D and M to `tol` of their largest entry.
+pub fn both_ways_within(
+    interface: &Interface,
+    options: &CouplingOptions,
+    general: &CouplingOptions,
+    tol: f64,
+    what: &str,
+) -> Coupling {
     let fused = assemble_coupling(interface, options).unwrap();
     let general = assemble_coupling(interface, general).unwrap();
     assert_eq!(general.stats.fused_line_faces, 0, "{what}");
@@ -260,7 +271,10 @@ pub fn both_ways_with(
             |t| t,
             1.0,
         );
-        assert!(dev <= 1e-13, "{what}: {name} deviates by {dev:e}");
+        assert!(
+            dev <= tol,
+            "{what}: {name} deviates by {dev:e} (tolerance {tol:e})"
+        );
     }
     assert_eq!(fused.stats.pairs, general.stats.pairs, "{what}");
     assert_eq!(fused.stats.back_facing, general.stats.back_facing, "{what}");
@@ -296,4 +310,17 @@ pub fn dm_bits(c: &Coupling) -> Vec<u64> {
     v.extend(c.m.data().iter().map(|x| x.to_bits()));
     v.extend(c.m.indices().iter().map(|&i| i as u64));
     v
+}
+
+/// The shortest face edge of a mesh.
+pub fn min_edge(mesh: &SurfaceMesh) -> f64 {
+    let mut h = f64::INFINITY;
+    for f in 0..mesh.face_count() {
+        let n = mesh.face(f).nodes;
+        for i in 0..n.len() {
+            let (a, b) = (n[i] as usize, n[(i + 1) % n.len()] as usize);
+            h = h.min((mesh.coords()[a] - mesh.coords()[b]).norm());
+        }
+    }
+    h
 }

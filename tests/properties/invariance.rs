@@ -8,10 +8,10 @@ use mortar::testing::{
     covered_pair, covered_pair_2d, covered_pair_3d, covered_pair_3d_with, relabelling,
     rigid_motion_2d, rigid_motion_3d, scale_factor, CellKind, MeshPair, PairConfig, RigidMotion,
 };
-use mortar::{Coupling, CouplingOptions, SurfaceMesh};
+use mortar::{Coupling, CouplingOptions};
 use proptest::prelude::*;
 
-use super::common::{by_tags, compare_mapped, config, couple, segment_options};
+use super::common::{by_tags, compare_mapped, config, couple, min_edge, segment_options};
 
 type Entries = HashMap<(u64, u64), f64>;
 
@@ -20,19 +20,6 @@ fn entries(c: &Coupling) -> (Entries, Entries) {
         by_tags(&c.d, &c.slave_nodes, &c.slave_nodes),
         by_tags(&c.m, &c.slave_nodes, &c.master_nodes),
     )
-}
-
-/// The shortest face edge of a mesh.
-fn min_edge(mesh: &SurfaceMesh) -> f64 {
-    let mut h = f64::INFINITY;
-    for f in 0..mesh.face_count() {
-        let n = mesh.face(f).nodes;
-        for i in 0..n.len() {
-            let (a, b) = (n[i] as usize, n[(i + 1) % n.len()] as usize);
-            h = h.min((mesh.coords()[a] - mesh.coords()[b]).norm());
-        }
-    }
-    h
 }
 
 /// Couples `pair` and `moved` and checks that the entries of D and M of `moved` are `factor`
