@@ -9,13 +9,13 @@
 //! its own reference coordinates, which are an affine function of `r` (the composition of two
 //! affine maps through the plane), hence in `P2` of `r`. Each pair's integrals are therefore
 //! combinations of the clip polygon's fifteen moments `int u^a v^b` (`a + b <= 4`) about its
-//! first vertex (`r = o + (u, v)`), which a degree-4 rule on the polygon's fan of triangles
-//! gives exactly (to round-off); the slave's functions are re-expanded about that vertex and
+//! first vertex (`r = o + (u, v)`), which vertex formulas on the polygon's fan of triangles
+//! give exactly (to round-off); the slave's functions are re-expanded about that vertex and
 //! the master's coordinates taken from there, so that a pair much smaller than the slave face
 //! keeps its relative accuracy. This replaces the strategy's points on each clip triangle
 //! (their mapping back to both faces through the inverse maps and the shape functions
-//! evaluated at each) by one pass of a fixed rule over the polygon and a few dozen products
-//! per pair: the integrals of any exact quadrature, to round-off.
+//! evaluated at each) by one pass over the polygon's vertices and a few dozen products per
+//! pair: the integrals of any exact quadrature, to round-off.
 //!
 //! Triangles against triangles keep the vertex formulas of [`closed_form`](super::closed_form)
 //! (degree 2, cheaper). The coupling runs this where the strategy says it is the exact
@@ -32,7 +32,6 @@ use crate::error::Result;
 use crate::geometry::{PlanarMap, Polygon, MAX_POLYGON_VERTICES};
 use crate::interface::FaceGeometry;
 use crate::multiplier::LmBasis;
-use crate::quadrature::{Quadrature, QuadratureRule};
 use crate::search::MasterCorners;
 
 /// The monomials `xi^a eta^b` with `a + b <= 4`, the one of `(a, b)` at
@@ -192,58 +191,59 @@ fn compose(p: &Poly, c: &Vector2<f64>, b: &Matrix2<f64>) -> Poly {
     out
 }
 
-/// Adds the moments `int r^alpha dr` of the polygon of vertices `v` to `out`, signed by its
-/// orientation (positive counter-clockwise), by `rule` (exact to degree 4) on the fan of
-/// triangles from its first vertex: all fifteen with `ALL`, else only those of the products
-/// of `1, xi, eta, xi eta` with themselves and with `1, xi, eta` (the integrands against a
-/// triangle master: `xi^3`, `eta^3` and the quartics but `xi^2 eta^2` stay zero).
-fn add_moments<const ALL: bool>(v: &[Vector2<f64>], rule: &FanRule, out: &mut [f64; MONOMIALS]) {
+/// Adds the moments `int (r - v_0)^alpha dr` of the polygon of vertices `v` about its first
+/// vertex to `out`, signed by its orientation (positive counter-clockwise), summed over the fan
+/// of triangles from that vertex in closed form: all fifteen with `ALL`, else only those of
+/// the products of `1, xi, eta, xi eta` with themselves and with `1, xi, eta` (the integrands
+/// against a triangle master: `xi^3`, `eta^3` and the quartics but `xi^2 eta^2` stay zero).
+///
+/// For the triangle `0, a, b` of doubled signed area `J = a x b`, the map `r = s a + t b` of
+/// the reference triangle gives `int x^i y^j = J int (s a_x + t a_y)^i (s a_y + t b_y)^j` and
+/// `int s^k t^l = k! l! / (k + l + 2)!` over the reference triangle (C. Steger, "On the
+/// calculation of arbitrary moments of polygons", TU Munich FGBV-96-05, 1996): for the
+/// quartics, `(12 c_0 + 3 c_1 + 2 c_2 + 3 c_3 + 12 c_4) / 360` of the coefficients `c_k` of
+/// `s^(4-k) t^k`. A degree-4 rule would take six points per triangle and five products per
+/// point; these take about half the arithmetic.
+fn add_moments<const ALL: bool>(v: &[Vector2<f64>], out: &mut [f64; MONOMIALS]) {
     let o = v[0];
     for w in v[1..].windows(2) {
-        let (ea, eb) = (w[0] - o, w[1] - o);
-        // Twice the signed area: the reference triangle's weights sum to one half.
-        let twice = ea.x * eb.y - ea.y * eb.x;
-        for &(q, wq) in rule {
-            let r = o + ea * q.x + eb * q.y;
-            let f = wq * twice;
-            let (x, y) = (r.x, r.y);
-            let (x2, xy, y2) = (x * x, x * y, y * y);
-            if !ALL {
-                for (k, mi) in [
-                    (0, 1.0),
-                    (1, x),
-                    (2, y),
-                    (3, x2),
-                    (4, xy),
-                    (5, y2),
-                    (7, x2 * y),
-                    (8, x * y2),
-                    (12, x2 * y2),
-                ] {
-                    out[k] += f * mi;
-                }
-                continue;
-            }
-            let m = [
-                1.0,
-                x,
-                y,
-                x2,
-                xy,
-                y2,
-                x2 * x,
-                x2 * y,
-                x * y2,
-                y2 * y,
-                x2 * x2,
-                x2 * xy,
-                x2 * y2,
-                xy * y2,
-                y2 * y2,
-            ];
-            for (acc, mi) in out.iter_mut().zip(m) {
-                *acc += f * mi;
-            }
+        let (a, b) = (w[0] - o, w[1] - o);
+        let (ax, ay, bx, by) = (a.x, a.y, b.x, b.y);
+        let j = ax * by - ay * bx;
+        let (ax2, bx2, axbx) = (ax * ax, bx * bx, ax * bx);
+        let (ay2, by2, ayby) = (ay * ay, by * by, ay * by);
+        // The mixed products: `p = a_x a_y`, `q = b_x b_y`, `r = a_x b_y + b_x a_y`.
+        let (p, q, r) = (ax * ay, bx * by, ax * by + bx * ay);
+        out[0] += j * 0.5;
+        out[1] += j * (ax + bx) / 6.0;
+        out[2] += j * (ay + by) / 6.0;
+        out[3] += j * (ax2 + axbx + bx2) / 12.0;
+        out[4] += j * (2.0 * (p + q) + r) / 24.0;
+        out[5] += j * (ay2 + ayby + by2) / 12.0;
+        // x^2 y and x y^2.
+        out[7] +=
+            j * (ay * (3.0 * ax2 + 2.0 * axbx + bx2) + by * (ax2 + 2.0 * axbx + 3.0 * bx2)) / 60.0;
+        out[8] +=
+            j * (ax * (3.0 * ay2 + 2.0 * ayby + by2) + bx * (ay2 + 2.0 * ayby + 3.0 * by2)) / 60.0;
+        // x^2 y^2: c = p^2, 2 p r, r^2 + 2 p q, 2 q r, q^2.
+        out[12] +=
+            j * (12.0 * (p * p + q * q) + 6.0 * r * (p + q) + 2.0 * r * r + 4.0 * p * q) / 360.0;
+        if ALL {
+            // x^3, y^3: the complete sums of degree 3 over 20.
+            out[6] += j * (ax + bx) * (ax2 + bx2) / 20.0;
+            out[9] += j * (ay + by) * (ay2 + by2) / 20.0;
+            // x^4, y^4: the complete sums of degree 4 over 30.
+            out[10] += j * (ax2 * ax2 + ax2 * axbx + ax2 * bx2 + axbx * bx2 + bx2 * bx2) / 30.0;
+            out[14] += j * (ay2 * ay2 + ay2 * ayby + ay2 * by2 + ayby * by2 + by2 * by2) / 30.0;
+            // x^3 y: c = ax^3 ay, ax^3 by + 3 ax^2 bx ay, 3 ax bx (ax by + bx ay),
+            // 3 ax bx^2 by + bx^3 ay, bx^3 by.
+            let c1 = ax2 * (ax * by + 3.0 * bx * ay);
+            let c3 = bx2 * (3.0 * ax * by + bx * ay);
+            out[11] += j * (12.0 * (ax2 * p + bx2 * q) + 3.0 * (c1 + c3) + 6.0 * axbx * r) / 360.0;
+            // x y^3, by symmetry.
+            let c1 = ay2 * (ay * bx + 3.0 * by * ax);
+            let c3 = by2 * (3.0 * ay * bx + by * ax);
+            out[13] += j * (12.0 * (ay2 * p + by2 * q) + 3.0 * (c1 + c3) + 6.0 * ayby * r) / 360.0;
         }
     }
 }
@@ -311,26 +311,6 @@ fn pair_products<const KS: usize, const KM: usize, const USED: usize>(
     }
 }
 
-/// The points of the fan's degree-4 rule on the reference triangle, with their weights: a
-/// fixed count, so that the loop over them unrolls.
-type FanRule = [(Vector2<f64>, f64); FAN_POINTS];
-
-/// The point count of the degree-4 rule on the triangle
-/// ([`QuadratureRule::cached`]`(Triangle, 4)`); a rule of another count leaves the faces to
-/// the strategy.
-const FAN_POINTS: usize = 6;
-
-/// The degree-4 rule as a [`FanRule`], if it has [`FAN_POINTS`] points.
-fn fan_rule() -> Result<Option<FanRule>> {
-    let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4)?;
-    if rule.points().len() != FAN_POINTS || rule.weights().len() != FAN_POINTS {
-        return Ok(None);
-    }
-    Ok(Some(std::array::from_fn(|i| {
-        (rule.points()[i], rule.weights()[i])
-    })))
-}
-
 /// One pair's M block, kept until the face is known to be integrated here.
 pub(crate) type PendingBlock = ([u32; 4], usize, [f64; 16]);
 
@@ -393,9 +373,6 @@ pub(crate) fn affine_moments_into(
             p
         })
     };
-    let Some(rule) = fan_rule()? else {
-        return Ok(false);
-    };
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut dface = [[0.0; 4]; 4];
@@ -450,8 +427,8 @@ pub(crate) fn affine_moments_into(
         let uv = &uv[..clip.vertices.len()];
         let mut mom = [0.0; MONOMIALS];
         match mshape {
-            FlatShape::Triangle => add_moments::<false>(uv, &rule, &mut mom),
-            FlatShape::Quad => add_moments::<true>(uv, &rule, &mut mom),
+            FlatShape::Triangle => add_moments::<false>(uv, &mut mom),
+            FlatShape::Quad => add_moments::<true>(uv, &mut mom),
         }
         // The multipliers and the slave's shape functions about `o`.
         let phi_o = phi.map(|p| shift(&p, &o));
@@ -493,6 +470,7 @@ pub(crate) fn affine_moments_into(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::quadrature::{Quadrature, QuadratureRule};
 
     /// The moments of the unit square `[0, 1]^2` from two fan triangles: `int x^a y^b =
     /// 1 / ((a + 1)(b + 1))` (closed form), for every `a + b <= 4`.
@@ -504,17 +482,68 @@ mod tests {
             Vector2::new(1.0, 1.0),
             Vector2::new(0.0, 1.0),
         ];
-        let rule = fan_rule()
-            .unwrap()
-            .expect("the degree-4 rule has six points");
         let mut m = [0.0; MONOMIALS];
-        add_moments::<true>(&sq, &rule, &mut m);
+        add_moments::<true>(&sq, &mut m);
         for d in 0..=4usize {
             for b in 0..=d {
                 let a = d - b;
                 let want = 1.0 / ((a + 1) * (b + 1)) as f64;
                 let got = m[d * (d + 1) / 2 + b];
                 assert!((got - want).abs() < 1e-15, "x^{a} y^{b}: {got} vs {want}");
+            }
+        }
+    }
+
+    /// The vertex formulas give the moments a degree-4 quadrature rule gives on each fan
+    /// triangle (exact for these integrands: the reference), on a skewed pentagon off the
+    /// origin and in either orientation; without `ALL`, the moments they leave are zero.
+    #[test]
+    fn vertex_formulas_match_a_degree_4_rule() {
+        let poly = [
+            Vector2::new(0.3, -0.2),
+            Vector2::new(1.9, 0.1),
+            Vector2::new(2.2, 1.3),
+            Vector2::new(0.8, 2.1),
+            Vector2::new(-0.4, 0.9),
+        ];
+        let rule = QuadratureRule::cached(ReferenceDomain::Triangle, 4).unwrap();
+        for reversed in [false, true] {
+            let mut v = poly;
+            if reversed {
+                v[1..].reverse();
+            }
+            let o = v[0];
+            let mut want = [0.0; MONOMIALS];
+            for w in v[1..].windows(2) {
+                let (ea, eb) = (w[0] - o, w[1] - o);
+                let twice = ea.x * eb.y - ea.y * eb.x;
+                for (q, wq) in rule.points().iter().zip(rule.weights()) {
+                    let r = ea * q.x + eb * q.y;
+                    for d in 0..=4usize {
+                        for b in 0..=d {
+                            let k = d * (d + 1) / 2 + b;
+                            want[k] += wq * twice * r.x.powi((d - b) as i32) * r.y.powi(b as i32);
+                        }
+                    }
+                }
+            }
+            let mut all = [0.0; MONOMIALS];
+            add_moments::<true>(&v, &mut all);
+            let mut some = [0.0; MONOMIALS];
+            add_moments::<false>(&v, &mut some);
+            for k in 0..MONOMIALS {
+                let tol = 1e-14 * want[k].abs().max(1.0);
+                assert!(
+                    (all[k] - want[k]).abs() < tol,
+                    "{k}: {} vs {}",
+                    all[k],
+                    want[k]
+                );
+                if [6, 9, 10, 11, 13, 14].contains(&k) {
+                    assert_eq!(some[k], 0.0, "{k}");
+                } else {
+                    assert_eq!(some[k], all[k], "{k}");
+                }
             }
         }
     }
