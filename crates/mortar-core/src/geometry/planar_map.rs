@@ -37,6 +37,20 @@ impl PlanarMap {
     /// Makes this the map of `element` with projected nodes `nodes`, in place: what
     /// [`new`](Self::new) returns, without building a new map and moving it here.
     pub fn set(&mut self, element: ElementRef, nodes: &[Vector2<f64>]) {
+        self.set_known(element, nodes, false);
+    }
+
+    /// [`set`](Self::set) for the projection of a face known to be affine in space
+    /// ([`FaceGeometry::is_affine`](crate::interface::FaceGeometry::is_affine)): a projection
+    /// is linear, so its map is affine too, and the Jacobian is evaluated at the centre only
+    /// (not compared at every node as well).
+    pub(crate) fn set_affine(&mut self, element: ElementRef, nodes: &[Vector2<f64>]) {
+        self.set_known(element, nodes, true);
+    }
+
+    /// [`set`](Self::set), with the map taken as affine without the check at the nodes when
+    /// `affine`.
+    fn set_known(&mut self, element: ElementRef, nodes: &[Vector2<f64>], affine: bool) {
         let k = element.node_count();
         self.element = element;
         self.nodes[..k].copy_from_slice(&nodes[..k]);
@@ -44,7 +58,7 @@ impl PlanarMap {
         let all = &self.nodes[..k];
         let centre = element.domain().centre();
         let (x, j) = planar_map_and_jacobian(element, all, &centre);
-        let affine_shape = element.is_affine() || {
+        let affine_shape = affine || element.is_affine() || {
             let scale = j.abs().max();
             element.node_reference_coords().iter().all(|xi| {
                 let (_, jn) = planar_map_and_jacobian(element, all, &Vector2::new(xi[0], xi[1]));

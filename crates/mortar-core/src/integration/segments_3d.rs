@@ -131,7 +131,14 @@ impl SlavePlane {
                 reason: "its normal points against the projection direction at its centre".into(),
             });
         }
-        self.slave_map.set(el, &sp[..ks]);
+        // A face affine in space projects to an affine map: its planar map needs no check at
+        // the nodes.
+        let affine_in_space = slave.is_affine();
+        if affine_in_space {
+            self.slave_map.set_affine(el, &sp[..ks]);
+        } else {
+            self.slave_map.set(el, &sp[..ks]);
+        }
         // A slave face is integrated in the plane only when both its map into space and its
         // projection are affine (a triangle, a flat parallelogram): then the plane's area
         // element differs from the face's by one constant factor, `measure`, the ratio of the
@@ -139,7 +146,7 @@ impl SlavePlane {
         // the tilt on a curved surface, where the plane follows the averaged nodal normals).
         // Any other slave face is integrated in its reference coordinates with its own
         // Jacobian.
-        let in_reference = !(self.slave_map.is_affine() && slave.is_affine());
+        let in_reference = !(self.slave_map.is_affine() && affine_in_space);
         // The degree added to the integrands' for a slave face integrated in its reference
         // coordinates: one for a flat face (its Jacobian a polynomial), WARPED_EXTRA_DEGREE
         // for a warped or curved one (its Jacobian the norm of a polynomial vector).
