@@ -385,7 +385,8 @@ pub(crate) fn affine_moments_into(
             cols,
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, km)) = setup.clip_face(*element, &nodes[..*count], &mut mp, &mut clip, bf)
+        let Some((mel, km, area)) =
+            setup.clip_face(*element, &nodes[..*count], &mut mp, &mut clip, bf)
         else {
             continue;
         };
@@ -453,7 +454,7 @@ pub(crate) fn affine_moments_into(
                 .rule
                 .degree
                 .unwrap_or_else(|| default_degree(slave.element, mel));
-        covered += clip.signed_area();
+        covered += area;
     }
     for (cols, km, block) in pending.iter() {
         add_m(&cols[..*km], &block[..ks * km]);

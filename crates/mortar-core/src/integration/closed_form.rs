@@ -288,7 +288,8 @@ pub(crate) fn closed_form_into(
             ..
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, _)) = setup.clip_face(*element, &nodes[..3], &mut mp, &mut clip, bf) else {
+        let Some((mel, _, area)) = setup.clip_face(*element, &nodes[..3], &mut mp, &mut clip, bf)
+        else {
             continue;
         };
         let mut mom = Moments::of(&clip, scale);
@@ -317,7 +318,7 @@ pub(crate) fn closed_form_into(
         out.pairs += 1;
         out.cells += 1;
         out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, mel));
-        covered += clip.signed_area();
+        covered += area;
     }
     for (row, dr) in d.iter_mut().zip(&dface) {
         for (v, dv) in row.iter_mut().zip(dr) {

@@ -185,8 +185,8 @@ impl SlavePlane {
     }
 
     /// Projects the master face in slot `m` into the plane (its nodes into `mp`) and clips it
-    /// against the slave face into `clip`: its element and node count when the overlap
-    /// counts, `None` when the face is out of the slave's box, seen edge-on, facing the same
+    /// against the slave face into `clip`: its element, its node count and the clip polygon's
+    /// area when the overlap counts, `None` when the face is out of the slave's box, seen edge-on, facing the same
     /// way as the slave (counted in `back_facing`) or overlapping by less than the tolerance.
     pub fn clip_master(
         &mut self,
@@ -195,7 +195,7 @@ impl SlavePlane {
         mp: &mut [Vector2<f64>; MAX_FACE_NODES],
         clip: &mut Polygon,
         back_facing: &mut u32,
-    ) -> Option<(ElementRef, usize)> {
+    ) -> Option<(ElementRef, usize, f64)> {
         let mut xm = [Vector3::zeros(); MAX_FACE_NODES];
         let (mel, km) = ctx.masters.coords_into(ctx.interface, m as usize, &mut xm);
         self.clip_face(mel, &xm[..km], mp, clip, back_facing)
@@ -210,7 +210,7 @@ impl SlavePlane {
         mp: &mut [Vector2<f64>; MAX_FACE_NODES],
         clip: &mut Polygon,
         back_facing: &mut u32,
-    ) -> Option<(ElementRef, usize)> {
+    ) -> Option<(ElementRef, usize, f64)> {
         let km = xm.len();
         for (p, x) in mp.iter_mut().zip(xm) {
             *p = self.plane.project(x);
@@ -243,13 +243,14 @@ impl SlavePlane {
         // Clockwise about the slave normal: reversed, it is the subject of the clipping.
         self.clipper
             .clip_reversed_in(corners, merge, &mut self.bufs, clip);
-        if clip.len() < 3
-            || clip.signed_area()
-                <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise)
-        {
+        if clip.len() < 3 {
             return None;
         }
-        Some((mel, km))
+        let area = clip.signed_area();
+        if area <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise) {
+            return None;
+        }
+        Some((mel, km, area))
     }
 }
 
@@ -284,7 +285,8 @@ pub(super) fn segments_into(
     let mut covered = 0.0;
 
     for &m in candidates {
-        let Some((mel, km)) = setup.clip_master(ctx, m, &mut mp, &mut clip, &mut out.back_facing)
+        let Some((mel, km, area)) =
+            setup.clip_master(ctx, m, &mut mp, &mut clip, &mut out.back_facing)
         else {
             continue;
         };
@@ -420,7 +422,7 @@ pub(super) fn segments_into(
         if any {
             out.pairs += 1;
             out.degrees |= 1 << deg;
-            covered += clip.signed_area();
+            covered += area;
         }
     }
     out.covered = Some(covered / area_s);
