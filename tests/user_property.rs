@@ -5,7 +5,7 @@
 //! `1e6`); the checks are the library's patch test with its exact answers.
 
 use mortar::testing::{covered_pair_3d_with, patch_test, rigid_motion_3d, CellKind, PairConfig};
-use mortar::{assemble_coupling, CouplingOptions, SurfaceMesh};
+use mortar::{assemble_coupling, CouplingOptions};
 use proptest::prelude::*;
 
 proptest! {
@@ -34,20 +34,8 @@ proptest! {
         let options = if dual { CouplingOptions::default().dual() } else { CouplingOptions::default() };
         let coupling = assemble_coupling(&interface, &options).unwrap();
         let report = patch_test(&interface, &coupling, dual);
-        let h = shortest_edge(&pair.slave).min(shortest_edge(&pair.master));
+        let h = pair.shortest_edge();
         let tol = 1e-9 + 16.0 * f64::EPSILON * motion.translation.norm() / h;
         prop_assert!(report.worst() < tol, "{report:?}, tolerance {tol:e} (h = {h:e})");
     }
-}
-
-/// The shortest edge of `mesh`'s faces.
-fn shortest_edge(mesh: &SurfaceMesh) -> f64 {
-    let x = mesh.coords();
-    (0..mesh.face_count())
-        .flat_map(|f| {
-            let n = mesh.face(f).nodes;
-            (0..n.len()).map(move |i| (n[i] as usize, n[(i + 1) % n.len()] as usize))
-        })
-        .map(|(a, b)| (x[a] - x[b]).norm())
-        .fold(f64::INFINITY, f64::min)
 }

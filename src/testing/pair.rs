@@ -44,6 +44,38 @@ impl MeshPair {
         out.master.transform(&f)?;
         Ok(out)
     }
+
+    /// The shortest edge of the faces of both meshes: the length `h` that sets the round-off
+    /// of a pair moved by `t` (its coordinates carry `eps |t|`, so relative figures carry
+    /// `eps |t| / h`), the scale of an invariance test's tolerance.
+    ///
+    /// ```
+    /// use mortar::generate::{square_triangles, Diagonal};
+    /// use mortar::testing::MeshPair;
+    ///
+    /// let pair = MeshPair {
+    ///     slave: square_triangles(4, Diagonal::Main, 0.0, false, 1).unwrap(),
+    ///     master: square_triangles(5, Diagonal::Main, 0.0, true, 1000).unwrap(),
+    /// };
+    /// assert!((pair.shortest_edge() - 0.2).abs() < 1e-15);
+    /// ```
+    pub fn shortest_edge(&self) -> f64 {
+        shortest_edge(&self.slave).min(shortest_edge(&self.master))
+    }
+}
+
+/// The shortest edge of `mesh`'s faces (corner to corner, in the faces' node order).
+fn shortest_edge(mesh: &SurfaceMesh) -> f64 {
+    let x = mesh.coords();
+    let mut h = f64::INFINITY;
+    for f in 0..mesh.face_count() {
+        let n = mesh.face(f).nodes;
+        for i in 0..n.len() {
+            let (a, b) = (n[i] as usize, n[(i + 1) % n.len()] as usize);
+            h = h.min((x[a] - x[b]).norm());
+        }
+    }
+    h
 }
 
 impl fmt::Debug for MeshPair {

@@ -21,7 +21,7 @@ use nalgebra::Vector3;
 use proptest::prelude::*;
 
 use super::common::{
-    both_ways, both_ways_with, both_ways_within, config, dm_bits, min_edge, ok, plain, plain_with,
+    both_ways, both_ways_with, both_ways_within, config, dm_bits, ok, plain, plain_with,
 };
 
 /// Triangles on both sides, any size and jitter of the default configuration.
@@ -80,7 +80,7 @@ proptest! {
         let c = both_ways(&interface, &options(dual), "parallelograms");
         prop_assert_eq!(c.stats.closed_form_faces, interface.slave().face_count());
         let moved = ok(pair.transformed(|x| motion.apply(x)))?;
-        let h = min_edge(&pair.slave).min(min_edge(&pair.master));
+        let h = pair.shortest_edge();
         let tol = 1e-13 + f64::EPSILON * (motion.translation.norm() + 2.0) / h;
         let options = options(dual);
         let general = plain(&options);
@@ -131,7 +131,7 @@ proptest! {
         prop_assert_eq!(c.stats.closed_form_faces, interface.slave().face_count());
         let moved = ok(pair.transformed(|x| motion.apply(x)))?;
         let interface = ok(moved.interface())?;
-        let h = min_edge(&pair.slave).min(min_edge(&pair.master));
+        let h = pair.shortest_edge();
         let tol = 1e-13 + f64::EPSILON * (motion.translation.norm() + 2.0) / h;
         let c = both_ways_within(&interface, &options, &general, tol, "moved random pair");
         prop_assert_eq!(c.stats.closed_form_faces, interface.slave().face_count());

@@ -311,16 +311,3 @@ pub fn dm_bits(c: &Coupling) -> Vec<u64> {
     v.extend(c.m.indices().iter().map(|&i| i as u64));
     v
 }
-
-/// The shortest face edge of a mesh.
-pub fn min_edge(mesh: &SurfaceMesh) -> f64 {
-    let mut h = f64::INFINITY;
-    for f in 0..mesh.face_count() {
-        let n = mesh.face(f).nodes;
-        for i in 0..n.len() {
-            let (a, b) = (n[i] as usize, n[(i + 1) % n.len()] as usize);
-            h = h.min((mesh.coords()[a] - mesh.coords()[b]).norm());
-        }
-    }
-    h
-}

@@ -11,7 +11,7 @@ use mortar::testing::{
 use mortar::{Coupling, CouplingOptions};
 use proptest::prelude::*;
 
-use super::common::{by_tags, compare_mapped, config, couple, min_edge, segment_options};
+use super::common::{by_tags, compare_mapped, config, couple, segment_options};
 
 type Entries = HashMap<(u64, u64), f64>;
 
@@ -58,7 +58,7 @@ fn check_rigid(
     factor: f64,
 ) -> Result<(), TestCaseError> {
     let moved = pair.transformed(|x| motion.apply(x)).unwrap();
-    let h = min_edge(&pair.slave).min(min_edge(&pair.master));
+    let h = pair.shortest_edge();
     let reach = motion.translation.norm() + 2.0;
     let tol = 1e-12 + factor * f64::EPSILON * reach / h;
     check_same(pair, &moved, options, |t| t, |t| t, 1.0, tol)

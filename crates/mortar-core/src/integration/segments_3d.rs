@@ -186,8 +186,9 @@ impl SlavePlane {
 
     /// Projects the master face in slot `m` into the plane (its nodes into `mp`) and clips it
     /// against the slave face into `clip`: its element, its node count and the clip polygon's
-    /// area when the overlap counts, `None` when the face is out of the slave's box, seen edge-on, facing the same
-    /// way as the slave (counted in `back_facing`) or overlapping by less than the tolerance.
+    /// area when the overlap counts, `None` when the face is out of the slave's box, seen
+    /// edge-on, facing the same way as the slave (counted in `back_facing`) or overlapping by
+    /// less than the tolerance.
     pub fn clip_master(
         &mut self,
         ctx: &SegmentContext<'_>,
