@@ -546,9 +546,13 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// integration strategy and the multiplier space (the first in slave-face order);
 /// [`MortarError::InvalidOption`] for a thread count of zero or above
 /// [`MAX_THREADS_PER_CORE`] per core, or a pool that cannot start.
+///
+/// The pool of each thread count is built on the first call that asks for it and kept for
+/// the next calls (a few thread counts at a time): a coupling repeated at every Newton step
+/// does not start threads each time.
 pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Result<Coupling> {
     check_geometry(interface, options)?;
-    let pool = build_pool(options.threads)?;
+    let pool = super::pool::pool(options.threads)?;
     pool.install(|| assemble_on_pool(interface, options, pool.current_num_threads()))
 }
 
@@ -580,36 +584,6 @@ fn check_geometry(interface: &Interface, options: &CouplingOptions) -> Result<()
 /// The most worker threads per core [`assemble_coupling`] accepts: more only costs thread
 /// start-up and memory (100000 threads took over a minute before any work).
 pub const MAX_THREADS_PER_CORE: usize = 16;
-
-fn build_pool(threads: Option<usize>) -> Result<rayon::ThreadPool> {
-    if threads == Some(0) {
-        return Err(MortarError::InvalidOption {
-            option: "threads",
-            value: "0".into(),
-            reason: "at least 1".into(),
-        });
-    }
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    if let Some(t) = threads.filter(|&t| t > MAX_THREADS_PER_CORE * cores) {
-        return Err(MortarError::InvalidOption {
-            option: "threads",
-            value: t.to_string(),
-            reason: format!(
-                "at most {} on {cores} cores ({MAX_THREADS_PER_CORE} per core)",
-                MAX_THREADS_PER_CORE * cores
-            ),
-        });
-    }
-    let mut builder = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = threads {
-        builder = builder.num_threads(t);
-    }
-    builder.build().map_err(|e| MortarError::InvalidOption {
-        option: "threads",
-        value: threads.map_or("default".into(), |t| t.to_string()),
-        reason: format!("cannot start a thread pool: {e}"),
-    })
-}
 
 fn assemble_on_pool(
     interface: &Interface,

@@ -13,6 +13,7 @@ mod coupling;
 mod key_index;
 mod local;
 mod options;
+mod pool;
 mod straight_line;
 mod warning;
 
