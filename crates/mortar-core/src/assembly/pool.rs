@@ -2,8 +2,9 @@
 //! the next.
 //!
 //! Starting a rayon pool costs its threads' start-up: on this project's 2-core test machine
-//! about 0.13 ms a call, which was 40% of coupling a 10^3-face straight line (0.33 ms a call,
-//! 0.19 ms of it the coupling) and 10% of a 10^3-face arc. A contact or gap law re-couples its
+//! 0.10-0.15 ms a call, which was a third of coupling a 10^3-face straight line (0.30 ms a
+//! call, 0.18 ms of it the coupling's phases) and 14% of a 10^3-face arc
+//! (`examples/bench_small_calls.rs`). A contact or gap law re-couples its
 //! interface at every Newton step, so a pool is built once per thread count and kept, its
 //! threads asleep between calls. A few thread counts are kept ([`POOLS_KEPT`], the most
 //! recently used); a call with another one drops the least recently used pool (its threads
