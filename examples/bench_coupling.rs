@@ -71,10 +71,11 @@ use std::process::Command;
 use std::time::Instant;
 
 use clap::Parser;
-use mortar::elements::LINE2;
-use mortar::generate::{cylinder_surface, line_mesh, square_quads, square_triangles, Diagonal};
+use mortar::generate::{
+    cylinder_surface, half_circle_mesh, line_mesh, square_quads, square_triangles, Diagonal,
+};
 use mortar::testing::{shuffled, shuffled_faces};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -199,7 +200,10 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
             )
         }
         "line2d" => (line_mesh(n, false, 1)?, line_mesh(master_n(n), true, 1)?),
-        "arc2d" => (arc_mesh(n, false)?, arc_mesh(master_n(n), true)?),
+        "arc2d" => (
+            half_circle_mesh(n, false, 1)?,
+            half_circle_mesh(master_n(n), true, 1)?,
+        ),
         // One slave face against n master lines (2D) or n x n master quads (3D): the work of
         // a face must stay linear in its partners (issue 14, item 1).
         "ratio2d" => (line_mesh(1, false, 1)?, line_mesh(n, true, 1)?),
@@ -338,21 +342,6 @@ fn repeats_for(case: &str, n: usize, repeats: usize, repeat_large: bool) -> usiz
     } else {
         repeats.max(1)
     }
-}
-
-/// The upper half of the unit circle as `n` two-node chords from angle 0 to pi (normal
-/// outwards), or with `flip` the other way round (normal inwards), nodes tagged from 1.
-fn arc_mesh(n: usize, flip: bool) -> Res<SurfaceMesh> {
-    let mut mesh = SurfaceMesh::with_capacity(n + 1, n);
-    for i in 0..=n {
-        let a = std::f64::consts::PI * i as f64 / n as f64;
-        mesh.add_node(1 + i as u64, [a.cos(), a.sin(), 0.0])?;
-    }
-    for i in 1..=n as u64 {
-        let (a, b) = (i + 1, i);
-        mesh.add_face(&LINE2, &if flip { [b, a] } else { [a, b] })?;
-    }
-    Ok(mesh)
 }
 
 /// One (case, n, threads), in this process.

@@ -22,9 +22,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use clap::Parser;
-use mortar::elements::LINE2;
-use mortar::generate::{cylinder_surface, line_mesh, square_triangles, Diagonal};
-use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::generate::{cylinder_surface, half_circle_mesh, line_mesh, square_triangles, Diagonal};
+use mortar::{assemble_coupling, CouplingOptions, Interface};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -46,20 +45,6 @@ struct Args {
     threads: Vec<usize>,
 }
 
-/// A half circle of `n` two-node lines, numbered along it (`flip`: the other way round).
-fn arc_mesh(n: usize, flip: bool) -> Res<SurfaceMesh> {
-    let mut mesh = SurfaceMesh::with_capacity(n + 1, n);
-    for i in 0..=n {
-        let a = std::f64::consts::PI * i as f64 / n as f64;
-        mesh.add_node(1 + i as u64, [a.cos(), a.sin(), 0.0])?;
-    }
-    for i in 1..=n as u64 {
-        let (a, b) = (i + 1, i);
-        mesh.add_face(&LINE2, &if flip { [b, a] } else { [a, b] })?;
-    }
-    Ok(mesh)
-}
-
 /// The interfaces of the cases: the slave at about 10^3 faces, the master 1.5 times finer.
 fn cases() -> Res<Vec<(&'static str, Interface)>> {
     Ok(vec![
@@ -69,7 +54,10 @@ fn cases() -> Res<Vec<(&'static str, Interface)>> {
         ),
         (
             "arc2d",
-            Interface::new(arc_mesh(1000, false)?, arc_mesh(1501, true)?)?,
+            Interface::new(
+                half_circle_mesh(1000, false, 1)?,
+                half_circle_mesh(1501, true, 1)?,
+            )?,
         ),
         (
             "plane3d",

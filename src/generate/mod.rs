@@ -33,7 +33,7 @@ pub use cylinder::cylinder_surface;
 pub use disc::{quarter_annulus_mesh, quarter_disc_mesh};
 pub use extrude::extrude_mesh;
 pub use inclusion::{ball_mesh, box_with_hole_mesh, Inclusion};
-pub use line::line_mesh;
+pub use line::{half_circle_mesh, line_mesh};
 pub use plane::{square_quads, square_triangles, Diagonal};
 pub use second_order::{onto_cylinder, onto_sphere, second_order_mesh, SecondOrder};
 pub use sphere::sphere_surface;
