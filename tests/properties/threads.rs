@@ -51,3 +51,32 @@ proptest! {
         prop_assert_eq!(serial.master_nodes, parallel.master_nodes);
     }
 }
+
+proptest! {
+    #![proptest_config(config(4))]
+
+    /// Couplings asked for at the same time from several threads with the same thread count
+    /// share one kept pool (`assembly/pool.rs`); each gets the serial run's D and M, bit for
+    /// bit, and the thread count it asked for.
+    #[test]
+    fn calls_at_the_same_time_share_a_pool_and_give_identical_bits(pair in large_pair()) {
+        let options = CouplingOptions::default();
+        let (interface, serial) = couple(&pair, &options.clone().threads(1))?;
+        let results: Vec<_> = std::thread::scope(|s| {
+            let calls: Vec<_> = [2, 2, 2, 3]
+                .into_iter()
+                .map(|t| {
+                    let (interface, options) = (&interface, options.clone().threads(t));
+                    s.spawn(move || (t, mortar::assemble_coupling(interface, &options)))
+                })
+                .collect();
+            calls.into_iter().map(|c| c.join().expect("no panic")).collect()
+        });
+        for (t, c) in results {
+            let c = c.map_err(|e| TestCaseError::fail(format!("unexpected error: {e}")))?;
+            prop_assert_eq!(c.stats.threads, t);
+            prop_assert!(bits(&serial.d) == bits(&c.d), "D differs ({} threads, shared)", t);
+            prop_assert!(bits(&serial.m) == bits(&c.m), "M differs ({} threads, shared)", t);
+        }
+    }
+}
