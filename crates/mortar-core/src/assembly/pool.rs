@@ -13,6 +13,11 @@
 //! Calls with the same thread count share the pool, also when made at the same time from
 //! several threads: each call's chunks are then shared among the pool's threads, and D and M
 //! stay bit-identical (they do not depend on which thread took which chunk).
+//!
+//! A process forked after a coupling (Python's `multiprocessing` on Linux, for one) inherits
+//! the list but not the threads: a job sent to such a pool would wait forever. The list
+//! records the process it was filled in; a call from another process leaves the inherited
+//! pools alone (never dropped: their threads are not there to be told) and starts afresh.
 
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -25,10 +30,16 @@ use crate::error::{MortarError, Result};
 const POOLS_KEPT: usize = 4;
 
 /// The kept pools by requested thread count (`None`: rayon's default), most recently used
-/// last.
-type Kept = Vec<(Option<usize>, Arc<ThreadPool>)>;
+/// last, and the process that built them.
+struct Kept {
+    process: u32,
+    pools: Vec<(Option<usize>, Arc<ThreadPool>)>,
+}
 
-static POOLS: Mutex<Kept> = Mutex::new(Vec::new());
+static POOLS: Mutex<Kept> = Mutex::new(Kept {
+    process: 0,
+    pools: Vec::new(),
+});
 
 /// The pool of `threads` worker threads (`None`: rayon's default, the core count or
 /// `RAYON_NUM_THREADS`), built on first use and kept.
@@ -40,6 +51,14 @@ pub(super) fn pool(threads: Option<usize>) -> Result<Arc<ThreadPool>> {
     check(threads)?;
     // A panic elsewhere while the lock was held leaves the list as valid as before it.
     let mut kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+    let process = std::process::id();
+    if kept.process != process {
+        // Pools inherited through a fork have no threads: forgotten, not dropped (dropping
+        // one would signal threads that are not there).
+        std::mem::forget(std::mem::take(&mut kept.pools));
+        kept.process = process;
+    }
+    let kept = &mut kept.pools;
     if let Some(at) = kept.iter().position(|(t, _)| *t == threads) {
         let entry = kept.remove(at);
         let pool = Arc::clone(&entry.1);
@@ -108,9 +127,9 @@ mod tests {
             assert_eq!(p.current_num_threads(), t);
         }
         let kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
-        assert!(kept.len() <= POOLS_KEPT);
+        assert!(kept.pools.len() <= POOLS_KEPT);
         assert!(
-            kept.iter().all(|(t, _)| *t != Some(5)),
+            kept.pools.iter().all(|(t, _)| *t != Some(5)),
             "the oldest was dropped"
         );
         drop(kept);
@@ -129,5 +148,48 @@ mod tests {
         ));
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         assert!(pool(Some(MAX_THREADS_PER_CORE * cores + 1)).is_err());
+    }
+
+    /// A process forked after a pool was kept gets a new pool that runs its jobs; the
+    /// inherited one has no threads, and a job sent to it would never run (the child then
+    /// hung until the parent killed it after 20 s).
+    #[cfg(target_os = "linux")]
+    #[test]
+    #[allow(unsafe_code)]
+    fn a_forked_process_gets_pools_of_its_own() {
+        // A thread count no other test asks for.
+        let parent = pool(Some(11)).unwrap();
+        assert_eq!(parent.install(|| 1 + 1), 2);
+        // SAFETY: the child only builds a pool, runs one job on it and leaves with `_exit`
+        // (no destructor, no test harness); glibc's allocator is usable after a fork.
+        let child = unsafe { libc::fork() };
+        assert!(child >= 0, "fork failed");
+        if child == 0 {
+            let ok = pool(Some(11)).is_ok_and(|p| p.install(|| 1 + 1) == 2);
+            // SAFETY: ends the child at once, as after any fork.
+            unsafe { libc::_exit(if ok { 0 } else { 1 }) };
+        }
+        let mut status = 0;
+        let start = std::time::Instant::now();
+        loop {
+            // SAFETY: waits for our own child, without blocking.
+            let done = unsafe { libc::waitpid(child, &mut status, libc::WNOHANG) };
+            if done == child {
+                break;
+            }
+            if start.elapsed().as_secs() >= 20 {
+                // SAFETY: our own child, stuck.
+                unsafe {
+                    libc::kill(child, libc::SIGKILL);
+                    libc::waitpid(child, &mut status, 0);
+                }
+                panic!("the forked process's coupling pool never ran its job");
+            }
+            std::thread::sleep(std::time::Duration::from_millis(10));
+        }
+        assert!(
+            libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0,
+            "the forked process failed: status {status}"
+        );
     }
 }
