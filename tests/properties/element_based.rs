@@ -73,8 +73,10 @@ proptest! {
     /// 1.4e-4, which the adaptive scheme, integrating in the slave's reference coordinates,
     /// is not.) D to 1e-12 at every depth (every point lands on a master face); M, whose error
     /// comes from the leaves that master edges cross at the maximum depth, at least 8 times
-    /// closer at maximum depth 7 than at 3 (about 4x per depth is expected; measured 1000x over
-    /// 8 cases), and within 1e-6 of its largest entry at depth 7 (measured 1e-9 to 1e-7).
+    /// closer at maximum depth 7 than at 3 (about 4x per depth is expected; measured 164x to
+    /// 1000x over 120 cases), and within 1e-5 of its largest entry at depth 7 (measured 4e-8 to
+    /// 7e-7 over 120 cases; a case whose error at depth 3 was 5.5e-4 reached 1.8e-6 at depth
+    /// 7, converging at the expected rate, 297x: its seed is saved).
     #[test]
     fn adaptive_element_based_converges_to_segment_based(
         pair in covered_pair_3d_with(PairConfig {
@@ -99,6 +101,6 @@ proptest! {
             m.push(off(&c.m, &exact.m));
         }
         prop_assert!(m[1] < m[0] / 8.0 || m[0] < 1e-13, "M off by {m:?} at depths 3, 7");
-        prop_assert!(m[1] < 1e-6, "M off by {m:?} at depths 3, 7");
+        prop_assert!(m[1] < 1e-5, "M off by {m:?} at depths 3, 7");
     }
 }
