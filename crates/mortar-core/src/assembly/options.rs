@@ -20,7 +20,9 @@ pub struct CouplingOptions {
     pub integration: Arc<dyn IntegrationStrategy>,
     /// The projection direction field.
     pub projector: Arc<dyn Projector>,
-    /// Worker threads; `None` uses rayon's default (the core count, or `RAYON_NUM_THREADS`).
+    /// Worker threads; `None` uses rayon's default (the core count, or `RAYON_NUM_THREADS`
+    /// as it is when the first coupling with `None` starts its pool, which is then kept; see
+    /// [`assemble_coupling`](super::assemble_coupling)).
     pub threads: Option<usize>,
     /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area, skipped
     /// pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).
