@@ -49,28 +49,49 @@ static POOLS: Mutex<Kept> = Mutex::new(Kept {
 /// core, or a pool that cannot start.
 pub(super) fn pool(threads: Option<usize>) -> Result<Arc<ThreadPool>> {
     check(threads)?;
-    // A panic elsewhere while the lock was held leaves the list as valid as before it.
-    let mut kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
-    let process = std::process::id();
-    if kept.process != process {
-        // Pools inherited through a fork have no threads: forgotten, not dropped (dropping
-        // one would signal threads that are not there).
-        std::mem::forget(std::mem::take(&mut kept.pools));
-        kept.process = process;
-    }
-    let kept = &mut kept.pools;
-    if let Some(at) = kept.iter().position(|(t, _)| *t == threads) {
-        let entry = kept.remove(at);
-        let pool = Arc::clone(&entry.1);
-        kept.push(entry);
+    if let Some(pool) = kept(threads, None) {
         return Ok(pool);
     }
-    let pool = Arc::new(build(threads)?);
-    if kept.len() >= POOLS_KEPT {
-        kept.remove(0);
-    }
-    kept.push((threads, Arc::clone(&pool)));
-    Ok(pool)
+    // Built outside the lock: starting threads takes a while, and a process forked meanwhile
+    // would inherit the lock held.
+    let built = Arc::new(build(threads)?);
+    Ok(kept(threads, Some(built)).expect("a pool was given to keep"))
+}
+
+/// The kept pool of `threads`, moved to the most recently used end; when there is none,
+/// `built` is kept (the least recently used pool dropped beyond [`POOLS_KEPT`], after the
+/// lock is released) and returned. A pool built by another call in the meantime wins over
+/// `built`.
+fn kept(threads: Option<usize>, built: Option<Arc<ThreadPool>>) -> Option<Arc<ThreadPool>> {
+    let mut dropped = None;
+    let found = {
+        // A panic elsewhere while the lock was held leaves the list as valid as before it.
+        let mut kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+        let process = std::process::id();
+        if kept.process != process {
+            // Pools inherited through a fork have no threads: forgotten, not dropped
+            // (dropping one would signal threads that are not there).
+            std::mem::forget(std::mem::take(&mut kept.pools));
+            kept.process = process;
+        }
+        let kept = &mut kept.pools;
+        if let Some(at) = kept.iter().position(|(t, _)| *t == threads) {
+            let entry = kept.remove(at);
+            let pool = Arc::clone(&entry.1);
+            kept.push(entry);
+            Some(pool)
+        } else if let Some(pool) = built {
+            if kept.len() >= POOLS_KEPT {
+                dropped = Some(kept.remove(0));
+            }
+            kept.push((threads, Arc::clone(&pool)));
+            Some(pool)
+        } else {
+            None
+        }
+    };
+    drop(dropped);
+    found
 }
 
 /// Refuses zero threads and more than [`MAX_THREADS_PER_CORE`] per core.
@@ -113,10 +134,19 @@ fn build(threads: Option<usize>) -> Result<ThreadPool> {
 mod tests {
     use super::*;
 
+    /// The tests of this module one at a time: the fork test must not fork while another
+    /// test holds the list's lock (the child would inherit it held).
+    static SERIAL: Mutex<()> = Mutex::new(());
+
+    fn serial() -> std::sync::MutexGuard<'static, ()> {
+        SERIAL.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
     /// The same thread count gets the same pool; a fifth thread count drops the least
     /// recently used, so that at most `POOLS_KEPT` pools (and their threads) are alive.
     #[test]
     fn pools_are_kept_per_thread_count_and_bounded() {
+        let _serial = serial();
         // Thread counts no other test of this binary asks for, so that the list is this
         // test's alone between its calls (tests run in parallel on one list).
         let first = pool(Some(5)).unwrap();
@@ -139,6 +169,7 @@ mod tests {
     /// Zero threads, and more than the per-core bound, are refused before any pool is built.
     #[test]
     fn invalid_thread_counts_are_refused() {
+        let _serial = serial();
         assert!(matches!(
             pool(Some(0)),
             Err(MortarError::InvalidOption {
@@ -157,6 +188,7 @@ mod tests {
     #[test]
     #[allow(unsafe_code)]
     fn a_forked_process_gets_pools_of_its_own() {
+        let _serial = serial();
         // A thread count no other test asks for.
         let parent = pool(Some(11)).unwrap();
         assert_eq!(parent.install(|| 1 + 1), 2);
