@@ -19,7 +19,7 @@
 //! records the process it was filled in; a call from another process leaves the inherited
 //! pools alone (never dropped: their threads are not there to be told) and starts afresh.
 
-use std::sync::{Arc, Mutex, PoisonError};
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use rayon::ThreadPool;
 
@@ -41,6 +41,47 @@ static POOLS: Mutex<Kept> = Mutex::new(Kept {
     pools: Vec::new(),
 });
 
+impl Kept {
+    /// The list, locked, emptied first if it was filled in another process: pools inherited
+    /// through a fork have no threads, and are forgotten, not dropped (dropping one would
+    /// signal threads that are not there).
+    fn locked() -> MutexGuard<'static, Kept> {
+        // A panic elsewhere while the lock was held leaves the list as valid as before it.
+        let mut kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+        let process = std::process::id();
+        if kept.process != process {
+            std::mem::forget(std::mem::take(&mut kept.pools));
+            kept.process = process;
+        }
+        kept
+    }
+
+    /// The kept pool of `threads`, moved to the most recently used end.
+    fn find(&mut self, threads: Option<usize>) -> Option<Arc<ThreadPool>> {
+        let at = self.pools.iter().position(|(t, _)| *t == threads)?;
+        let entry = self.pools.remove(at);
+        let pool = Arc::clone(&entry.1);
+        self.pools.push(entry);
+        Some(pool)
+    }
+
+    /// Keeps `built` as the pool of `threads`, unless another call kept one in the meantime
+    /// (that one is returned): the pool to use, and the one to drop once the lock is released
+    /// (`built` when it lost, or the least recently used beyond [`POOLS_KEPT`]).
+    fn keep(
+        &mut self,
+        threads: Option<usize>,
+        built: Arc<ThreadPool>,
+    ) -> (Arc<ThreadPool>, Option<Arc<ThreadPool>>) {
+        if let Some(pool) = self.find(threads) {
+            return (pool, Some(built));
+        }
+        let dropped = (self.pools.len() >= POOLS_KEPT).then(|| self.pools.remove(0).1);
+        self.pools.push((threads, Arc::clone(&built)));
+        (built, dropped)
+    }
+}
+
 /// The pool of `threads` worker threads (`None`: rayon's default, the core count or
 /// `RAYON_NUM_THREADS`), built on first use and kept.
 ///
@@ -49,49 +90,16 @@ static POOLS: Mutex<Kept> = Mutex::new(Kept {
 /// core, or a pool that cannot start.
 pub(super) fn pool(threads: Option<usize>) -> Result<Arc<ThreadPool>> {
     check(threads)?;
-    if let Some(pool) = kept(threads, None) {
+    let found = Kept::locked().find(threads);
+    if let Some(pool) = found {
         return Ok(pool);
     }
-    // Built outside the lock: starting threads takes a while, and a process forked meanwhile
-    // would inherit the lock held.
+    // Built, and any pool let go dropped, outside the lock: starting or ending threads takes
+    // a while, and a process forked meanwhile would inherit the lock held.
     let built = Arc::new(build(threads)?);
-    Ok(kept(threads, Some(built)).expect("a pool was given to keep"))
-}
-
-/// The kept pool of `threads`, moved to the most recently used end; when there is none,
-/// `built` is kept (the least recently used pool dropped beyond [`POOLS_KEPT`], after the
-/// lock is released) and returned. A pool built by another call in the meantime wins over
-/// `built`.
-fn kept(threads: Option<usize>, built: Option<Arc<ThreadPool>>) -> Option<Arc<ThreadPool>> {
-    let mut dropped = None;
-    let found = {
-        // A panic elsewhere while the lock was held leaves the list as valid as before it.
-        let mut kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
-        let process = std::process::id();
-        if kept.process != process {
-            // Pools inherited through a fork have no threads: forgotten, not dropped
-            // (dropping one would signal threads that are not there).
-            std::mem::forget(std::mem::take(&mut kept.pools));
-            kept.process = process;
-        }
-        let kept = &mut kept.pools;
-        if let Some(at) = kept.iter().position(|(t, _)| *t == threads) {
-            let entry = kept.remove(at);
-            let pool = Arc::clone(&entry.1);
-            kept.push(entry);
-            Some(pool)
-        } else if let Some(pool) = built {
-            if kept.len() >= POOLS_KEPT {
-                dropped = Some(kept.remove(0));
-            }
-            kept.push((threads, Arc::clone(&pool)));
-            Some(pool)
-        } else {
-            None
-        }
-    };
+    let (pool, dropped) = Kept::locked().keep(threads, built);
     drop(dropped);
-    found
+    Ok(pool)
 }
 
 /// Refuses zero threads and more than [`MAX_THREADS_PER_CORE`] per core.
@@ -156,7 +164,7 @@ mod tests {
             let p = pool(Some(t)).unwrap();
             assert_eq!(p.current_num_threads(), t);
         }
-        let kept = POOLS.lock().unwrap_or_else(PoisonError::into_inner);
+        let kept = Kept::locked();
         assert!(kept.pools.len() <= POOLS_KEPT);
         assert!(
             kept.pools.iter().all(|(t, _)| *t != Some(5)),
