@@ -80,3 +80,34 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(config(4))]
+
+    /// With no thread count asked for, a coupling called inside an application's rayon pool
+    /// runs on that pool (its thread count is the pool's), also from several of the pool's
+    /// threads at once, and gives the serial run's D and M bit for bit. Before, it started a
+    /// pool of its own of the core count, whatever the caller's pool.
+    #[test]
+    fn no_thread_count_runs_on_the_callers_pool(pair in large_pair()) {
+        let options = CouplingOptions::default();
+        let (interface, serial) = couple(&pair, &options.clone().threads(1))?;
+        // One thread and three: at least one differs from the core count of any machine.
+        for size in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(size).build().expect("a pool");
+            let results: Vec<_> = pool.install(|| {
+                use rayon::prelude::*;
+                (0..3)
+                    .into_par_iter()
+                    .map(|_| mortar::assemble_coupling(&interface, &options))
+                    .collect()
+            });
+            for c in results {
+                let c = c.map_err(|e| TestCaseError::fail(format!("unexpected error: {e}")))?;
+                prop_assert_eq!(c.stats.threads, size);
+                prop_assert!(bits(&serial.d) == bits(&c.d), "D differs on a pool of {}", size);
+                prop_assert!(bits(&serial.m) == bits(&c.m), "M differs on a pool of {}", size);
+            }
+        }
+    }
+}

@@ -549,9 +549,14 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 ///
 /// The pool of each thread count is built on the first call that asks for it and kept for
 /// the next calls (a few thread counts at a time): a coupling repeated at every Newton step
-/// does not start threads each time.
+/// does not start threads each time. With [`CouplingOptions::threads`] `None`, a call made
+/// on a rayon pool's thread runs on that pool: an application that runs the library inside
+/// its own pool keeps to that pool's threads.
 pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Result<Coupling> {
     check_geometry(interface, options)?;
+    if options.threads.is_none() && rayon::current_thread_index().is_some() {
+        return assemble_on_pool(interface, options, rayon::current_num_threads());
+    }
     let pool = super::pool::pool(options.threads)?;
     pool.install(|| assemble_on_pool(interface, options, pool.current_num_threads()))
 }

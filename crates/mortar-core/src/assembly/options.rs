@@ -20,9 +20,11 @@ pub struct CouplingOptions {
     pub integration: Arc<dyn IntegrationStrategy>,
     /// The projection direction field.
     pub projector: Arc<dyn Projector>,
-    /// Worker threads; `None` uses rayon's default (the core count, or `RAYON_NUM_THREADS`
-    /// as it is when the first coupling with `None` starts its pool, which is then kept; see
-    /// [`assemble_coupling`](super::assemble_coupling)).
+    /// Worker threads. `None`: called on a rayon pool's thread (inside a user's
+    /// `pool.install`, or a parallel loop over several interfaces), the coupling runs on that
+    /// pool; called from any other thread, on a kept pool of rayon's default size (the core
+    /// count, or `RAYON_NUM_THREADS` as it is when the first such call starts the pool; see
+    /// [`assemble_coupling`](super::assemble_coupling)). D and M do not depend on it.
     pub threads: Option<usize>,
     /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area, skipped
     /// pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).

@@ -18,6 +18,9 @@
 //! the list but not the threads: a job sent to such a pool would wait forever. The list
 //! records the process it was filled in; a call from another process leaves the inherited
 //! pools alone (never dropped: their threads are not there to be told) and starts afresh.
+//!
+//! A call with no thread count made on a rayon pool's thread (a user's `pool.install`) runs
+//! on that pool and takes none from here.
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
