@@ -770,22 +770,23 @@ fn finish(
     let master_tags = interface.master().node_tags();
     let normals = interface.slave_nodal_normals();
     let area = ordered_sum(d.data());
+    // The slave's tags and normals in one pass; the normals (the larger) allocated first,
+    // so that they take the memory the call has just freed rather than fresh pages
+    // (`unzip_into_vecs` reserves the right-hand vector first).
+    let (mut slave_nodes, mut slave_normals) = (Vec::new(), Vec::new());
+    interface
+        .slave_nodes()
+        .par_iter()
+        .map(|&n| (slave_tags[n as usize], normals[n as usize]))
+        .unzip_into_vecs(&mut slave_nodes, &mut slave_normals);
     Coupling {
-        slave_nodes: interface
-            .slave_nodes()
-            .par_iter()
-            .map(|&n| slave_tags[n as usize])
-            .collect(),
+        slave_nodes,
         master_nodes: interface
             .master_nodes()
             .par_iter()
             .map(|&n| master_tags[n as usize])
             .collect(),
-        slave_normals: interface
-            .slave_nodes()
-            .par_iter()
-            .map(|&n| normals[n as usize])
-            .collect(),
+        slave_normals,
         d,
         m,
         formulation: options.describe(),
