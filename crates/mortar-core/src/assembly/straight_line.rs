@@ -192,9 +192,14 @@ pub(super) fn couple(
     let along = |mesh: &SurfaceMesh, faces: &[[u32; 2]], nodes: &[u32]| {
         stored_chain(faces).or_else(|| sorted_chain(mesh, faces, nodes, &tau))
     };
-    let (s_node, m_node) = rayon::join(
-        || along(smesh, slave_faces, interface.slave_nodes()),
-        || along(mmesh, master_faces, interface.master_nodes()),
+    // One side after the other, each in parallel within: side by side (`rayon::join`), the
+    // master's temporaries were freed on the other worker, whose memory the rest of the call
+    // (all allocated on this one) could not reuse. line2d at 10^6 faces on two threads: peak
+    // over (meshes + D, M) 1.37 -> 1.33 in the file order, 1.52 -> 1.36 with the faces
+    // shuffled, and 4% faster.
+    let (s_node, m_node) = (
+        along(smesh, slave_faces, interface.slave_nodes()),
+        along(mmesh, master_faces, interface.master_nodes()),
     );
     let (Some(s_node), Some(m_node)) = (s_node, m_node) else {
         return Ok(None);
