@@ -3,7 +3,7 @@
 
 use mortar::core::linalg::SparseMatrix;
 use mortar::testing::{covered_pair_3d_with, CellKind, MeshPair, PairConfig};
-use mortar::CouplingOptions;
+use mortar::{Coupling, CouplingOptions};
 use proptest::prelude::*;
 
 use super::common::{config, couple};
@@ -14,6 +14,31 @@ fn bits(a: &SparseMatrix) -> (Vec<u64>, Vec<usize>, Vec<usize>) {
         a.indices().to_vec(),
         a.indptr().raw_storage().to_vec(),
     )
+}
+
+/// `coupled` succeeded on `threads` threads (`how`: where they came from) and gave the serial
+/// run's D and M bit for bit.
+fn same_bits_on(
+    serial: &Coupling,
+    coupled: Result<Coupling, mortar::MortarError>,
+    threads: usize,
+    how: &str,
+) -> Result<(), TestCaseError> {
+    let c = coupled.map_err(|e| TestCaseError::fail(format!("unexpected error: {e}")))?;
+    prop_assert_eq!(c.stats.threads, threads);
+    prop_assert!(
+        bits(&serial.d) == bits(&c.d),
+        "D differs ({} threads, {})",
+        threads,
+        how
+    );
+    prop_assert!(
+        bits(&serial.m) == bits(&c.m),
+        "M differs ({} threads, {})",
+        threads,
+        how
+    );
+    Ok(())
 }
 
 /// Large covered pairs: 17 to 22 slave cells per side gives at least 289 slave faces.
@@ -73,10 +98,7 @@ proptest! {
             calls.into_iter().map(|c| c.join().expect("no panic")).collect()
         });
         for (t, c) in results {
-            let c = c.map_err(|e| TestCaseError::fail(format!("unexpected error: {e}")))?;
-            prop_assert_eq!(c.stats.threads, t);
-            prop_assert!(bits(&serial.d) == bits(&c.d), "D differs ({} threads, shared)", t);
-            prop_assert!(bits(&serial.m) == bits(&c.m), "M differs ({} threads, shared)", t);
+            same_bits_on(&serial, c, t, "shared")?;
         }
     }
 }
@@ -103,10 +125,7 @@ proptest! {
                     .collect()
             });
             for c in results {
-                let c = c.map_err(|e| TestCaseError::fail(format!("unexpected error: {e}")))?;
-                prop_assert_eq!(c.stats.threads, size);
-                prop_assert!(bits(&serial.d) == bits(&c.d), "D differs on a pool of {}", size);
-                prop_assert!(bits(&serial.m) == bits(&c.m), "M differs on a pool of {}", size);
+                same_bits_on(&serial, c, size, "the caller's pool")?;
             }
         }
     }
