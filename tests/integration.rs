@@ -39,3 +39,6 @@ mod second_order;
 
 #[path = "integration/quiet_library.rs"]
 mod quiet_library;
+
+#[path = "integration/overlap.rs"]
+mod overlap;

@@ -75,12 +75,14 @@ class Coupling:
             (quadrature degrees), ``seconds`` (wall time in the library: meshes, orientation,
             validation, assembly), ``seconds_by_phase``, ``seconds_call`` (the whole Python
             call, conversions included), ``uncovered_area``, ``faces_without_partner``,
-            ``faces_partly_covered``, ``skipped_pairs``, ``fused_line_faces`` (slave faces
+            ``faces_partly_covered``, ``overlapped_area`` and ``faces_overlapped`` (slave
+            area covered by more than one master face, and its faces), ``skipped_pairs``, ``fused_line_faces`` (slave faces
             done by the fused kernel for straight 2D lines), ``straight_line_faces`` (slave
             faces done by the sorted merge of a straight 2D interface), ``closed_form_faces`` (3D slave
             faces whose clip polygons were integrated in closed form), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
-        warnings: list of str: uncovered slave area, skipped pairs (each also warned of with
+        warnings: list of str: uncovered slave area, overlapping master faces, skipped pairs
+            (each also warned of with
             ``warnings.warn`` by :func:`couple`).
         dim: 2 or 3.
 
@@ -348,7 +350,8 @@ def couple(
         orient: make each surface consistently oriented and turned to face the other (the
             master's normals opposing the slave's) before coupling; False trusts the node
             order given (then a master facing the wrong way is an error that says so).
-        require_full_coverage: make uncovered slave area or skipped pairs an error
+        require_full_coverage: make uncovered slave area, overlapping master faces or
+            skipped pairs an error
             (:class:`CoverageError`) instead of a warning.
         curved_tolerance: segment-based, curved second-order faces in 3D: the bend left per
             flat sub-triangle, relative to the face size (None: 1e-2); smaller is finer.
@@ -369,7 +372,8 @@ def couple(
             coordinates, an unknown cell type or option (also a ``ValueError``).
         GeometryError: a degenerate or inverted face, a surface that is not a manifold.
         NoOverlapError: no slave face overlaps a master face.
-        CoverageError: with ``require_full_coverage``, uncovered area or skipped pairs.
+        CoverageError: with ``require_full_coverage``, uncovered area, overlapping master
+            faces or skipped pairs.
 
     Copies: float64 C-contiguous points and int64 C-contiguous cells are read in place (other
     dtypes or layouts are converted once); the library builds its own meshes from them. The

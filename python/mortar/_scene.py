@@ -35,7 +35,8 @@ def run_scene(
         InvalidInputError: a dict that cannot be written as TOML (a None value, say).
         MortarError: any other failure of the run.
 
-    Coupling warnings of the run (uncovered slave area, skipped pairs) are issued with
+    Coupling warnings of the run (uncovered slave area, overlapping master faces, skipped
+    pairs) are issued with
     ``warnings.warn``. The GIL is released while the scene runs.
     """
     out_s = None if out is None else os.fspath(out)

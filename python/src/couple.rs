@@ -398,6 +398,8 @@ pub(crate) fn couple_arrays<'py>(
     stats.set_item("uncovered_area", st.uncovered_area)?;
     stats.set_item("faces_without_partner", st.faces_without_partner)?;
     stats.set_item("faces_partly_covered", st.faces_partly_covered)?;
+    stats.set_item("overlapped_area", st.overlapped_area)?;
+    stats.set_item("faces_overlapped", st.faces_overlapped)?;
     stats.set_item("fused_line_faces", st.fused_line_faces)?;
     stats.set_item("straight_line_faces", st.straight_line_faces)?;
     stats.set_item("closed_form_faces", st.closed_form_faces)?;

@@ -20,7 +20,8 @@ pub(crate) enum Kind {
     Geometry,
     /// `NoOverlapError`: no slave face overlaps a master face.
     NoOverlap,
-    /// `CoverageError`: uncovered area or skipped pairs with full coverage required.
+    /// `CoverageError`: uncovered area, overlapping master faces or skipped pairs with full
+    /// coverage required.
     Coverage,
     /// `MeshFileError`: a mesh file that cannot be read or has not what was asked.
     MeshFile,

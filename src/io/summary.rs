@@ -47,7 +47,8 @@ pub struct CouplingSettings {
     /// How far along the slave normals to look for master faces, in the coordinates' units
     /// (`None`: one slave face size).
     pub search_radius: Option<f64>,
-    /// Make uncovered slave area and skipped pairs errors instead of warnings.
+    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
+    /// of warnings.
     #[serde(default)]
     pub require_full_coverage: bool,
     /// Segment-based, curved second-order faces in 3D: the subdivision tolerance (`None`:
@@ -225,7 +226,7 @@ pub struct OrientationSummary {
 /// A warning of the coupling, by name and in words.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct WarningSummary {
-    /// `"uncovered slave area"` or `"skipped pairs"`.
+    /// `"uncovered slave area"`, `"overlapping master faces"` or `"skipped pairs"`.
     pub name: String,
     /// What and where.
     pub message: String,
@@ -287,6 +288,12 @@ pub struct CouplingSummary {
     pub faces_without_partner: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
+    /// Slave area covered by more than one master face, once per extra face.
+    #[serde(default)]
+    pub overlapped_area: f64,
+    /// Slave faces covered by more than one master face.
+    #[serde(default)]
+    pub faces_overlapped: usize,
     /// Slave faces coupled by the fused kernel for straight two-node lines (2D,
     /// segment-based), the others by the integration strategy.
     #[serde(default)]
@@ -380,6 +387,8 @@ impl CouplingSummary {
             uncovered_area: s.uncovered_area,
             faces_without_partner: s.faces_without_partner,
             faces_partly_covered: s.faces_partly_covered,
+            overlapped_area: s.overlapped_area,
+            faces_overlapped: s.faces_overlapped,
             fused_line_faces: s.fused_line_faces,
             straight_line_faces: s.straight_line_faces,
             closed_form_faces: s.closed_form_faces,

@@ -208,7 +208,7 @@ pub enum MortarError {
         reason: String,
     },
     /// The coupling met what it would otherwise report as a warning (uncovered slave area,
-    /// skipped pairs), and full coverage was required
+    /// overlapping master faces, skipped pairs), and full coverage was required
     /// ([`CouplingOptions::require_full_coverage`](crate::CouplingOptions::require_full_coverage)).
     #[error("{0} (full coverage was required)")]
     IncompleteCoverage(Box<crate::assembly::CouplingWarning>),

@@ -45,7 +45,8 @@ pub struct Tolerances {
     /// face is not coupled, however it projects.
     pub search_radius: SearchRadius,
     /// A slave face counts as uncovered when the master covers less than `1 - coverage` of
-    /// its area (see [`CouplingWarning::UncoveredSlaveArea`](crate::CouplingWarning)).
+    /// its area, and as covered more than once when the master faces over it cover more
+    /// than `1 + coverage` (see [`CouplingWarning`](crate::CouplingWarning)).
     pub coverage: f64,
 }
 

@@ -97,7 +97,8 @@ pub struct SceneOutput {
     pub files: Vec<(String, Vec<u8>)>,
     /// A few lines for the terminal.
     pub summary: String,
-    /// The coupling's warnings (uncovered slave area, skipped pairs), also in `report.json`:
+    /// The coupling's warnings (uncovered slave area, overlapping master faces, skipped
+    /// pairs), also in `report.json`:
     /// the program prints them as `mortar: warning: ...`.
     pub warnings: Vec<String>,
 }

@@ -27,6 +27,25 @@ pub enum CouplingWarning {
         /// [`CouplingWarning::EXAMPLES`]).
         examples: Vec<u64>,
     },
+    /// Part of the slave surface is covered by more than one master face: master faces
+    /// overlap as seen from the slave (two master layers within the search radius, or a
+    /// master surface that folds over). D and M count that area once per master face over
+    /// it, so a slave tied to the master follows the mean of the layers there, and D's
+    /// entries sum to more than the slave's area. Usually a meshing error (a master surface meshed twice, a second
+    /// body behind the first) or a search radius wide enough to reach a surface behind the
+    /// nearest one.
+    OverlappingMasterFaces {
+        /// The area covered more than once, counted once per extra master face over it
+        /// (length in 2D): the sum over slave faces of the covered area beyond the face's
+        /// own.
+        area: f64,
+        /// The slave surface's area.
+        total: f64,
+        /// Slave faces covered more than once.
+        faces: usize,
+        /// Tags of the first of them (ascending, at most [`CouplingWarning::EXAMPLES`]).
+        examples: Vec<u64>,
+    },
     /// Slave-master pairs dropped because a point could not be mapped between the two faces;
     /// their area is part of the uncovered area.
     SkippedPairs {
@@ -41,10 +60,12 @@ impl CouplingWarning {
     /// The most face tags a warning lists.
     pub const EXAMPLES: usize = 8;
 
-    /// A short name: `"uncovered slave area"` or `"skipped pairs"`.
+    /// A short name: `"uncovered slave area"`, `"overlapping master faces"` or
+    /// `"skipped pairs"`.
     pub fn name(&self) -> &'static str {
         match self {
             CouplingWarning::UncoveredSlaveArea { .. } => "uncovered slave area",
+            CouplingWarning::OverlappingMasterFaces { .. } => "overlapping master faces",
             CouplingWarning::SkippedPairs { .. } => "skipped pairs",
         }
     }
@@ -71,6 +92,25 @@ impl fmt::Display for CouplingWarning {
                     plural(*faces_partly_covered, "face"),
                     tags.join(", "),
                     if more { ", ..." } else { "" }
+                )
+            }
+            CouplingWarning::OverlappingMasterFaces {
+                area,
+                total,
+                faces,
+                examples,
+            } => {
+                let tags: Vec<String> = examples.iter().map(u64::to_string).collect();
+                write!(
+                    f,
+                    "overlapping master faces: {area:.3e} of {total:.3e} ({:.3}%) of the slave \
+                     surface covered more than once (counted once per extra master face), on \
+                     {} (slave faces {}{}): master faces overlap as seen from the slave, and D \
+                     and M count each",
+                    100.0 * area / total,
+                    plural(*faces, "face"),
+                    tags.join(", "),
+                    if *faces > examples.len() { ", ..." } else { "" }
                 )
             }
             CouplingWarning::SkippedPairs { count, first } => write!(

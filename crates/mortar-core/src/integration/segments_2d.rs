@@ -513,7 +513,8 @@ pub(crate) struct LineFace {
 /// Returns `false`, leaving the face to the general path, when anything needs more than the
 /// clean case: the direction field is not affine, a projection fails, or the candidates
 /// cover less than `1 - coverage` of the face (no overlap at all, a face at the end of the
-/// master, or a candidate the caller's search did not give).
+/// master, or a candidate the caller's search did not give) or more than `1 + coverage` (two
+/// master layers over it, which the general path reports).
 ///
 /// # Errors
 /// A quadrature rule that cannot be built for `degree`.
@@ -604,5 +605,8 @@ pub(crate) fn fused_line_face(
         covered += hi - lo;
     }
     out.d = dl;
-    Ok(out.pairs > 0 && 1.0 - 0.5 * covered <= tol.coverage)
+    // Covered once, to the tolerance: less is a face the walk's candidates may not settle
+    // (the general path looks again), more is master faces overlapping over it, which the
+    // general path reports.
+    Ok(out.pairs > 0 && (1.0 - 0.5 * covered).abs() <= tol.coverage)
 }

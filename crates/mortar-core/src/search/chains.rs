@@ -131,6 +131,9 @@ pub(crate) struct ChainSearch {
     next: Vec<u32>,
     prev: Vec<u32>,
     blocks: BoxTree,
+    /// The slot of each chain's first face, ascending (the chains are consecutive runs of
+    /// slots).
+    chain_starts: Vec<u32>,
 }
 
 impl ChainSearch {
@@ -148,11 +151,47 @@ impl ChainSearch {
                 })
             })
             .collect();
+        // A chain starts where the slot before does not lead to it.
+        let chain_starts = (0..chains.next.len() as u32)
+            .filter(|&p| p == 0 || chains.next[p as usize - 1] != p)
+            .collect();
         Self {
             next: chains.next,
             prev: chains.prev,
             blocks: BoxTree::build(blocks, true),
+            chain_starts,
         }
+    }
+
+    /// The chain of the face in slot `s` (its index in `chain_starts`).
+    #[inline]
+    fn chain_of(&self, s: u32) -> usize {
+        self.chain_starts.partition_point(|&c| c <= s) - 1
+    }
+
+    /// Whether a face of a chain other than `chain` meets the search box `b`: the blocks
+    /// that meet it, and in those that hold another chain's faces, those faces one by one.
+    #[cold]
+    #[inline(never)]
+    fn other_chain_meets(
+        &self,
+        interface: &Interface,
+        masters: &MasterFaces,
+        chain: usize,
+        b: &Box3,
+        blocks: &mut Vec<u32>,
+    ) -> bool {
+        blocks.clear();
+        self.blocks.append_intersecting(b, blocks);
+        blocks.iter().any(|&k| {
+            let first = k * BLOCK as u32;
+            let last = ((k as usize + 1) * BLOCK).min(self.next.len()) as u32 - 1;
+            if self.chain_of(first) == chain && self.chain_of(last) == chain {
+                return false;
+            }
+            (first..=last)
+                .any(|s| self.chain_of(s) != chain && self.meets(interface, masters, s, b))
+        })
     }
 
     /// The box of the master face in slot `s`.
@@ -206,7 +245,13 @@ impl ChainSearch {
     /// The run holds every candidate of a slave face whose master partners are one stretch
     /// of one chain, the common case; where they are not (two master bodies meet under the
     /// face, a master that leaves the box and comes back), the faces left out show as
-    /// uncovered slave area, and the caller takes the exhaustive query for such a face.
+    /// uncovered slave area, and the caller takes the exhaustive query for such a face. What
+    /// the run cannot show is a second master layer over a face it covers: so where the
+    /// master has other chains, a face of another chain that meets the search box (found by
+    /// the blocks' tree) also returns `false`. A second layer of the same chain (a master
+    /// that spirals round to face the slave face again within the search radius) is not
+    /// looked for.
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn walk(
         &self,
         interface: &Interface,
@@ -215,6 +260,7 @@ impl ChainSearch {
         face: &FaceGeometry,
         seeds: &[u32],
         out: &mut Vec<u32>,
+        blocks: &mut Vec<u32>,
     ) -> bool {
         let b = slave_search_box(interface, face);
         let mut meets = |s: u32| overlaps(&b, &lines.get(interface, masters, s).bx, true);
@@ -240,7 +286,7 @@ impl ChainSearch {
             t = self.prev[t as usize];
         }
         if t == first {
-            return true;
+            return self.alone(interface, masters, first, &b, blocks);
         }
         // Forward: it stops at the face that stopped the walk back at the latest.
         let mut t = self.next[first as usize];
@@ -251,6 +297,21 @@ impl ChainSearch {
             out.push(t);
             t = self.next[t as usize];
         }
-        true
+        self.alone(interface, masters, first, &b, blocks)
+    }
+
+    /// Whether no face of another chain than the face in slot `first`'s meets the search box
+    /// `b` (at once where the master is one chain).
+    #[inline]
+    fn alone(
+        &self,
+        interface: &Interface,
+        masters: &MasterFaces,
+        first: u32,
+        b: &Box3,
+        blocks: &mut Vec<u32>,
+    ) -> bool {
+        self.chain_starts.len() == 1
+            || !self.other_chain_meets(interface, masters, self.chain_of(first), b, blocks)
     }
 }

@@ -1,0 +1,133 @@
+//! Master faces that overlap as seen from the slave: two master layers within the search
+//! radius (or a master that folds over) cover part of the slave surface twice, and D and M
+//! count that area once per layer (a tied slave follows the layers' mean there). Nothing is
+//! wrong with the meshes one by one; the coupling must say so, by a counted, named warning
+//! ([`CouplingWarning::OverlappingMasterFaces`]) that gives the doubly covered area and
+//! where, and it must say so on every path (the 2D walk along master chains and the fused
+//! line kernel as well as the tree and the general kernel).
+//!
+//! Verification: the covered area is a closed form (the layers' shadows on the slave are
+//! intervals and rectangles), and so are D's and M's sums (each the slave area each master
+//! layer covers, summed over the layers).
+
+use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
+use mortar::{assemble_coupling, CouplingOptions, CouplingWarning, Interface, SurfaceMesh};
+
+/// The faces of `layers` in one mesh, each layer's nodes retagged past the previous one's.
+fn stack(layers: &[SurfaceMesh]) -> SurfaceMesh {
+    let mut out = SurfaceMesh::new();
+    let mut shift = 0;
+    for layer in layers {
+        let tags = layer.node_tags();
+        for (tag, x) in tags.iter().zip(layer.coords()) {
+            out.add_node(tag + shift, [x.x, x.y, x.z]).unwrap();
+        }
+        for f in 0..layer.face_count() {
+            let face = layer.face(f);
+            let nodes: Vec<u64> = face
+                .nodes
+                .iter()
+                .map(|&n| tags[n as usize] + shift)
+                .collect();
+            out.add_face(face.element, &nodes).unwrap();
+        }
+        shift += tags.iter().max().unwrap();
+    }
+    out
+}
+
+/// `mesh` with every node moved by `f`.
+fn moved(mut mesh: SurfaceMesh, f: impl Fn([f64; 3]) -> [f64; 3]) -> SurfaceMesh {
+    mesh.transform(|x| f([x.x, x.y, x.z]).into()).unwrap();
+    mesh
+}
+
+fn sum(m: &mortar::core::linalg::SparseMatrix) -> f64 {
+    m.data().iter().sum()
+}
+
+fn overlap_warning(w: &[CouplingWarning]) -> Option<&CouplingWarning> {
+    w.iter()
+        .find(|w| matches!(w, CouplingWarning::OverlappingMasterFaces { .. }))
+}
+
+/// 2D: the slave [0, 1] under two master layers, one over [0, 1] at y = 0.02 and one over
+/// [0.25, 0.75] at y = 0.04 (both within the default search radius of the slave's faces,
+/// one face size, 0.125). Every path of the 2D coupling: the fused line kernel on the
+/// walk's candidates (standard and dual multipliers), on 1 and 2 threads.
+#[test]
+fn two_master_layers_over_a_line_are_reported() {
+    let slave = line_mesh(8, true, 1).unwrap();
+    let lower = moved(line_mesh(12, false, 1).unwrap(), |[x, _, z]| [x, 0.02, z]);
+    let upper = moved(line_mesh(5, false, 1).unwrap(), |[x, _, z]| {
+        [0.25 + 0.5 * x, 0.04, z]
+    });
+    for layers in [[lower.clone(), upper.clone()], [upper, lower]] {
+        let interface = Interface::new(slave.clone(), stack(&layers)).unwrap();
+        for options in [
+            CouplingOptions::default(),
+            CouplingOptions::default().dual(),
+        ] {
+            for threads in [1, 2] {
+                let c = assemble_coupling(&interface, &options.clone().threads(threads)).unwrap();
+                let name = format!("{} threads, {}", threads, options.describe());
+                // D and M: the length each layer covers, 1 + 0.5.
+                assert!((sum(&c.d) - 1.5).abs() < 1e-14, "{name}: {}", sum(&c.d));
+                assert!((sum(&c.m) - 1.5).abs() < 1e-14, "{name}: {}", sum(&c.m));
+                let Some(CouplingWarning::OverlappingMasterFaces {
+                    area,
+                    total,
+                    faces,
+                    examples,
+                }) = overlap_warning(&c.warnings)
+                else {
+                    panic!("{name}: no overlap warning in {:?}", c.warnings);
+                };
+                assert!((area - 0.5).abs() < 1e-14, "{name}: {area}");
+                assert!((total - 1.0).abs() < 1e-14, "{name}: {total}");
+                // Slave faces 3..=6 (tags from 1) lie under the upper layer.
+                assert_eq!(*faces, 4, "{name}");
+                assert_eq!(examples, &[3, 4, 5, 6], "{name}");
+                assert_eq!(c.warnings.len(), 1, "{name}: {:?}", c.warnings);
+            }
+        }
+    }
+}
+
+/// 3D: the unit square of triangles under a master of quads at z = 0.02 over all of it,
+/// and a second of triangles at z = 0.04 over [0.25, 0.75]^2: 0.25 of the slave covered
+/// twice. Also one layer alone: no warning.
+#[test]
+fn two_master_layers_over_a_plane_are_reported() {
+    let slave = square_triangles(4, Diagonal::Main, 0.0, false, 1).unwrap();
+    let lower = square_quads(6, 0.02, true, 1).unwrap();
+    let upper = moved(
+        square_triangles(3, Diagonal::Anti, 0.04, true, 1).unwrap(),
+        |[x, y, z]| [0.25 + 0.5 * x, 0.25 + 0.5 * y, z],
+    );
+    let single = Interface::new(slave.clone(), lower.clone()).unwrap();
+    let c = assemble_coupling(&single, &CouplingOptions::default()).unwrap();
+    assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+    let interface = Interface::new(slave, stack(&[lower, upper])).unwrap();
+    for threads in [1, 2] {
+        let options = CouplingOptions::default().threads(threads);
+        let c = assemble_coupling(&interface, &options).unwrap();
+        assert!((sum(&c.d) - 1.25).abs() < 1e-13, "{}", sum(&c.d));
+        assert!((sum(&c.m) - 1.25).abs() < 1e-13, "{}", sum(&c.m));
+        let Some(CouplingWarning::OverlappingMasterFaces {
+            area, total, faces, ..
+        }) = overlap_warning(&c.warnings)
+        else {
+            panic!("no overlap warning in {:?}", c.warnings);
+        };
+        assert!((area - 0.25).abs() < 1e-13, "{area}");
+        assert!((total - 1.0).abs() < 1e-13, "{total}");
+        // The 4x4 grid's cells 1..=2 in each direction, two triangles each.
+        assert_eq!(*faces, 8);
+        let message = overlap_warning(&c.warnings).unwrap().to_string();
+        assert!(message.contains("covered more than once"), "{message}");
+        // Under `require_full_coverage` it is an error.
+        let strict = options.clone().require_full_coverage(true);
+        assert!(assemble_coupling(&interface, &strict).is_err());
+    }
+}
