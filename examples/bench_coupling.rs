@@ -16,6 +16,8 @@
 //!   merge);
 //! - `arc2d`: the upper half of the unit circle with `n` and `floor(1.5 n) + 1` two-node
 //!   chords (curved: the chain walk and the fused kernel);
+//! - `arc2d-split` (only with `--at`): arc2d with the master in two chains meeting at the top,
+//!   so that each walk also asks whether the other chain reaches the slave face;
 //! - `ratio2d`, `ratio3d`: one slave face (a line, a Quad4) against `n` master lines or
 //!   `n x n` master quads covering it: the work of one face must stay linear in its partners.
 //!
@@ -75,7 +77,7 @@ use mortar::generate::{
     cylinder_surface, half_circle_mesh, line_mesh, square_quads, square_triangles, Diagonal,
 };
 use mortar::testing::{shuffled, shuffled_faces};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
+use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -184,6 +186,44 @@ fn master_n(n: usize) -> usize {
 /// The seed of the shuffled order (fixed: the same copy in every run).
 const SHUFFLE_SEED: u64 = 0x5eed;
 
+/// `mesh` (a chain of two-node lines, faces in chain order) as two chains meeting at the node
+/// its middle face shares with the face before: the faces from the middle on take a copy of
+/// that node (tagged past the others).
+fn split_in_two(mesh: &SurfaceMesh) -> Res<SurfaceMesh> {
+    let mut out = SurfaceMesh::with_capacity(mesh.node_count() + 1, mesh.face_count());
+    let tags = mesh.node_tags();
+    for (t, x) in tags.iter().zip(mesh.coords()) {
+        out.add_node(*t, [x.x, x.y, x.z])?;
+    }
+    let middle = mesh.face_count() / 2;
+    let before = mesh.face(middle - 1).nodes;
+    let node = *mesh
+        .face(middle)
+        .nodes
+        .iter()
+        .find(|k| before.contains(k))
+        .ok_or("the middle face does not follow the one before it")?;
+    let copy = tags.iter().max().copied().unwrap_or(0) + 1;
+    let x = mesh.coords()[node as usize];
+    out.add_node(copy, [x.x, x.y, x.z])?;
+    for f in 0..mesh.face_count() {
+        let face = mesh.face(f);
+        let nodes: Vec<u64> = face
+            .nodes
+            .iter()
+            .map(|&k| {
+                if f >= middle && k == node {
+                    copy
+                } else {
+                    tags[k as usize]
+                }
+            })
+            .collect();
+        out.add_face(face.element, &nodes)?;
+    }
+    Ok(out)
+}
+
 /// The interface of `case` at size `n`, in the generator's order (`sorted`) or with the nodes
 /// and faces of both sides in a seeded random order (`shuffled`).
 fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
@@ -203,6 +243,13 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
         "arc2d" => (
             half_circle_mesh(n, false, 1)?,
             half_circle_mesh(master_n(n), true, 1)?,
+        ),
+        // Not in the default run (`--at arc2d-split:N`): arc2d with the master in two bodies
+        // that meet at the top, so that the walk along the master checks for the other chain
+        // under each slave face.
+        "arc2d-split" => (
+            half_circle_mesh(n, false, 1)?,
+            split_in_two(&half_circle_mesh(master_n(n), true, 1)?)?,
         ),
         // One slave face against n master lines (2D) or n x n master quads (3D): the work of
         // a face must stay linear in its partners (issue 14, item 1).
