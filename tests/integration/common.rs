@@ -50,6 +50,18 @@ pub fn mortar(args: &[&str]) -> Output {
 /// A copy of `mesh` with node tags moved by `node_offset` and face tags by `face_offset`.
 pub fn offset_tags(mesh: &SurfaceMesh, node_offset: u64, face_offset: u64) -> SurfaceMesh {
     let mut out = SurfaceMesh::new();
+    append_offset(&mut out, mesh, node_offset, face_offset);
+    out
+}
+
+/// Adds the nodes and faces of `mesh` to `out`, node tags moved by `node_offset` and face
+/// tags by `face_offset`.
+pub fn append_offset(
+    out: &mut SurfaceMesh,
+    mesh: &SurfaceMesh,
+    node_offset: u64,
+    face_offset: u64,
+) {
     for (tag, x) in mesh.node_tags().iter().zip(mesh.coords()) {
         out.add_node(tag + node_offset, [x.x, x.y, x.z]).unwrap();
     }
@@ -63,7 +75,6 @@ pub fn offset_tags(mesh: &SurfaceMesh, node_offset: u64, face_offset: u64) -> Su
         out.add_face_with_tag(face.tag + face_offset, face.element, &nodes)
             .unwrap();
     }
-    out
 }
 
 /// The Gmsh 4.1 ASCII text of one surface in physical group `name`.

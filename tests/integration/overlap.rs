@@ -10,28 +10,22 @@
 //! intervals and rectangles), and so are D's and M's sums (each the slave area each master
 //! layer covers, summed over the layers).
 
+use super::common::append_offset;
 use mortar::generate::{line_mesh, square_quads, square_triangles, Diagonal};
 use mortar::{assemble_coupling, CouplingOptions, CouplingWarning, Interface, SurfaceMesh};
 
-/// The faces of `layers` in one mesh, each layer's nodes retagged past the previous one's.
+/// The faces of `layers` in one mesh, each layer's node and face tags moved past the
+/// previous one's.
 fn stack(layers: &[SurfaceMesh]) -> SurfaceMesh {
     let mut out = SurfaceMesh::new();
-    let mut shift = 0;
+    let (mut nodes, mut faces) = (0, 0);
     for layer in layers {
-        let tags = layer.node_tags();
-        for (tag, x) in tags.iter().zip(layer.coords()) {
-            out.add_node(tag + shift, [x.x, x.y, x.z]).unwrap();
-        }
-        for f in 0..layer.face_count() {
-            let face = layer.face(f);
-            let nodes: Vec<u64> = face
-                .nodes
-                .iter()
-                .map(|&n| tags[n as usize] + shift)
-                .collect();
-            out.add_face(face.element, &nodes).unwrap();
-        }
-        shift += tags.iter().max().unwrap();
+        append_offset(&mut out, layer, nodes, faces);
+        nodes += layer.node_tags().iter().max().unwrap();
+        faces += (0..layer.face_count())
+            .map(|f| layer.face(f).tag)
+            .max()
+            .unwrap();
     }
     out
 }
