@@ -76,14 +76,14 @@ class Coupling:
             validation, assembly), ``seconds_by_phase``, ``seconds_call`` (the whole Python
             call, conversions included), ``uncovered_area``, ``faces_without_partner``,
             ``faces_partly_covered``, ``overlapped_area`` and ``faces_overlapped`` (slave
-            area covered by more than one master face, and its faces), ``skipped_pairs``, ``fused_line_faces`` (slave faces
-            done by the fused kernel for straight 2D lines), ``straight_line_faces`` (slave
-            faces done by the sorted merge of a straight 2D interface), ``closed_form_faces`` (3D slave
-            faces whose clip polygons were integrated in closed form), ``threads``, ``formulation``, and
+            area covered by more than one master face, and its faces), ``skipped_pairs``,
+            ``fused_line_faces`` (slave faces done by the fused kernel for straight 2D
+            lines), ``straight_line_faces`` (slave faces done by the sorted merge of a
+            straight 2D interface), ``closed_form_faces`` (3D slave faces whose clip polygons
+            were integrated in closed form), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
         warnings: list of str: uncovered slave area, overlapping master faces, skipped pairs
-            (each also warned of with
-            ``warnings.warn`` by :func:`couple`).
+            (each also warned of with ``warnings.warn`` by :func:`couple`).
         dim: 2 or 3.
 
     The tying constraint of fields ``u_s`` (slave nodes, row order) and ``u_m`` (master
@@ -351,8 +351,7 @@ def couple(
             master's normals opposing the slave's) before coupling; False trusts the node
             order given (then a master facing the wrong way is an error that says so).
         require_full_coverage: make uncovered slave area, overlapping master faces or
-            skipped pairs an error
-            (:class:`CoverageError`) instead of a warning.
+            skipped pairs an error (:class:`CoverageError`) instead of a warning.
         curved_tolerance: segment-based, curved second-order faces in 3D: the bend left per
             flat sub-triangle, relative to the face size (None: 1e-2); smaller is finer.
         subdivision: segment-based, curved second-order faces in 3D: a fixed subdivision

@@ -36,8 +36,7 @@ def run_scene(
         MortarError: any other failure of the run.
 
     Coupling warnings of the run (uncovered slave area, overlapping master faces, skipped
-    pairs) are issued with
-    ``warnings.warn``. The GIL is released while the scene runs.
+    pairs) are issued with ``warnings.warn``. The GIL is released while the scene runs.
     """
     out_s = None if out is None else os.fspath(out)
     if isinstance(scene, dict):

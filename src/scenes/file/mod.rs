@@ -98,8 +98,7 @@ pub struct SceneOutput {
     /// A few lines for the terminal.
     pub summary: String,
     /// The coupling's warnings (uncovered slave area, overlapping master faces, skipped
-    /// pairs), also in `report.json`:
-    /// the program prints them as `mortar: warning: ...`.
+    /// pairs), also in `report.json`: the program prints them as `mortar: warning: ...`.
     pub warnings: Vec<String>,
 }
 

@@ -26,8 +26,8 @@ pub struct CouplingOptions {
     /// count, or `RAYON_NUM_THREADS` as it is when the first such call starts the pool; see
     /// [`assemble_coupling`](super::assemble_coupling)). D and M do not depend on it.
     pub threads: Option<usize>,
-    /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area, skipped
-    /// pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).
+    /// Make every [`CouplingWarning`](super::CouplingWarning) (uncovered slave area,
+    /// overlapping master faces, skipped pairs) an error ([`MortarError::IncompleteCoverage`](crate::MortarError)).
     pub require_full_coverage: bool,
     /// The measure of the interface: [`ModelGeometry::Cartesian`] (the default: area in 3D,
     /// length in 2D), or [`ModelGeometry::Axisymmetric`] for a 2D interface in the r-z plane
