@@ -38,9 +38,98 @@ pub(crate) fn release_free_memory() -> bool {
 /// arrays of D and M that serial pass was the one part of the assembly that did not scale:
 /// line2d at 10^6 on two threads spent 10 ms allocating its rows (0.2 ms on one). Written in
 /// parallel, the pages are faulted in and zeroed by both threads, whatever the allocator did.
+///
+/// A large block's pages are first faulted in by the kernel, a few megabytes per task
+/// ([`populate_in_parallel`]), rather than one page fault per 4 KiB as the writes reach them.
 pub(crate) fn zeroed_in_parallel<T: Default + Copy + Send + Sync>(n: usize) -> Vec<T> {
     use rayon::prelude::*;
-    let mut v = Vec::with_capacity(n);
+    let mut v: Vec<T> = Vec::with_capacity(n);
+    populate_in_parallel(v.as_mut_ptr().cast(), n * std::mem::size_of::<T>());
     v.par_extend(rayon::iter::repeat_n(T::default(), n));
     v
+}
+
+/// Bytes from which a block is worth populating in one call per task.
+const POPULATE_BYTES: usize = 4 << 20;
+
+/// Bytes populated per task.
+const POPULATE_BLOCK: usize = 2 << 20;
+
+/// Has the kernel fault in the pages of the `bytes` at `ptr` (a block of ours, not yet
+/// written) now, a block of [`POPULATE_BLOCK`] per task of the pool (`MADV_POPULATE_WRITE`,
+/// Linux 5.14). A page fault costs its trap on top of the page's allocation and zeroing:
+/// on this project's benchmark machine (a virtual machine) a 1 GiB array written after one
+/// call per block took 0.58 s against 0.84 s page by page, and line2d at 10^6 spends a fifth
+/// of its coupling getting the pages of D and M. Only whole pages inside the block are
+/// touched, aligned to 64 KiB (a multiple of the page size of every Linux target); an
+/// error (an older kernel, another page size) leaves the pages to the writes, as before.
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+fn populate_in_parallel(ptr: *mut u8, bytes: usize) {
+    use rayon::prelude::*;
+    const ALIGN: usize = 64 << 10;
+    if bytes < POPULATE_BYTES {
+        return;
+    }
+    let start = (ptr as usize).next_multiple_of(ALIGN);
+    let end = (ptr as usize).saturating_add(bytes) / ALIGN * ALIGN;
+    if end <= start {
+        return;
+    }
+    (start..end)
+        .into_par_iter()
+        .step_by(POPULATE_BLOCK)
+        .for_each(|a| {
+            let z = a.saturating_add(POPULATE_BLOCK).min(end);
+            // SAFETY: MADV_POPULATE_WRITE faults in the pages of the range as a write would,
+            // without writing: whole pages inside one live allocation of ours, whose contents
+            // (not yet initialised, or whatever the allocator left) are not changed. Its
+            // result is only a hint's: ignored.
+            unsafe {
+                libc::madvise(a as *mut libc::c_void, z - a, libc::MADV_POPULATE_WRITE);
+            }
+        });
+}
+
+/// Does nothing off Linux (the writes fault the pages in).
+#[cfg(not(target_os = "linux"))]
+fn populate_in_parallel(_ptr: *mut u8, _bytes: usize) {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Above the populating size, on two threads and on one: `n` zeros, whatever the block
+    /// held before (the allocator may hand back a block just freed with values in it).
+    #[test]
+    fn zeroed_blocks_are_zero_at_every_size() {
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                for n in [0, 1, 1000, POPULATE_BYTES / 8 + 3, 3 * POPULATE_BYTES / 8] {
+                    drop(vec![1.5f64; n]);
+                    let v = zeroed_in_parallel::<f64>(n);
+                    assert_eq!(v.len(), n);
+                    assert!(v.iter().all(|&x| x.to_bits() == 0), "n = {n}");
+                    let u = zeroed_in_parallel::<usize>(n);
+                    assert!(u.len() == n && u.iter().all(|&x| x == 0), "n = {n}");
+                }
+            });
+        }
+    }
+
+    /// Populating a block changes nothing a program can read in it (a block already written,
+    /// with its ends not on page boundaries).
+    #[test]
+    fn populating_keeps_what_a_block_holds() {
+        let n = 3 * POPULATE_BYTES / 8 + 5;
+        let want: Vec<u64> = (0..n as u64).map(|i| i.wrapping_mul(0x9E37_79B9)).collect();
+        let mut v = want.clone();
+        populate_in_parallel(v.as_mut_ptr().cast(), n * 8);
+        populate_in_parallel(v[7..].as_mut_ptr().cast(), (n - 9) * 8);
+        assert!(v == want);
+    }
 }
