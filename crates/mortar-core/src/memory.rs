@@ -50,9 +50,11 @@ pub(crate) fn zeroed_in_parallel<T: Default + Copy + Send + Sync>(n: usize) -> V
 }
 
 /// Bytes from which a block is worth populating in one call per task.
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 const POPULATE_BYTES: usize = 4 << 20;
 
 /// Bytes populated per task.
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 const POPULATE_BLOCK: usize = 2 << 20;
 
 /// Has the kernel fault in the pages of the `bytes` at `ptr` (a block of ours, not yet
