@@ -31,9 +31,9 @@ pub enum CouplingWarning {
     /// overlap as seen from the slave (two master layers within the search radius, or a
     /// master surface that folds over). D and M count that area once per master face over
     /// it, so a slave tied to the master follows the mean of the layers there, and D's
-    /// entries sum to more than the slave's area. Usually a meshing error (a master surface meshed twice, a second
-    /// body behind the first) or a search radius wide enough to reach a surface behind the
-    /// nearest one.
+    /// entries sum to more than the slave's area. Usually a meshing error (a master surface
+    /// meshed twice, a second body behind the first) or a search radius wide enough to reach
+    /// a surface behind the nearest one.
     OverlappingMasterFaces {
         /// The area covered more than once, counted once per extra master face over it
         /// (length in 2D): the sum over slave faces of the covered area beyond the face's
@@ -81,17 +81,14 @@ impl fmt::Display for CouplingWarning {
                 faces_partly_covered,
                 examples,
             } => {
-                let tags: Vec<String> = examples.iter().map(u64::to_string).collect();
-                let more = faces_without_partner + faces_partly_covered > examples.len();
                 write!(
                     f,
                     "uncovered slave area: {area:.3e} of {total:.3e} ({:.3}%): {} without a \
-                     master face within the search radius, {} covered in part (slave faces {}{})",
+                     master face within the search radius, {} covered in part (slave faces {})",
                     100.0 * area / total,
                     plural(*faces_without_partner, "face"),
                     plural(*faces_partly_covered, "face"),
-                    tags.join(", "),
-                    if more { ", ..." } else { "" }
+                    tag_list(examples, faces_without_partner + faces_partly_covered),
                 )
             }
             CouplingWarning::OverlappingMasterFaces {
@@ -100,17 +97,15 @@ impl fmt::Display for CouplingWarning {
                 faces,
                 examples,
             } => {
-                let tags: Vec<String> = examples.iter().map(u64::to_string).collect();
                 write!(
                     f,
                     "overlapping master faces: {area:.3e} of {total:.3e} ({:.3}%) of the slave \
                      surface covered more than once (counted once per extra master face), on \
-                     {} (slave faces {}{}): master faces overlap as seen from the slave, and D \
+                     {} (slave faces {}): master faces overlap as seen from the slave, and D \
                      and M count each",
                     100.0 * area / total,
                     plural(*faces, "face"),
-                    tags.join(", "),
-                    if *faces > examples.len() { ", ..." } else { "" }
+                    tag_list(examples, *faces),
                 )
             }
             CouplingWarning::SkippedPairs { count, first } => write!(
@@ -121,6 +116,14 @@ impl fmt::Display for CouplingWarning {
             ),
         }
     }
+}
+
+/// The tags of `examples`, comma-separated, with `", ..."` when they are fewer than the
+/// `count` faces they stand for.
+fn tag_list(examples: &[u64], count: usize) -> String {
+    let tags: Vec<String> = examples.iter().map(u64::to_string).collect();
+    let more = if count > examples.len() { ", ..." } else { "" };
+    format!("{}{more}", tags.join(", "))
 }
 
 /// `"1 face"`, `"2 faces"`.
