@@ -77,7 +77,9 @@ use mortar::generate::{
     cylinder_surface, half_circle_mesh, line_mesh, square_quads, square_triangles, Diagonal,
 };
 use mortar::testing::{shuffled, shuffled_faces};
-use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::{
+    assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions, Interface, SurfaceMesh,
+};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -97,6 +99,10 @@ struct Args {
     /// run, the first included).
     #[arg(long)]
     repeat_large: bool,
+    /// Each run after the first writes D, M and the node lists into the previous run's arrays
+    /// (`assemble_coupling_reusing`: a coupling repeated in a loop) instead of fresh memory.
+    #[arg(long)]
+    reuse: bool,
     /// Largest n of the plane3d and cylinder cases (line2d is not capped).
     #[arg(long)]
     max_n: Option<usize>,
@@ -409,8 +415,16 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
     let mut digests = Vec::new();
     let mut last = None;
     for _ in 0..repeats_for(case, n, repeats, args.repeat_large) {
-        drop(last.take()); // one coupling alive at a time
-        let c = assemble_coupling(&interface, &options)?;
+        // One coupling alive at a time: the previous one dropped, or its arrays reused.
+        let c = match last.take() {
+            Some(previous) if args.reuse => {
+                assemble_coupling_reusing(&interface, &options, previous)?
+            }
+            previous => {
+                drop(previous);
+                assemble_coupling(&interface, &options)?
+            }
+        };
         runs.push(c.stats);
         digests.push(digest(&c));
         last = Some(c);
@@ -448,6 +462,7 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
         "seconds_note": "wall time by phase; thread_seconds: the per-face work by kind, summed \
                          over threads",
         "repeats": runs.len(),
+        "reuse": args.reuse,
         "totals_all_repeats": runs.iter().map(|r| r.seconds.total).collect::<Vec<_>>(),
         "pairs_per_second_per_thread": med.pairs as f64 / s.total / threads as f64,
         "ns_per_pair": s.total / med.pairs as f64 * 1e9,

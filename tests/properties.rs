@@ -20,6 +20,7 @@ mod properties {
     mod gather;
     mod invariance;
     mod patch;
+    mod reuse;
     mod rounding;
     mod search;
     mod straight_lines;

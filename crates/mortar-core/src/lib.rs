@@ -62,7 +62,10 @@ pub mod quadrature;
 pub mod search;
 pub mod tolerances;
 
-pub use assembly::{assemble_coupling, Coupling, CouplingOptions, CouplingStats, CouplingWarning};
+pub use assembly::{
+    assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions, CouplingStats,
+    CouplingWarning,
+};
 pub use error::{Inversion, MortarError, RangeLimit, Result, Side};
 pub use geometry::ModelGeometry;
 pub use interface::{Interface, SpatialDim};

@@ -49,6 +49,69 @@ pub(crate) fn zeroed_in_parallel<T: Default + Copy + Send + Sync>(n: usize) -> V
     v
 }
 
+/// Arrays of an earlier coupling handed back for the next one to write into
+/// ([`assemble_coupling_reusing`](crate::assemble_coupling_reusing)): their pages are
+/// already the process's, so filling them costs a pass over resident memory instead of the
+/// kernel's page faults (allocation and zeroing of each 4 KiB page), which is what a large
+/// coupling's fresh output costs most on a virtual machine.
+#[derive(Debug, Default)]
+pub(crate) struct Spare {
+    /// Index arrays (row pointers, column indices).
+    usizes: Vec<Vec<usize>>,
+    /// Value arrays.
+    floats: Vec<Vec<f64>>,
+}
+
+impl Spare {
+    /// Keeps `v` for a later [`zeroed_usize`](Self::zeroed_usize).
+    pub(crate) fn keep_usize(&mut self, v: Vec<usize>) {
+        if v.capacity() > 0 {
+            self.usizes.push(v);
+        }
+    }
+
+    /// Keeps `v` for a later [`zeroed_f64`](Self::zeroed_f64).
+    pub(crate) fn keep_f64(&mut self, v: Vec<f64>) {
+        if v.capacity() > 0 {
+            self.floats.push(v);
+        }
+    }
+
+    /// `n` zeros, in the kept index array of the smallest capacity that holds them, else in
+    /// a new one ([`zeroed_in_parallel`]).
+    pub(crate) fn zeroed_usize(&mut self, n: usize) -> Vec<usize> {
+        zeroed_from(&mut self.usizes, n)
+    }
+
+    /// `n` zeros, in the kept value array of the smallest capacity that holds them, else in
+    /// a new one ([`zeroed_in_parallel`]).
+    pub(crate) fn zeroed_f64(&mut self, n: usize) -> Vec<f64> {
+        zeroed_from(&mut self.floats, n)
+    }
+}
+
+/// `n` zeros in the vector of `kept` of the smallest capacity of at least `n` (taken out of
+/// `kept`), zeroed by every thread of the pool, or in a new vector. Which vector is taken
+/// does not change a value: the result is `n` zeros either way.
+fn zeroed_from<T: Default + Copy + Send + Sync>(kept: &mut Vec<Vec<T>>, n: usize) -> Vec<T> {
+    use rayon::prelude::*;
+    let best = kept
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| v.capacity() >= n)
+        .min_by_key(|(_, v)| v.capacity())
+        .map(|(i, _)| i);
+    let Some(i) = best else {
+        return zeroed_in_parallel(n);
+    };
+    let mut v = kept.swap_remove(i);
+    v.truncate(n);
+    v.par_chunks_mut(1 << 16).for_each(|c| c.fill(T::default()));
+    let have = v.len();
+    v.par_extend(rayon::iter::repeat_n(T::default(), n - have));
+    v
+}
+
 /// Bytes from which a block is worth populating in one call per task.
 #[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 const POPULATE_BYTES: usize = 4 << 20;
@@ -121,6 +184,34 @@ mod tests {
                 }
             });
         }
+    }
+
+    /// A kept array comes back as `n` zeros whatever it held, the smallest that holds `n`
+    /// first; a size no kept array holds gets a new one, and the kept arrays stay.
+    #[test]
+    fn spare_arrays_come_back_zeroed_smallest_first() {
+        let mut spare = Spare::default();
+        spare.keep_f64(vec![2.5; 1000]);
+        spare.keep_f64(vec![-1.0; 300]);
+        spare.keep_usize(vec![7; 50]);
+        spare.keep_f64(Vec::new()); // nothing to keep
+        assert_eq!(spare.floats.len(), 2);
+        let a = spare.zeroed_f64(200);
+        assert!(a.len() == 200 && a.iter().all(|x| x.to_bits() == 0));
+        assert_eq!(a.capacity(), 300, "the smallest that holds 200");
+        let b = spare.zeroed_f64(2000);
+        assert!(b.len() == 2000 && b.iter().all(|x| x.to_bits() == 0));
+        assert_eq!(
+            spare.floats.len(),
+            1,
+            "the 1000 stays when a new array is taken"
+        );
+        let c = spare.zeroed_f64(1000);
+        assert!(c.len() == 1000 && c.iter().all(|x| x.to_bits() == 0));
+        assert_eq!(c.capacity(), 1000);
+        let u = spare.zeroed_usize(40);
+        assert!(u.len() == 40 && u.iter().all(|&x| x == 0));
+        assert!(spare.floats.is_empty() && spare.usizes.is_empty());
     }
 
     /// Populating a block changes nothing a program can read in it (a block already written,

@@ -53,7 +53,7 @@ use crate::integration::segments_2d::add_line_point;
 use crate::integration::{default_degree, LineSegments};
 use crate::interface::Interface;
 use crate::linalg::SparseMatrix;
-use crate::memory::zeroed_in_parallel;
+use crate::memory::Spare;
 use crate::mesh::SurfaceMesh;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -152,6 +152,7 @@ pub(super) fn couple(
     interface: &Interface,
     options: &CouplingOptions,
     segments: LineSegments,
+    spare: &mut Spare,
 ) -> Result<Option<Merged>> {
     let (smesh, mmesh) = (interface.slave(), interface.master());
     if smesh.element_types().len() != 1 || mmesh.element_types().len() != 1 {
@@ -213,7 +214,7 @@ pub(super) fn couple(
         return Ok(None);
     };
     let rows_start = Instant::now();
-    let (d, m) = line.rows(&ranges);
+    let (d, m) = line.rows(&ranges, spare);
     Ok(Some(Merged {
         d,
         m,
@@ -581,7 +582,7 @@ impl<'a> Line<'a> {
 
     /// D and M row by row: each row's length from the faces' master ranges, then each row
     /// computed from its two faces and written in place, blocks of rows in parallel.
-    fn rows(&self, ranges: &[(u32, u32)]) -> (SparseMatrix, SparseMatrix) {
+    fn rows(&self, ranges: &[(u32, u32)], spare: &mut Spare) -> (SparseMatrix, SparseMatrix) {
         let interface = self.interface;
         let (ns, nm) = (
             interface.slave_nodes().len(),
@@ -618,11 +619,15 @@ impl<'a> Line<'a> {
             };
             len as usize
         };
-        let (d_ptr, m_ptr) = rayon::join(|| row_pointer(ns, d_len), || row_pointer(ns, m_len));
-        let mut d_idx = zeroed_in_parallel::<usize>(d_ptr[ns]);
-        let mut d_val = zeroed_in_parallel::<f64>(d_ptr[ns]);
-        let mut m_idx = zeroed_in_parallel::<usize>(m_ptr[ns]);
-        let mut m_val = zeroed_in_parallel::<f64>(m_ptr[ns]);
+        let (mut d_ptr, mut m_ptr) = (spare.zeroed_usize(ns + 1), spare.zeroed_usize(ns + 1));
+        rayon::join(
+            || row_pointer(&mut d_ptr, d_len),
+            || row_pointer(&mut m_ptr, m_len),
+        );
+        let mut d_idx = spare.zeroed_usize(d_ptr[ns]);
+        let mut d_val = spare.zeroed_f64(d_ptr[ns]);
+        let mut m_idx = spare.zeroed_usize(m_ptr[ns]);
+        let mut m_val = spare.zeroed_f64(m_ptr[ns]);
         let d_blocks = split_rows(&d_ptr, &mut d_idx, &mut d_val);
         let m_blocks = split_rows(&m_ptr, &mut m_idx, &mut m_val);
         d_blocks
@@ -783,15 +788,16 @@ impl<'s> RowWriter<'s> {
     }
 }
 
-/// The row pointer of `rows` rows of lengths `len(r)`: sums by block, then each block's
-/// pointers from its start, blocks in parallel.
-fn row_pointer(rows: usize, len: impl Fn(usize) -> usize + Sync) -> Vec<usize> {
+/// The row pointer `ptr` of `ptr.len() - 1` rows of lengths `len(r)`, written: sums by
+/// block, then each block's pointers from its start, blocks in parallel.
+fn row_pointer(ptr: &mut [usize], len: impl Fn(usize) -> usize + Sync) {
+    let rows = ptr.len() - 1;
     let block = |b: usize| b * BLOCK..((b + 1) * BLOCK).min(rows);
     let sums: Vec<usize> = (0..rows.div_ceil(BLOCK))
         .into_par_iter()
         .map(|b| block(b).map(&len).sum())
         .collect();
-    let mut ptr = vec![0usize; rows + 1];
+    ptr[0] = 0;
     let mut start = 0;
     let starts: Vec<usize> = sums
         .iter()
@@ -810,7 +816,6 @@ fn row_pointer(rows: usize, len: impl Fn(usize) -> usize + Sync) -> Vec<usize> {
                 *o = at;
             }
         });
-    ptr
 }
 
 /// The index and value slices of each block of [`BLOCK`] rows of a matrix with row pointer
