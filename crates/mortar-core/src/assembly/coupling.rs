@@ -17,7 +17,7 @@ use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace}
 use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
-use crate::memory::Spare;
+use crate::memory::{collect_populated, populated, Spare};
 use crate::multiplier::LmBasis;
 use crate::search::{
     spatial_order, ChainSearch, GroupScratch, LineChains, MasterLineCache, MasterTree, WALK_LIMIT,
@@ -882,9 +882,12 @@ fn finish(
     let normals = interface.slave_nodal_normals();
     let area = ordered_sum(d.data());
     // The slave's tags and normals in one pass; the normals (the larger) allocated first,
-    // so that they take the memory the call has just freed rather than fresh pages
-    // (`unzip_into_vecs` reserves the right-hand vector first).
-    let (mut slave_nodes, mut slave_normals) = (Vec::new(), Vec::new());
+    // so that they take the memory the call has just freed rather than fresh pages. Above
+    // the allocator's mmap threshold the memory is fresh whatever the order: its pages are
+    // then faulted in by the kernel a block per task before they are written.
+    let ns = interface.slave_nodes().len();
+    let mut slave_normals = populated(ns);
+    let mut slave_nodes = populated(ns);
     interface
         .slave_nodes()
         .par_iter()
@@ -892,11 +895,12 @@ fn finish(
         .unzip_into_vecs(&mut slave_nodes, &mut slave_normals);
     Coupling {
         slave_nodes,
-        master_nodes: interface
-            .master_nodes()
-            .par_iter()
-            .map(|&n| master_tags[n as usize])
-            .collect(),
+        master_nodes: collect_populated(
+            interface
+                .master_nodes()
+                .par_iter()
+                .map(|&n| master_tags[n as usize]),
+        ),
         slave_normals,
         d,
         m,

@@ -53,7 +53,7 @@ use crate::integration::segments_2d::add_line_point;
 use crate::integration::{default_degree, LineSegments};
 use crate::interface::Interface;
 use crate::linalg::SparseMatrix;
-use crate::memory::Spare;
+use crate::memory::{collect_populated, Spare};
 use crate::mesh::SurfaceMesh;
 use crate::multiplier::LmBasis;
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -350,7 +350,7 @@ impl<'a> Line<'a> {
             tau = -tau;
         }
         let along = |x: &Vector3<f64>| (x - x0).dot(&tau);
-        let s_t: Vec<f64> = s_node.par_iter().map(|&k| along(&sx[k as usize])).collect();
+        let s_t: Vec<f64> = collect_populated(s_node.par_iter().map(|&k| along(&sx[k as usize])));
         if !increasing(&s_t) {
             return Ok(None);
         }
@@ -365,40 +365,31 @@ impl<'a> Line<'a> {
             m_node.reverse();
         }
         // A node beyond the search radius becomes a NaN, which fails the increasing test.
-        let m_t: Vec<f64> = m_node
-            .par_iter()
-            .map(|&k| {
-                let x = &mx[k as usize];
-                let near = (x - x0).dot(&n).abs() <= radius;
-                if near {
-                    along(x)
-                } else {
-                    f64::NAN
-                }
-            })
-            .collect();
+        let m_t: Vec<f64> = collect_populated(m_node.par_iter().map(|&k| {
+            let x = &mx[k as usize];
+            let near = (x - x0).dot(&n).abs() <= radius;
+            if near {
+                along(x)
+            } else {
+                f64::NAN
+            }
+        }));
         if !increasing(&m_t) {
             return Ok(None);
         }
-        let s_row: Vec<u32> = s_node
-            .par_iter()
-            .map(|&k| {
-                interface
-                    .slave_row(k)
-                    .expect("face nodes are on the interface")
-            })
-            .collect();
+        let s_row: Vec<u32> = collect_populated(s_node.par_iter().map(|&k| {
+            interface
+                .slave_row(k)
+                .expect("face nodes are on the interface")
+        }));
         if s_row.len() != interface.slave_nodes().len() {
             return Ok(None);
         }
-        let m_col = m_node
-            .par_iter()
-            .map(|&k| {
-                interface
-                    .master_col(k)
-                    .expect("face nodes are on the interface")
-            })
-            .collect();
+        let m_col = collect_populated(m_node.par_iter().map(|&k| {
+            interface
+                .master_col(k)
+                .expect("face nodes are on the interface")
+        }));
         let first = interface.slave_face(0);
         let Ok(basis) = options.multipliers.basis_for(&first, tol, options.geometry) else {
             return Ok(None);
