@@ -99,8 +99,9 @@ struct Args {
     /// run, the first included).
     #[arg(long)]
     repeat_large: bool,
-    /// Each run after the first writes D, M and the node lists into the previous run's arrays
-    /// (`assemble_coupling_reusing`: a coupling repeated in a loop) instead of fresh memory.
+    /// Each run after the first goes through `assemble_coupling_reusing` with the previous
+    /// run's coupling (a coupling repeated in a loop: D and M written into its arrays where
+    /// the path allows). With `--against`, passed to both builds (the other must know it).
     #[arg(long)]
     reuse: bool,
     /// Largest n of the plane3d and cylinder cases (line2d is not capped).
@@ -178,6 +179,7 @@ fn main() -> Res<()> {
             args.rounds.max(1),
             args.repeats.max(1),
             args.repeat_large,
+            args.reuse,
             args.json.as_deref(),
         );
     }

@@ -21,6 +21,7 @@
 //! whether both builds did (a build that reorders the arithmetic differs in round-off only,
 //! which `--reference` measures).
 
+use std::ffi::OsStr;
 use std::path::Path;
 
 use serde_json::{json, Value};
@@ -97,6 +98,7 @@ pub fn run(
     rounds: usize,
     repeats: usize,
     repeat_large: bool,
+    reuse: bool,
     json: Option<&Path>,
 ) -> Res<()> {
     let mut results = Vec::new();
@@ -113,7 +115,8 @@ pub fn run(
                         (other, &mut theirs)
                     };
                     let params = (case.as_str(), *n, t, "sorted");
-                    runs.add(&run_single(exe, params, repeats, repeat_large, [])?)?;
+                    let extra = reuse.then_some(OsStr::new("--reuse"));
+                    runs.add(&run_single(exe, params, repeats, repeat_large, extra)?)?;
                 }
             }
             // Each build deterministic (every run of it the same D and M), and both builds
@@ -150,7 +153,7 @@ pub fn run(
             );
             results.push(json!({
                 "case": case, "n": n, "threads": t, "order": "sorted",
-                "rounds": rounds, "repeats": repeats, "repeat_large": repeat_large,
+                "rounds": rounds, "repeats": repeats, "repeat_large": repeat_large, "reuse": reuse,
                 "this": mine.summary(), "other": theirs.summary(),
                 "this_exe": this.display().to_string(),
                 "other_exe": other.display().to_string(),

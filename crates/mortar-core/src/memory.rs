@@ -195,26 +195,31 @@ fn populate_in_parallel(_ptr: *mut u8, _bytes: usize) {}
 mod tests {
     use super::*;
 
+    /// Runs `f` on a pool of one thread, then on a pool of two.
+    fn on_one_and_two_threads(f: impl Fn() + Send + Sync) {
+        for threads in [1, 2] {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(&f);
+        }
+    }
+
     /// Above the populating size, on two threads and on one: `n` zeros, whatever the block
     /// held before (the allocator may hand back a block just freed with values in it).
     #[test]
     fn zeroed_blocks_are_zero_at_every_size() {
-        for threads in [1, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                for n in [0, 1, 1000, POPULATE_BYTES / 8 + 3, 3 * POPULATE_BYTES / 8] {
-                    drop(vec![1.5f64; n]);
-                    let v = zeroed_in_parallel::<f64>(n);
-                    assert_eq!(v.len(), n);
-                    assert!(v.iter().all(|&x| x.to_bits() == 0), "n = {n}");
-                    let u = zeroed_in_parallel::<usize>(n);
-                    assert!(u.len() == n && u.iter().all(|&x| x == 0), "n = {n}");
-                }
-            });
-        }
+        on_one_and_two_threads(|| {
+            for n in [0, 1, 1000, POPULATE_BYTES / 8 + 3, 3 * POPULATE_BYTES / 8] {
+                drop(vec![1.5f64; n]);
+                let v = zeroed_in_parallel::<f64>(n);
+                assert_eq!(v.len(), n);
+                assert!(v.iter().all(|&x| x.to_bits() == 0), "n = {n}");
+                let u = zeroed_in_parallel::<usize>(n);
+                assert!(u.len() == n && u.iter().all(|&x| x == 0), "n = {n}");
+            }
+        });
     }
 
     /// `collect_populated` gives `collect`'s vector below and above the populating size, on
@@ -222,21 +227,15 @@ mod tests {
     #[test]
     fn populated_collects_are_plain_collects() {
         use rayon::prelude::*;
-        for threads in [1, 2] {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
-                for n in [0, 5, FRESH_BYTES / 8 - 1, FRESH_BYTES / 8 + 1000] {
-                    let f = |i: usize| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-                    let want: Vec<u64> = (0..n).into_par_iter().map(f).collect();
-                    let got = collect_populated((0..n).into_par_iter().map(f));
-                    assert!(got == want, "n = {n}");
-                    assert!(populated::<u64>(n).is_empty() && populated::<u64>(n).capacity() >= n);
-                }
-            });
-        }
+        on_one_and_two_threads(|| {
+            for n in [0, 5, FRESH_BYTES / 8 - 1, FRESH_BYTES / 8 + 1000] {
+                let f = |i: usize| (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+                let want: Vec<u64> = (0..n).into_par_iter().map(f).collect();
+                let got = collect_populated((0..n).into_par_iter().map(f));
+                assert!(got == want, "n = {n}");
+                assert!(populated::<u64>(n).is_empty() && populated::<u64>(n).capacity() >= n);
+            }
+        });
     }
 
     /// A kept array comes back as `n` zeros whatever it held, the smallest that holds `n`
