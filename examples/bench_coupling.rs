@@ -457,6 +457,8 @@ fn single(case: &str, n: usize, threads: usize, order: &str, args: &Args) -> Res
         "straight_line_faces": med.straight_line_faces,
         "fused_line_faces": med.fused_line_faces,
         "closed_form_faces": med.closed_form_faces,
+        "slave_box_inflation": med.slave_box_inflation,
+        "master_box_inflation": med.master_box_inflation,
         "area": med.area,
         "seconds": {"tree": s.tree, "faces": s.faces, "assembly": s.assembly, "total": s.total},
         "thread_seconds": {"search": s.thread.search, "segments": s.thread.segments,

@@ -80,7 +80,9 @@ class Coupling:
             ``fused_line_faces`` (slave faces done by the fused kernel for straight 2D
             lines), ``straight_line_faces`` (slave faces done by the sorted merge of a
             straight 2D interface), ``closed_form_faces`` (3D slave faces whose clip polygons
-            were integrated in closed form), ``threads``, ``formulation``, and
+            were integrated in closed form), ``slave_box_inflation`` and
+            ``master_box_inflation`` (the search boxes' inflation, a fraction of a face's
+            diameter: 0 where the nodes bound the faces), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
         warnings: list of str: uncovered slave area, overlapping master faces, skipped pairs
             (each also warned of with ``warnings.warn`` by :func:`couple`).

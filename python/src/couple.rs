@@ -403,6 +403,8 @@ pub(crate) fn couple_arrays<'py>(
     stats.set_item("fused_line_faces", st.fused_line_faces)?;
     stats.set_item("straight_line_faces", st.straight_line_faces)?;
     stats.set_item("closed_form_faces", st.closed_form_faces)?;
+    stats.set_item("slave_box_inflation", st.slave_box_inflation)?;
+    stats.set_item("master_box_inflation", st.master_box_inflation)?;
     stats.set_item("d_roundoff_dropped", st.d_roundoff_dropped)?;
     stats.set_item("threads", st.threads)?;
     stats.set_item("degrees_used", c.degrees_used())?;

@@ -92,6 +92,8 @@ def test_3d_non_matching_triangulations(multipliers):
     check_properties(c, sp, mp, 1.0)
     assert c.stats["pairs"] > st.shape[0]
     assert c.stats["degrees_used"] == [2]
+    # Linear triangles lie in their nodes' boxes: the search inflates neither side's.
+    assert c.stats["slave_box_inflation"] == 0.0 and c.stats["master_box_inflation"] == 0.0
     # The slave normals are the plane's normal, one way or the other, all the same way.
     n = rot[:, 2]
     dots = c.normals @ n

@@ -249,6 +249,11 @@ pub struct CouplingSummary {
     pub degrees_used: Vec<u32>,
     /// How far along the slave normals the search looked: `"1 x face size"` or a distance.
     pub search_radius: String,
+    /// How the search's boxes were padded: `"exact"` where the nodes bound both sides' faces,
+    /// else which side's were inflated and by what fraction of a face's diameter (see
+    /// `CouplingStats::slave_box_inflation`).
+    #[serde(default)]
+    pub search_boxes: String,
     /// Worker threads used.
     pub threads: usize,
     /// The slave surface (`file#group`), if read from a file.
@@ -368,6 +373,7 @@ impl CouplingSummary {
                 SearchRadius::FaceSize(k) => format!("{k} x face size"),
                 SearchRadius::Distance(d) => format!("{d}"),
             },
+            search_boxes: search_boxes(s.slave_box_inflation, s.master_box_inflation),
             threads: s.threads,
             slave: None,
             master: None,
@@ -465,11 +471,12 @@ impl fmt::Display for CouplingSummary {
         lines.push((
             "problem",
             format!(
-                "{}D, {}; quadrature degree {} used; search radius {}",
+                "{}D, {}; quadrature degree {} used; search radius {}, boxes {}",
                 self.dimension,
                 self.formulation,
                 degrees.join(", "),
-                self.search_radius
+                self.search_radius,
+                self.search_boxes
             ),
         ));
         let mut d = format!("{ns} x {ns}, {}", plural(self.d_nonzeros, "nonzero"));
@@ -537,6 +544,19 @@ impl fmt::Display for CouplingSummary {
 }
 
 /// `"1 face"`, `"2 faces"`; a noun ending in "y" after a consonant takes "ies".
+/// The summary's words for the search's padding: `"exact"`, or which side's boxes were
+/// inflated and by how much.
+fn search_boxes(slave: f64, master: f64) -> String {
+    let by = |k: f64| format!("inflated by {k} x face size");
+    match (slave > 0.0, master > 0.0) {
+        (false, false) => "exact".to_string(),
+        (true, true) if slave == master => by(slave),
+        (true, false) => format!("slave {}, master exact", by(slave)),
+        (false, true) => format!("slave exact, master {}", by(master)),
+        (true, true) => format!("slave {}, master {}", by(slave), by(master)),
+    }
+}
+
 pub(crate) fn plural(n: usize, noun: &str) -> String {
     if n == 1 {
         format!("1 {noun}")

@@ -614,6 +614,11 @@ fn first_order_faces_couple_with_second_order_ones() {
             );
             let worst = linear_fields_untied(&interface, &c);
             assert!(worst < 1e-12, "case {k} ({}): {worst:e}", c.formulation);
+            // Second-order faces bulge out of their nodes' hull: their side's boxes are
+            // inflated, the linear side's are not.
+            let inflation = (c.stats.slave_box_inflation, c.stats.master_box_inflation);
+            let want = if k < 3 { (0.0, 0.1) } else { (0.1, 0.0) };
+            assert_eq!(inflation, want, "case {k}");
         }
     }
 }

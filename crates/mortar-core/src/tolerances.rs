@@ -38,7 +38,13 @@ pub struct Tolerances {
     /// How far outside its reference domain (in reference units) a projected point may fall
     /// and still count as on the face.
     pub reference_inside: f64,
-    /// Bounding boxes are inflated by this fraction of the face diameter for the search.
+    /// The search's boxes of a side whose nodes do not bound what the search must find
+    /// (higher-order faces, which bulge out of their nodes' hull; slave faces of a projector
+    /// that does not keep its directions within the nodal normals) are inflated by this
+    /// fraction of the face diameter. Two-node lines, linear triangles and bilinear quads
+    /// with the default projector need none: their boxes are exact but for a margin of
+    /// rounding ([`Padding`](crate::search::Padding),
+    /// [`CouplingStats::slave_box_inflation`](crate::CouplingStats::slave_box_inflation)).
     pub search_inflation: f64,
     /// How far from a slave face, along the slave's normal field and both ways, the search
     /// looks for master faces: across an open gap, or into a penetration. Beyond it a master

@@ -20,7 +20,8 @@ use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
 use crate::multiplier::LmBasis;
 use crate::search::{
-    spatial_order, ChainSearch, GroupScratch, LineChains, MasterLineCache, MasterTree, WALK_LIMIT,
+    spatial_order, ChainSearch, GroupScratch, LineChains, MasterLineCache, MasterTree, Padding,
+    WALK_LIMIT,
 };
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
@@ -112,6 +113,14 @@ pub struct CouplingStats {
     /// pair: 2 for Tri3-Tri3, 3 for Tri3-Quad4, 4 for a parallelogram Quad4 slave, 5 for other
     /// Quad4 slaves), as flags indexed by degree.
     pub degrees_used: [bool; 21],
+    /// The inflation of the slave faces' search boxes, as a fraction of each face's diameter:
+    /// 0 where the slave faces and the projector bound what the search must find by the nodes
+    /// and nodal normals alone, else [`Tolerances::search_inflation`](crate::Tolerances::search_inflation)
+    /// (see [`Padding`](crate::search::Padding)). 0 for the sorted merge, which uses no boxes.
+    pub slave_box_inflation: f64,
+    /// The same for the master faces' boxes: 0 where every master face lies in the convex hull
+    /// of its nodes.
+    pub master_box_inflation: f64,
     /// Timings.
     pub seconds: PhaseSeconds,
 }
@@ -336,10 +345,15 @@ impl Search {
         interface: &Interface,
         options: &CouplingOptions,
         lines: Option<(LineSegments, LineChains, LineChains)>,
+        padding: Padding,
     ) -> (Self, MasterFaces, Vec<u32>) {
         if let Some((rule, slave, master)) = lines {
             let masters = MasterFaces::new(interface, master.order.iter().copied());
-            let search = ChainSearch::new(interface, &masters, master);
+            debug_assert_eq!(
+                padding.master, 0.0,
+                "two-node lines lie in their nodes' box"
+            );
+            let search = ChainSearch::new(interface, &masters, master, padding.slave);
             let follows = (0..slave.order.len())
                 .map(|p| p > 0 && slave.prev[p] == p as u32 - 1)
                 .collect();
@@ -350,7 +364,7 @@ impl Search {
             };
             return (lines, masters, slave.order);
         }
-        let (tree, masters) = MasterTree::build_with_faces(interface);
+        let (tree, masters) = MasterTree::build_with_faces(interface, padding);
         // Slave faces are processed in the Morton order of their centres: the queries of a
         // chunk then walk the same branches of the tree, whatever the file's numbering.
         // (Ordered by their first nodes: one read of the node coordinates per face, in the
@@ -714,7 +728,8 @@ fn assemble_on_pool(
     // (plane3d n=708 reusing its own arrays: memory ratio 1.39 -> 1.82, for 1.5 % of the
     // time on one thread).
     drop(spare);
-    let (search, masters, order) = Search::build(interface, options, lines);
+    let padding = Padding::of(interface, Some(options.projector.as_ref()));
+    let (search, masters, order) = Search::build(interface, options, lines, padding);
     let ctx = SegmentContext {
         interface,
         projector: options.projector.as_ref(),
@@ -808,9 +823,12 @@ fn assemble_on_pool(
             integration: stats.seconds_integration,
         },
     };
-    Ok(finish(
+    let mut coupling = finish(
         interface, options, d, m, &stats, warnings, threads, seconds, start, t_asm,
-    ))
+    );
+    coupling.stats.slave_box_inflation = padding.slave;
+    coupling.stats.master_box_inflation = padding.master;
+    Ok(coupling)
 }
 
 /// The coupling of a straight 2D interface from the sorted merge's D and M.
@@ -924,6 +942,9 @@ fn finish(
             area,
             threads,
             degrees_used: { std::array::from_fn(|d| stats.degrees & (1 << d) != 0) },
+            // The general path sets the search's below; the merge uses no boxes.
+            slave_box_inflation: 0.0,
+            master_box_inflation: 0.0,
             seconds: PhaseSeconds {
                 total: start.elapsed().as_secs_f64(),
                 ..seconds

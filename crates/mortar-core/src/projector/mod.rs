@@ -9,6 +9,7 @@ use nalgebra::{Vector2, Vector3};
 
 use rayon::prelude::*;
 
+use crate::element::ElementRef;
 use crate::interface::{FaceGeometry, Interface};
 
 /// A projection direction field on a slave face.
@@ -43,6 +44,17 @@ pub trait Projector: Send + Sync + std::fmt::Debug {
     fn uniform_direction(&self, interface: &Interface, tol: f64) -> Option<Vector3<f64>> {
         let _ = (interface, tol);
         None
+    }
+
+    /// Whether on every face of type `element` the direction at each point is a convex
+    /// combination of the face's nodal normals ([`FaceGeometry::normals`]), its length
+    /// included. The search then bounds the reach of each slave face of that type by its
+    /// nodes and nodal normals alone and does not inflate its box by
+    /// [`Tolerances::search_inflation`](crate::Tolerances::search_inflation) (see
+    /// [`Padding`](crate::search::Padding)). The default, `false`, is always correct.
+    fn within_nodal_normals(&self, element: ElementRef) -> bool {
+        let _ = element;
+        false
     }
 }
 
@@ -103,6 +115,13 @@ pub struct NodalNormalField;
 impl Projector for NodalNormalField {
     fn name(&self) -> &'static str {
         "nodal-normal-field"
+    }
+
+    /// Where the shape functions are non-negative (the two-node line, the linear triangle,
+    /// the bilinear quad: [`in_hull_of_nodes`](crate::search::in_hull_of_nodes)), the field
+    /// interpolates the nodal normals with weights that are non-negative and sum to one.
+    fn within_nodal_normals(&self, element: ElementRef) -> bool {
+        crate::search::in_hull_of_nodes(element)
     }
 
     /// On an affine element with shape functions of degree one (Line2, Tri3), the

@@ -4,9 +4,9 @@ use rayon::prelude::*;
 
 use super::bvh::{overlaps, union, Box3, BoxTree};
 use super::morton::{bounds_of, morton_code};
+use super::padding::{rounding_margin, Padding};
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
-use crate::tolerances::Tolerances;
 
 /// Candidate master faces per slave face, in compressed rows: the candidates of slave face `s`
 /// are `masters[offsets[s]..offsets[s + 1]]`, ascending.
@@ -35,7 +35,8 @@ impl Candidates {
     }
 }
 
-/// BVHs over the master faces' inflated bounding boxes, queried one slave face at a time.
+/// BVHs over the master faces' bounding boxes (inflated where their nodes do not bound the
+/// faces, see [`Padding`]), queried one slave face at a time.
 ///
 /// The master faces are cut into slabs of equal width along the longest axis of their
 /// bounding box (by first node) and one tree is built per slab, in parallel. Within a slab
@@ -48,6 +49,7 @@ impl Candidates {
 pub struct MasterTree {
     slabs: Vec<Slab>,
     planar: bool,
+    padding: Padding,
 }
 
 struct Slab {
@@ -173,7 +175,12 @@ impl Slab {
 
 impl std::fmt::Debug for MasterTree {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "MasterTree({} slabs)", self.slabs.len())
+        write!(
+            f,
+            "MasterTree({} slabs, {:?})",
+            self.slabs.len(),
+            self.padding
+        )
     }
 }
 
@@ -184,9 +191,16 @@ pub(super) const EMPTY: Box3 = (
 
 impl MasterTree {
     /// Builds the trees over the master faces of `interface`, in parallel on the current
-    /// rayon pool (see [`build_with_faces`](Self::build_with_faces)).
+    /// rayon pool (see [`build_with_faces`](Self::build_with_faces)), with the padding of a
+    /// search that knows no projector ([`Padding::of`] with `None`: the slave faces' search
+    /// boxes inflated).
     pub fn build(interface: &Interface) -> Self {
-        Self::build_with_faces(interface).0
+        Self::build_with_faces(interface, Padding::of(interface, None)).0
+    }
+
+    /// The padding of the boxes.
+    pub fn padding(&self) -> Padding {
+        self.padding
     }
 
     /// Builds the trees over the master faces of `interface` and the master faces by slot
@@ -198,9 +212,9 @@ impl MasterTree {
     /// [`MasterFaces::new`]; the boxes are computed from the faces in slot order. A file
     /// whose faces and nodes are numbered far apart thus costs two reads of the mesh in
     /// random order, not the five it took to build boxes, order them, gather them by slab
-    /// and copy the faces.
-    pub fn build_with_faces(interface: &Interface) -> (Self, MasterFaces) {
-        let tol = interface.tolerances();
+    /// and copy the faces. The master faces' boxes are inflated by `padding.master`, the slave
+    /// faces' search boxes of the queries by `padding.slave`.
+    pub fn build_with_faces(interface: &Interface, padding: Padding) -> (Self, MasterFaces) {
         let planar = interface.dim() == SpatialDim::Two;
         let master = interface.master();
         let n = master.face_count();
@@ -250,7 +264,7 @@ impl MasterTree {
                 let boxes: Vec<Box3> = (first_slot..first_slot + len)
                     .map(|s| {
                         let (_, k) = masters.coords_into(interface, s as usize, &mut x);
-                        points_box(&x[..k], tol)
+                        points_box(&x[..k], padding.master)
                     })
                     .collect();
                 let leaves: Vec<Box3> = boxes
@@ -268,7 +282,14 @@ impl MasterTree {
                 }
             })
             .collect();
-        (Self { slabs, planar }, masters)
+        (
+            Self {
+                slabs,
+                planar,
+                padding,
+            },
+            masters,
+        )
     }
 
     /// The candidate master faces of slave face `s`, as slots (see
@@ -281,7 +302,7 @@ impl MasterTree {
     /// The candidates of a slave face already gathered (with its nodal normals), as
     /// [`candidates_into`](Self::candidates_into).
     pub fn candidates_of(&self, interface: &Interface, face: &FaceGeometry, out: &mut Vec<u32>) {
-        let b = slave_search_box(interface, face);
+        let b = slave_search_box(interface, face, self.padding.slave);
         out.clear();
         for slab in &self.slabs {
             if !overlaps(&b, &slab.bounds, self.planar) {
@@ -321,7 +342,11 @@ impl MasterTree {
         let mut boxes: ArrayVec<Box3, GROUP> = ArrayVec::new();
         for group in faces.chunks(GROUP) {
             boxes.clear();
-            boxes.extend(group.iter().map(|f| slave_search_box(interface, f)));
+            boxes.extend(
+                group
+                    .iter()
+                    .map(|f| slave_search_box(interface, f, self.padding.slave)),
+            );
             let all = boxes[1..].iter().fold(boxes[0], |acc, b| union(&acc, b));
             let first_end = ends.len();
             ends.extend(std::iter::repeat_n(out.len(), group.len()));
@@ -363,7 +388,7 @@ impl MasterTree {
 /// depend on the thread count. (`assemble_coupling` queries chunk by chunk instead, without
 /// storing every candidate.)
 pub fn find_candidates(interface: &Interface) -> Candidates {
-    let (tree, masters) = MasterTree::build_with_faces(interface);
+    let (tree, masters) = MasterTree::build_with_faces(interface, Padding::of(interface, None));
     let lists: Vec<Vec<u32>> = (0..interface.slave().face_count())
         .into_par_iter()
         .map_init(Vec::new, |scratch, s| {
@@ -386,11 +411,16 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
     Candidates { offsets, masters }
 }
 
-/// The region where slave face `s` looks for master faces: the box of its nodes moved along
-/// their nodal normals by the search radius, both ways (which holds every point
-/// `x(xi) + t n(xi)`, `|t| <= radius`, of a face whose normal field interpolates its nodal
-/// normals), inflated like every face box.
-pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Box3 {
+/// The region where slave face `face` looks for master faces, inflated by `inflation` times
+/// the face's diameter and by a margin for the rounding. It holds every point `x + t d`,
+/// `|t| <= radius`, where `d` is a convex combination of the nodal normals (see [`Padding`]):
+/// - in 2D, with `x` the point of the face that `d` is taken at (the strategies project along
+///   the direction field at the slave point): `x + t d` is the same convex combination of the
+///   points `x_i +- radius n_i`, so their box;
+/// - in 3D, with `x` anywhere on the face (the auxiliary plane projects along the direction
+///   at the face's centre): the box of the nodes widened on each axis by the radius times the
+///   largest of the nodal normals' components on that axis.
+pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, inflation: f64) -> Box3 {
     let tol = interface.tolerances();
     let k = face.node_count();
     let (nodes, normals) = (&face.nodes[..k], &face.normals[..k]);
@@ -401,24 +431,41 @@ pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry) -> Bo
     }
     let diameter = (hi - lo).norm();
     let radius = tol.search_radius.for_face(diameter);
-    for (x, n) in nodes.iter().zip(normals) {
-        let d = n * radius;
-        for p in [x + d, x - d] {
-            lo = lo.inf(&p);
-            hi = hi.sup(&p);
+    if interface.dim() == SpatialDim::Two {
+        for (x, n) in nodes.iter().zip(normals) {
+            let d = n * radius;
+            for p in [x + d, x - d] {
+                lo = lo.inf(&p);
+                hi = hi.sup(&p);
+            }
         }
+    } else {
+        let widest = normals
+            .iter()
+            .fold(Vector3::zeros(), |w, n| w.sup(&n.abs()));
+        let reach = widest * radius;
+        lo -= reach;
+        hi += reach;
     }
-    let pad = Vector3::repeat(tol.search_inflation * diameter);
-    (lo - pad, hi + pad)
+    let pad = Vector3::repeat(inflation * diameter);
+    padded(lo - pad, hi + pad)
 }
 
-/// The bounding box of a face's nodes, inflated for the search.
-pub(super) fn points_box(x: &[Vector3<f64>], tol: &Tolerances) -> Box3 {
+/// The bounding box of a face's nodes `x`, inflated by `inflation` times its diagonal, and by
+/// a margin for the rounding.
+pub(super) fn points_box(x: &[Vector3<f64>], inflation: f64) -> Box3 {
     let (mut lo, mut hi) = (x[0], x[0]);
     for p in &x[1..] {
         lo = lo.inf(p);
         hi = hi.sup(p);
     }
-    let pad = Vector3::repeat(tol.search_inflation * (hi - lo).norm());
-    (lo - pad, hi + pad)
+    let pad = Vector3::repeat(inflation * (hi - lo).norm());
+    padded(lo - pad, hi + pad)
+}
+
+/// The box `(lo, hi)` widened by the margin of its rounding.
+#[inline]
+fn padded(lo: Vector3<f64>, hi: Vector3<f64>) -> Box3 {
+    let m = Vector3::repeat(rounding_margin(&lo, &hi));
+    (lo - m, hi + m)
 }

@@ -122,7 +122,8 @@ pub(crate) const WALK_LIMIT: usize = 64;
 /// first face of a walk and for faces the walk does not settle.
 ///
 /// Both queries test the same boxes as [`MasterTree`](super::MasterTree) (each master face's
-/// inflated node box against the slave face's search box), in `f64` where the tree compares
+/// node box against the slave face's search box, padded as the coupling's [`Padding`](super::Padding) says: a two-node
+/// line lies in its nodes' box, so the master's are never inflated), in `f64` where the tree compares
 /// its boxes rounded outward to `f32`: the exhaustive query finds the tree's candidates but
 /// those whose boxes miss the search box by less than that rounding (which cannot overlap the
 /// slave face within the search radius), the walk those of them connected along the master
@@ -134,12 +135,19 @@ pub(crate) struct ChainSearch {
     /// The slot of each chain's first face, ascending (the chains are consecutive runs of
     /// slots).
     chain_starts: Vec<u32>,
+    /// The inflation of the slave faces' search boxes.
+    slave_inflation: f64,
 }
 
 impl ChainSearch {
-    /// The search over `masters` (in the chain order of `chains`, the master's chains).
-    pub(crate) fn new(interface: &Interface, masters: &MasterFaces, chains: LineChains) -> Self {
-        let tol = interface.tolerances();
+    /// The search over `masters` (in the chain order of `chains`, the master's chains), the
+    /// slave faces' search boxes inflated by `slave_inflation` of their diameters.
+    pub(crate) fn new(
+        interface: &Interface,
+        masters: &MasterFaces,
+        chains: LineChains,
+        slave_inflation: f64,
+    ) -> Self {
         let blocks: Vec<Box3> = (0..masters.len().div_ceil(BLOCK))
             .into_par_iter()
             .map(|b| {
@@ -147,7 +155,7 @@ impl ChainSearch {
                 let slots = b * BLOCK..((b + 1) * BLOCK).min(masters.len());
                 slots.fold(EMPTY, |acc, s| {
                     let k = masters.node_coords_into(interface, s, &mut x);
-                    union(&acc, &points_box(&x[..k], tol))
+                    union(&acc, &points_box(&x[..k], 0.0))
                 })
             })
             .collect();
@@ -160,6 +168,7 @@ impl ChainSearch {
             prev: chains.prev,
             blocks: BoxTree::build(blocks, true),
             chain_starts,
+            slave_inflation,
         }
     }
 
@@ -199,7 +208,7 @@ impl ChainSearch {
     fn face_box(&self, interface: &Interface, masters: &MasterFaces, s: u32) -> Box3 {
         let mut x = [Vector3::zeros(); MAX_FACE_NODES];
         let k = masters.node_coords_into(interface, s as usize, &mut x);
-        points_box(&x[..k], interface.tolerances())
+        points_box(&x[..k], 0.0)
     }
 
     /// Whether the master face in slot `s` meets the search box `b`.
@@ -217,7 +226,7 @@ impl ChainSearch {
         face: &FaceGeometry,
         out: &mut Vec<u32>,
     ) {
-        let b = slave_search_box(interface, face);
+        let b = slave_search_box(interface, face, self.slave_inflation);
         out.clear();
         self.blocks.append_intersecting(&b, out);
         let hits = out.len();
@@ -262,7 +271,7 @@ impl ChainSearch {
         out: &mut Vec<u32>,
         blocks: &mut Vec<u32>,
     ) -> bool {
-        let b = slave_search_box(interface, face);
+        let b = slave_search_box(interface, face, self.slave_inflation);
         let mut meets = |s: u32| overlaps(&b, &lines.get(interface, masters, s).bx, true);
         out.clear();
         let first = seeds.iter().copied().find(|&s| meets(s)).or_else(|| {

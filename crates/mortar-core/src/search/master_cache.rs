@@ -77,7 +77,8 @@ impl<T: MasterRead> MasterCache<T> {
 pub(crate) struct MasterLine {
     /// The two node coordinates.
     pub nodes: [Vector3<f64>; 2],
-    /// The inflated box of the nodes (the search's `points_box`).
+    /// The box of the nodes (the search's `points_box`; a two-node line lies in it, so it is
+    /// not inflated).
     pub bx: Box3,
     /// The unit normal at the centre, from the element type.
     pub normal: Vector3<f64>,
@@ -95,7 +96,7 @@ impl MasterRead for MasterLine {
         masters.columns_into(interface, s as usize, &mut cols);
         Self {
             nodes: [y[0], y[1]],
-            bx: points_box(&y[..k], interface.tolerances()),
+            bx: points_box(&y[..k], 0.0),
             normal: el.unit_normal(&y[..k], &Vector2::zeros()),
             cols: [cols[0], cols[1]],
         }
