@@ -451,13 +451,17 @@ pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, infla
     padded(lo - pad, hi + pad)
 }
 
-/// The bounding box of a face's nodes `x`, inflated by `inflation` times its diagonal, and by
-/// a margin for the rounding.
+/// The bounding box of a face's nodes `x`, inflated by `inflation` times its diagonal and then
+/// by a margin for the rounding; without inflation, the nodes' box itself (their least and
+/// greatest coordinates: nothing to round).
 pub(super) fn points_box(x: &[Vector3<f64>], inflation: f64) -> Box3 {
     let (mut lo, mut hi) = (x[0], x[0]);
     for p in &x[1..] {
         lo = lo.inf(p);
         hi = hi.sup(p);
+    }
+    if inflation == 0.0 {
+        return (lo, hi);
     }
     let pad = Vector3::repeat(inflation * (hi - lo).norm());
     padded(lo - pad, hi + pad)
@@ -466,6 +470,6 @@ pub(super) fn points_box(x: &[Vector3<f64>], inflation: f64) -> Box3 {
 /// The box `(lo, hi)` widened by the margin of its rounding.
 #[inline]
 fn padded(lo: Vector3<f64>, hi: Vector3<f64>) -> Box3 {
-    let m = Vector3::repeat(rounding_margin(&lo, &hi));
+    let m = rounding_margin(&lo, &hi);
     (lo - m, hi + m)
 }
