@@ -573,6 +573,21 @@ mod tests {
     use crate::generate::line_mesh;
     use mortar_core::{assemble_coupling, SurfaceMesh};
 
+    /// The summary's words for the search's padding, per side.
+    #[test]
+    fn search_boxes_say_which_side_was_inflated() {
+        assert_eq!(search_boxes(0.0, 0.0), "exact");
+        assert_eq!(search_boxes(0.1, 0.1), "inflated by 0.1 x face size");
+        assert_eq!(
+            search_boxes(0.0, 0.1),
+            "slave exact, master inflated by 0.1 x face size"
+        );
+        assert_eq!(
+            search_boxes(0.1, 0.0),
+            "slave inflated by 0.1 x face size, master exact"
+        );
+    }
+
     /// The summary's path line names what computed each slave face: the sorted merge on a
     /// straight line; the fused kernel, the strategy and nothing on a slave that reaches past
     /// its master (faces without a master face are integrated by nothing).
