@@ -51,7 +51,10 @@
 //! ```
 //!
 //! **A projector of one's own**: project along the fixed direction `+z` (for flat interfaces
-//! in the plane `z = const`, the exact normal):
+//! in the plane `z = const`, the exact normal). It keeps the trait's default
+//! `within_nodal_normals` (`false`), so the search inflates its slave faces' boxes by
+//! `Tolerances::search_inflation`; a projector whose directions are always convex
+//! combinations of a face's nodal normals may return `true` there for exact boxes:
 //!
 //! ```
 //! use std::sync::Arc;
