@@ -120,6 +120,24 @@ pub fn compare_mapped(
     worst
 }
 
+/// The largest deviations of `b`'s D and M from `a`'s, entry by entry by node tags, relative
+/// to the largest entry of `a`'s ([`compare_mapped`]), named `"D"` and `"M"`.
+pub fn dm_deviations(a: &Coupling, b: &Coupling) -> [(&'static str, f64); 2] {
+    let of = |x: &SparseMatrix, y: &SparseMatrix, ca: &[u64], cb: &[u64]| {
+        compare_mapped(
+            &by_tags(x, &a.slave_nodes, ca),
+            &by_tags(y, &b.slave_nodes, cb),
+            |t| t,
+            |t| t,
+            1.0,
+        )
+    };
+    [
+        ("D", of(&a.d, &b.d, &a.slave_nodes, &b.slave_nodes)),
+        ("M", of(&a.m, &b.m, &a.master_nodes, &b.master_nodes)),
+    ]
+}
+
 /// `int N_j` over the slave surface for every node `j` used by a face, keyed by node tag
 /// (the public checks' own, independent of the coupling code).
 pub use mortar::testing::nodal_areas;
@@ -258,19 +276,7 @@ pub fn both_ways_within(
     assert_eq!(general.stats.fused_line_faces, 0, "{what}");
     assert_eq!(general.stats.straight_line_faces, 0, "{what}");
     assert_eq!(general.stats.closed_form_faces, 0, "{what}");
-    for (a, b, name) in [(&general.d, &fused.d, "D"), (&general.m, &fused.m, "M")] {
-        let cols = if name == "D" {
-            &general.slave_nodes
-        } else {
-            &general.master_nodes
-        };
-        let dev = compare_mapped(
-            &by_tags(a, &general.slave_nodes, cols),
-            &by_tags(b, &fused.slave_nodes, cols),
-            |t| t,
-            |t| t,
-            1.0,
-        );
+    for (name, dev) in dm_deviations(&general, &fused) {
         assert!(
             dev <= tol,
             "{what}: {name} deviates by {dev:e} (tolerance {tol:e})"

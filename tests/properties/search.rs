@@ -12,7 +12,7 @@ use mortar::testing::{covered_pair_3d_with, rigid_motion_3d, PairConfig};
 use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use proptest::prelude::*;
 
-use super::common::{by_tags, compare_mapped, config, dm_bits, ok};
+use super::common::{config, dm_bits, dm_deviations, ok};
 
 /// Every slave face's candidates by the grouped query against its own query, with the slave
 /// faces in the given order (the coupling's is spatial; any order must give the same sets).
@@ -95,16 +95,7 @@ fn exact_boxes_miss_no_pair(slave: &SurfaceMesh, master: &SurfaceMesh, what: &st
         } else {
             // The chain walk gives a face's candidates in walk order, which the reference's
             // longer walks change: D's sums may differ in the last bit.
-            let d_cols = (&a.slave_nodes, &b.slave_nodes);
-            let m_cols = (&a.master_nodes, &b.master_nodes);
-            for (x, y, (ca, cb), name) in [(&a.d, &b.d, d_cols, "D"), (&a.m, &b.m, m_cols, "M")] {
-                let dev = compare_mapped(
-                    &by_tags(x, &a.slave_nodes, ca),
-                    &by_tags(y, &b.slave_nodes, cb),
-                    |t| t,
-                    |t| t,
-                    1.0,
-                );
+            for (name, dev) in dm_deviations(&a, &b) {
                 assert!(dev <= 1e-13, "{what}: {name} deviates by {dev:e}");
             }
         }
