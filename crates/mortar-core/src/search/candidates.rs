@@ -4,7 +4,7 @@ use rayon::prelude::*;
 
 use super::bvh::{overlaps, union, Box3, BoxTree};
 use super::morton::{bounds_of, morton_code};
-use super::padding::{rounding_margin, Padding};
+use super::padding::Padding;
 use crate::element::MAX_FACE_NODES;
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 
@@ -196,11 +196,6 @@ impl MasterTree {
     /// boxes inflated).
     pub fn build(interface: &Interface) -> Self {
         Self::build_with_faces(interface, Padding::of(interface, None)).0
-    }
-
-    /// The padding of the boxes.
-    pub fn padding(&self) -> Padding {
-        self.padding
     }
 
     /// Builds the trees over the master faces of `interface` and the master faces by slot
@@ -467,9 +462,10 @@ pub(super) fn points_box(x: &[Vector3<f64>], inflation: f64) -> Box3 {
     padded(lo - pad, hi + pad)
 }
 
-/// The box `(lo, hi)` widened by the margin of its rounding.
+/// The box `(lo, hi)` widened by the margin of its rounding, per axis: 8 units in the last
+/// place of its larger bound on that axis.
 #[inline]
 fn padded(lo: Vector3<f64>, hi: Vector3<f64>) -> Box3 {
-    let m = rounding_margin(&lo, &hi);
+    let m = lo.abs().sup(&hi.abs()) * (8.0 * f64::EPSILON);
     (lo - m, hi + m)
 }

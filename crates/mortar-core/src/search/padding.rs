@@ -26,8 +26,6 @@
 //! [`Tolerances::search_inflation`]: crate::tolerances::Tolerances::search_inflation
 //! [`CouplingStats::slave_box_inflation`]: crate::CouplingStats::slave_box_inflation
 
-use nalgebra::Vector3;
-
 use crate::element::ElementRef;
 use crate::integration::affine_moments::is_bilinear_quad;
 use crate::integration::closed_form::is_linear_triangle;
@@ -71,11 +69,4 @@ impl Padding {
             master: if master_bound { 0.0 } else { inflation },
         }
     }
-}
-
-/// The margin that covers the rounding of a box's arithmetic, per axis: a few units in the
-/// last place of its larger bound on that axis.
-#[inline]
-pub(super) fn rounding_margin(lo: &Vector3<f64>, hi: &Vector3<f64>) -> Vector3<f64> {
-    lo.abs().sup(&hi.abs()) * (8.0 * f64::EPSILON)
 }
