@@ -288,11 +288,18 @@ pub(crate) fn closed_form_into(
             ..
         } = masters.get(ctx.interface, ctx.masters, m);
         let bf = &mut out.back_facing;
-        let Some((mel, _, area)) = setup.clip_face(*element, &nodes[..3], &mut mp, &mut clip, bf)
+        let Some(area_m) =
+            setup.clip_face_unmeasured(*element, &nodes[..3], &mut mp, &mut clip, bf)
         else {
             continue;
         };
         let mut mom = Moments::of(&clip, scale);
+        // The polygon's area in the plane from its moments: the fan's sum, scaled by powers
+        // of two (exact), is `signed_area`'s to the bit.
+        let area = mom.area / scale / scale;
+        if !setup.overlap_counts(area, area_m) {
+            continue;
+        }
         // The unit of area, and the plane's measure to the face's (1 when the face lies in
         // the plane).
         mom.area *= unit;
@@ -317,7 +324,7 @@ pub(crate) fn closed_form_into(
         add_m(&cols[..3], &block);
         out.pairs += 1;
         out.cells += 1;
-        out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, mel));
+        out.degrees |= 1 << degree.unwrap_or_else(|| default_degree(slave.element, *element));
         covered += area;
     }
     for (row, dr) in d.iter_mut().zip(&dface) {

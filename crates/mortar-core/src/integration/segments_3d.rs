@@ -212,7 +212,24 @@ impl SlavePlane {
         clip: &mut Polygon,
         back_facing: &mut u32,
     ) -> Option<(ElementRef, usize, f64)> {
-        let km = xm.len();
+        let area_m = self.clip_face_unmeasured(mel, xm, mp, clip, back_facing)?;
+        let area = clip.signed_area();
+        self.overlap_counts(area, area_m)
+            .then_some((mel, xm.len(), area))
+    }
+
+    /// [`clip_face`](Self::clip_face) up to the clip polygon's area: the master face's area
+    /// in the plane (its absolute value) when `clip` has at least three vertices, for
+    /// [`overlap_counts`](Self::overlap_counts) with the polygon's area measured by the
+    /// caller (the closed form has it from its moments).
+    pub fn clip_face_unmeasured(
+        &mut self,
+        mel: ElementRef,
+        xm: &[Vector3<f64>],
+        mp: &mut [Vector2<f64>; MAX_FACE_NODES],
+        clip: &mut Polygon,
+        back_facing: &mut u32,
+    ) -> Option<f64> {
         for (p, x) in mp.iter_mut().zip(xm) {
             *p = self.plane.project(x);
         }
@@ -244,14 +261,15 @@ impl SlavePlane {
         // Clockwise about the slave normal: reversed, it is the subject of the clipping.
         self.clipper
             .clip_reversed_in(corners, merge, &mut self.bufs, clip);
-        if clip.len() < 3 {
-            return None;
-        }
-        let area = clip.signed_area();
-        if area <= (self.clip_area * self.area_s.min(area_m.abs())).max(self.area_noise) {
-            return None;
-        }
-        Some((mel, km, area))
+        (clip.len() >= 3).then_some(-area_m)
+    }
+
+    /// Whether a clip polygon of (signed) `area` counts as an overlap of the slave face with a
+    /// master face of area `area_m` in the plane: more than the smallest fraction of the
+    /// smaller face and more than the coordinates' rounding alone gives.
+    #[inline]
+    pub fn overlap_counts(&self, area: f64, area_m: f64) -> bool {
+        area > (self.clip_area * self.area_s.min(area_m)).max(self.area_noise)
     }
 }
 
