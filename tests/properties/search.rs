@@ -11,6 +11,7 @@ use mortar::generate::{cylinder_surface, half_circle_mesh};
 use mortar::testing::{covered_pair_3d_with, rigid_motion_3d, PairConfig};
 use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
 use proptest::prelude::*;
+use std::f64::consts::PI;
 
 use super::common::{config, dm_bits, dm_deviations, ok};
 
@@ -71,7 +72,22 @@ fn grouped_queries_on_a_cylinder_with_several_slabs() {
 /// multipliers. Reference: that all-pairs coupling (the strategy itself decides which
 /// candidates overlap; a candidate that does not adds nothing to D or M).
 fn exact_boxes_miss_no_pair(slave: &SurfaceMesh, master: &SurfaceMesh, what: &str) {
-    let exact = Interface::new(slave.clone(), master.clone()).unwrap();
+    exact_boxes_miss_no_pair_within(slave, master, SearchRadius::FaceSize(1.0), what);
+}
+
+/// [`exact_boxes_miss_no_pair`] with the search radius `radius` (every overlapping pair must
+/// lie within it).
+fn exact_boxes_miss_no_pair_within(
+    slave: &SurfaceMesh,
+    master: &SurfaceMesh,
+    radius: SearchRadius,
+    what: &str,
+) {
+    let within = Tolerances {
+        search_radius: radius,
+        ..Tolerances::default()
+    };
+    let exact = Interface::with_tolerances(slave.clone(), master.clone(), within).unwrap();
     let tol = Tolerances {
         search_radius: SearchRadius::Distance(1e3),
         ..Tolerances::default()
@@ -145,4 +161,35 @@ fn exact_boxes_find_every_overlapping_pair_on_curved_surfaces() {
             &format!("half circles, gap {gap}"),
         );
     }
+}
+
+/// Coarse curved slave faces whose nodal normals fan out (30 degrees either side of a face's
+/// centre normal on a hexagonal cylinder, 18 on five lines round a half circle), against a
+/// fine master across a gap `g`, with the search radius just above the farthest distance
+/// any overlapping pair needs along its projection direction, `(R + g) - R cos(pi / N)` (the
+/// centre of a slave chord to the master's circle of radius `R + g`): every pair must be
+/// found, the same D and M as the all-pairs coupling. Regression: the boxes reached the
+/// radius times the normals' own components, `cos(pi / N)` of it along a face's centre
+/// normal, where the projection direction is that normal itself: pairs farther than
+/// `0.87` of the radius (the cylinder) or `0.95` (the half circle) were not coupled. The
+/// reach is now divided by the length the normals' convex combinations have at least.
+#[test]
+fn exact_boxes_reach_the_radius_where_normals_fan_out() {
+    let gap = 0.05;
+    let cylinder_reach = (1.0 + gap) - (PI / 6.0).cos();
+    exact_boxes_miss_no_pair_within(
+        &cylinder_surface(1.0, 6, 2, false, false, 1).unwrap(),
+        &cylinder_surface(1.0 + gap, 60, 5, true, true, 1000).unwrap(),
+        SearchRadius::Distance(1.01 * cylinder_reach),
+        "hexagonal cylinder",
+    );
+    let mut outer = half_circle_mesh(60, true, 1000).unwrap();
+    outer.transform(|x| x * (1.0 + gap)).unwrap();
+    let arc_reach = (1.0 + gap) - (PI / 10.0).cos();
+    exact_boxes_miss_no_pair_within(
+        &half_circle_mesh(5, false, 1).unwrap(),
+        &outer,
+        SearchRadius::Distance(1.01 * arc_reach),
+        "five lines on a half circle",
+    );
 }

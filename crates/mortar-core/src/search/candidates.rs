@@ -407,14 +407,20 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
 }
 
 /// The region where slave face `face` looks for master faces, inflated by `inflation` times
-/// the face's diameter and by a margin for the rounding. It holds every point `x + t d`,
-/// `|t| <= radius`, where `d` is a convex combination of the nodal normals (see [`Padding`]):
+/// the face's diameter and by a margin for the rounding. It holds every point `x + s e`,
+/// `|s| <= radius`, where `e` is a unit direction along a convex combination `d` of the nodal
+/// normals `n_i` (see [`Padding`]). Such a `d` is no shorter than `c = min_i n_i . u`, with
+/// `u` the normals' mean direction, so `s e = t d` with `|t| <= radius / c`
+/// ([`normal_cone_reach`]):
 /// - in 2D, with `x` the point of the face that `d` is taken at (the strategies project along
 ///   the direction field at the slave point): `x + t d` is the same convex combination of the
-///   points `x_i +- radius n_i`, so their box;
+///   points `x_i +- (radius / c) n_i`, so their box;
 /// - in 3D, with `x` anywhere on the face (the auxiliary plane projects along the direction
-///   at the face's centre): the box of the nodes widened on each axis by the radius times the
-///   largest of the nodal normals' components on that axis.
+///   at the face's centre): the box of the nodes widened on each axis by the radius times
+///   the largest of the nodal normals' components on that axis over `c` (at most the radius).
+///
+/// Where the normals fan out by more than a right angle (`c <= 0`), both widen the nodes' box
+/// by the radius on every axis.
 pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, inflation: f64) -> Box3 {
     let tol = interface.tolerances();
     let k = face.node_count();
@@ -426,24 +432,62 @@ pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, infla
     }
     let diameter = (hi - lo).norm();
     let radius = tol.search_radius.for_face(diameter);
-    if interface.dim() == SpatialDim::Two {
-        for (x, n) in nodes.iter().zip(normals) {
-            let d = n * radius;
-            for p in [x + d, x - d] {
-                lo = lo.inf(&p);
-                hi = hi.sup(&p);
+    match normal_cone_reach(normals, radius) {
+        None => {
+            lo -= Vector3::repeat(radius);
+            hi += Vector3::repeat(radius);
+        }
+        Some(reach) if interface.dim() == SpatialDim::Two => {
+            for (x, n) in nodes.iter().zip(normals) {
+                let d = n * reach;
+                for p in [x + d, x - d] {
+                    lo = lo.inf(&p);
+                    hi = hi.sup(&p);
+                }
             }
         }
-    } else {
-        let widest = normals
-            .iter()
-            .fold(Vector3::zeros(), |w, n| w.sup(&n.abs()));
-        let reach = widest * radius;
-        lo -= reach;
-        hi += reach;
+        Some(reach) => {
+            let widest = normals
+                .iter()
+                .fold(Vector3::zeros(), |w, n| w.sup(&n.abs()));
+            let reach = (widest * reach).inf(&Vector3::repeat(radius));
+            lo -= reach;
+            hi += reach;
+        }
     }
     let pad = Vector3::repeat(inflation * diameter);
     padded(lo - pad, hi + pad)
+}
+
+/// How far along the nodal normals `normals` (in multiples of them) a distance `radius` along
+/// any unit direction of their convex cone reaches: at least `radius / c`, where `c = min_i
+/// n_i . u` (`u = s / |s|` their mean direction, `s` their sum) bounds the length of each
+/// convex combination `d` of them from below (`|d| >= d . u >= c`). Computed without a root
+/// as `radius (1 + |s|^2 / m^2) / 2 >= radius |s| / m = radius / c`, `m = min_i n_i . s` (the
+/// two agree to the square of `1 - c`); `radius` itself where the normals are one. `None`
+/// where they fan out by a right angle or more (`m <= 0`).
+#[inline(never)]
+fn normal_cone_reach(normals: &[Vector3<f64>], radius: f64) -> Option<f64> {
+    if normals.iter().all(|n| *n == normals[0]) {
+        // One normal (a flat face): `c` is its length, 1 but for a few ulps that the box's
+        // margin for the rounding holds.
+        return Some(radius);
+    }
+    if let [a, b] = normals {
+        // Two unit normals `p = a . b >= 0` apart (a line, the 2D search's every face): `c =
+        // sqrt((1 + p) / 2)`, and `1 / c <= 1 + (sqrt 2 - 1)(1 - p)` (the chord of the
+        // convex `(1 - x)^(-1/2)` over `x = (1 - p) / 2` in `[0, 1/2]`): no division.
+        let p = a.dot(b);
+        if p >= 0.0 {
+            return Some(radius * (1.0 + (std::f64::consts::SQRT_2 - 1.0) * (1.0 - p)));
+        }
+    }
+    let s = normals.iter().fold(Vector3::zeros(), |s, n| s + n);
+    let m = normals
+        .iter()
+        .map(|n| n.dot(&s))
+        .fold(f64::INFINITY, f64::min);
+    (m > 0.0).then(|| radius * 0.5 * (1.0 + s.norm_squared() / (m * m)))
 }
 
 /// The bounding box of a face's nodes `x`, inflated by `inflation` times its diagonal and then

@@ -8,14 +8,17 @@
 //!   linear triangle, the bilinear quad, warped or not) lies in the convex hull of its nodes,
 //!   so in their box. A higher-order face bulges out of its nodes' hull (its shape functions
 //!   change sign).
-//! - The strategies move a slave point `x` of the face to a master point `y = x + t d` along a
-//!   direction `d` of the projector's field on the face (the 2D segmentation and the
-//!   element-based integration at `x` itself, the 3D auxiliary plane at the face's centre),
-//!   with `|t|` at most the search radius `r`. Where each such `d` is a convex combination of
-//!   the face's nodal normals `n_i` ([`Projector::within_nodal_normals`]), `y` lies in
-//!   `hull(x_i) + r hull(+-n_i)`, whose box is the box of the nodes widened on each axis by
-//!   `r max_i |n_i|` on that axis; in 2D, where `d` is taken at `x` itself with the same
-//!   weights, in the smaller `hull(x_i +- r n_i)`.
+//! - The strategies move a slave point `x` of the face to a master point `y` along a direction
+//!   of the projector's field on the face (the 2D segmentation and the element-based
+//!   integration at `x` itself, the 3D auxiliary plane at the face's centre), by a distance
+//!   of at most the search radius `r`. Where each such direction is that of a convex
+//!   combination `d` of the face's nodal normals `n_i` ([`Projector::within_nodal_normals`]),
+//!   `d` is no shorter than `c = min_i n_i . u` (`u` the normals' mean direction; 1 where they
+//!   are one), so `y = x + t d` with `|t| <= r / c`: `y` lies in `hull(x_i) + (r / c)
+//!   hull(+-n_i)`, whose box is the box of the nodes widened on each axis by `(r / c) max_i
+//!   |n_i|` on that axis (and by at most `r`); in 2D, where `d` is taken at `x` itself with
+//!   the same weights, in the smaller `hull(x_i +- (r / c) n_i)`. (Normals that fan out by
+//!   a right angle or more bound nothing: the nodes' box is widened by `r` on every axis.)
 //!
 //! Where both hold for every face type of a side, that side's boxes get no inflation, only a
 //! margin for the rounding of their own arithmetic; elsewhere they are inflated by
