@@ -513,3 +513,62 @@ fn padded(lo: Vector3<f64>, hi: Vector3<f64>) -> Box3 {
     let m = lo.abs().sup(&hi.abs()) * (8.0 * f64::EPSILON);
     (lo - m, hi + m)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Unit normals within `spread` radians of the z axis (azimuths and tilts from the
+    /// given fractions).
+    fn normals_in_cone(spread: f64, angles: &[(f64, f64)]) -> Vec<Vector3<f64>> {
+        angles
+            .iter()
+            .map(|&(a, t)| {
+                let (phi, theta) = (a * std::f64::consts::TAU, t * spread);
+                Vector3::new(
+                    theta.sin() * phi.cos(),
+                    theta.sin() * phi.sin(),
+                    theta.cos(),
+                )
+            })
+            .collect()
+    }
+
+    proptest! {
+        /// The reach times the length of any convex combination of the normals is at least the
+        /// radius (a distance `r` along the combination's direction stays within the box), for
+        /// two to four unit normals fanning out by up to 80 degrees from their axis; and where
+        /// they are one, the reach is the radius itself. Reference: the bound's derivation
+        /// (`|d| >= d . u >= min_i n_i . u`), checked on random weights.
+        #[test]
+        fn the_reach_covers_every_direction_of_the_cone(
+            spread in 0.0..1.4f64,
+            angles in prop::collection::vec((0.0..1.0f64, 0.0..1.0f64), 2..5),
+            weights in prop::collection::vec(0.0..1.0f64, 4),
+        ) {
+            let normals = normals_in_cone(spread, &angles);
+            let reach = normal_cone_reach(&normals, 1.0).expect("within a right angle");
+            let total: f64 = weights[..normals.len()].iter().sum::<f64>().max(1e-300);
+            let d = normals
+                .iter()
+                .zip(&weights)
+                .fold(Vector3::zeros(), |d, (n, w)| d + n * (w / total));
+            prop_assert!(reach * d.norm() >= 1.0 - 1e-12, "reach {} |d| {}", reach, d.norm());
+            // Each normal itself (a vertex of the cone).
+            for n in &normals {
+                prop_assert!(reach * n.norm() >= 1.0 - 1e-12);
+            }
+            let one = vec![normals[0]; normals.len()];
+            prop_assert_eq!(normal_cone_reach(&one, 2.5), Some(2.5));
+        }
+    }
+
+    /// Opposite normals bound nothing: the box is widened by the radius on every axis.
+    #[test]
+    fn opposite_normals_bound_nothing() {
+        let n = Vector3::new(0.0, 0.6, 0.8);
+        assert_eq!(normal_cone_reach(&[n, -n], 1.0), None);
+        assert_eq!(normal_cone_reach(&[n, -n, n], 1.0), None);
+    }
+}
