@@ -658,15 +658,14 @@ fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMat
             })
         })
         .reduce(|| true, |a, b| a && b);
-    if !sound {
+    if !sound || indptr.len() != nrows + 1 || indptr[nrows] != nnz {
         // sprs says what is wrong.
         return SparseMatrix::new((nrows, ncols), indptr, indices, data);
     }
-    debug_assert!(indptr.len() == nrows + 1 && indptr[nrows] == nnz);
     // SAFETY: the structure is what `CsMat::new` checks before it calls this: `indptr` has
-    // `nrows + 1` entries, starts at 0, never decreases (prefix sums of the row lengths) and
-    // ends at `nnz`, the length of `indices` and `data`; every row's columns are strictly
-    // ascending and below `ncols` (checked above, block by block).
+    // `nrows + 1` entries (checked), starts at 0 and never decreases (prefix sums of the row
+    // lengths) and ends at `nnz` (checked), the length of `indices` and `data`; every row's
+    // columns are strictly ascending and below `ncols` (checked above, block by block).
     #[allow(unsafe_code)]
     unsafe {
         SparseMatrix::new_unchecked(
