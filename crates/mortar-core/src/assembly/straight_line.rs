@@ -52,6 +52,7 @@ use crate::geometry::ModelGeometry;
 use crate::integration::segments_2d::add_line_point;
 use crate::integration::{default_degree, LineSegments};
 use crate::interface::Interface;
+use crate::linalg::csr::csr_checked_in_parallel;
 use crate::linalg::SparseMatrix;
 use crate::memory::{collect_populated, Spare};
 use crate::mesh::SurfaceMesh;
@@ -630,8 +631,8 @@ impl<'a> Line<'a> {
                 self.fill_block(ranges, rows.map(position), d, m);
             });
         (
-            SparseMatrix::new((ns, ns), d_ptr, d_idx, d_val),
-            SparseMatrix::new((ns, nm), m_ptr, m_idx, m_val),
+            csr_checked_in_parallel((ns, ns), d_ptr, d_idx, d_val),
+            csr_checked_in_parallel((ns, nm), m_ptr, m_idx, m_val),
         )
     }
 

@@ -12,6 +12,7 @@
 //!   factorisations above, or [`IdentityPreconditioner`]).
 
 mod conditioning;
+pub(crate) mod csr;
 mod faer_backend;
 mod gmres;
 pub mod nested_dissection;
