@@ -104,8 +104,13 @@ mod tests {
     /// accepts, and a sound matrix is the same as `CsMat::new`'s.
     #[test]
     fn the_parallel_check_accepts_what_sprs_accepts() {
+        // 48 cases, or as many as `PROPTEST_CASES` says, as in the other property tests.
+        let cases = std::env::var("PROPTEST_CASES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(48);
         let mut runner = proptest::test_runner::TestRunner::new(ProptestConfig {
-            cases: 48,
+            cases,
             ..ProptestConfig::default()
         });
         let strategy = (1usize..3 * CHECK_ROWS, 1usize..50, any::<u64>(), 0usize..6);
