@@ -78,25 +78,26 @@ proptest! {
             slave: ok(shuffled(&pair.slave, seed))?,
             master: ok(shuffled(&pair.master, seed ^ 0x9e37))?,
         };
-        // x along the arc of radius 1 / bend (the slave at y = 0 on it, normal -y inwards
-        // or outwards), then a rotation.
-        let (s, c) = angle.sin_cos();
-        let moved = ok(shuffled_pair.transformed(|p| {
-            let q = if bend == 0.0 {
-                p
-            } else {
-                let r = 1.0 / bend;
-                let t = p.x * bend;
-                Vector3::new((r - p.y) * t.sin(), r - (r - p.y) * t.cos(), 0.0)
-            };
-            Vector3::new(c * q.x - s * q.y, s * q.x + c * q.y, 0.0)
-        }))?;
+        let moved = ok(shuffled_pair.transformed(|p| bent_and_turned(p, bend, angle)))?;
         let interface = ok(moved.interface())?;
         let options = options()[usize::from(dual)].clone();
         let fused = both_ways(&interface, &options, "random pair");
         prop_assert!(fused.stats.fused_line_faces > 0);
         prop_assert_eq!(faces_accounted_for(&fused), interface.slave().face_count());
     }
+}
+
+/// `p` with x laid along the arc of radius `1 / bend` (the slave at y = 0 on it, normal -y
+/// inwards or outwards; straight where `bend` is 0), then turned by `angle`.
+fn bent_and_turned(p: Vector3<f64>, bend: f64, angle: f64) -> Vector3<f64> {
+    let q = if bend == 0.0 {
+        p
+    } else {
+        let (r, t) = (1.0 / bend, p.x * bend);
+        Vector3::new((r - p.y) * t.sin(), r - (r - p.y) * t.cos(), 0.0)
+    };
+    let (s, c) = angle.sin_cos();
+    Vector3::new(c * q.x - s * q.y, s * q.x + c * q.y, 0.0)
 }
 
 /// The slave faces the fused kernel took, those it handed to the general path as covered in
@@ -137,14 +138,9 @@ fn a_short_face_beyond_its_radius_is_left_uncovered_by_both_paths() {
     }
     master.add_face(&LINE2, &[2, 1]).unwrap();
     master.add_face(&LINE2, &[3, 2]).unwrap();
-    let (bend, angle) = (1.3923000275316526f64, 2.0015340001941833f64);
-    let (s, c) = angle.sin_cos();
+    let bend = 1.3923000275316526;
     let moved = MeshPair { slave, master }
-        .transformed(|p| {
-            let (r, t) = (1.0 / bend, p.x * bend);
-            let q = Vector3::new((r - p.y) * t.sin(), r - (r - p.y) * t.cos(), 0.0);
-            Vector3::new(c * q.x - s * q.y, s * q.x + c * q.y, 0.0)
-        })
+        .transformed(|p| bent_and_turned(p, bend, 2.0015340001941833))
         .unwrap();
     let interface = moved.interface().unwrap();
     for options in options() {
