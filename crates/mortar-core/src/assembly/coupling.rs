@@ -252,8 +252,64 @@ struct FaceBuffers {
     closed: ClosedFormScratch,
     /// The M blocks of a face by moments, until it is known to be integrated so.
     pending: Vec<PendingBlock>,
+    /// Positions of a face's columns by ascending column ([`push_face_rows`]).
+    order: Vec<u32>,
     d: RowAccumulator,
     m: RowAccumulator,
+}
+
+/// Fills `order` with the positions of `keys` by ascending key (each key there once).
+fn ascending_positions(keys: &[u32], order: &mut Vec<u32>) {
+    order.clear();
+    order.extend(0..keys.len() as u32);
+    if keys.len() > 32 {
+        order.sort_unstable_by_key(|&p| keys[p as usize]);
+        return;
+    }
+    for i in 1..order.len() {
+        let p = order[i];
+        let mut j = i;
+        while j > 0 && keys[order[j - 1] as usize] > keys[p as usize] {
+            order[j] = order[j - 1];
+            j -= 1;
+        }
+        order[j] = p;
+    }
+}
+
+/// Pushes one slave face's rows of D and M: for each node `j` of the face whose multiplier it
+/// carries, the row `rows[j]` of D, `d(j, k)` in the column `rows[k]`, and of M, `m(j, p)` in
+/// the column `cols[p]`. Each entry is pushed once per face, so the order of the face's
+/// pushes does not change the sums. A face of more than [`RowAccumulator::SHORT`] columns
+/// (3D) pushes its rows of M with their columns ascending, as the accumulator merges such
+/// rows; `order` is scratch.
+fn push_face_rows(
+    (d, m): (&mut RowAccumulator, &mut RowAccumulator),
+    order: &mut Vec<u32>,
+    rows: &[u32],
+    carries: impl Fn(usize) -> bool,
+    d_of: impl Fn(usize, usize) -> f64,
+    cols: &[u32],
+    m_of: impl Fn(usize, usize) -> f64,
+) {
+    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries(*j)) {
+        d.push_row(r, rows.iter().enumerate().map(|(k, &c)| (c, d_of(j, k))));
+    }
+    if cols.len() > RowAccumulator::SHORT {
+        ascending_positions(cols, order);
+        for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries(*j)) {
+            m.push_row(
+                r,
+                order
+                    .iter()
+                    .map(|&p| (cols[p as usize], m_of(j, p as usize))),
+            );
+        }
+    } else {
+        for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries(*j)) {
+            m.push_row(r, cols.iter().enumerate().map(|(p, &c)| (c, m_of(j, p))));
+        }
+    }
 }
 
 /// One slave face's M entries merged by master node: a slave face meets ~10 master faces
@@ -1212,15 +1268,15 @@ fn fused_face(
     )? {
         return Ok(false);
     }
-    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
-        buffers.d.push_row(r, rows.iter().copied().zip(line.d[j]));
-    }
-    // Row by row (each entry is pushed once per face: the order of a face's pushes does not
-    // change the sums).
-    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| basis.carries(*j)) {
-        let vals = line.vals.iter().map(|v| v[j]);
-        buffers.m.push_row(r, line.cols.iter().copied().zip(vals));
-    }
+    push_face_rows(
+        (&mut buffers.d, &mut buffers.m),
+        &mut buffers.order,
+        rows,
+        |j| basis.carries(j),
+        |j, k| line.d[j][k],
+        &line.cols,
+        |j, p| line.vals[p][j],
+    );
     Ok(true)
 }
 
@@ -1248,6 +1304,7 @@ fn general_face(
         columns,
         closed: scratch,
         pending,
+        order,
         d,
         m,
         ..
@@ -1386,15 +1443,15 @@ fn general_face(
             *c = b.carries(j);
         }
     }
-    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
-        d.push_row(r, rows.iter().copied().zip(blocks.d[j].iter().copied()));
-    }
-    // Row by row (each entry is pushed once per face: the order of a face's pushes does not
-    // change the sums).
-    for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries[*j]) {
-        let vals = columns.vals.chunks_exact(ks).map(|v| v[j]);
-        m.push_row(r, columns.cols.iter().copied().zip(vals));
-    }
+    push_face_rows(
+        (d, m),
+        order,
+        rows,
+        |j| carries[j],
+        |j, k| blocks.d[j][k],
+        &columns.cols,
+        |j, p| columns.vals[p * ks + j],
+    );
     Ok(())
 }
 

@@ -137,13 +137,23 @@ impl Triplets {
 /// [`PartList::push_compressed`] makes of the same triplets (rows ascending, columns
 /// ascending within a row, duplicates summed in insertion order), bit for bit, without
 /// storing and sorting them. A triplet finds its row through a hash map, skipped when it is
-/// in the same row as the one before (push a face's entries row by row), and its column by a
-/// linear search of the row's columns so far while the row has at most [`Self::LINEAR`] of
-/// them (a slave node's row meets a few dozen columns in a chunk of faces). A longer row (a
-/// coarse slave face against a million master faces, where the search would be quadratic in
-/// the row's length) takes its further entries as they come, and they are merged when the
-/// part is stored: a stable sort by column and the sums in insertion order, as
-/// [`PartList::push_compressed`] does.
+/// in the same row as the one before (push a face's entries row by row). A row then goes
+/// through up to three states as it grows:
+/// - up to [`Self::SHORT`] columns, each pushed column is searched for linearly among the
+///   row's (in the order first met; sorted when the part is stored);
+/// - beyond that, up to [`Self::LINEAR`] columns (a slave node's row of M in 3D meets a few
+///   dozen in a chunk of faces), the row's columns are kept ascending and a push of several
+///   entries ([`push_row`](Self::push_row), sorted by column first if they are not) is
+///   merged into it in one walk over both: `L + K` steps for a push of `K` into a row of
+///   `L`, where the search took about `L * K / 2`;
+/// - beyond that (a coarse slave face against a million master faces, where even a walk per
+///   push would be quadratic in the row's length) the row takes its further entries as they
+///   come, and they are merged when the part is stored: a stable sort by column and the sums
+///   in insertion order, as [`PartList::push_compressed`] does.
+///
+/// Each entry's value is the sum of the values pushed to it, left to right in the order
+/// pushed, whatever the state of the row and the order of the columns within a push: the
+/// first value as it is, the next ones added to it.
 #[derive(Debug, Clone, Default)]
 pub struct RowAccumulator {
     /// The slot in `rows` of each row touched.
@@ -152,33 +162,96 @@ pub struct RowAccumulator {
     last: Option<(u32, usize)>,
     /// The rows touched, in the order first touched.
     rows: Vec<u32>,
-    /// Per slot, the row's `(column, sum)` entries in the order first met (the vectors are
-    /// kept from part to part, so that accumulating allocates nothing once they have grown).
+    /// Per slot, the row's `(column, sum)` entries (the vectors are kept from part to part,
+    /// so that accumulating allocates nothing once they have grown).
     entries: Vec<Vec<(u32, f64)>>,
-    /// Per slot, whether the row outgrew the linear search (its entries after the first
-    /// [`Self::LINEAR`] are unmerged).
-    long: Vec<bool>,
-    /// Comparisons and lookups made by the column searches (tests check that they stay
-    /// linear in the pushes).
+    /// Per slot, the row's state.
+    state: Vec<RowState>,
+    /// The entries of the push being merged, sorted by column.
+    incoming: Vec<(u32, f64)>,
+    /// Those of its columns the row does not have yet, each once.
+    fresh: Vec<(u32, f64)>,
+    /// Comparisons made by the searches and steps taken by the merges (tests check that they
+    /// stay linear in the pushes).
     #[cfg(test)]
     probes: u64,
+}
+
+/// How a [`RowAccumulator`] row takes its entries.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+enum RowState {
+    /// Columns in the order first met, searched linearly.
+    #[default]
+    Short,
+    /// Columns ascending, pushes merged in.
+    Sorted,
+    /// Sorted columns followed by unmerged entries.
+    Long,
 }
 
 impl RowAccumulator {
     /// Adds `val` to the entry `(row, col)`.
     #[inline]
     pub fn push(&mut self, row: u32, col: u32, val: f64) {
-        let slot = self.slot_of(row);
-        self.add(slot, col, val);
+        self.push_row(row, std::iter::once((col, val)));
     }
 
     /// Adds each `(col, val)` of `entries` to the entry `(row, col)`, in order: what
-    /// [`push`](Self::push) of each does, with the row looked up once.
+    /// [`push`](Self::push) of each does, with the row looked up once (and, in a row of more
+    /// than [`Self::SHORT`] columns, the entries merged into it in one walk: fastest when they
+    /// come sorted by column).
     #[inline]
     pub fn push_row(&mut self, row: u32, entries: impl IntoIterator<Item = (u32, f64)>) {
         let slot = self.slot_of(row);
-        for (col, val) in entries {
-            self.add(slot, col, val);
+        let mut entries = entries.into_iter();
+        let row_entries = &mut self.entries[slot];
+        if self.state[slot] == RowState::Short {
+            for (col, val) in entries.by_ref() {
+                #[cfg(test)]
+                {
+                    self.probes += row_entries.len() as u64;
+                }
+                match row_entries.iter_mut().find(|(c, _)| *c == col) {
+                    Some((_, v)) => *v += val,
+                    None => row_entries.push((col, val)),
+                }
+                if row_entries.len() > Self::SHORT {
+                    break;
+                }
+            }
+            if row_entries.len() <= Self::SHORT {
+                return;
+            }
+            // Each column once: any sort gives the same order. The rest of the push, if any,
+            // is merged.
+            row_entries.sort_unstable_by_key(|e| e.0);
+            self.state[slot] = RowState::Sorted;
+        }
+        if self.state[slot] == RowState::Long {
+            row_entries.extend(entries);
+            return;
+        }
+        self.incoming.clear();
+        self.incoming.extend(entries);
+        if !self.incoming.is_sorted_by_key(|e| e.0) {
+            // Stable: a column pushed twice keeps the order of its values.
+            sort_pairs_by_col(&mut self.incoming);
+        }
+        let _steps = merge_sorted(row_entries, &self.incoming, &mut self.fresh);
+        #[cfg(test)]
+        {
+            self.probes += _steps as u64;
+        }
+        self.state[slot] = self.state_after_merge(slot);
+    }
+
+    /// The state of the sorted row in `slot`: sorted, or long if it has outgrown the merge.
+    #[inline]
+    fn state_after_merge(&self, slot: usize) -> RowState {
+        if self.entries[slot].len() > Self::LINEAR {
+            RowState::Long
+        } else {
+            RowState::Sorted
         }
     }
 
@@ -194,10 +267,10 @@ impl RowAccumulator {
                     self.rows.push(row);
                     if self.entries.len() == next {
                         self.entries.push(Vec::new());
-                        self.long.push(false);
+                        self.state.push(RowState::Short);
                     }
                     self.entries[slot].clear();
-                    self.long[slot] = false;
+                    self.state[slot] = RowState::Short;
                 }
                 self.last = Some((row, slot));
                 slot
@@ -205,29 +278,12 @@ impl RowAccumulator {
         }
     }
 
-    /// Adds `val` to the column `col` of the row in `slot`.
-    #[inline]
-    fn add(&mut self, slot: usize, col: u32, val: f64) {
-        let row_entries = &mut self.entries[slot];
-        if self.long[slot] {
-            row_entries.push((col, val));
-            return;
-        }
-        #[cfg(test)]
-        {
-            self.probes += row_entries.len() as u64;
-        }
-        match row_entries.iter_mut().find(|(c, _)| *c == col) {
-            Some((_, v)) => *v += val,
-            None => {
-                row_entries.push((col, val));
-                self.long[slot] = row_entries.len() > Self::LINEAR;
-            }
-        }
-    }
+    /// Columns of a row searched linearly (a slave node's row of D, or of M in 2D, has fewer).
+    pub const SHORT: usize = 8;
 
-    /// Columns of a row searched linearly.
-    pub const LINEAR: usize = 32;
+    /// Columns a row keeps merged and sorted as it grows; beyond them its entries are
+    /// appended and merged when the part is stored.
+    pub const LINEAR: usize = 64;
 
     /// Forgets every entry (keeping the allocations).
     pub fn clear(&mut self) {
@@ -379,17 +435,24 @@ impl PartList {
         self.push_part(key, more, |buf, run0| {
             for (row, slot) in order {
                 let entries = &mut acc.entries[slot];
-                if acc.long[slot] {
-                    // Columns may repeat: a stable sort keeps them in insertion order, and
-                    // they are summed in that order.
-                    entries.sort_by_key(|e| e.0);
-                    for &(col, val) in entries.iter() {
-                        buf.push_merged(run0, row, col, val);
+                match acc.state[slot] {
+                    RowState::Long => {
+                        // Columns may repeat: a stable sort keeps them in insertion order,
+                        // and they are summed in that order.
+                        entries.sort_by_key(|e| e.0);
+                        for &(col, val) in entries.iter() {
+                            buf.push_merged(run0, row, col, val);
+                        }
                     }
-                } else {
-                    // Each column once in a row: any sort gives the same order.
-                    entries.sort_unstable_by_key(|e| e.0);
-                    buf.push_row(row, entries);
+                    RowState::Short => {
+                        // Each column once in a row: any sort gives the same order.
+                        entries.sort_unstable_by_key(|e| e.0);
+                        buf.push_row(row, entries);
+                    }
+                    RowState::Sorted => {
+                        debug_assert!(entries.is_sorted_by(|a, b| a.0 < b.0));
+                        buf.push_row(row, entries);
+                    }
                 }
             }
         });
@@ -671,6 +734,85 @@ fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMat
 }
 
 /// Stable sort of one row's entries by column (insertion sort for short rows).
+/// Sorts `(column, value)` pairs by column, stably (short runs by insertion).
+fn sort_pairs_by_col(pairs: &mut [(u32, f64)]) {
+    if pairs.len() > 32 {
+        pairs.sort_by_key(|e| e.0);
+        return;
+    }
+    for i in 1..pairs.len() {
+        let e = pairs[i];
+        let mut j = i;
+        while j > 0 && pairs[j - 1].0 > e.0 {
+            pairs[j] = pairs[j - 1];
+            j -= 1;
+        }
+        pairs[j] = e;
+    }
+}
+
+/// Merges `incoming` (sorted by column, a column possibly repeated) into `row` (columns
+/// ascending and distinct), which stays so: a value whose column `row` has is added to it,
+/// the others (each repeated column's values summed in order, the first as it is) inserted
+/// in place. Returns the steps the walk took (`row`'s entries passed and `incoming`'s).
+/// `fresh` is scratch.
+fn merge_sorted(
+    row: &mut Vec<(u32, f64)>,
+    incoming: &[(u32, f64)],
+    fresh: &mut Vec<(u32, f64)>,
+) -> usize {
+    fresh.clear();
+    let n = row.len();
+    if row
+        .last()
+        .is_none_or(|last| incoming.first().is_some_and(|e| e.0 > last.0))
+    {
+        // Every column new and after the row's: appended (the first and each new row).
+        for &(c, v) in incoming {
+            match row.last_mut() {
+                Some(last) if last.0 == c => last.1 += v,
+                _ => row.push((c, v)),
+            }
+        }
+        return incoming.len();
+    }
+    let mut i = 0;
+    for &(c, v) in incoming {
+        while i < n && row[i].0 < c {
+            i += 1;
+        }
+        if i < n && row[i].0 == c {
+            row[i].1 += v;
+        } else {
+            match fresh.last_mut() {
+                Some(last) if last.0 == c => last.1 += v,
+                _ => fresh.push((c, v)),
+            }
+        }
+    }
+    let steps = i + incoming.len();
+    if fresh.is_empty() {
+        return steps;
+    }
+    // From the back: each slot is written after the entry it held was moved up.
+    let m = fresh.len();
+    row.resize(n + m, (0, 0.0));
+    let (mut a, mut b) = (n, m);
+    for w in (0..n + m).rev() {
+        if b == 0 {
+            break;
+        }
+        if a > 0 && row[a - 1].0 > fresh[b - 1].0 {
+            row[w] = row[a - 1];
+            a -= 1;
+        } else {
+            row[w] = fresh[b - 1];
+            b -= 1;
+        }
+    }
+    steps
+}
+
 fn insertion_sort_by_col(row: &mut [Entry]) {
     if row.len() > 32 {
         row.sort_by_key(|e| e.col);
@@ -732,20 +874,24 @@ mod tests {
         /// the part that [`PartList::push_compressed`] makes of the same triplets (rows and
         /// columns ascending, duplicates summed in insertion order), over two parts in a row (the
         /// accumulator reused), whatever the values' magnitudes (so that the order of
-        /// summation shows in the bits); rows of up to 60 columns, so that some outgrow the
-        /// linear search and merge their repeated columns when stored.
+        /// summation shows in the bits). Rows of up to 100 columns, so that rows go through
+        /// every state (searched, merged, appended and merged when stored), and pushes of
+        /// one entry, of a run of equal rows, and of up to `chunk` entries of a row at a time
+        /// (unsorted, columns repeated, a push crossing from the search to the merge).
         #[test]
         fn accumulated_rows_are_the_compressed_triplets(
             parts in prop::collection::vec(
-                prop::collection::vec((0u32..8, 0u32..60, -1e3..1e3f64, -8i32..8), 0..400),
+                prop::collection::vec((0u32..8, 0u32..100, -1e3..1e3f64, -8i32..8), 0..1200),
                 1..3,
             ),
+            chunk in 1usize..24,
         ) {
             let (mut sorted, mut summed) = (PartList::default(), PartList::default());
             // Sized for the parts after the first (`expecting`): the same entries.
             let mut by_rows = PartList::expecting(parts.len());
+            let mut by_chunks = PartList::default();
             let (mut ws, mut acc) = (CompressWorkspace::default(), RowAccumulator::default());
-            let mut row_acc = RowAccumulator::default();
+            let (mut row_acc, mut chunk_acc) = (RowAccumulator::default(), RowAccumulator::default());
             for (k, part) in parts.iter().enumerate() {
                 let mut raw = Triplets::default();
                 let scaled: Vec<(u32, u32, f64)> = part
@@ -760,9 +906,19 @@ mod tests {
                 for run in scaled.chunk_by(|a, b| a.0 == b.0) {
                     row_acc.push_row(run[0].0, run.iter().map(|&(_, c, v)| (c, v)));
                 }
+                // Grouped by row (a stable sort: each entry's values keep their order), then
+                // `chunk` entries of a row at a time.
+                let mut grouped = scaled.clone();
+                grouped.sort_by_key(|e| e.0);
+                for run in grouped.chunk_by(|a, b| a.0 == b.0) {
+                    for push in run.chunks(chunk) {
+                        chunk_acc.push_row(push[0].0, push.iter().map(|&(_, c, v)| (c, v)));
+                    }
+                }
                 sorted.push_compressed(k as u64, &mut raw, &mut ws);
                 summed.push_rows(k as u64, &mut acc);
                 by_rows.push_rows(k as u64, &mut row_acc);
+                by_chunks.push_rows(k as u64, &mut chunk_acc);
                 prop_assert!(acc.is_empty());
             }
             let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
@@ -770,6 +926,7 @@ mod tests {
             };
             prop_assert_eq!(bits(&sorted), bits(&summed));
             prop_assert_eq!(bits(&sorted), bits(&by_rows));
+            prop_assert_eq!(bits(&sorted), bits(&by_chunks));
         }
     }
 
@@ -823,7 +980,7 @@ mod tests {
 
     /// Regression: a row of many columns (one coarse slave face against 20,000 master faces)
     /// made the accumulator's linear column search quadratic (2e8 comparisons here, seconds
-    /// for 1e5 columns); the searches now stay within a few probes per push, and the part is
+    /// for 1e5 columns); the merges now stay within a few steps per push, and the part is
     /// still the sorted triplets'.
     #[test]
     fn long_rows_stay_linear() {
