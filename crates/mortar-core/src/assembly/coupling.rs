@@ -298,12 +298,8 @@ fn push_face_rows(
     if cols.len() > RowAccumulator::SHORT {
         ascending_positions(cols, order);
         for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries(*j)) {
-            m.push_row(
-                r,
-                order
-                    .iter()
-                    .map(|&p| (cols[p as usize], m_of(j, p as usize))),
-            );
+            let entries = order.iter().map(|&p| p as usize);
+            m.push_sorted_row(r, entries.map(|p| (cols[p], m_of(j, p))));
         }
     } else {
         for (j, &r) in rows.iter().enumerate().filter(|(j, _)| carries(*j)) {

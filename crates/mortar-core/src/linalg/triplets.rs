@@ -198,10 +198,35 @@ impl RowAccumulator {
 
     /// Adds each `(col, val)` of `entries` to the entry `(row, col)`, in order: what
     /// [`push`](Self::push) of each does, with the row looked up once (and, in a row of more
-    /// than [`Self::SHORT`] columns, the entries merged into it in one walk: fastest when they
-    /// come sorted by column).
+    /// than [`Self::SHORT`] columns, the entries merged into it in one walk, after a stable
+    /// sort by column if they are not sorted).
     #[inline]
     pub fn push_row(&mut self, row: u32, entries: impl IntoIterator<Item = (u32, f64)>) {
+        self.push_row_as(row, entries, false);
+    }
+
+    /// [`push_row`](Self::push_row) of entries whose columns ascend (not strictly: a column
+    /// may repeat), merged as they come, without a copy or a sort.
+    ///
+    /// Entries out of order would leave the row's columns unsorted: the caller sorts them
+    /// (checked in debug builds).
+    #[inline]
+    pub(crate) fn push_sorted_row(
+        &mut self,
+        row: u32,
+        entries: impl IntoIterator<Item = (u32, f64)>,
+    ) {
+        self.push_row_as(row, entries, true);
+    }
+
+    /// [`push_row`](Self::push_row), the entries known to be sorted by column or not.
+    #[inline]
+    fn push_row_as(
+        &mut self,
+        row: u32,
+        entries: impl IntoIterator<Item = (u32, f64)>,
+        sorted: bool,
+    ) {
         let slot = self.slot_of(row);
         let mut entries = entries.into_iter();
         let row_entries = &mut self.entries[slot];
@@ -231,13 +256,17 @@ impl RowAccumulator {
             row_entries.extend(entries);
             return;
         }
-        self.incoming.clear();
-        self.incoming.extend(entries);
-        if !self.incoming.is_sorted_by_key(|e| e.0) {
-            // Stable: a column pushed twice keeps the order of its values.
-            sort_pairs_by_col(&mut self.incoming);
-        }
-        let _steps = merge_sorted(row_entries, &self.incoming, &mut self.fresh);
+        let _steps = if sorted {
+            merge_sorted(row_entries, entries, &mut self.fresh)
+        } else {
+            self.incoming.clear();
+            self.incoming.extend(entries);
+            if !self.incoming.is_sorted_by_key(|e| e.0) {
+                // Stable: a column pushed twice keeps the order of its values.
+                sort_pairs_by_col(&mut self.incoming);
+            }
+            merge_sorted(row_entries, self.incoming.iter().copied(), &mut self.fresh)
+        };
         #[cfg(test)]
         {
             self.probes += _steps as u64;
@@ -733,7 +762,6 @@ fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMat
     super::csr::csr_of_sound_rows((nrows, ncols), indptr, indices, data, sound)
 }
 
-/// Stable sort of one row's entries by column (insertion sort for short rows).
 /// Sorts `(column, value)` pairs by column, stably (short runs by insertion).
 fn sort_pairs_by_col(pairs: &mut [(u32, f64)]) {
     if pairs.len() > 32 {
@@ -756,28 +784,20 @@ fn sort_pairs_by_col(pairs: &mut [(u32, f64)]) {
 /// the others (each repeated column's values summed in order, the first as it is) inserted
 /// in place. Returns the steps the walk took (`row`'s entries passed and `incoming`'s).
 /// `fresh` is scratch.
+#[inline]
 fn merge_sorted(
     row: &mut Vec<(u32, f64)>,
-    incoming: &[(u32, f64)],
+    incoming: impl Iterator<Item = (u32, f64)>,
     fresh: &mut Vec<(u32, f64)>,
 ) -> usize {
     fresh.clear();
     let n = row.len();
-    if row
-        .last()
-        .is_none_or(|last| incoming.first().is_some_and(|e| e.0 > last.0))
-    {
-        // Every column new and after the row's: appended (the first and each new row).
-        for &(c, v) in incoming {
-            match row.last_mut() {
-                Some(last) if last.0 == c => last.1 += v,
-                _ => row.push((c, v)),
-            }
-        }
-        return incoming.len();
-    }
-    let mut i = 0;
-    for &(c, v) in incoming {
+    let (mut i, mut taken) = (0, 0);
+    let mut last_col = 0;
+    for (c, v) in incoming {
+        debug_assert!(taken == 0 || c >= last_col, "columns pushed out of order");
+        last_col = c;
+        taken += 1;
         while i < n && row[i].0 < c {
             i += 1;
         }
@@ -790,8 +810,13 @@ fn merge_sorted(
             }
         }
     }
-    let steps = i + incoming.len();
+    let steps = i + taken;
     if fresh.is_empty() {
+        return steps;
+    }
+    if i == n && fresh[0].0 > row.last().map_or(0, |e| e.0) || n == 0 {
+        // Every new column after the row's (the first push, and each new row).
+        row.extend_from_slice(fresh);
         return steps;
     }
     // From the back: each slot is written after the entry it held was moved up.
@@ -813,6 +838,7 @@ fn merge_sorted(
     steps
 }
 
+/// Stable sort of one row's entries by column (insertion sort for short rows).
 fn insertion_sort_by_col(row: &mut [Entry]) {
     if row.len() > 32 {
         row.sort_by_key(|e| e.col);
@@ -877,7 +903,8 @@ mod tests {
         /// summation shows in the bits). Rows of up to 100 columns, so that rows go through
         /// every state (searched, merged, appended and merged when stored), and pushes of
         /// one entry, of a run of equal rows, and of up to `chunk` entries of a row at a time
-        /// (unsorted, columns repeated, a push crossing from the search to the merge).
+        /// (unsorted, columns repeated, a push crossing from the search to the merge; and the
+        /// same sorted by column, through `push_sorted_row`).
         #[test]
         fn accumulated_rows_are_the_compressed_triplets(
             parts in prop::collection::vec(
@@ -892,6 +919,7 @@ mod tests {
             let mut by_chunks = PartList::default();
             let (mut ws, mut acc) = (CompressWorkspace::default(), RowAccumulator::default());
             let (mut row_acc, mut chunk_acc) = (RowAccumulator::default(), RowAccumulator::default());
+            let (mut by_sorted_chunks, mut sorted_acc) = (PartList::default(), RowAccumulator::default());
             for (k, part) in parts.iter().enumerate() {
                 let mut raw = Triplets::default();
                 let scaled: Vec<(u32, u32, f64)> = part
@@ -913,12 +941,17 @@ mod tests {
                 for run in grouped.chunk_by(|a, b| a.0 == b.0) {
                     for push in run.chunks(chunk) {
                         chunk_acc.push_row(push[0].0, push.iter().map(|&(_, c, v)| (c, v)));
+                        // Sorted by column first (stably: a column's values keep their order).
+                        let mut ascending = push.to_vec();
+                        ascending.sort_by_key(|e| e.1);
+                        sorted_acc.push_sorted_row(push[0].0, ascending.iter().map(|&(_, c, v)| (c, v)));
                     }
                 }
                 sorted.push_compressed(k as u64, &mut raw, &mut ws);
                 summed.push_rows(k as u64, &mut acc);
                 by_rows.push_rows(k as u64, &mut row_acc);
                 by_chunks.push_rows(k as u64, &mut chunk_acc);
+                by_sorted_chunks.push_rows(k as u64, &mut sorted_acc);
                 prop_assert!(acc.is_empty());
             }
             let bits = |l: &PartList| -> Vec<(u64, u32, u32, u64)> {
@@ -927,6 +960,7 @@ mod tests {
             prop_assert_eq!(bits(&sorted), bits(&summed));
             prop_assert_eq!(bits(&sorted), bits(&by_rows));
             prop_assert_eq!(bits(&sorted), bits(&by_chunks));
+            prop_assert_eq!(bits(&sorted), bits(&by_sorted_chunks));
         }
     }
 
