@@ -16,7 +16,7 @@ use crate::integration::closed_form::{self, closed_form_into, ClosedForm, Closed
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
 use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
-use crate::linalg::{PartList, RowAccumulator, SparseMatrix};
+use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
 use crate::multiplier::LmBasis;
 use crate::search::{
@@ -258,23 +258,11 @@ struct FaceBuffers {
     m: RowAccumulator,
 }
 
-/// Fills `order` with the positions of `keys` by ascending key (each key there once).
+/// Fills `order` with the positions of `keys` by ascending key.
 fn ascending_positions(keys: &[u32], order: &mut Vec<u32>) {
     order.clear();
     order.extend(0..keys.len() as u32);
-    if keys.len() > 32 {
-        order.sort_unstable_by_key(|&p| keys[p as usize]);
-        return;
-    }
-    for i in 1..order.len() {
-        let p = order[i];
-        let mut j = i;
-        while j > 0 && keys[order[j - 1] as usize] > keys[p as usize] {
-            order[j] = order[j - 1];
-            j -= 1;
-        }
-        order[j] = p;
-    }
+    sort_short_by_key(order, |&p| keys[p as usize]);
 }
 
 /// Pushes one slave face's rows of D and M: for each node `j` of the face whose multiplier it

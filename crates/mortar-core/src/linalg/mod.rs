@@ -28,6 +28,7 @@ pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
 };
 pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};
+pub(crate) use triplets::sort_short_by_key;
 pub use triplets::{CompressWorkspace, PartList, RowAccumulator, Triplets};
 
 /// The sparse matrix type of D and M: compressed rows, `f64` values, `usize` indices.

@@ -99,7 +99,7 @@ impl Triplets {
             // `start[r]` is now the end of row r.
             let mut a = 0usize;
             for &end in &start[..span] {
-                insertion_sort_by_col(&mut sorted[a..end as usize]);
+                sort_short_by_key(&mut sorted[a..end as usize], |e| e.col);
                 a = end as usize;
             }
         }
@@ -263,7 +263,7 @@ impl RowAccumulator {
             self.incoming.extend(entries);
             if !self.incoming.is_sorted_by_key(|e| e.0) {
                 // Stable: a column pushed twice keeps the order of its values.
-                sort_pairs_by_col(&mut self.incoming);
+                sort_short_by_key(&mut self.incoming, |e| e.0);
             }
             merge_sorted(row_entries, self.incoming.iter().copied(), &mut self.fresh)
         };
@@ -762,20 +762,21 @@ fn concat_blocks(blocks: Vec<RowBlock>, nrows: usize, ncols: usize) -> SparseMat
     super::csr::csr_of_sound_rows((nrows, ncols), indptr, indices, data, sound)
 }
 
-/// Sorts `(column, value)` pairs by column, stably (short runs by insertion).
-fn sort_pairs_by_col(pairs: &mut [(u32, f64)]) {
-    if pairs.len() > 32 {
-        pairs.sort_by_key(|e| e.0);
+/// Sorts `items` by `key`, stably: up to 32 items (a face's or a row's entries) by
+/// insertion, which beats the library's sort on so few, more by `sort_by_key`.
+pub(crate) fn sort_short_by_key<T: Copy, K: Ord>(items: &mut [T], key: impl Fn(&T) -> K) {
+    if items.len() > 32 {
+        items.sort_by_key(|e| key(e));
         return;
     }
-    for i in 1..pairs.len() {
-        let e = pairs[i];
+    for i in 1..items.len() {
+        let e = items[i];
         let mut j = i;
-        while j > 0 && pairs[j - 1].0 > e.0 {
-            pairs[j] = pairs[j - 1];
+        while j > 0 && key(&items[j - 1]) > key(&e) {
+            items[j] = items[j - 1];
             j -= 1;
         }
-        pairs[j] = e;
+        items[j] = e;
     }
 }
 
@@ -836,23 +837,6 @@ fn merge_sorted(
         }
     }
     steps
-}
-
-/// Stable sort of one row's entries by column (insertion sort for short rows).
-fn insertion_sort_by_col(row: &mut [Entry]) {
-    if row.len() > 32 {
-        row.sort_by_key(|e| e.col);
-        return;
-    }
-    for i in 1..row.len() {
-        let e = row[i];
-        let mut j = i;
-        while j > 0 && row[j - 1].col > e.col {
-            row[j] = row[j - 1];
-            j -= 1;
-        }
-        row[j] = e;
-    }
 }
 
 /// Sorts one row by column (stable) and sums duplicates in order; returns the merged length.
