@@ -815,12 +815,8 @@ fn merge_sorted(
     if fresh.is_empty() {
         return steps;
     }
-    if i == n && fresh[0].0 > row.last().map_or(0, |e| e.0) || n == 0 {
-        // Every new column after the row's (the first push, and each new row).
-        row.extend_from_slice(fresh);
-        return steps;
-    }
-    // From the back: each slot is written after the entry it held was moved up.
+    // From the back: each slot is written after the entry it held was moved up (new columns
+    // all after the row's are written in place and the walk stops).
     let m = fresh.len();
     row.resize(n + m, (0, 0.0));
     let (mut a, mut b) = (n, m);
