@@ -42,3 +42,6 @@ mod quiet_library;
 
 #[path = "integration/overlap.rs"]
 mod overlap;
+
+#[path = "integration/small_overlaps.rs"]
+mod small_overlaps;

@@ -19,7 +19,7 @@ pub use norm::{stable_norm, stable_normalize};
 pub use planar_map::PlanarMap;
 pub use plane::AuxiliaryPlane;
 pub use polygon::{
-    clip_convex, polygon_diameter, signed_area, ClipBuffers, ConvexClipper, Polygon,
+    clip_convex, polygon_diameter, signed_area, wider_than, ClipBuffers, ConvexClipper, Polygon,
     MAX_POLYGON_VERTICES,
 };
 pub use root::bracketed_root;

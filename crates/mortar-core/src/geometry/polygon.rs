@@ -144,6 +144,14 @@ pub fn polygon_diameter(v: &[Vector2<f64>]) -> f64 {
     d
 }
 
+/// Whether a polygon of vertices `v` and (positive) `area` is wider than `width`: more area
+/// than a strip `width` wide along its whole diameter. Rounding turns two faces that only
+/// touch into a sliver no wider than the coordinates' rounding, whose area can still exceed
+/// that of a genuine small overlap; its width tells them apart.
+pub fn wider_than(area: f64, v: &[Vector2<f64>], width: f64) -> bool {
+    area > width * polygon_diameter(v)
+}
+
 /// Clips `subject` by the convex, counter-clockwise polygon `clip` (Sutherland-Hodgman).
 ///
 /// Both polygons must be counter-clockwise; `subject` should be convex too, so that the

@@ -297,7 +297,7 @@ pub(crate) fn closed_form_into(
         // The polygon's area in the plane from its moments: the fan's sum, scaled by powers
         // of two (exact), is `signed_area`'s to the bit.
         let area = mom.area / scale / scale;
-        if !setup.overlap_counts(area, area_m) {
+        if !setup.overlap_counts(area, area_m, &clip) {
             continue;
         }
         // The unit of area, and the plane's measure to the face's (1 when the face lies in

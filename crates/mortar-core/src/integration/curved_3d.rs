@@ -22,10 +22,10 @@
 use arrayvec::ArrayVec;
 use nalgebra::{Matrix2, Vector2, Vector3};
 
-use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
+use super::{default_degree, PairedPoint, PairedRule, SegmentContext, SLIVER_ROUNDINGS};
 use crate::element::{ElementRef, ReferenceDomain};
 use crate::error::{Inversion, MortarError, Result};
-use crate::geometry::{clip_convex, AuxiliaryPlane, Polygon};
+use crate::geometry::{clip_convex, wider_than, AuxiliaryPlane, Polygon};
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
@@ -246,7 +246,13 @@ pub(super) fn segments_into(
                 }
                 clip_convex(&tpoly, &Polygon::from_slice(&s.p), merge, &mut clip);
                 let a = clip.signed_area();
-                if clip.len() < 3 || a <= (tol.clip_area * s.area.min(-t.area)).max(area_noise) {
+                // As `SlavePlane::overlap_counts`: below `area_noise`, the polygon's width
+                // decides whether it is an overlap or the rounding's sliver.
+                if clip.len() < 3
+                    || a <= tol.clip_area * s.area.min(-t.area)
+                    || (a <= area_noise
+                        && !wider_than(a, &clip.vertices, SLIVER_ROUNDINGS * rounding))
+                {
                     continue;
                 }
                 pair_area += a;

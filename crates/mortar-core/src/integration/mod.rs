@@ -221,3 +221,13 @@ pub struct LineSegments {
 /// slave face meets at ordinary mesh ratios (about ten), so that only a face much coarser
 /// than its master is split.
 pub const CANDIDATE_BATCH: usize = 4096;
+
+/// How many times the coordinates' rounding (`8 eps |x|`) a clip polygon must be wide to
+/// count when its area is below what the rounding alone gives two faces that only touch
+/// (`8 eps |x|` times the slave face's diameter). Such faces become a sliver about one
+/// rounding wide; the factor leaves room for the few roundings the projection into the plane
+/// adds. A genuine small overlap is far wider: 1e-5 at 1e5 from the origin (5.6e4 roundings,
+/// `tests/integration/small_overlaps.rs`); on the benchmark's cylinder at n = 1024, 382
+/// corner triangles of 1e-18 to 1e-17 (1e-13 of a face, 1e-10 to 2e-9 wide: 1e5 roundings
+/// and more), which the area alone dropped before stop 43.
+pub(crate) const SLIVER_ROUNDINGS: f64 = 64.0;

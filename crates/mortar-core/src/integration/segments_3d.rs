@@ -3,12 +3,12 @@
 use arrayvec::ArrayVec;
 use nalgebra::{Vector2, Vector3};
 
-use super::{default_degree, PairedPoint, PairedRule, SegmentContext};
+use super::{default_degree, PairedPoint, PairedRule, SegmentContext, SLIVER_ROUNDINGS};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
-    polygon_diameter, signed_area, AuxiliaryPlane, ClipBuffers, ConvexClipper, InverseMapFailure,
-    PlanarMap, Polygon, MAX_POLYGON_VERTICES,
+    polygon_diameter, signed_area, wider_than, AuxiliaryPlane, ClipBuffers, ConvexClipper,
+    InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
 };
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -39,7 +39,11 @@ pub(crate) struct SlavePlane {
     s_hi: Vector2<f64>,
     /// The clipping's merge tolerance.
     merge: f64,
-    /// The area the rounding of the coordinates alone can give a zero-measure overlap.
+    /// The absolute rounding of the coordinates in the plane (a few ulps of their magnitude).
+    rounding: f64,
+    /// `rounding` times the face's diameter: the most area the rounding alone can give two
+    /// faces that only touch. A clip polygon of more area counts without its width checked
+    /// ([`overlap_counts`](Self::overlap_counts)).
     area_noise: f64,
     /// The smallest overlap area, relative to the smaller face's, that counts.
     clip_area: f64,
@@ -75,6 +79,7 @@ impl SlavePlane {
             s_lo: Vector2::zeros(),
             s_hi: Vector2::zeros(),
             merge: 0.0,
+            rounding: 0.0,
             area_noise: 0.0,
             clip_area: 0.0,
             clipper: ConvexClipper::default(),
@@ -174,6 +179,7 @@ impl SlavePlane {
         let rounding = 8.0 * f64::EPSILON * x0.amax();
         let diameter = polygon_diameter(corners);
         self.merge = (tol.merge * diameter).max(rounding);
+        self.rounding = rounding;
         self.area_noise = rounding * diameter;
         self.diameter = diameter;
         self.area_s = area_s;
@@ -214,7 +220,7 @@ impl SlavePlane {
     ) -> Option<(ElementRef, usize, f64)> {
         let area_m = self.clip_face_unmeasured(mel, xm, mp, clip, back_facing)?;
         let area = clip.signed_area();
-        self.overlap_counts(area, area_m)
+        self.overlap_counts(area, area_m, clip)
             .then_some((mel, xm.len(), area))
     }
 
@@ -264,12 +270,24 @@ impl SlavePlane {
         (clip.len() >= 3).then_some(-area_m)
     }
 
-    /// Whether a clip polygon of (signed) `area` counts as an overlap of the slave face with a
-    /// master face of area `area_m` in the plane: more than the smallest fraction of the
-    /// smaller face and more than the coordinates' rounding alone gives.
+    /// Whether the clip polygon `clip` of (signed) `area` counts as an overlap of the slave
+    /// face with a master face of area `area_m` in the plane: more than the smallest fraction
+    /// of the smaller face, and more than the coordinates' rounding alone gives two faces
+    /// that only touch. Below that area (`area_noise`) the polygon's own width decides
+    /// ([`wider_than`] [`SLIVER_ROUNDINGS`] roundings), not its area: a small overlap far
+    /// from the origin (1e-5 wide, of area 5e-11, at 1e5) is an overlap.
     #[inline]
-    pub fn overlap_counts(&self, area: f64, area_m: f64) -> bool {
-        area > (self.clip_area * self.area_s.min(area_m)).max(self.area_noise)
+    pub fn overlap_counts(&self, area: f64, area_m: f64, clip: &Polygon) -> bool {
+        let floor = self.clip_area * self.area_s.min(area_m);
+        area > floor.max(self.area_noise) || (area > floor && self.wide_sliver(area, clip))
+    }
+
+    /// Whether a clip polygon of `area` below `area_noise` is wider than the rounding's
+    /// slivers (rare: out of the per-pair path).
+    #[cold]
+    #[inline(never)]
+    fn wide_sliver(&self, area: f64, clip: &Polygon) -> bool {
+        wider_than(area, &clip.vertices, SLIVER_ROUNDINGS * self.rounding)
     }
 }
 
