@@ -24,10 +24,12 @@ pub const MIN_EXTENT: f64 = 1e-140;
 pub struct Tolerances {
     /// A face whose measure (length or area) is below `degenerate * diameter^k` is degenerate.
     pub degenerate: f64,
-    /// Clip polygons whose area is below `clip_area * min(slave area, master area)` (or below
-    /// the rounding of the coordinates, for meshes far from the origin) are discarded: they
-    /// are zero-measure touching, e.g. along a shared edge. Small, so that genuine slivers
-    /// (a node pushed 1e-3 h across an edge gives overlaps of 1e-13 of a face) are kept.
+    /// Clip polygons whose area is below `clip_area * min(slave area, master area)` are
+    /// discarded: they are zero-measure touching, e.g. along a shared edge. Small, so that
+    /// genuine slivers (a node pushed 1e-3 h across an edge gives overlaps of 1e-13 of a face)
+    /// are kept. So are (3D) polygons whose area the coordinates' rounding alone could give
+    /// two touching faces, unless they are many times wider than that rounding: a small
+    /// overlap far from the origin counts.
     pub clip_area: f64,
     /// Points closer than `merge * diameter` are merged when clipping.
     pub merge: f64,
