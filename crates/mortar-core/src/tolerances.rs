@@ -27,9 +27,9 @@ pub struct Tolerances {
     /// Clip polygons whose area is below `clip_area * min(slave area, master area)` are
     /// discarded: they are zero-measure touching, e.g. along a shared edge. Small, so that
     /// genuine slivers (a node pushed 1e-3 h across an edge gives overlaps of 1e-13 of a face)
-    /// are kept. So are (3D) polygons whose area the coordinates' rounding alone could give
-    /// two touching faces, unless they are many times wider than that rounding: a small
-    /// overlap far from the origin counts.
+    /// are kept. 3D polygons of no more area than the coordinates' rounding alone could give
+    /// two touching faces are discarded too, unless they are many times wider than that
+    /// rounding: a small overlap far from the origin counts.
     pub clip_area: f64,
     /// Points closer than `merge * diameter` are merged when clipping.
     pub merge: f64,
