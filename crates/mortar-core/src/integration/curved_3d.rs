@@ -22,10 +22,10 @@
 use arrayvec::ArrayVec;
 use nalgebra::{Matrix2, Vector2, Vector3};
 
-use super::{default_degree, PairedPoint, PairedRule, SegmentContext, SLIVER_ROUNDINGS};
+use super::{default_degree, overlap_counts, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain};
 use crate::error::{Inversion, MortarError, Result};
-use crate::geometry::{clip_convex, wider_than, AuxiliaryPlane, Polygon};
+use crate::geometry::{clip_convex, AuxiliaryPlane, Polygon};
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
@@ -195,7 +195,6 @@ pub(super) fn segments_into(
     let diameter = (size.1 - size.0).norm();
     let rounding = 8.0 * f64::EPSILON * x0.amax();
     let merge = (tol.merge * diameter).max(rounding);
-    let area_noise = rounding * diameter;
     let extra = if slave.is_flat() {
         1
     } else {
@@ -246,13 +245,8 @@ pub(super) fn segments_into(
                 }
                 clip_convex(&tpoly, &Polygon::from_slice(&s.p), merge, &mut clip);
                 let a = clip.signed_area();
-                // As `SlavePlane::overlap_counts`: below `area_noise`, the polygon's width
-                // decides whether it is an overlap or the rounding's sliver.
-                if clip.len() < 3
-                    || a <= tol.clip_area * s.area.min(-t.area)
-                    || (a <= area_noise
-                        && !wider_than(a, &clip.vertices, SLIVER_ROUNDINGS * rounding))
-                {
+                let floor = tol.clip_area * s.area.min(-t.area);
+                if clip.len() < 3 || !overlap_counts(a, floor, rounding, diameter, &clip) {
                     continue;
                 }
                 pair_area += a;

@@ -39,6 +39,7 @@ pub use segment_based::{SegmentBased, MAX_QUAD_SUBDIVISION};
 
 use crate::element::MAX_FACE_NODES;
 use crate::error::{MortarError, Result, Side};
+use crate::geometry::{wider_than, Polygon};
 use crate::interface::{FaceGeometry, Interface, MasterFaces};
 use crate::projector::Projector;
 
@@ -231,3 +232,28 @@ pub const CANDIDATE_BATCH: usize = 4096;
 /// corner triangles of 1e-18 to 1e-17 (1e-13 of a face, 1e-10 to 2e-9 wide: 1e5 roundings
 /// and more), which the area alone dropped before stop 43.
 pub(crate) const SLIVER_ROUNDINGS: f64 = 64.0;
+
+/// Whether a 3D clip polygon `clip` of (signed) `area` counts as an overlap: more than
+/// `floor` (the tolerance's fraction of the smaller face), and more than the area the
+/// coordinates' `rounding` alone gives two faces that only touch (`rounding` times the slave
+/// face's `diameter`), or else wider than [`SLIVER_ROUNDINGS`] roundings ([`wider_than`]):
+/// a small overlap far from the origin (1e-5 wide, of area 5e-11, at 1e5) is an overlap.
+/// The one rule of the flat paths (`SlavePlane::overlap_counts`) and the curved one.
+#[inline]
+pub(crate) fn overlap_counts(
+    area: f64,
+    floor: f64,
+    rounding: f64,
+    diameter: f64,
+    clip: &Polygon,
+) -> bool {
+    area > floor.max(rounding * diameter) || (area > floor && wide_sliver(area, clip, rounding))
+}
+
+/// Whether a clip polygon of `area` is wider than the rounding's slivers (rare: out of the
+/// per-pair path).
+#[cold]
+#[inline(never)]
+fn wide_sliver(area: f64, clip: &Polygon, rounding: f64) -> bool {
+    wider_than(area, &clip.vertices, SLIVER_ROUNDINGS * rounding)
+}

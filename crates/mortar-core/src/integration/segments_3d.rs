@@ -3,12 +3,12 @@
 use arrayvec::ArrayVec;
 use nalgebra::{Vector2, Vector3};
 
-use super::{default_degree, PairedPoint, PairedRule, SegmentContext, SLIVER_ROUNDINGS};
+use super::{default_degree, overlap_counts, PairedPoint, PairedRule, SegmentContext};
 use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
 use crate::error::{FaceLocation, MortarError, Result, Side};
 use crate::geometry::{
-    polygon_diameter, signed_area, wider_than, AuxiliaryPlane, ClipBuffers, ConvexClipper,
-    InverseMapFailure, PlanarMap, Polygon, MAX_POLYGON_VERTICES,
+    polygon_diameter, signed_area, AuxiliaryPlane, ClipBuffers, ConvexClipper, InverseMapFailure,
+    PlanarMap, Polygon, MAX_POLYGON_VERTICES,
 };
 use crate::interface::{FaceGeometry, WARPED_EXTRA_DEGREE};
 use crate::quadrature::{Quadrature, QuadratureRule};
@@ -41,10 +41,6 @@ pub(crate) struct SlavePlane {
     merge: f64,
     /// The absolute rounding of the coordinates in the plane (a few ulps of their magnitude).
     rounding: f64,
-    /// `rounding` times the face's diameter: the most area the rounding alone can give two
-    /// faces that only touch. A clip polygon of more area counts without its width checked
-    /// ([`overlap_counts`](Self::overlap_counts)).
-    area_noise: f64,
     /// The smallest overlap area, relative to the smaller face's, that counts.
     clip_area: f64,
     /// The clipper of `spoly`.
@@ -80,7 +76,6 @@ impl SlavePlane {
             s_hi: Vector2::zeros(),
             merge: 0.0,
             rounding: 0.0,
-            area_noise: 0.0,
             clip_area: 0.0,
             clipper: ConvexClipper::default(),
             bufs: ClipBuffers::default(),
@@ -180,7 +175,6 @@ impl SlavePlane {
         let diameter = polygon_diameter(corners);
         self.merge = (tol.merge * diameter).max(rounding);
         self.rounding = rounding;
-        self.area_noise = rounding * diameter;
         self.diameter = diameter;
         self.area_s = area_s;
         self.s_lo = s_lo;
@@ -272,22 +266,12 @@ impl SlavePlane {
 
     /// Whether the clip polygon `clip` of (signed) `area` counts as an overlap of the slave
     /// face with a master face of area `area_m` in the plane: more than the smallest fraction
-    /// of the smaller face, and more than the coordinates' rounding alone gives two faces
-    /// that only touch. Below that area (`area_noise`) the polygon's own width decides
-    /// ([`wider_than`] [`SLIVER_ROUNDINGS`] roundings), not its area: a small overlap far
-    /// from the origin (1e-5 wide, of area 5e-11, at 1e5) is an overlap.
+    /// of the smaller face, and not a sliver of the coordinates' rounding
+    /// ([`overlap_counts`](super::overlap_counts)).
     #[inline]
     pub fn overlap_counts(&self, area: f64, area_m: f64, clip: &Polygon) -> bool {
         let floor = self.clip_area * self.area_s.min(area_m);
-        area > floor.max(self.area_noise) || (area > floor && self.wide_sliver(area, clip))
-    }
-
-    /// Whether a clip polygon of `area` below `area_noise` is wider than the rounding's
-    /// slivers (rare: out of the per-pair path).
-    #[cold]
-    #[inline(never)]
-    fn wide_sliver(&self, area: f64, clip: &Polygon) -> bool {
-        wider_than(area, &clip.vertices, SLIVER_ROUNDINGS * self.rounding)
+        overlap_counts(area, floor, self.rounding, self.diameter, clip)
     }
 }
 
