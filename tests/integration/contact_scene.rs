@@ -448,3 +448,77 @@ fn contact_scenes_name_their_law() {
         &["contact.named_law", "not both"],
     );
 }
+
+/// The stacked blocks of [`setup`] with the upper block moved up by `gap` and pressed down by
+/// a prescribed displacement `-(gap + squeeze)` of its top (held in x on its left side); the
+/// lower block held in y at its bottom and in x on its left side. Writes the meshes into
+/// `dir` and returns the scene text, whose `[contact]` table ends the file.
+fn gap_scene(dir: &TempDir, gap: f64, squeeze: f64) -> String {
+    let lower = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [4, 4], CellShape::Tensor, 1).unwrap();
+    let (y0, y1) = (1.0 + gap, 2.0 + gap);
+    let upper = rectangle_mesh([0.0, y0], [1.0, y1], [5, 5], CellShape::Simplex, 1000).unwrap();
+    dir.file("lower.msh", body_file(&lower, "lower", 0.0, 1.0));
+    dir.file("upper.msh", body_file(&upper, "upper", y0, y1));
+    format!(
+        r#"kind = "contact"
+
+[bodies.upper]
+mesh = "upper.msh"
+group = "upper"
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+dirichlet = [
+    {{ group = "upper_left", component = "x", value = 0.0 }},
+    {{ group = "upper_top", component = "y", value = {} }},
+]
+
+[bodies.lower]
+mesh = "lower.msh"
+group = "lower"
+youngs_modulus = 210e9
+poisson_ratio = 0.3
+dirichlet = [
+    {{ group = "lower_bottom", component = "y", value = 0.0 }},
+    {{ group = "lower_left", component = "x", value = 0.0 }},
+]
+
+[contact]
+slave = {{ body = "upper", group = "upper_bottom" }}
+master = {{ body = "lower", group = "lower_top" }}
+"#,
+        -(gap + squeeze)
+    )
+}
+
+/// Regression: `[contact] search_radius` was checked and then never applied (the interface
+/// was built with the default search). Two blocks 0.5 apart (slave faces of 0.2, the
+/// interface 1 wide): without the key the search does not reach across and the scene is
+/// refused for want of overlap; with `search_radius = 0.6` the gap is coupled and closed by
+/// the prescribed squeeze `delta`, and the pressure is the closed form of two equal blocks in
+/// series under uniaxial plane strain, `sigma = E delta / (2 (1 - nu^2))`, at every node.
+#[test]
+fn contact_search_radius_reaches_across_an_open_gap() {
+    let dir = TempDir::new("contact-search-radius");
+    let (gap, squeeze) = (0.5, 1e-3);
+    let text = gap_scene(&dir, gap, squeeze);
+    assert!(text.contains("value = -0.501"), "{text}");
+    assert_fails(&dir, "no_radius.toml", &text, &["no overlap"]);
+    let with_radius = format!("{text}search_radius = 0.6\n");
+    let scene = dir.file("radius.toml", &with_radius);
+    let path = Path::new(&scene);
+    let spec = ContactSpec::parse(&with_radius, path).unwrap();
+    let solved = spec
+        .solve(path, path.parent().unwrap(), &FileSystem)
+        .unwrap();
+    let (e, nu) = (210e9, 0.3);
+    let sigma = e * squeeze / (2.0 * (1.0 - nu * nu));
+    let worst = solved
+        .solution
+        .pressure
+        .iter()
+        .map(|p| (p - sigma).abs() / sigma)
+        .fold(0.0f64, f64::max);
+    assert_eq!(solved.solution.pressure.len(), 6);
+    assert!(worst < 1e-8, "pressure off by {worst:e}");
+    assert!(solved.tie.coupling().warnings.is_empty());
+}

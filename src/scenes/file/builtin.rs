@@ -165,6 +165,8 @@ pub fn tied_block(dim: usize, n: usize, format: MshFormat) -> Result<BuiltinScen
             curved_tolerance: None,
             subdivision: None,
             quad_subdivision: None,
+            search_radius: None,
+            require_full_coverage: false,
         },
     };
     let toml = spec.to_toml()?;

@@ -12,7 +12,12 @@
 //! - `[contact]`: `slave = { body, group }`, `master = { body, group }`, `law = "exact" |
 //!   "exponential"` (the latter with `base_pressure`, `stiffness`, `onset`), `multipliers`
 //!   (default `"dual"`; or `"standard"`, or `"linear"`: on the corners of second-order faces
-//!   only), `integration` (default `"segment"`), `search_radius` (optional).
+//!   only), `integration` (default `"segment"`), `degree` (default automatic),
+//!   `curved_tolerance`, `subdivision`, `quad_subdivision` (segment-based integration of
+//!   curved and of non-parallelogram faces, as `mortar couple`'s options), `search_radius`
+//!   (a distance along the slave normals; default as far as the nearest master surface,
+//!   within a bound relative to the interface's size), `require_full_coverage` (default
+//!   false).
 //! - `[solve]` (optional): `load_steps` (default 1), `max_newton_steps` (default 30),
 //!   `tolerance` (default 1e-10).
 //!
@@ -27,6 +32,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mortar_core::mesh::BoundaryFace;
+use mortar_core::Interface;
 use mortar_physics::contact::{
     automatic_complementarity, solve_contact, ContactOptions, ContactSolution, NormalGap,
 };
@@ -43,7 +49,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
-use super::{dual, face_nodes};
+use super::{coupling_of, dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
@@ -176,9 +182,46 @@ pub struct ContactInterfaceSpec {
     /// The integration strategy.
     #[serde(default)]
     pub integration: Integration,
-    /// The search radius (a distance).
+    /// The quadrature degree (default automatic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub degree: Option<u32>,
+    /// Segment-based: the curved-face subdivision tolerance (see
+    /// [`CouplingSettings::curved_tolerance`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curved_tolerance: Option<f64>,
+    /// Segment-based: a fixed curved-face subdivision level.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subdivision: Option<u32>,
+    /// Segment-based: the cut of non-parallelogram slave quads (see
+    /// [`CouplingSettings::quad_subdivision`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quad_subdivision: Option<u32>,
+    /// How far along the slave normals the search looks for master faces, a distance (see
+    /// [`CouplingSettings::search_radius`]; default: as far as the nearest master surface,
+    /// within a bound relative to the interface's size).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub search_radius: Option<f64>,
+    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
+    /// of warnings.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub require_full_coverage: bool,
+}
+
+impl ContactInterfaceSpec {
+    /// The coupling settings of these keys.
+    pub fn settings(&self) -> CouplingSettings {
+        CouplingSettings {
+            multipliers: self.multipliers,
+            integration: self.integration,
+            degree: self.degree,
+            curved_tolerance: self.curved_tolerance,
+            subdivision: self.subdivision,
+            quad_subdivision: self.quad_subdivision,
+            search_radius: self.search_radius,
+            require_full_coverage: self.require_full_coverage,
+            threads: None,
+        }
+    }
 }
 
 /// The settings of the solve.
@@ -619,25 +662,13 @@ impl ContactSpec {
         let t_read = t_start.elapsed().as_secs_f64();
 
         let t = Instant::now();
-        let settings = CouplingSettings {
-            multipliers: self.contact.multipliers,
-            integration: self.contact.integration,
-            search_radius: self.contact.search_radius,
-            ..Default::default()
-        };
-        let coupling = settings
-            .options()
-            .map_err(|e| invalid("contact.search_radius".into(), e.to_string()))?;
+        let (coupling, tolerances) = coupling_of(&self.contact.settings(), "contact", path)?;
         let (master_surface, _) = surfaces.pop().expect("two surfaces");
         let (slave_surface, slave_faces) = surfaces.pop().expect("two surfaces");
-        let tie = Tie::new(
-            &bodies[0].mesh,
-            &bodies[1].mesh,
-            slave_surface,
-            master_surface,
-            &coupling,
-        )
-        .map_err(physics)?;
+        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)
+            .map_err(|e| physics(e.into()))?;
+        let tie = Tie::on_interface(&bodies[0].mesh, &bodies[1].mesh, interface, &coupling)
+            .map_err(physics)?;
         let gap = NormalGap::new(
             &tie,
             dim,

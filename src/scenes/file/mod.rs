@@ -133,6 +133,45 @@ pub(crate) fn face_nodes(faces: &[mortar_core::mesh::BoundaryFace]) -> Vec<u32> 
     nodes
 }
 
+/// The core's options and tolerances for a scene's coupling keys (under `section`,
+/// `interface` or `contact`): a value the core refuses is an error naming its key.
+///
+/// # Errors
+/// [`SceneError::Invalid`] naming `section.degree`, `section.curved_tolerance`,
+/// `section.subdivision`, `section.quad_subdivision` or `section.search_radius`.
+pub(crate) fn coupling_of(
+    settings: &crate::io::CouplingSettings,
+    section: &str,
+    path: &Path,
+) -> Result<(mortar_core::CouplingOptions, mortar_core::Tolerances), SceneError> {
+    let invalid = |e: mortar_core::MortarError| {
+        let key = match &e {
+            mortar_core::MortarError::InvalidOption { option, .. } => match *option {
+                "quadrature degree" => "degree",
+                "curved tolerance" => "curved_tolerance",
+                "subdivision level" => "subdivision",
+                "quad subdivision" => "quad_subdivision",
+                "search radius" => "search_radius",
+                _ => "",
+            },
+            _ => "",
+        };
+        SceneError::Invalid {
+            path: path.to_path_buf(),
+            key: if key.is_empty() {
+                section.to_string()
+            } else {
+                format!("{section}.{key}")
+            },
+            what: e.to_string(),
+        }
+    };
+    Ok((
+        settings.options().map_err(invalid)?,
+        settings.tolerances().map_err(invalid)?,
+    ))
+}
+
 /// The default multiplier space of scene files: dual.
 pub(crate) fn dual() -> crate::io::Multipliers {
     crate::io::Multipliers::Dual

@@ -18,7 +18,11 @@
 //!   `"dual"`; `"linear"`: on the corner nodes of second-order faces only),
 //!   `integration = "segment" | "element"` (default `"segment"`), `degree` (default
 //!   automatic), and for segment-based integration `curved_tolerance`, `subdivision` (curved
-//!   second-order faces in 3D) and `quad_subdivision` (non-parallelogram slave quads).
+//!   second-order faces in 3D) and `quad_subdivision` (non-parallelogram slave quads);
+//!   `search_radius` (a distance along the slave normals; default as far as the nearest
+//!   master surface, within a bound relative to the interface's size) and
+//!   `require_full_coverage` (default false: uncovered slave area and overlapping master
+//!   faces are warnings, not errors).
 //! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
 //!   (at most [`MAX_STEPS`])
 //!   for a transient solve; `formulation = "auto" | "saddle_point" | "dual_condensed"`
@@ -32,14 +36,14 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-use mortar_core::MortarError;
+use mortar_core::Interface;
 use mortar_physics::heat::{
     HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, TiedHeatSolution,
 };
 use mortar_physics::tied::{FormulationChoice, TiedOptions};
 use serde::{Deserialize, Serialize};
 
-use super::{dual, face_nodes};
+use super::{coupling_of, dual, face_nodes};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 
@@ -159,6 +163,32 @@ pub struct InterfaceSpec {
     /// [`CouplingSettings::quad_subdivision`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub quad_subdivision: Option<u32>,
+    /// How far along the slave normals the search looks for master faces, a distance (see
+    /// [`CouplingSettings::search_radius`]; default: as far as the nearest master surface,
+    /// within a bound relative to the interface's size).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub search_radius: Option<f64>,
+    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
+    /// of warnings.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub require_full_coverage: bool,
+}
+
+impl InterfaceSpec {
+    /// The coupling settings of these keys.
+    pub fn settings(&self) -> CouplingSettings {
+        CouplingSettings {
+            multipliers: self.multipliers,
+            integration: self.integration,
+            degree: self.degree,
+            curved_tolerance: self.curved_tolerance,
+            subdivision: self.subdivision,
+            quad_subdivision: self.quad_subdivision,
+            search_radius: self.search_radius,
+            require_full_coverage: self.require_full_coverage,
+            threads: None,
+        }
+    }
 }
 
 /// Steady or transient.
@@ -330,6 +360,14 @@ impl TiedHeatSpec {
                         s.body,
                         self.bodies.keys().cloned().collect::<Vec<_>>().join(", ")
                     ),
+                ));
+            }
+        }
+        if let Some(r) = self.interface.search_radius {
+            if !(r > 0.0 && r.is_finite()) {
+                return Err(invalid(
+                    "interface.search_radius",
+                    format!("{r} is not positive and finite"),
                 ));
             }
         }
@@ -552,45 +590,16 @@ impl TiedHeatSpec {
         }
         let t_read = t_start.elapsed().as_secs_f64();
 
-        let settings = CouplingSettings {
-            multipliers: self.interface.multipliers,
-            integration: self.interface.integration,
-            degree: self.interface.degree,
-            curved_tolerance: self.interface.curved_tolerance,
-            subdivision: self.interface.subdivision,
-            quad_subdivision: self.interface.quad_subdivision,
-            ..Default::default()
-        };
-        let coupling = settings.options().map_err(|e| {
-            let key = match &e {
-                MortarError::InvalidOption { option, .. } => match *option {
-                    "quadrature degree" => "interface.degree",
-                    "curved tolerance" => "interface.curved_tolerance",
-                    "subdivision level" => "interface.subdivision",
-                    "quad subdivision" => "interface.quad_subdivision",
-                    _ => "interface",
-                },
-                _ => "interface",
-            };
-            SceneError::Invalid {
-                path: path.to_path_buf(),
-                key: key.into(),
-                what: e.to_string(),
-            }
-        })?;
+        let (coupling, tolerances) = coupling_of(&self.interface.settings(), "interface", path)?;
         let master_surface = surfaces.pop().expect("two surfaces");
         let slave_surface = surfaces.pop().expect("two surfaces");
         let master = bodies.pop().expect("two bodies");
         let slave = bodies.pop().expect("two bodies");
-        let problem = TiedHeat::new(
-            slave,
-            master,
-            slave_surface,
-            master_surface,
-            &coupling,
-            &HeatOptions::default(),
-        )
-        .map_err(physics)?;
+        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)
+            .map_err(|e| physics(e.into()))?;
+        let problem =
+            TiedHeat::on_interface(slave, master, interface, &coupling, &HeatOptions::default())
+                .map_err(physics)?;
         let tied = TiedOptions::default().with_formulation(match self.solve.formulation {
             FormulationSpec::Auto => FormulationChoice::Auto,
             FormulationSpec::SaddlePoint => FormulationChoice::SaddlePoint,

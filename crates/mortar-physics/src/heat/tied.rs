@@ -1,7 +1,7 @@
 use std::time::Instant;
 
 use mortar_core::mesh::SurfaceMesh;
-use mortar_core::CouplingOptions;
+use mortar_core::{CouplingOptions, Interface};
 
 use super::assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
 use super::body::HeatBody;
@@ -149,6 +149,23 @@ impl TiedHeat {
         coupling: &CouplingOptions,
         options: &HeatOptions,
     ) -> Result<Self, PhysicsError> {
+        let interface = Interface::new(slave_surface, master_surface)?;
+        Self::on_interface(slave, master, interface, coupling, options)
+    }
+
+    /// [`new`](Self::new) on an interface the caller built from the two bodies' surfaces
+    /// (with its own [`Tolerances`](mortar_core::Tolerances), such as a search radius,
+    /// through [`Interface::with_tolerances`]).
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn on_interface(
+        slave: HeatBody,
+        master: HeatBody,
+        interface: Interface,
+        coupling: &CouplingOptions,
+        options: &HeatOptions,
+    ) -> Result<Self, PhysicsError> {
         crate::field::cells::check_same_geometry(coupling.geometry, options.geometry)?;
         let t0 = Instant::now();
         let matrices = [
@@ -157,13 +174,7 @@ impl TiedHeat {
         ];
         check_contrast(&slave, &master)?;
         let t1 = Instant::now();
-        let tie = Tie::new(
-            &slave.mesh,
-            &master.mesh,
-            slave_surface,
-            master_surface,
-            coupling,
-        )?;
+        let tie = Tie::on_interface(&slave.mesh, &master.mesh, interface, coupling)?;
         let seconds = HeatSeconds {
             assembly: (t1 - t0).as_secs_f64(),
             coupling: t1.elapsed().as_secs_f64(),

@@ -74,6 +74,21 @@ impl Tie {
         options: &CouplingOptions,
     ) -> Result<Self, PhysicsError> {
         let interface = Interface::new(slave_surface, master_surface)?;
+        Self::on_interface(slave_body, master_body, interface, options)
+    }
+
+    /// [`new`](Self::new) on an interface the caller built (with its own
+    /// [`Tolerances`](mortar_core::Tolerances), such as a search radius, through
+    /// [`Interface::with_tolerances`]).
+    ///
+    /// # Errors
+    /// As [`new`](Self::new).
+    pub fn on_interface(
+        slave_body: &VolumeMesh,
+        master_body: &VolumeMesh,
+        interface: Interface,
+        options: &CouplingOptions,
+    ) -> Result<Self, PhysicsError> {
         let coupling = assemble_coupling(&interface, options)?;
         Self::from_coupling(slave_body, master_body, interface, coupling)
     }
