@@ -468,3 +468,45 @@ fn contact_patch_test_second_order() {
         }
     }
 }
+
+/// The rigid motions of a disc in a ring (the pellet scene's meshes, frictionless contact on
+/// the disc's circle): with the ring held on its outer circle and the disc held by nothing,
+/// the disc's translations and its rotation are held by contact alone, and its rotation about
+/// the centre moves no slave node along its (radial) normal, so it is free (closed form: a
+/// rotation of a circle about its centre is tangential everywhere). The ring is held.
+#[test]
+fn a_disc_in_a_ring_is_free_to_spin() {
+    use mortar::physics::contact::{rigid_motions, NormalGap};
+    use mortar::physics::tied::Tie;
+    use mortar::scenes::pellet::{annulus_mesh, pellet_mesh};
+    let (a, c) = (1.0, 1.5);
+    let disc = pellet_mesh(a, 8, 3).unwrap();
+    let ring = annulus_mesh(a, c, 40, 2, 0.1).unwrap();
+    let on_circle =
+        |f: &mortar::core::mesh::BoundaryFace, r: f64| (f.centroid.norm() - r).abs() < 1e-2 * r;
+    let surface = |mesh: &mortar::core::mesh::VolumeMesh, r: f64| {
+        mesh.boundary_surface(|f| on_circle(f, r)).unwrap()
+    };
+    let tie = Tie::new(
+        &disc,
+        &ring,
+        surface(&disc, a),
+        surface(&ring, a),
+        &mortar::CouplingOptions::default().dual(),
+    )
+    .unwrap();
+    let gap = NormalGap::new(&tie, 2, disc.node_count(), ring.node_count()).unwrap();
+    let outer: Vec<u32> = ring
+        .boundary_nodes(|f| on_circle(f, c))
+        .unwrap()
+        .iter()
+        .flat_map(|&n| [2 * n, 2 * n + 1])
+        .collect();
+    let [d, r] = rigid_motions([disc.coords(), ring.coords()], [&[], &outer], &gap);
+    assert_eq!(d.by_contact_only.len(), 3, "{d:?}");
+    assert_eq!(d.free.len(), 1, "{d:?}");
+    let spin = &d.free[0];
+    assert!(spin.translation.norm() < 1e-9, "{spin:?}");
+    assert!(spin.describe().starts_with("rotation about z"), "{spin:?}");
+    assert!(r.by_contact_only.is_empty() && r.free.is_empty(), "{r:?}");
+}

@@ -522,3 +522,48 @@ fn contact_search_radius_reaches_across_an_open_gap() {
     assert!(worst < 1e-8, "pressure off by {worst:e}");
     assert!(solved.tie.coupling().warnings.is_empty());
 }
+
+/// Regression: a body held in one direction only was solved with exit 0 and an arbitrary
+/// rigid shift in the other. The upper block of [`gap_scene`] (touching, `gap = 0`) without
+/// its x condition is free to slide along x: neither a prescribed displacement nor the contact
+/// normal (y) holds that, and the scene is refused naming the body by its scene name and the
+/// motion; nothing is written. Held in x again, it runs.
+#[test]
+fn a_body_free_to_slide_is_refused_naming_it_and_the_motion() {
+    let dir = TempDir::new("contact-not-held");
+    let text = gap_scene(&dir, 0.0, 1e-3);
+    let free = text.replace(
+        "    { group = \"upper_left\", component = \"x\", value = 0.0 },\n",
+        "",
+    );
+    assert_ne!(free, text);
+    assert_fails(
+        &dir,
+        "free_x.toml",
+        &free,
+        &[
+            "body \"upper\" is not held against rigid motion",
+            "translation along x",
+        ],
+    );
+    let scene = dir.file("held.toml", &text);
+    let o = mortar(&["run", &scene, "--out", dir.join("out").to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// A body held in a direction by contact alone that is pulled away from the contact: the
+/// error names the body by its scene name and the motion only contact held (the upper block
+/// of the stacked blocks, held in x on its left side, pulled up by a traction on its top).
+#[test]
+fn a_body_pulled_off_the_contact_is_named() {
+    let dir = TempDir::new("contact-pulled-off");
+    setup(&dir);
+    let pulled = SCENE.replace("value = [0.0, -50e6]", "value = [0.0, 50e6]");
+    assert_ne!(pulled, SCENE);
+    assert_fails(
+        &dir,
+        "pulled.toml",
+        &pulled,
+        &["upper (its translation along y held by contact alone)"],
+    );
+}

@@ -63,6 +63,18 @@ pub enum PhysicsError {
         /// The node tag.
         node: u64,
     },
+    /// A rigid motion of a body is held neither by its displacement conditions nor by the
+    /// contact (see [`rigid_motions`](crate::contact::rigid_motions)): the solution would be
+    /// determined only up to that motion.
+    #[error("body {body:?} is not held against rigid motion: {motions} moves none of its prescribed displacements and no slave interface node along its normal, so neither its displacement conditions nor the (frictionless) contact hold it; add a displacement condition that stops it")]
+    NotHeld {
+        /// The body.
+        body: String,
+        /// The free motions, described (see
+        /// [`RigidMotion::describe`](crate::contact::RigidMotion::describe)), joined by
+        /// `" and "`.
+        motions: String,
+    },
     /// An interface surface names a node its body's mesh does not have.
     #[error("the {side} interface surface refers to node {tag}, which the {side} body's mesh does not have")]
     InterfaceNodeNotInBody {

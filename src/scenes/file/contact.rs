@@ -34,7 +34,8 @@ use std::time::Instant;
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::Interface;
 use mortar_physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, NormalGap,
+    automatic_complementarity, rigid_motions, solve_contact, ContactOptions, ContactSolution,
+    HeldMotions, NormalGap, RigidMotion,
 };
 use mortar_physics::elastic::{
     assemble_elastic_load, assemble_elastic_stiffness, recover_stress, ComponentSet, ElasticBody,
@@ -690,6 +691,20 @@ impl ContactSpec {
         ];
         let dirichlet = [bodies[0].dirichlet_dofs(), bodies[1].dirichlet_dofs()];
         let t_assembly = t.elapsed().as_secs_f64();
+        let held = rigid_motions(
+            [bodies[0].mesh.coords(), bodies[1].mesh.coords()],
+            [&dirichlet[0].0, &dirichlet[1].0],
+            &gap,
+        );
+        let names = [bodies[0].name.as_str(), bodies[1].name.as_str()];
+        for (name, h) in names.iter().zip(&held) {
+            if !h.free.is_empty() {
+                return Err(physics(PhysicsError::NotHeld {
+                    body: name.to_string(),
+                    motions: describe_motions(&h.free),
+                }));
+            }
+        }
 
         let t = Instant::now();
         let contact_options = ContactOptions {
@@ -742,7 +757,7 @@ impl ContactSpec {
                     self.solve.load_steps
                 ),
             ),
-            (None, e) => physics(e),
+            (None, e) => physics(name_bodies(e, names, &held)),
         })?;
         let t_solve = t.elapsed().as_secs_f64();
 
@@ -780,6 +795,51 @@ impl ContactSpec {
 }
 
 type Dofs = (Vec<u32>, Vec<f64>);
+
+/// Motions described and joined by `" and "`.
+fn describe_motions(motions: &[RigidMotion]) -> String {
+    motions
+        .iter()
+        .map(RigidMotion::describe)
+        .collect::<Vec<_>>()
+        .join(" and ")
+}
+
+/// The solver's error with the bodies named as the scene names them: `"slave"` and
+/// `"master"` become the bodies' names; an error of the contact as a whole (a body held in
+/// some direction by contact alone, which has not closed or has let go) names the bodies whose
+/// Dirichlet conditions leave such a motion free, and the motion.
+fn name_bodies(e: PhysicsError, names: [&str; 2], held: &[HeldMotions; 2]) -> PhysicsError {
+    match e {
+        PhysicsError::InvalidInput { body, what } => {
+            let body = match body.as_str() {
+                "slave" => names[0].to_string(),
+                "master" => names[1].to_string(),
+                "contact" => {
+                    let resting: Vec<String> = names
+                        .iter()
+                        .zip(held)
+                        .filter(|(_, h)| !h.by_contact_only.is_empty())
+                        .map(|(name, h)| {
+                            format!(
+                                "{name} (its {} held by contact alone)",
+                                describe_motions(&h.by_contact_only)
+                            )
+                        })
+                        .collect();
+                    if resting.is_empty() {
+                        body
+                    } else {
+                        resting.join(", ")
+                    }
+                }
+                _ => body,
+            };
+            PhysicsError::InvalidInput { body, what }
+        }
+        e => e,
+    }
+}
 
 /// [`solve_contact`]; on a Newton failure, the failing load step (found by re-solving the
 /// first `k` steps, the loads scaled by `k / n`, which repeats the same increments).

@@ -32,9 +32,11 @@
 //! (standard multipliers) the displacements and pressures are solved together (sparse LU).
 //! [`ContactSolution::formulation`] says which.
 
+mod held;
 mod normal;
 mod solver;
 
+pub use held::{rigid_motions, HeldMotions, RigidMotion, FREE_MOTION_TOLERANCE};
 pub use normal::NormalGap;
 pub use solver::{
     automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
