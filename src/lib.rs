@@ -34,8 +34,8 @@ pub mod testing;
 
 pub use mortar_core::{
     self as core, assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions,
-    CouplingStats, CouplingWarning, Interface, MortarError, Side, SpatialDim, SurfaceMesh,
-    Tolerances, VolumeMesh,
+    CouplingStats, CouplingWarning, Interface, MortarError, SearchRadius, Side, SpatialDim,
+    SurfaceMesh, Tolerances, VolumeMesh,
 };
 pub use mortar_elements as elements;
 pub use mortar_physics as physics;

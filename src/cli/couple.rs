@@ -45,7 +45,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
     summary.master = Some(master.label());
     summary.orientation = orientation;
     write_coupling(&args.out, &coupling, &summary).map_err(|e| e.to_string())?;
-    print_warnings(&coupling.warnings);
+    print_warnings(&coupling.warnings, &settings.widen_search_hint());
     print_summary(&summary, json);
     if !json {
         say!(

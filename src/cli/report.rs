@@ -55,10 +55,11 @@ pub(super) fn core_error(
     }
 }
 
-/// Prints each coupling warning on one line of stderr: `mortar: warning: NAME: ...`.
-pub(super) fn print_warnings(warnings: &[crate::CouplingWarning]) {
+/// Prints each coupling warning on one line of stderr: `mortar: warning: NAME: ...`, an
+/// uncovered area's with `widen`, what widens the search.
+pub(super) fn print_warnings(warnings: &[crate::CouplingWarning], widen: &str) {
     for w in warnings {
-        eprintln!("mortar: warning: {w}");
+        eprintln!("mortar: warning: {}", crate::io::warning_text(w, widen));
     }
 }
 

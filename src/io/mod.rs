@@ -54,6 +54,7 @@ pub use gmsh::{
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
 pub use output::{remove_stale_outputs, write_coupling, write_outputs};
 pub use summary::{
-    CouplingSettings, CouplingSummary, Integration, Multipliers, OrientationMethod,
-    OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary, WarningSummary,
+    warning_text, CouplingSettings, CouplingSummary, GapSummary, Integration, Multipliers,
+    OrientationMethod, OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary,
+    WarningSummary,
 };

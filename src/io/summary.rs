@@ -129,6 +129,15 @@ impl CouplingSettings {
         Ok(o.require_full_coverage(self.require_full_coverage))
     }
 
+    /// What widens the search, as `mortar couple` takes it: `--search-radius DISTANCE`
+    /// (larger than the one in use, when one was given).
+    pub fn widen_search_hint(&self) -> String {
+        match self.search_radius {
+            Some(r) => format!("--search-radius above {r}"),
+            None => "--search-radius DISTANCE".to_string(),
+        }
+    }
+
     /// The tolerances for these settings (the search radius).
     ///
     /// # Errors
@@ -232,6 +241,64 @@ pub struct WarningSummary {
     pub message: String,
 }
 
+/// A coupling warning in words, with what widens the search where it reports uncovered slave
+/// area: `widen` names the option or key of the entry point (`--search-radius DISTANCE`,
+/// `[contact] search_radius`, `search_radius=`).
+pub fn warning_text(w: &mortar_core::CouplingWarning, widen: &str) -> String {
+    match w {
+        mortar_core::CouplingWarning::UncoveredSlaveArea { .. } => {
+            format!("{w}; to look farther, set {widen}")
+        }
+        _ => w.to_string(),
+    }
+}
+
+/// The normal gap at the covered slave nodes: the weighted normal gap `-n_j . (D x_s - M
+/// x_m)_j` over the node's share of the slave area (its row sum of D), positive where the
+/// surfaces are apart, in the coordinates' units.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GapSummary {
+    /// Slave nodes with a positive share of the coupled area.
+    pub nodes: usize,
+    /// The smallest gap (negative: penetration).
+    pub min: f64,
+    /// The largest gap.
+    pub max: f64,
+    /// The mean over those nodes.
+    pub mean: f64,
+}
+
+impl GapSummary {
+    /// The gap statistics of `coupling` on `interface`'s coordinates; `None` when no slave
+    /// node has a positive share of the coupled area.
+    pub fn of(interface: &Interface, coupling: &Coupling) -> Option<Self> {
+        let x_s = coupling.slave_positions(interface);
+        let x_m = coupling.master_positions(interface);
+        let gaps = coupling.normal_gaps(&x_s, &x_m);
+        let mut out = Self {
+            nodes: 0,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            mean: 0.0,
+        };
+        for (j, row) in coupling.d.outer_iterator().enumerate() {
+            let w: f64 = row.iter().map(|(_, v)| v).sum();
+            if w.is_nan() || w <= 0.0 {
+                continue;
+            }
+            let g = gaps[j] / w;
+            out.nodes += 1;
+            out.min = out.min.min(g);
+            out.max = out.max.max(g);
+            out.mean += g;
+        }
+        (out.nodes > 0).then(|| Self {
+            mean: out.mean / out.nodes as f64,
+            ..out
+        })
+    }
+}
+
 /// What `summary.json` holds.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CouplingSummary {
@@ -313,6 +380,17 @@ pub struct CouplingSummary {
     /// The sum of the entries of D as written: the area (3D) or length (2D) of the slave side
     /// coupled.
     pub area: f64,
+    /// The normal gap at the covered slave nodes (min, max, mean), `null` when none is
+    /// covered.
+    #[serde(default)]
+    pub gap: Option<GapSummary>,
+    /// Slave faces whose search reached beyond one face diameter to the nearest master
+    /// surface (the default search, where one face diameter left area uncovered).
+    #[serde(default)]
+    pub widened_search_faces: usize,
+    /// The largest of their search radii (0 when none was widened).
+    #[serde(default)]
+    pub widest_search: f64,
     /// The warnings, also printed on standard error.
     pub warnings: Vec<WarningSummary>,
     /// Total seconds of the coupling (wall-clock).
@@ -371,6 +449,10 @@ impl CouplingSummary {
             degrees_used: coupling.degrees_used(),
             search_radius: match interface.tolerances().search_radius {
                 SearchRadius::FaceSize(k) => format!("{k} x face size"),
+                SearchRadius::Nearest { bound } => format!(
+                    "1 x face size, to the nearest master surface where that leaves area \
+                     uncovered (within {bound} x the interface's size)"
+                ),
                 SearchRadius::Distance(d) => format!("{d}"),
             },
             search_boxes: search_boxes(s.slave_box_inflation, s.master_box_inflation),
@@ -399,12 +481,15 @@ impl CouplingSummary {
             straight_line_faces: s.straight_line_faces,
             closed_form_faces: s.closed_form_faces,
             area: s.area,
+            gap: GapSummary::of(interface, coupling),
+            widened_search_faces: s.widened_search_faces,
+            widest_search: s.widest_search,
             warnings: coupling
                 .warnings
                 .iter()
                 .map(|w| WarningSummary {
                     name: w.name().to_string(),
-                    message: w.to_string(),
+                    message: warning_text(w, &settings.widen_search_hint()),
                 })
                 .collect(),
             seconds: p.total,
@@ -518,6 +603,28 @@ impl fmt::Display for CouplingSummary {
                 self.area, self.uncovered_area
             ),
         ));
+        if let Some(g) = &self.gap {
+            lines.push((
+                "gap",
+                format!(
+                    "normal gap at {}: min {:.6e}, max {:.6e}, mean {:.6e}",
+                    plural(g.nodes, "covered slave node"),
+                    g.min,
+                    g.max,
+                    g.mean
+                ),
+            ));
+        }
+        if self.widened_search_faces > 0 {
+            lines.push((
+                "search",
+                format!(
+                    "widened to the nearest master surface for {} (radius up to {:.3e})",
+                    plural(self.widened_search_faces, "slave face"),
+                    self.widest_search
+                ),
+            ));
+        }
         lines.push((
             "time",
             format!(

@@ -17,7 +17,9 @@ use std::f64::consts::PI;
 use mortar::core::integration::{IntegrationStrategy, LineSegments, SegmentBased};
 use mortar::elements::{LINE2, LINE3};
 use mortar::testing::{covered_pair_2d, polyline, shuffled, MeshPair};
-use mortar::{assemble_coupling, CouplingOptions, Interface, SurfaceMesh};
+use mortar::{
+    assemble_coupling, CouplingOptions, Interface, SearchRadius, SurfaceMesh, Tolerances,
+};
 use nalgebra::Vector3;
 use proptest::prelude::*;
 
@@ -109,10 +111,12 @@ fn faces_accounted_for(c: &mortar::Coupling) -> usize {
 
 /// A short slave face under the middle of a long master chord, the interface bent onto an
 /// arc of radius 0.72: the chord lies 0.043 inside the arc there, beyond the face's own
-/// search radius (its length, 0.016, under the default `FaceSize(1.0)`), so the face has no
-/// master face within reach. Both paths say so alike (the warning names the face), and the
-/// fused kernel takes every other face. Found by a run of the proptest above at 2,000
-/// cases, whose count of faces left out faces without a partner.
+/// search radius (its length, 0.016, under `FaceSize(1.0)`), so the face has no master face
+/// within reach. Both paths say so alike (the warning names the face), and the fused kernel
+/// takes every other face. Found by a run of the proptest above at 2,000 cases, whose count
+/// of faces left out faces without a partner. With the default search
+/// (`SearchRadius::Nearest`) the short face's radius is widened to the chord, and the whole
+/// slave is covered.
 #[test]
 fn a_short_face_beyond_its_radius_is_left_uncovered_by_both_paths() {
     let xs = [
@@ -142,8 +146,23 @@ fn a_short_face_beyond_its_radius_is_left_uncovered_by_both_paths() {
     let moved = MeshPair { slave, master }
         .transformed(|p| bent_and_turned(p, bend, 2.0015340001941833))
         .unwrap();
-    let interface = moved.interface().unwrap();
+    let face_size = Tolerances {
+        search_radius: SearchRadius::FaceSize(1.0),
+        ..Tolerances::default()
+    };
+    let interface =
+        Interface::with_tolerances(moved.slave.clone(), moved.master.clone(), face_size).unwrap();
+    let widened = moved.interface().unwrap();
     for options in options() {
+        let c = assemble_coupling(&widened, &options).unwrap();
+        let st = &c.stats;
+        assert_eq!(
+            (st.faces_without_partner, st.faces_partly_covered),
+            (0, 0),
+            "{st:?}"
+        );
+        assert!(st.widened_search_faces >= 1, "{st:?}");
+        assert!(c.warnings.is_empty(), "{:?}", c.warnings);
         let fused = both_ways(&interface, &options, "short face under a long chord");
         let st = &fused.stats;
         assert_eq!(

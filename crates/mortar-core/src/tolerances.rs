@@ -50,7 +50,9 @@ pub struct Tolerances {
     pub search_inflation: f64,
     /// How far from a slave face, along the slave's normal field and both ways, the search
     /// looks for master faces: across an open gap, or into a penetration. Beyond it a master
-    /// face is not coupled, however it projects.
+    /// face is not coupled, however it projects. By default
+    /// ([`SearchRadius::DEFAULT`]) one face diameter, and as far as the nearest master surface
+    /// for the slave faces that leaves uncovered, within a quarter of the interface's size.
     pub search_radius: SearchRadius,
     /// A slave face counts as uncovered when the master covers less than `1 - coverage` of
     /// its area, and as covered more than once when the master faces over it cover more
@@ -63,18 +65,39 @@ pub struct Tolerances {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SearchRadius {
     /// This multiple of each slave face's diameter: follows the mesh, so a gap of the order of
-    /// the element size is crossed whatever the units. The default is `FaceSize(1.0)`.
+    /// the element size is crossed whatever the units.
     FaceSize(f64),
     /// A fixed distance, in the units of the coordinates.
     Distance(f64),
+    /// One face diameter, and, for each slave face that leaves uncovered, as far along the
+    /// slave normals as the nearest master surface plus one face diameter, within `bound`
+    /// times the interface's size (the diagonal of the slave surface's bounding box). An
+    /// open gap is then crossed whatever its width relative to the faces (a pellet's 80 um
+    /// gap with faces of 50 um as with faces of 0.4 mm), and only the nearest master layer
+    /// is reached, not a surface behind it. [`SearchRadius::DEFAULT`] has `bound` 0.25.
+    ///
+    /// The coupling first searches one face diameter (as `FaceSize(1.0)`); only when that
+    /// leaves slave area uncovered does it measure, for each slave face, the distance along
+    /// its normal to the nearest master face within the bound, and couple again with each
+    /// face's radius widened to it ([`CouplingStats::widened_search_faces`](crate::CouplingStats::widened_search_faces)).
+    /// A covered interface costs nothing more.
+    Nearest {
+        /// The largest reach, as a fraction of the interface's size.
+        bound: f64,
+    },
 }
 
 impl SearchRadius {
-    /// The radius for a face of diameter `diameter`.
+    /// The default: [`SearchRadius::Nearest`] within a quarter of the interface's size.
+    pub const DEFAULT: SearchRadius = SearchRadius::Nearest { bound: 0.25 };
+
+    /// The radius for a face of diameter `diameter` (for [`SearchRadius::Nearest`], its
+    /// first search: one diameter).
     pub fn for_face(&self, diameter: f64) -> f64 {
         match *self {
             SearchRadius::FaceSize(k) => k * diameter,
             SearchRadius::Distance(d) => d,
+            SearchRadius::Nearest { .. } => diameter,
         }
     }
 
@@ -83,6 +106,7 @@ impl SearchRadius {
         let v = match *self {
             SearchRadius::FaceSize(k) => k,
             SearchRadius::Distance(d) => d,
+            SearchRadius::Nearest { bound } => bound,
         };
         v >= 0.0 && v.is_finite()
     }
@@ -98,7 +122,7 @@ impl Default for Tolerances {
             newton_max_iterations: 30,
             reference_inside: 1e-9,
             search_inflation: 0.1,
-            search_radius: SearchRadius::FaceSize(1.0),
+            search_radius: SearchRadius::DEFAULT,
             coverage: 1e-9,
         }
     }

@@ -50,7 +50,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
-use super::{coupling_of, dual, face_nodes};
+use super::{coupling_of, dual, face_nodes, widen_hint};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
@@ -1007,7 +1007,9 @@ impl SolvedContact {
             .coupling()
             .warnings
             .iter()
-            .map(ToString::to_string)
+            .map(|w| {
+                crate::io::warning_text(w, &widen_hint("contact", self.spec.contact.search_radius))
+            })
             .collect();
         let report = serde_json::json!({
             "kind": "contact",

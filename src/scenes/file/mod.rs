@@ -172,6 +172,15 @@ pub(crate) fn coupling_of(
     ))
 }
 
+/// What widens a scene's search: its `search_radius` key under `section`, larger than
+/// `radius` when one was given.
+pub(crate) fn widen_hint(section: &str, radius: Option<f64>) -> String {
+    match radius {
+        Some(r) => format!("[{section}] search_radius above {r}"),
+        None => format!("[{section}] search_radius (a distance)"),
+    }
+}
+
 /// The default multiplier space of scene files: dual.
 pub(crate) fn dual() -> crate::io::Multipliers {
     crate::io::Multipliers::Dual

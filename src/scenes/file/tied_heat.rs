@@ -43,7 +43,7 @@ use mortar_physics::heat::{
 use mortar_physics::tied::{FormulationChoice, TiedOptions};
 use serde::{Deserialize, Serialize};
 
-use super::{coupling_of, dual, face_nodes};
+use super::{coupling_of, dual, face_nodes, widen_hint};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 
@@ -734,7 +734,12 @@ impl SolvedTiedHeat {
             .coupling()
             .warnings
             .iter()
-            .map(ToString::to_string)
+            .map(|w| {
+                crate::io::warning_text(
+                    w,
+                    &widen_hint("interface", self.spec.interface.search_radius),
+                )
+            })
             .collect();
         let report = serde_json::json!({
             "kind": "tied_heat",

@@ -1,4 +1,5 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 use arrayvec::ArrayVec;
@@ -20,9 +21,10 @@ use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
 use crate::multiplier::LmBasis;
 use crate::search::{
-    spatial_order, ChainSearch, GroupScratch, LineChains, MasterLineCache, MasterTree, Padding,
-    WALK_LIMIT,
+    face_search_radius, keep_within_radius, nearest_master_radii, spatial_order, ChainSearch,
+    GroupScratch, LineChains, MasterLineCache, MasterTree, Padding, WALK_LIMIT,
 };
+use crate::tolerances::SearchRadius;
 
 /// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
 /// and M) does not depend on the thread count.
@@ -121,6 +123,12 @@ pub struct CouplingStats {
     /// The same for the master faces' boxes: 0 where every master face lies in the convex hull
     /// of its nodes.
     pub master_box_inflation: f64,
+    /// Slave faces whose search radius was widened beyond one face diameter to reach the
+    /// nearest master surface ([`SearchRadius::Nearest`](crate::SearchRadius::Nearest), the
+    /// default, when one face diameter left slave area uncovered); 0 otherwise.
+    pub widened_search_faces: usize,
+    /// The largest of those widened radii (0 when none was widened).
+    pub widest_search: f64,
     /// Timings.
     pub seconds: PhaseSeconds,
 }
@@ -386,6 +394,7 @@ impl Search {
         options: &CouplingOptions,
         lines: Option<(LineSegments, LineChains, LineChains)>,
         padding: Padding,
+        radii: Option<Arc<[f64]>>,
     ) -> (Self, MasterFaces, Vec<u32>) {
         if let Some((rule, slave, master)) = lines {
             let masters = MasterFaces::new(interface, master.order.iter().copied());
@@ -393,7 +402,7 @@ impl Search {
                 padding.master, 0.0,
                 "two-node lines lie in their nodes' box"
             );
-            let search = ChainSearch::new(interface, &masters, master, padding.slave);
+            let search = ChainSearch::new(interface, &masters, master, padding.slave, radii);
             let follows = (0..slave.order.len())
                 .map(|p| p > 0 && slave.prev[p] == p as u32 - 1)
                 .collect();
@@ -405,6 +414,7 @@ impl Search {
             return (lines, masters, slave.order);
         }
         let (tree, masters) = MasterTree::build_with_faces(interface, padding);
+        let tree = tree.with_radii(radii);
         // Slave faces are processed in the Morton order of their centres: the queries of a
         // chunk then walk the same branches of the tree, whatever the file's numbering.
         // (Ordered by their first nodes: one read of the node coordinates per face, in the
@@ -468,10 +478,13 @@ struct ChunkStats {
     seconds_search: f64,
     seconds_segments: f64,
     seconds_integration: f64,
+    /// The largest search radius of an uncovered slave face.
+    uncovered_reach: f64,
 }
 
 impl ChunkStats {
     fn add(&mut self, o: &ChunkStats) {
+        self.uncovered_reach = self.uncovered_reach.max(o.uncovered_reach);
         self.candidates += o.candidates;
         self.pairs += o.pairs;
         self.segments += o.segments;
@@ -768,8 +781,64 @@ fn assemble_on_pool(
     // (plane3d n=708 reusing its own arrays: memory ratio 1.39 -> 1.82, for 1.5 % of the
     // time on one thread).
     drop(spare);
+    let first = general_path(interface, options, threads, lines, None, start);
+    let SearchRadius::Nearest { bound } = interface.tolerances().search_radius else {
+        return first;
+    };
+    if !leaves_area_uncovered(&first) {
+        return first;
+    }
+    // One face diameter left slave area uncovered: each slave face's radius widened to the
+    // nearest master surface, and the interface coupled again with those radii.
     let padding = Padding::of(interface, Some(options.projector.as_ref()));
-    let (search, masters, order) = Search::build(interface, options, lines, padding);
+    let radii = nearest_master_radii(interface, padding, bound);
+    let widened = radii.iter().filter(|r| r.is_some()).count();
+    if widened == 0 {
+        return first;
+    }
+    drop(first);
+    let widest = radii.iter().flatten().fold(0.0f64, |a, r| a.max(*r));
+    let radii: Arc<[f64]> = radii
+        .iter()
+        .enumerate()
+        .map(|(f, r)| {
+            r.unwrap_or_else(|| face_search_radius(interface, &interface.slave_face(f), None))
+        })
+        .collect();
+    let lines = line_rule(interface, options)
+        .and_then(|rule| line_chains(interface).map(|(s, m)| (rule, s, m)));
+    let mut coupling = general_path(interface, options, threads, lines, Some(radii), start)?;
+    coupling.stats.widened_search_faces = widened;
+    coupling.stats.widest_search = widest;
+    Ok(coupling)
+}
+
+/// Whether a coupling's result says that slave area was left uncovered: a warning of it, or
+/// the error of no overlap at all or of incomplete coverage (with
+/// [`CouplingOptions::require_full_coverage`]) for it.
+fn leaves_area_uncovered(result: &Result<Coupling>) -> bool {
+    let uncovered = |w: &CouplingWarning| matches!(w, CouplingWarning::UncoveredSlaveArea { .. });
+    match result {
+        Ok(c) => c.warnings.iter().any(uncovered),
+        Err(MortarError::NoOverlap { .. }) => true,
+        Err(MortarError::IncompleteCoverage(w)) => uncovered(w),
+        Err(_) => false,
+    }
+}
+
+/// The general path of [`assemble_coupling`]: the search (the tree, or the walk along the
+/// chains of straight lines `lines`), then each chunk of slave faces segmented, integrated
+/// and scattered; with `radii`, each slave face's search radius by face index.
+fn general_path(
+    interface: &Interface,
+    options: &CouplingOptions,
+    threads: usize,
+    lines: Option<(LineSegments, LineChains, LineChains)>,
+    radii: Option<Arc<[f64]>>,
+    start: Instant,
+) -> Result<Coupling> {
+    let padding = Padding::of(interface, Some(options.projector.as_ref()));
+    let (search, masters, order) = Search::build(interface, options, lines, padding, radii.clone());
     let ctx = SegmentContext {
         interface,
         projector: options.projector.as_ref(),
@@ -800,7 +869,15 @@ fn assemble_on_pool(
             }
             let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
             if let Err(e) = chunk(
-                interface, options, &ctx, &search, &order, range, c as u64, &mut acc,
+                interface,
+                options,
+                &ctx,
+                &search,
+                radii.as_deref(),
+                &order,
+                range,
+                c as u64,
+                &mut acc,
             ) {
                 first_error.fetch_min(c, Ordering::Relaxed);
                 if acc.error.as_ref().is_none_or(|(k, _)| c < *k) {
@@ -985,6 +1062,8 @@ fn finish(
             // The general path sets the search's below; the merge uses no boxes.
             slave_box_inflation: 0.0,
             master_box_inflation: 0.0,
+            widened_search_faces: 0,
+            widest_search: 0.0,
             seconds: PhaseSeconds {
                 total: start.elapsed().as_secs_f64(),
                 ..seconds
@@ -1046,6 +1125,7 @@ fn coupling_warnings(
             faces_without_partner: stats.without_partner,
             faces_partly_covered: stats.partly_covered,
             examples: examples.0,
+            reach: stats.uncovered_reach,
         });
     }
     if stats.overlapped > 0 {
@@ -1074,6 +1154,7 @@ fn chunk(
     options: &CouplingOptions,
     ctx: &SegmentContext<'_>,
     search: &Search,
+    radii: Option<&[f64]>,
     order: &[u32],
     positions: std::ops::Range<usize>,
     key: u64,
@@ -1146,6 +1227,23 @@ fn chunk(
             }
         }
     }
+    if let Some(radii) = radii {
+        // A widened search keeps the candidates within each face's radius along its normal
+        // (the boxes reach farther at a slant; see `keep_within_radius`).
+        let mut kept = 0;
+        for i in 0..faces.len() {
+            scratch.clear();
+            scratch.extend_from_slice(&all[offsets[i]..offsets[i + 1]]);
+            let face = &geometry[i];
+            let radius = radii[face.index as usize];
+            keep_within_radius(interface, ctx.masters, face, radius, scratch);
+            all[kept..kept + scratch.len()].copy_from_slice(scratch);
+            offsets[i] = kept;
+            kept += scratch.len();
+        }
+        offsets[faces.len()] = kept;
+        all.truncate(kept);
+    }
     out.candidates = all.len();
     let t0 = Instant::now();
     out.seconds_search = (t0 - t_search).as_secs_f64();
@@ -1176,6 +1274,10 @@ fn chunk(
             // the tree would give.
             if few {
                 search.exhaustive(interface, ctx.masters, face, scratch);
+                if let Some(radii) = radii {
+                    let radius = radii[face.index as usize];
+                    keep_within_radius(interface, ctx.masters, face, radius, scratch);
+                }
                 out.candidates = out.candidates + scratch.len() - cands.len();
                 cands = scratch;
             }
@@ -1183,9 +1285,13 @@ fn chunk(
         if cands.is_empty() {
             out.without_partner += 1;
             out.uncovered_area += face.measure();
+            out.uncovered_reach = out
+                .uncovered_reach
+                .max(face_search_radius(interface, face, radii));
             note(&mut notes.uncovered, face.tag);
             continue;
         }
+        let uncovered_before = out.without_partner + out.partly_covered;
         general_face(
             options,
             ctx,
@@ -1199,6 +1305,11 @@ fn chunk(
             positions.start + i,
             &mut notes,
         )?;
+        if out.without_partner + out.partly_covered > uncovered_before {
+            out.uncovered_reach = out
+                .uncovered_reach
+                .max(face_search_radius(interface, face, radii));
+        }
     }
     acc.d.push_rows(key, &mut buffers.d);
     acc.m.push_rows(key, &mut buffers.m);

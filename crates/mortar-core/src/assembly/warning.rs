@@ -26,6 +26,9 @@ pub enum CouplingWarning {
         /// Tags of the first uncovered slave faces (ascending, at most
         /// [`CouplingWarning::EXAMPLES`]).
         examples: Vec<u64>,
+        /// How far along the slave normals the search looked from the uncovered faces (the
+        /// largest of their search radii): a master surface farther away is not coupled.
+        reach: f64,
     },
     /// Part of the slave surface is covered by more than one master face: master faces
     /// overlap as seen from the slave (two master layers within the search radius, or a
@@ -80,11 +83,13 @@ impl fmt::Display for CouplingWarning {
                 faces_without_partner,
                 faces_partly_covered,
                 examples,
+                reach,
             } => {
                 write!(
                     f,
                     "uncovered slave area: {area:.3e} of {total:.3e} ({:.3}%): {} without a \
-                     master face within the search radius, {} covered in part (slave faces {})",
+                     master face within the search radius, {} covered in part (slave faces {}); \
+                     the search looked {reach:.3e} along the slave normals from them",
                     100.0 * area / total,
                     plural(*faces_without_partner, "face"),
                     plural(*faces_partly_covered, "face"),

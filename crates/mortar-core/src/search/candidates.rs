@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -50,6 +52,9 @@ pub struct MasterTree {
     slabs: Vec<Slab>,
     planar: bool,
     padding: Padding,
+    /// Each slave face's search radius by face index, where the coupling set them one by
+    /// one ([`SearchRadius::Nearest`](crate::SearchRadius::Nearest)); else the tolerances'.
+    radii: Option<Arc<[f64]>>,
 }
 
 struct Slab {
@@ -282,9 +287,17 @@ impl MasterTree {
                 slabs,
                 planar,
                 padding,
+                radii: None,
             },
             masters,
         )
+    }
+
+    /// The same tree, its queries taking the search radius of slave face `f` from
+    /// `radii[f]` instead of the tolerances.
+    pub(crate) fn with_radii(mut self, radii: Option<Arc<[f64]>>) -> Self {
+        self.radii = radii;
+        self
     }
 
     /// The candidate master faces of slave face `s`, as slots (see
@@ -297,7 +310,20 @@ impl MasterTree {
     /// The candidates of a slave face already gathered (with its nodal normals), as
     /// [`candidates_into`](Self::candidates_into).
     pub fn candidates_of(&self, interface: &Interface, face: &FaceGeometry, out: &mut Vec<u32>) {
-        let b = slave_search_box(interface, face, self.padding.slave);
+        let radius = self.radii.as_ref().map(|r| r[face.index as usize]);
+        self.candidates_within(interface, face, radius, out);
+    }
+
+    /// [`candidates_of`](Self::candidates_of) with the search radius `radius` (`None`: the
+    /// tolerances').
+    pub(crate) fn candidates_within(
+        &self,
+        interface: &Interface,
+        face: &FaceGeometry,
+        radius: Option<f64>,
+        out: &mut Vec<u32>,
+    ) {
+        let b = slave_search_box(interface, face, self.padding.slave, radius);
         out.clear();
         for slab in &self.slabs {
             if !overlaps(&b, &slab.bounds, self.planar) {
@@ -337,11 +363,10 @@ impl MasterTree {
         let mut boxes: ArrayVec<Box3, GROUP> = ArrayVec::new();
         for group in faces.chunks(GROUP) {
             boxes.clear();
-            boxes.extend(
-                group
-                    .iter()
-                    .map(|f| slave_search_box(interface, f, self.padding.slave)),
-            );
+            boxes.extend(group.iter().map(|f| {
+                let radius = self.radii.as_ref().map(|r| r[f.index as usize]);
+                slave_search_box(interface, f, self.padding.slave, radius)
+            }));
             let all = boxes[1..].iter().fold(boxes[0], |acc, b| union(&acc, b));
             let first_end = ends.len();
             ends.extend(std::iter::repeat_n(out.len(), group.len()));
@@ -421,8 +446,14 @@ pub fn find_candidates(interface: &Interface) -> Candidates {
 ///
 /// Where the normals fan out by more than a right angle (`c <= 0`), both widen the nodes' box
 /// by the radius on every axis.
-pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, inflation: f64) -> Box3 {
-    let tol = interface.tolerances();
+///
+/// The radius is `radius`, or where `None` the tolerances' for the face's diameter.
+pub(super) fn slave_search_box(
+    interface: &Interface,
+    face: &FaceGeometry,
+    inflation: f64,
+    radius: Option<f64>,
+) -> Box3 {
     let k = face.node_count();
     let (nodes, normals) = (&face.nodes[..k], &face.normals[..k]);
     let (mut lo, mut hi) = (EMPTY.0, EMPTY.1);
@@ -431,7 +462,7 @@ pub(super) fn slave_search_box(interface: &Interface, face: &FaceGeometry, infla
         hi = hi.sup(x);
     }
     let diameter = (hi - lo).norm();
-    let radius = tol.search_radius.for_face(diameter);
+    let radius = radius.unwrap_or_else(|| interface.tolerances().search_radius.for_face(diameter));
     match normal_cone_reach(normals, radius) {
         None => {
             lo -= Vector3::repeat(radius);
@@ -488,6 +519,26 @@ fn normal_cone_reach(normals: &[Vector3<f64>], radius: f64) -> Option<f64> {
         .map(|n| n.dot(&s))
         .fold(f64::INFINITY, f64::min);
     (m > 0.0).then(|| radius * 0.5 * (1.0 + s.norm_squared() / (m * m)))
+}
+
+/// The search radius of slave face `face`: `radii[face.index]` where given, else the
+/// tolerances' for its diameter (the diagonal of its nodes' box, as the search box takes it).
+pub(crate) fn face_search_radius(
+    interface: &Interface,
+    face: &FaceGeometry,
+    radii: Option<&[f64]>,
+) -> f64 {
+    if let Some(r) = radii {
+        return r[face.index as usize];
+    }
+    let x = &face.nodes[..face.node_count()];
+    let (lo, hi) = x[1..]
+        .iter()
+        .fold((x[0], x[0]), |(lo, hi), p| (lo.inf(p), hi.sup(p)));
+    interface
+        .tolerances()
+        .search_radius
+        .for_face((hi - lo).norm())
 }
 
 /// The bounding box of a face's nodes `x`, inflated by `inflation` times its diagonal and then

@@ -3,6 +3,8 @@
 //! consecutive slave faces found by walking along the master chains from those of the
 //! previous slave face, instead of querying a tree.
 
+use std::sync::Arc;
+
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -137,6 +139,9 @@ pub(crate) struct ChainSearch {
     chain_starts: Vec<u32>,
     /// The inflation of the slave faces' search boxes.
     slave_inflation: f64,
+    /// Each slave face's search radius by face index, where the coupling set them one by
+    /// one; else the tolerances'.
+    radii: Option<Arc<[f64]>>,
 }
 
 impl ChainSearch {
@@ -147,6 +152,7 @@ impl ChainSearch {
         masters: &MasterFaces,
         chains: LineChains,
         slave_inflation: f64,
+        radii: Option<Arc<[f64]>>,
     ) -> Self {
         let blocks: Vec<Box3> = (0..masters.len().div_ceil(BLOCK))
             .into_par_iter()
@@ -169,7 +175,14 @@ impl ChainSearch {
             blocks: BoxTree::build(blocks, true),
             chain_starts,
             slave_inflation,
+            radii,
         }
+    }
+
+    /// The search box of slave face `face`.
+    fn search_box(&self, interface: &Interface, face: &FaceGeometry) -> Box3 {
+        let radius = self.radii.as_ref().map(|r| r[face.index as usize]);
+        slave_search_box(interface, face, self.slave_inflation, radius)
     }
 
     /// The chain of the face in slot `s` (its index in `chain_starts`).
@@ -226,7 +239,7 @@ impl ChainSearch {
         face: &FaceGeometry,
         out: &mut Vec<u32>,
     ) {
-        let b = slave_search_box(interface, face, self.slave_inflation);
+        let b = self.search_box(interface, face);
         out.clear();
         self.blocks.append_intersecting(&b, out);
         let hits = out.len();
@@ -271,7 +284,7 @@ impl ChainSearch {
         out: &mut Vec<u32>,
         blocks: &mut Vec<u32>,
     ) -> bool {
-        let b = slave_search_box(interface, face, self.slave_inflation);
+        let b = self.search_box(interface, face);
         let mut meets = |s: u32| overlaps(&b, &lines.get(interface, masters, s).bx, true);
         out.clear();
         let first = seeds.iter().copied().find(|&s| meets(s)).or_else(|| {

@@ -22,10 +22,13 @@ mod candidates;
 mod chains;
 mod master_cache;
 mod morton;
+mod nearest;
 mod padding;
 
+pub(crate) use candidates::face_search_radius;
 pub use candidates::{find_candidates, Candidates, GroupScratch, MasterTree};
 pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
 pub(crate) use master_cache::{MasterCorners, MasterCornersCache, MasterLine, MasterLineCache};
 pub(crate) use morton::spatial_order;
+pub(crate) use nearest::{keep_within_radius, nearest_master_radii};
 pub use padding::{in_hull_of_nodes, Padding};
