@@ -161,3 +161,75 @@ fn example_scene_runs() {
     );
     solve(scene);
 }
+
+/// Regression: the tied block with the right body (slave, loaded by the flux 4/3 at x = 1,
+/// held by the tie alone) made `c` times more conductive than the left one (k = 1): at
+/// `c = 1e12` its temperature was 1.7e-3 of the span off the exact piecewise-linear field
+/// (4.6e-9 at 1e6), the rounding of its stiffness times its level acting as a spurious flux.
+/// Solved relative to the stiffer body's level, every contrast is exact to 1e-13 of the span
+/// with the softer body as the slave (the sides exchanged); with the stiffer body as the
+/// slave up to `MAX_STIFFER_SLAVE_CONTRAST` (1e7), beyond which the scene is refused naming
+/// the exchange that solves it exactly. Closed form: `T = 4x/3` on the left, `2/3 + 4(x -
+/// 1/2)/(3c)` on the right.
+#[test]
+fn a_stiff_body_held_by_the_tie_alone_is_exact_or_refused() {
+    let dir = TempDir::new("scene-contrast");
+    let scene = write_scene(&dir, 2, 8, MshFormat::Ascii);
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let (slave, master) = (
+        "[interface.slave]\nbody = \"right\"\ngroup = \"right_cut\"",
+        "[interface.master]\nbody = \"left\"\ngroup = \"left_cut\"",
+    );
+    assert!(text.contains(slave) && text.contains(master), "{text}");
+    let exchanged = |t: &str| {
+        t.replace(slave, "SLAVE")
+            .replace(master, "MASTER")
+            .replace(
+                "SLAVE",
+                "[interface.slave]\nbody = \"left\"\ngroup = \"left_cut\"",
+            )
+            .replace(
+                "MASTER",
+                "[interface.master]\nbody = \"right\"\ngroup = \"right_cut\"",
+            )
+    };
+    for c in [1e6, 1e9, 1e12] {
+        let stiff = text.replacen("conductivity = 2.0", &format!("conductivity = {c:e}"), 1);
+        assert_ne!(stiff, text);
+        for (t, slave_is_stiff) in [(stiff.clone(), true), (exchanged(&stiff), false)] {
+            let path = dir.file(&format!("c{c:e}-{slave_is_stiff}.toml"), &t);
+            let spec = TiedHeatSpec::parse(&t, Path::new(&path)).unwrap();
+            let solved = spec.solve(Path::new(&path), dir.join("").as_path(), &FileSystem);
+            if slave_is_stiff && c > 1e7 {
+                let e = solved.unwrap_err().to_string();
+                assert!(e.contains("make \"left\" the slave side"), "{e}");
+                continue;
+            }
+            let solved = solved.unwrap();
+            let exact = |x: f64| {
+                if x <= 0.5 {
+                    4.0 * x / 3.0
+                } else {
+                    2.0 / 3.0 + 4.0 * (x - 0.5) / (3.0 * c)
+                }
+            };
+            let err = solved
+                .problem
+                .bodies()
+                .iter()
+                .zip(&solved.solution.temperatures)
+                .flat_map(|(b, t)| {
+                    b.mesh
+                        .coords()
+                        .iter()
+                        .zip(t)
+                        .map(|(x, t)| (t - exact(x.x)).abs())
+                })
+                .fold(0.0f64, f64::max);
+            assert!(
+                err < 1e-13 * (2.0 / 3.0),
+                "c = {c:e}, stiff slave {slave_is_stiff}: {err:e}"
+            );
+        }
+    }
+}

@@ -41,6 +41,6 @@ pub use gap::{GapHeat, GapSolver, GapSolverState, GapSolverStats};
 pub use nonlinear::{assemble_conduction, Conductivity, Linearization};
 pub use norms::{error_norms, ErrorNorms};
 pub use tied::{
-    BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution, MAX_CONDUCTIVITY_CONTRAST,
-    MAX_STIFFER_SLAVE_CONTRAST,
+    BackwardEuler, HeatSeconds, TiedHeat, TiedHeatSolution, LEVEL_SHIFT_CONTRAST,
+    MAX_CONDUCTIVITY_CONTRAST, MAX_LEVEL_PASSES, MAX_STIFFER_SLAVE_CONTRAST,
 };
