@@ -125,3 +125,52 @@ fn two_master_layers_over_a_plane_are_reported() {
         assert!(assemble_coupling(&interface, &strict).is_err());
     }
 }
+
+fn slave_overlap_warning(w: &[CouplingWarning]) -> Option<&CouplingWarning> {
+    w.iter()
+        .find(|w| matches!(w, CouplingWarning::OverlappingSlaveFaces { .. }))
+}
+
+/// Both sides of a thin plate (0.001 thick) given as the slave over a master plane, each
+/// side facing the master (as the facing step of `mortar couple` turns them): each layer is
+/// covered once, so no slave-side warning can see it, but the master is covered twice. Before,
+/// the coupling said nothing (D summed to 2 over a master of area 1); now it warns of
+/// overlapping slave faces, the master area covered more than once being 1 (the closed form:
+/// the whole unit square, once more). One layer alone is not warned of; with
+/// `require_full_coverage` the two are an error.
+#[test]
+fn two_slave_layers_over_one_master_are_reported() {
+    let master = square_triangles(6, Diagonal::Main, 0.0, false, 1).unwrap();
+    let bottom = square_quads(5, 0.0, true, 1).unwrap();
+    let top = square_quads(4, 0.001, true, 1).unwrap();
+    let plate = stack(&[bottom.clone(), top]);
+    for options in [
+        CouplingOptions::default(),
+        CouplingOptions::default().dual(),
+    ] {
+        let interface = Interface::new(plate.clone(), master.clone()).unwrap();
+        let c = assemble_coupling(&interface, &options).unwrap();
+        assert!((sum(&c.d) - 2.0).abs() < 1e-12, "{}", sum(&c.d));
+        let Some(CouplingWarning::OverlappingSlaveFaces {
+            area,
+            total,
+            master_nodes,
+            ..
+        }) = slave_overlap_warning(&c.warnings)
+        else {
+            panic!("{:?}", c.warnings);
+        };
+        assert!((total - 1.0).abs() < 1e-12, "{total}");
+        assert!((area - 1.0).abs() < 1e-12, "{area}");
+        assert_eq!(*master_nodes, 49);
+        assert!(c.warnings[0]
+            .to_string()
+            .starts_with("overlapping slave faces"));
+        let one = Interface::new(bottom.clone(), master.clone()).unwrap();
+        let c = assemble_coupling(&one, &options).unwrap();
+        assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+        let strict = options.clone().require_full_coverage(true);
+        let e = assemble_coupling(&interface, &strict).unwrap_err();
+        assert!(e.to_string().contains("overlapping slave faces"), "{e}");
+    }
+}

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::key_index::KeyIndex;
 use super::local::{integrate_batch_into, LocalBlocks};
+use super::master_coverage;
 use super::straight_line;
 use super::{CouplingOptions, CouplingWarning};
 use crate::element::MAX_FACE_NODES;
@@ -929,6 +930,13 @@ fn general_path(
     let nm = interface.master_nodes().len();
     let d = total.d.to_csr(ns, ns);
     let m = total.m.to_csr(ns, nm);
+    let mut warnings = warnings;
+    if let Some(w) = master_coverage::overlapping_slave_faces(interface, options, &m) {
+        if options.require_full_coverage {
+            return Err(MortarError::IncompleteCoverage(Box::new(w)));
+        }
+        warnings.push(w);
+    }
     let seconds = PhaseSeconds {
         tree: tree_seconds,
         faces: faces_seconds,

@@ -12,6 +12,7 @@
 mod coupling;
 mod key_index;
 mod local;
+mod master_coverage;
 mod options;
 mod pool;
 mod straight_line;
@@ -22,5 +23,6 @@ pub use coupling::{
     ThreadSeconds, MAX_THREADS_PER_CORE,
 };
 pub use local::{integrate_batch_into, integrate_face_into, LocalBlocks};
+pub use master_coverage::MASTER_OVERLAP_RATIO;
 pub use options::CouplingOptions;
 pub use warning::CouplingWarning;

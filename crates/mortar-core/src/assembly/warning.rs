@@ -49,6 +49,23 @@ pub enum CouplingWarning {
         /// Tags of the first of them (ascending, at most [`CouplingWarning::EXAMPLES`]).
         examples: Vec<u64>,
     },
+    /// Part of the master surface is covered by more than one slave face: slave faces overlap
+    /// as seen from the master (two slave layers, such as both sides of a thin plate given as
+    /// the slave, each turned to face the master). D and M tie each layer to the same master
+    /// surface, and D's entries sum to more than the master area they cover. Found from M's
+    /// column sums against the master nodes' own integrals (see
+    /// [`MASTER_OVERLAP_RATIO`](super::MASTER_OVERLAP_RATIO)).
+    OverlappingSlaveFaces {
+        /// The master area covered more than once, counted once per extra slave layer (the
+        /// excess of M's column sums over the nodal integrals, at the nodes concerned).
+        area: f64,
+        /// The master surface's area.
+        total: f64,
+        /// Master nodes covered more than once.
+        master_nodes: usize,
+        /// Tags of the first of them (ascending, at most [`CouplingWarning::EXAMPLES`]).
+        examples: Vec<u64>,
+    },
     /// Slave-master pairs dropped because a point could not be mapped between the two faces;
     /// their area is part of the uncovered area.
     SkippedPairs {
@@ -63,12 +80,13 @@ impl CouplingWarning {
     /// The most face tags a warning lists.
     pub const EXAMPLES: usize = 8;
 
-    /// A short name: `"uncovered slave area"`, `"overlapping master faces"` or
-    /// `"skipped pairs"`.
+    /// A short name: `"uncovered slave area"`, `"overlapping master faces"`, `"overlapping
+    /// slave faces"` or `"skipped pairs"`.
     pub fn name(&self) -> &'static str {
         match self {
             CouplingWarning::UncoveredSlaveArea { .. } => "uncovered slave area",
             CouplingWarning::OverlappingMasterFaces { .. } => "overlapping master faces",
+            CouplingWarning::OverlappingSlaveFaces { .. } => "overlapping slave faces",
             CouplingWarning::SkippedPairs { .. } => "skipped pairs",
         }
     }
@@ -111,6 +129,23 @@ impl fmt::Display for CouplingWarning {
                     100.0 * area / total,
                     plural(*faces, "face"),
                     tag_list(examples, *faces),
+                )
+            }
+            CouplingWarning::OverlappingSlaveFaces {
+                area,
+                total,
+                master_nodes,
+                examples,
+            } => {
+                write!(
+                    f,
+                    "overlapping slave faces: {area:.3e} of {total:.3e} ({:.3}%) of the master \
+                     surface covered by more than one slave face (counted once per extra \
+                     face), around {} (master nodes {}): slave faces overlap as seen from the \
+                     master (two slave layers?), and D and M tie each to it",
+                    100.0 * area / total,
+                    plural(*master_nodes, "node"),
+                    tag_list(examples, *master_nodes),
                 )
             }
             CouplingWarning::SkippedPairs { count, first } => write!(
