@@ -7,8 +7,8 @@
 
 use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::physics::heat::{
-    HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, LEVEL_SHIFT_CONTRAST,
-    MAX_CONDUCTIVITY_CONTRAST, MAX_STIFFER_SLAVE_CONTRAST,
+    HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, MAX_CONDUCTIVITY_CONTRAST,
+    MAX_STIFFER_SLAVE_CONTRAST,
 };
 use mortar::physics::tied::{Formulation, FormulationChoice, TiedOptions};
 use mortar::physics::PhysicsError;
@@ -187,7 +187,7 @@ fn contrast_error(
 /// level is set through the interface, and a stiff body's level used to drift by about `eps
 /// contrast` of the span (1.7e-3 at 1e12: the rounding of its stiffness times its
 /// temperature acts as a spurious flux); solved relative to its level (see
-/// [`LEVEL_SHIFT_CONTRAST`]) it is exact.
+/// `mortar::physics::heat::LEVEL_SHIFT_CONTRAST`) it is exact.
 ///
 /// Measured (largest over the splits and the cases; nodal error relative to the span, flux
 /// error relative to the exact flux):
