@@ -56,4 +56,5 @@ pub use output::{remove_stale_outputs, write_coupling, write_outputs};
 pub use summary::{
     CouplingSettings, CouplingSummary, Integration, Multipliers, OrientationMethod,
     OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary, WarningSummary,
+    RECOMBINATION_FILE,
 };
