@@ -39,7 +39,14 @@ Conventions:
 from __future__ import annotations
 
 from . import laws
-from ._couple import Coupling, Surface, couple, read_gmsh
+from ._couple import (
+    Coupling,
+    SlaveDirichletRows,
+    Surface,
+    couple,
+    read_gmsh,
+    redistribute_slave_dirichlet,
+)
 from ._mortar import __version__
 from ._scene import run_scene
 from .errors import (
@@ -63,10 +70,12 @@ __all__ = [
     "MortarError",
     "NoOverlapError",
     "SceneError",
+    "SlaveDirichletRows",
     "Surface",
     "__version__",
     "couple",
     "laws",
     "read_gmsh",
+    "redistribute_slave_dirichlet",
     "run_scene",
 ]

@@ -13,7 +13,14 @@ import scipy.sparse
 from . import _mortar
 from .errors import InvalidInputError
 
-__all__ = ["Coupling", "Surface", "couple", "read_gmsh"]
+__all__ = [
+    "Coupling",
+    "SlaveDirichletRows",
+    "Surface",
+    "couple",
+    "read_gmsh",
+    "redistribute_slave_dirichlet",
+]
 
 #: Cell types a surface may have, meshio's names with the library's beside them.
 CELL_TYPES = {
@@ -60,7 +67,16 @@ class Coupling:
 
     Attributes:
         D: ``scipy.sparse.csr_array`` (slave nodes x slave nodes), ``D[j, k] = int Phi_j
-            N_k^s``: in length^2 (3D) or length (2D). Diagonal for dual multipliers.
+            N_k^s``: in length^2 (3D) or length (2D). Diagonal for dual multipliers: on
+            Tri6 and Quad8 slave faces in the recombined basis ``D T^T`` (see ``T``), as
+            ``mortar couple`` writes it.
+        T: ``None``, or with dual multipliers on Tri6 or Quad8 slave faces the recombination
+            ``N~ = T N`` of the slave shape functions (Popp, Gee and Wall 2012; slave nodes x
+            slave nodes, ``csr_array``): then ``D`` is ``D_nodal @ T.T`` and the constraint
+            reads ``D @ u~_s - M @ u_m = 0`` in the slave unknowns ``u~_s`` with ``u_s = T.T
+            @ u~_s``, so that ``u_s = T.T @ ((M @ u_m) / D.diagonal())``.
+        D_nodal: D in the slave nodes' own basis (``D`` itself when ``T`` is None).
+        slave_basis: ``"recombined"`` when ``T`` is given, else ``"nodal"``.
         M: ``scipy.sparse.csr_array`` (slave nodes x master nodes), ``M[j, l] = int Phi_j
             N_l^m``, same unit.
         slave_nodes: int64 (rows,): the row of the slave ``points`` of each row of D and M
@@ -80,25 +96,37 @@ class Coupling:
             ``fused_line_faces`` (slave faces done by the fused kernel for straight 2D
             lines), ``straight_line_faces`` (slave faces done by the sorted merge of a
             straight 2D interface), ``closed_form_faces`` (3D slave faces whose clip polygons
-            were integrated in closed form), ``slave_box_inflation`` and
+            were integrated in closed form), ``d_roundoff_dropped`` (off-diagonal round-off
+            of a dual D lumped into its diagonal), ``d_off_diagonal`` and
+            ``d_off_diagonal_largest`` (off-diagonal entries a dual D keeps, and the largest
+            relative to its diagonal: none on an interface covered everywhere, unless the
+            warning ``dual D not diagonal`` says why), ``slave_box_inflation`` and
             ``master_box_inflation`` (the search boxes' inflation, a fraction of a face's
             diameter: 0 where the nodes bound the faces), ``threads``, ``formulation``, and
             ``orientation`` (faces flipped per side) when ``orient=True``.
-        warnings: list of str: uncovered slave area, overlapping master faces, skipped pairs
-            (each also warned of with ``warnings.warn`` by :func:`couple`).
+        warnings: list of str: uncovered slave area, overlapping master faces, skipped pairs,
+            a dual D not diagonal (each also warned of with ``warnings.warn`` by
+            :func:`couple`).
         dim: 2 or 3.
 
     The tying constraint of fields ``u_s`` (slave nodes, row order) and ``u_m`` (master
-    nodes, column order) is ``D @ u_s - M @ u_m = 0``; for a field given on all points,
+    nodes, column order) is ``D_nodal @ u_s - M @ u_m = 0`` (``D @ u_s - M @ u_m = 0`` but
+    in the recombined basis, see ``T``); for a field given on all points,
     ``u_s = u[slave_nodes]``, ``u_m = u[master_nodes]``. With ``multipliers="linear"`` the
     rows of the edge and centre nodes of second-order faces are empty (no multiplier there):
     take ``D[c.multiplier_rows]`` and ``M[c.multiplier_rows]`` as the constraint, or its
     saddle point is singular.
     """
 
-    def __init__(self, raw: dict):
+    def __init__(self, raw: dict, slave: Any = None):
         self.D = _csr(raw["d"])
         self.M = _csr(raw["m"])
+        self.T: Optional[scipy.sparse.csr_array] = _csr(raw["t"]) if "t" in raw else None
+        self.D_nodal = _csr(raw["d_nodal"]) if "d_nodal" in raw else self.D
+        self.slave_basis: str = "nodal" if self.T is None else "recombined"
+        # The slave surface as passed to the library (points, blocks), for
+        # redistribute_slave_dirichlet.
+        self._slave = slave
         self.slave_nodes: np.ndarray = raw["slave_nodes"]
         self.master_nodes: np.ndarray = raw["master_nodes"]
         self.normals: np.ndarray = raw["normals"]
@@ -138,7 +166,7 @@ class Coupling:
                 f"x_s has {xs.shape[1]} columns and x_m {xm.shape[1]}: give both in the "
                 "same dimension"
             )
-        return self.D @ xs - self.M @ xm
+        return self.D_nodal @ xs - self.M @ xm
 
     def normal_gaps(self, x_s: np.ndarray, x_m: np.ndarray) -> np.ndarray:
         """The weighted normal gaps ``g_j = -n_j . G_j`` (positive where the surfaces are
@@ -319,6 +347,7 @@ def couple(
     curved_tolerance: Optional[float] = None,
     subdivision: Optional[int] = None,
     quad_subdivision: Optional[int] = None,
+    search_radius: Optional[float] = None,
 ) -> Coupling:
     """Assemble the mortar operators D and M between two non-matching surfaces.
 
@@ -362,9 +391,14 @@ def couple(
             clip triangle into m^2 (1 to 16; None: 1) so that M follows the master edges'
             curved images in the quad's coordinates (error about m^-4, cost m^2 on such
             faces).
+        search_radius: how far along the slave normals (both ways) to look for master
+            faces, a distance in the points' unit (``mortar couple --search-radius``); None:
+            the library's default (one slave face size, so that a gap of the order of the
+            element size is crossed). Master faces beyond it are not coupled.
 
     Returns:
-        A :class:`Coupling`: ``D``, ``M`` (``scipy.sparse.csr_array``), ``slave_nodes``,
+        A :class:`Coupling`: ``D``, ``M`` (``scipy.sparse.csr_array``), ``T`` (dual
+        multipliers on Tri6 or Quad8 faces: D in the recombined basis), ``slave_nodes``,
         ``master_nodes`` (rows of the points given), ``normals``, ``stats``,
         ``formulation``, ``weighted_gap(x_s, x_m)``.
 
@@ -393,6 +427,13 @@ def couple(
         not isinstance(threads, (int, np.integer)) or not 1 <= threads < 2**31
     ):
         raise InvalidInputError(f"threads={threads!r}: give a positive integer or None")
+    if search_radius is not None and (
+        isinstance(search_radius, bool)
+        or not isinstance(search_radius, (int, float, np.integer, np.floating))
+    ):
+        raise InvalidInputError(
+            f"search_radius={search_radius!r}: give a distance (a non-negative number) or None"
+        )
     raw = _mortar.couple_arrays(
         sp,
         sb,
@@ -407,12 +448,88 @@ def couple(
         curved_tolerance=None if curved_tolerance is None else float(curved_tolerance),
         subdivision=None if subdivision is None else int(subdivision),
         quad_subdivision=None if quad_subdivision is None else int(quad_subdivision),
+        search_radius=None if search_radius is None else float(search_radius),
     )
-    c = Coupling(raw)
+    c = Coupling(raw, (sp, sb))
     for w in c.warnings:
         warnings.warn(f"mortar: {w}", RuntimeWarning, stacklevel=2)
     c.stats["seconds_call"] = time.perf_counter() - start
     return c
+
+
+class SlaveDirichletRows(NamedTuple):
+    """The constraint rows of a coupling with the rows of its Dirichlet slave nodes shared
+    among their free neighbours (returned by :func:`redistribute_slave_dirichlet`)."""
+
+    #: ``S @ coupling.D``: the constraint's slave operator (kept rows x slave nodes).
+    D: scipy.sparse.csr_array
+    #: ``S @ coupling.M``: the constraint's master operator (kept rows x master nodes).
+    M: scipy.sparse.csr_array
+    #: int64: for each kept row, its row of the coupling (a free slave node with a multiplier).
+    rows: np.ndarray
+    #: ``S`` (kept rows x coupling rows): 1 on each kept row's own row and the shares of the
+    #: Dirichlet rows it takes.
+    S: scipy.sparse.csr_array
+    #: Dirichlet rows shared among free rows.
+    redistributed: int
+    #: Dirichlet rows with no free row in reach, dropped without a share.
+    dropped: int
+
+
+def redistribute_slave_dirichlet(coupling: Coupling, dirichlet: Any) -> SlaveDirichletRows:
+    """The constraint rows of ``coupling`` when some slave nodes carry Dirichlet conditions.
+
+    A Dirichlet slave node (where the interface meets a Dirichlet boundary: a crosspoint)
+    cannot keep its multiplier: its constraint row would over-constrain the master side.
+    Dropping the row loses the constant in the multiplier space, and with it the patch test
+    (a linear field is then not reproduced near the crosspoint). This function is the
+    library's treatment (``SlaveDirichlet::Redistribute`` of its tied systems, Wohlmuth's
+    crosspoint modification): each such row is removed and its multiplier shared among the
+    nearest free slave nodes (those of its slave faces, or one face further where all of
+    those are Dirichlet nodes; on second-order faces with the weights that keep linear
+    functions, else equally). The rows still reproduce constants, so the patch test passes,
+    and a diagonal D stays diagonal on the free slave nodes.
+
+    Args:
+        coupling: a :class:`Coupling` from :func:`couple`.
+        dirichlet: the slave points with Dirichlet conditions, as integer rows of the slave
+            ``points`` given to :func:`couple` (the numbering of ``slave_nodes``); points
+            not on the interface are ignored.
+
+    Returns:
+        :class:`SlaveDirichletRows`: the constraint ``D @ u_s - M @ u_m = 0`` (in the basis
+        of ``coupling.D``: see ``coupling.T``), the coupling row of each of its rows, ``S``,
+        and the counts.
+
+    Raises:
+        InvalidInputError: ``dirichlet`` not integers; a coupling not made by :func:`couple`.
+    """
+    if not isinstance(coupling, Coupling) or coupling._slave is None:
+        raise InvalidInputError("coupling: give a Coupling returned by mortar.couple")
+    nodes = np.asarray(dirichlet)
+    if nodes.size and nodes.dtype.kind not in "iu":
+        raise InvalidInputError(
+            f"dirichlet: dtype {nodes.dtype}; give integer rows of the slave points"
+        )
+    fixed = np.isin(coupling.slave_nodes, nodes.ravel())
+    carries = np.diff(coupling.D.indptr) > 0
+    points, blocks = coupling._slave
+    raw = _mortar.slave_dirichlet_shares_arrays(
+        points,
+        blocks,
+        np.ascontiguousarray(coupling.slave_nodes, dtype=np.int64),
+        np.ascontiguousarray(carries),
+        np.ascontiguousarray(fixed),
+    )
+    S = _csr(raw["s"])
+    return SlaveDirichletRows(
+        D=scipy.sparse.csr_array(S @ coupling.D),
+        M=scipy.sparse.csr_array(S @ coupling.M),
+        rows=raw["rows"],
+        S=S,
+        redistributed=int(raw["redistributed"]),
+        dropped=int(raw["dropped"]),
+    )
 
 
 def read_gmsh(path: Union[str, "os.PathLike[str]"], group: Union[str, int, None] = None) -> Surface:

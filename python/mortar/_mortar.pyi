@@ -22,21 +22,39 @@ def couple_arrays(
     curved_tolerance: Optional[float] = None,
     subdivision: Optional[int] = None,
     quad_subdivision: Optional[int] = None,
+    search_radius: Optional[float] = None,
 ) -> Dict[str, Any]:
     """The compiled half of :func:`mortar.couple`: C-contiguous float64 points (n, 2|3),
     blocks of (cell type, C-contiguous int64 cells (m, k)); returns a dict with ``d`` and
-    ``m`` (each ``indptr``, ``indices``, ``data``, ``shape``), ``slave_nodes``,
-    ``master_nodes``, ``normals``, ``formulation``, ``warnings``, ``stats``, ``dim``."""
+    ``m`` (each ``indptr``, ``indices``, ``data``, ``shape``), ``t`` and ``d_nodal`` (the
+    same, where D is in the recombined slave basis), ``slave_nodes``, ``master_nodes``,
+    ``normals``, ``formulation``, ``warnings``, ``stats``, ``dim``."""
+
+def slave_dirichlet_shares_arrays(
+    slave_points: npt.NDArray[np.float64],
+    slave_blocks: Sequence[Tuple[str, npt.NDArray[np.int64]]],
+    slave_nodes: npt.NDArray[np.int64],
+    carries: npt.NDArray[np.bool_],
+    dirichlet: npt.NDArray[np.bool_],
+) -> Dict[str, Any]:
+    """The compiled half of :func:`mortar.redistribute_slave_dirichlet`: a dict with ``s``
+    (``indptr``, ``indices``, ``data``, ``shape``), ``rows``, ``redistributed``,
+    ``dropped``."""
 
 def read_gmsh_arrays(path: str, group: Optional[str] = None) -> Dict[str, Any]:
     """The compiled half of :func:`mortar.read_gmsh`: a dict with ``points``, ``cells``,
     ``cell_type``, ``node_tags``, ``cell_tags``, ``oriented_from_cells``, ``label``."""
 
 def run_scene_text(
-    text: str, path: str, out: Optional[str] = None, json: bool = False
+    text: str,
+    path: str,
+    out: Optional[str] = None,
+    json: bool = False,
+    base: Optional[str] = None,
 ) -> Tuple[str, List[str]]:
-    """The compiled half of :func:`mortar.run_scene`: the report as JSON text and the
-    coupling warnings."""
+    """The compiled half of :func:`mortar.run_scene`: the scene named ``path`` in messages,
+    its mesh paths relative to ``base`` (default: the folder of ``path``); the report as
+    JSON text and the coupling warnings."""
 
 def law_names() -> List[str]:
     """The names of the shipped constraint laws, sorted."""

@@ -11,6 +11,9 @@ from . import _mortar
 
 __all__ = ["run_scene"]
 
+#: What messages and the report call a scene given as a dict.
+DICT_NAME = "run_scene(dict)"
+
 
 def run_scene(
     scene: Union[str, "os.PathLike[str]", Dict[str, Any]],
@@ -31,7 +34,8 @@ def run_scene(
 
     Raises:
         SceneError: an unknown kind or key, a value out of range, a missing mesh or group
-            (the message names the key and the file).
+            (the message names the key and the file; a scene given as a dict is named
+            ``run_scene(dict)``).
         InvalidInputError: a dict that cannot be written as TOML (a None value, say).
         MortarError: any other failure of the run.
 
@@ -41,8 +45,10 @@ def run_scene(
     out_s = None if out is None else os.fspath(out)
     if isinstance(scene, dict):
         text = json.dumps(scene)
+        # Messages and the report name the dict, not a file; mesh paths are relative to the
+        # current folder.
         report, warns = _mortar.run_scene_text(
-            text, os.path.join(os.getcwd(), "scene.toml"), out_s, json=True
+            text, DICT_NAME, out_s, json=True, base=os.getcwd()
         )
     else:
         path = os.fspath(scene)

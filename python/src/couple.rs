@@ -8,6 +8,7 @@ use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar::{
     assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
+    Tolerances,
 };
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
@@ -19,7 +20,7 @@ use crate::errors::{self, Kind};
 const FACING_REACH: f64 = 2.0;
 
 /// What went wrong off the GIL, turned into a Python exception once it is held again.
-enum Failure {
+pub(crate) enum Failure {
     /// An error of the library.
     Core(MortarError),
     /// Input the library never saw (shapes, indices, names), with the message.
@@ -29,7 +30,7 @@ enum Failure {
 }
 
 impl Failure {
-    fn into_py(self) -> PyErr {
+    pub(crate) fn into_py(self) -> PyErr {
         match self {
             Failure::Core(e) => errors::core(&e),
             Failure::Input(m) => errors::raise(Kind::InvalidInput, m),
@@ -61,7 +62,7 @@ struct Block<'a> {
 }
 
 /// One side's arrays, borrowed from numpy (row-major, checked contiguous).
-struct SideArrays<'a> {
+pub(crate) struct SideArrays<'a> {
     side: &'static str,
     points: &'a [f64],
     n: usize,
@@ -71,7 +72,7 @@ struct SideArrays<'a> {
 }
 
 /// Borrows one side's arrays and checks their shapes and the cell types.
-fn side_arrays<'a>(
+pub(crate) fn side_arrays<'a>(
     side: &'static str,
     points: &'a PyReadonlyArray2<'_, f64>,
     blocks: &'a [(String, PyReadonlyArray2<'_, i64>)],
@@ -127,7 +128,7 @@ fn side_arrays<'a>(
 
 /// The surface mesh of one side: the points used by a cell (tag = row of `points`) and the
 /// cells (tag = row in the concatenation of the blocks).
-fn surface(a: &SideArrays<'_>) -> Result<SurfaceMesh, Failure> {
+pub(crate) fn surface(a: &SideArrays<'_>) -> Result<SurfaceMesh, Failure> {
     let mut used = vec![false; a.n];
     let mut j0 = 0;
     for b in &a.blocks {
@@ -189,16 +190,20 @@ struct SegmentDials {
     quad_subdivision: Option<u32>,
 }
 
-/// The options of the keywords, through the library's own [`CouplingSettings`] (the
-/// settings of `mortar couple` and the scene files).
+/// The options and tolerances of the keywords, through the library's own
+/// [`CouplingSettings`] (the settings of `mortar couple` and the scene files): the search
+/// radius reaches the interface as `mortar couple --search-radius` makes it do, so that the
+/// default is the library's.
+#[allow(clippy::too_many_arguments)]
 fn options(
     multipliers: &str,
     integration: &str,
     degree: Option<u32>,
     dials: SegmentDials,
     threads: Option<usize>,
+    search_radius: Option<f64>,
     require_full_coverage: bool,
-) -> Result<CouplingOptions, Failure> {
+) -> Result<(CouplingOptions, Tolerances), Failure> {
     let multipliers = match multipliers {
         "standard" => Multipliers::Standard,
         "dual" => Multipliers::Dual,
@@ -223,19 +228,20 @@ fn options(
             "threads=0: give at least one thread, or None for all cores".into(),
         ));
     }
-    CouplingSettings {
+    let settings = CouplingSettings {
         multipliers,
         integration,
         degree,
         threads,
+        search_radius,
         require_full_coverage,
         curved_tolerance: dials.curved_tolerance,
         subdivision: dials.subdivision,
         quad_subdivision: dials.quad_subdivision,
-        ..Default::default()
-    }
-    .options()
-    .map_err(Failure::Core)
+    };
+    let options = settings.options().map_err(Failure::Core)?;
+    let tolerances = settings.tolerances().map_err(Failure::Core)?;
+    Ok((options, tolerances))
 }
 
 /// What the work off the GIL returns.
@@ -254,6 +260,7 @@ fn work(
     slave: &SideArrays<'_>,
     master: &SideArrays<'_>,
     options: &CouplingOptions,
+    tolerances: Tolerances,
     orient: bool,
 ) -> Result<Output, Failure> {
     let start = Instant::now();
@@ -280,7 +287,7 @@ fn work(
     };
     let seconds_orientation = t.elapsed().as_secs_f64();
     let t = Instant::now();
-    let interface = Interface::new(s, m).map_err(Failure::Core)?;
+    let interface = Interface::with_tolerances(s, m, tolerances).map_err(Failure::Core)?;
     let seconds_interface = t.elapsed().as_secs_f64();
     let coupling = assemble_coupling(&interface, options).map_err(Failure::Core)?;
     // Lines make a 2D problem whether their points came with two columns or three (z = 0).
@@ -316,7 +323,7 @@ fn index_arrays(py: Python<'_>, fits_i32: bool, v: Vec<usize>) -> Bound<'_, PyAn
 
 /// A CSR matrix as a dict of its numpy arrays (indptr, indices, data, shape); the data vector
 /// becomes its array without a copy.
-fn csr<'py>(
+pub(crate) fn csr<'py>(
     py: Python<'py>,
     a: mortar::core::linalg::SparseMatrix,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -341,7 +348,7 @@ fn csr<'py>(
     slave_points, slave_blocks, master_points, master_blocks,
     *, multipliers = "standard", integration = "segment", degree = None, threads = None,
     orient = true, require_full_coverage = false, curved_tolerance = None, subdivision = None,
-    quad_subdivision = None
+    quad_subdivision = None, search_radius = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn couple_arrays<'py>(
@@ -359,6 +366,7 @@ pub(crate) fn couple_arrays<'py>(
     curved_tolerance: Option<f64>,
     subdivision: Option<u32>,
     quad_subdivision: Option<u32>,
+    search_radius: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let slave = side_arrays("slave", &slave_points, &slave_blocks).map_err(Failure::into_py)?;
     let master = side_arrays("master", &master_points, &master_blocks).map_err(Failure::into_py)?;
@@ -367,12 +375,13 @@ pub(crate) fn couple_arrays<'py>(
         subdivision,
         quad_subdivision,
     };
-    let opts = options(
+    let (opts, tolerances) = options(
         multipliers,
         integration,
         degree,
         dials,
         threads,
+        search_radius,
         require_full_coverage,
     )
     .map_err(Failure::into_py)?;
@@ -380,7 +389,7 @@ pub(crate) fn couple_arrays<'py>(
     // borrow flags keep Rust from writing them; Python code must not write them meanwhile).
     let out = py
         .detach(|| {
-            errors::no_panic(|| work(&slave, &master, &opts, orient))
+            errors::no_panic(|| work(&slave, &master, &opts, tolerances, orient))
                 .unwrap_or_else(|m| Err(Failure::Panic(m)))
         })
         .map_err(Failure::into_py)?;
@@ -406,6 +415,8 @@ pub(crate) fn couple_arrays<'py>(
     stats.set_item("slave_box_inflation", st.slave_box_inflation)?;
     stats.set_item("master_box_inflation", st.master_box_inflation)?;
     stats.set_item("d_roundoff_dropped", st.d_roundoff_dropped)?;
+    stats.set_item("d_off_diagonal", st.d_off_diagonal)?;
+    stats.set_item("d_off_diagonal_largest", st.d_off_diagonal_largest)?;
     stats.set_item("threads", st.threads)?;
     stats.set_item("degrees_used", c.degrees_used())?;
     stats.set_item("formulation", c.formulation.as_str())?;
@@ -450,7 +461,19 @@ pub(crate) fn couple_arrays<'py>(
         "normals",
         PyArray1::from_vec(py, normals).reshape([rows, dim])?,
     )?;
-    result.set_item("d", csr(py, c.d)?)?;
+    // D as `mortar couple` writes it: in the recombined slave basis where there is one (dual
+    // multipliers on Tri6 or Quad8 faces), with T; the nodal D beside it.
+    match c.recombined {
+        Some(r) => {
+            // The sum of D as given (T's columns sum to 1: the nodal D's, to round-off).
+            stats.set_item("area", r.d.data().iter().sum::<f64>())?;
+            stats.set_item("d_roundoff_dropped", r.d_roundoff_dropped)?;
+            result.set_item("d", csr(py, r.d)?)?;
+            result.set_item("t", csr(py, r.t)?)?;
+            result.set_item("d_nodal", csr(py, c.d)?)?;
+        }
+        None => result.set_item("d", csr(py, c.d)?)?,
+    }
     result.set_item("m", csr(py, c.m)?)?;
     result.set_item("formulation", c.formulation)?;
     result.set_item("warnings", warnings)?;

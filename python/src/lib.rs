@@ -14,6 +14,7 @@
 //! consistent length unit, D and M in that unit squared (3D) or the unit (2D).
 
 mod couple;
+mod crosspoint;
 mod errors;
 mod gmsh;
 mod laws;
@@ -25,6 +26,10 @@ use pyo3::prelude::*;
 #[pymodule]
 fn _mortar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(couple::couple_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(
+        crosspoint::slave_dirichlet_shares_arrays,
+        m
+    )?)?;
     m.add_function(wrap_pyfunction!(gmsh::read_gmsh_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(scene::run_scene_text, m)?)?;
     m.add_function(wrap_pyfunction!(laws::law_names, m)?)?;

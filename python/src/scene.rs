@@ -54,10 +54,14 @@ fn scratch_dir() -> Result<PathBuf, Failure> {
     Ok(dir)
 }
 
-/// Runs a scene.
-fn run(text: &str, path: &Path, out: Option<&Path>) -> Result<(String, Vec<String>), Failure> {
+/// Runs a scene named `path` in messages, its mesh paths relative to `base`.
+fn run(
+    text: &str,
+    path: &Path,
+    base: &Path,
+    out: Option<&Path>,
+) -> Result<(String, Vec<String>), Failure> {
     let registries = Registries::default();
-    let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
     let kind = scene_kind(text, path).map_err(scene_error)?;
     match kind.as_str() {
         "pellet" => {
@@ -76,14 +80,14 @@ fn run(text: &str, path: &Path, out: Option<&Path>) -> Result<(String, Vec<Strin
         "tied_heat" => {
             let spec = TiedHeatSpec::parse(text, path).map_err(scene_error)?;
             let output = spec
-                .run_with(path, &base, &FileSystem, &registries)
+                .run_with(path, base, &FileSystem, &registries)
                 .map_err(scene_error)?;
             run_file_scene(output, out)
         }
         "contact" => {
             let spec = ContactSpec::parse(text, path).map_err(scene_error)?;
             let output = spec
-                .run_with(path, &base, &FileSystem, &registries)
+                .run_with(path, base, &FileSystem, &registries)
                 .map_err(scene_error)?;
             run_file_scene(output, out)
         }
@@ -94,18 +98,21 @@ fn run(text: &str, path: &Path, out: Option<&Path>) -> Result<(String, Vec<Strin
     }
 }
 
-/// Runs the scene `text` (TOML, or JSON when `json` is true: a dict from Python) whose mesh
-/// paths are relative to the folder of `path`; writes its outputs into `out` if given.
-/// Returns the report as JSON text and the coupling warnings.
+/// Runs the scene `text` (TOML, or JSON when `json` is true: a dict from Python) named `path`
+/// in messages and the report, whose mesh paths are relative to `base` (the folder of `path`
+/// when not given); writes its outputs into `out` if given. Returns the report as JSON text
+/// and the coupling warnings.
 #[pyfunction]
-#[pyo3(signature = (text, path, out = None, json = false))]
+#[pyo3(signature = (text, path, out = None, json = false, base = None))]
 pub(crate) fn run_scene_text(
     py: Python<'_>,
     text: String,
     path: PathBuf,
     out: Option<PathBuf>,
     json: bool,
+    base: Option<PathBuf>,
 ) -> PyResult<(String, Vec<String>)> {
+    let base = base.unwrap_or_else(|| path.parent().unwrap_or(Path::new("")).to_path_buf());
     let result = py.detach(|| {
         errors::no_panic(|| {
             let text = if json {
@@ -116,7 +123,7 @@ pub(crate) fn run_scene_text(
             } else {
                 text
             };
-            run(&text, &path, out.as_deref())
+            run(&text, &path, &base, out.as_deref())
         })
         .unwrap_or_else(|m| Err((Kind::Base, m)))
     });

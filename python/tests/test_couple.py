@@ -309,3 +309,20 @@ def test_segment_dials_reach_the_integration():
         mortar.couple(s, (*m, "triangle"), quad_subdivision=0)
     with pytest.raises(mortar.InvalidInputError, match="segment"):
         mortar.couple(s, (*m, "triangle"), integration="element", subdivision=2)
+
+
+def test_search_radius_reaches_the_interface():
+    # Two unit squares of 4 x 4 quads (face size 0.25) 0.3 apart: a search radius below the
+    # gap finds no master face, one above it couples the whole area (as mortar couple
+    # --search-radius does); a negative radius is refused by the library's settings.
+    sp_, sq = grid_quads(4, 4)
+    mp_, mq = grid_quads(3, 3, z=0.3)
+    with pytest.raises(mortar.NoOverlapError):
+        mortar.couple((sp_, sq, "quad"), (mp_, mq, "quad"), search_radius=0.2)
+    c = mortar.couple((sp_, sq, "quad"), (mp_, mq, "quad"), search_radius=0.5)
+    assert c.stats["area"] == pytest.approx(1.0, rel=1e-13)
+    assert c.stats["uncovered_area"] == 0.0
+    assert c.warnings == []
+    for bad, match in [(-1.0, "search radius"), (float("nan"), "search radius"), ("far", "search_radius")]:
+        with pytest.raises(mortar.InvalidInputError, match=match):
+            mortar.couple((sp_, sq, "quad"), (mp_, mq, "quad"), search_radius=bad)

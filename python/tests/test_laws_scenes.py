@@ -117,3 +117,10 @@ def test_run_scene_errors(tmp_path):
         mortar.run_scene(bad)
     with pytest.raises(mortar.SceneError, match="unknown scene kind"):
         mortar.run_scene({"kind": "plasma"})
+    # A scene given as a dict is named as one, not as a file beside the current folder.
+    with pytest.raises(mortar.SceneError, match=r"^run_scene\(dict\)[:,] ") as e:
+        mortar.run_scene({"kind": "tied_heat", "bodies": {}, "unknown_key": 1})
+    assert "scene.toml" not in str(e.value)
+    with pytest.raises(mortar.SceneError, match=r"run_scene\(dict\)") as e:
+        mortar.run_scene({"kind": "plasma"})
+    assert "scene.toml" not in str(e.value)

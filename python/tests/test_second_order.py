@@ -1,7 +1,7 @@
 """Second-order faces from Python: the Gmsh-made meshes of tests/meshes (Mesh.ElementOrder =
 2, made by tests/meshes/make_second_order_meshes.py) read with read_gmsh and coupled, and
 meshio's names for them; the closed forms of a flat unit interface (sum(D) = 1, D 1 = M 1,
-D x_s = M x_m)."""
+D x_s = M x_m), and dual multipliers on Tri6 and Quad8 faces in the recombined basis."""
 
 import pathlib
 
@@ -32,7 +32,22 @@ def test_second_order_interfaces_tie_linear_fields(file, slave, master, types, m
     pairs = [(np.ones(len(xs)), np.ones(len(xm)))]
     pairs += [(xs[:, d], xm[:, d]) for d in range(xs.shape[1])]
     for fs, fm in pairs:
-        assert np.abs(c.D @ fs - c.M @ fm).max() < 1e-12
+        assert np.abs(c.D_nodal @ fs - c.M @ fm).max() < 1e-12
+    recombined = multipliers == "dual" and s.cell_type in ("triangle6", "quad8")
+    assert (c.T is not None) == recombined
+    assert c.slave_basis == ("recombined" if recombined else "nodal")
+    if recombined:
+        # D as mortar couple writes it, D_nodal T^T (Popp, Gee and Wall 2012): diagonal, and
+        # the slave values condense, u_s = T^T D^-1 M u_m, for constants and linear fields.
+        assert c.D.nnz == len(c.slave_nodes)
+        assert np.array_equal(c.D.indices, np.arange(len(c.slave_nodes)))
+        assert abs(c.D - c.D_nodal @ c.T.T).max() < 1e-13
+        for fs, fm in pairs:
+            assert np.abs(c.T.T @ ((c.M @ fm) / c.D.diagonal()) - fs).max() < 1e-12
+    elif multipliers == "dual":
+        assert c.D_nodal is c.D
+        assert c.D.nnz == len(c.slave_nodes)
+    assert c.stats["d_off_diagonal"] == 0
     if multipliers == "linear":
         # Rows for the corner nodes only (the first columns of the cells).
         corners = {"line3": 2, "triangle6": 3, "quad8": 4, "quad9": 4}[s.cell_type]

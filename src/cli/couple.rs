@@ -48,8 +48,13 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
     print_warnings(&coupling.warnings, &settings.widen_search_hint());
     print_summary(&summary, json);
     if !json {
+        let t = if coupling.recombined.is_some() {
+            ", T.mtx"
+        } else {
+            ""
+        };
         say!(
-            "{:<9}{} (D.mtx, M.mtx, summary.json)",
+            "{:<9}{} (D.mtx, M.mtx{t}, summary.json)",
             "output",
             args.out.display()
         );

@@ -56,5 +56,5 @@ pub use output::{remove_stale_outputs, write_coupling, write_outputs};
 pub use summary::{
     warning_text, CouplingSettings, CouplingSummary, GapSummary, Integration, Multipliers,
     OrientationMethod, OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary,
-    WarningSummary,
+    WarningSummary, RECOMBINATION_FILE,
 };

@@ -7,11 +7,15 @@ use mortar_core::Coupling;
 
 use super::error::IoError;
 use super::matrix_market;
-use super::summary::CouplingSummary;
+use super::summary::{CouplingSummary, RECOMBINATION_FILE};
 
-/// Writes `D.mtx`, `M.mtx` and `summary.json` into `dir` (created if missing), all or none.
+/// Writes `D.mtx`, `M.mtx` and `summary.json` into `dir` (created if missing), all or none;
+/// for a coupling in the recombined slave basis ([`Coupling::recombined`]: dual multipliers
+/// on Tri6 or Quad8 slave faces), `D.mtx` holds its diagonal `D T^T` and `T.mtx` the
+/// recombination `T` (`summary.slave_basis`, `summary.recombination`), so that the slave
+/// unknowns condense: `u_s = T^T D~^-1 M u_m`.
 ///
-/// Rows of D and M are the slave nodes, columns the slave (D) or master (M) nodes, each in
+/// Rows of D and M are the slave nodes, columns the slave (D, T) or master (M) nodes, each in
 /// ascending node tag order: `summary.slave_nodes` and `summary.master_nodes`.
 ///
 /// # Errors
@@ -21,13 +25,20 @@ pub fn write_coupling(
     coupling: &Coupling,
     summary: &CouplingSummary,
 ) -> Result<(), IoError> {
-    let d = matrix_market::to_string(
-        &coupling.d,
-        &[
-            "D[j,k] = int Phi_j N_k^s (mortar)",
-            "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)",
-        ],
-    );
+    const SLAVE_ROWS: &str = "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)";
+    let d = match &coupling.recombined {
+        Some(r) => matrix_market::to_string(
+            &r.d,
+            &[
+                "D~[j,k] = int Phi_j N~_k^s = (D T^T)[j,k] (mortar, recombined slave basis: N~ = T N, u = T^T u~)",
+                SLAVE_ROWS,
+            ],
+        ),
+        None => matrix_market::to_string(
+            &coupling.d,
+            &["D[j,k] = int Phi_j N_k^s (mortar)", SLAVE_ROWS],
+        ),
+    };
     let m = matrix_market::to_string(
         &coupling.m,
         &[
@@ -37,14 +48,24 @@ pub fn write_coupling(
     );
     let mut json = summary.to_json();
     json.push('\n');
-    write_outputs(
-        dir,
-        &[
-            ("D.mtx", d.into_bytes()),
-            ("M.mtx", m.into_bytes()),
-            ("summary.json", json.into_bytes()),
-        ],
-    )
+    let mut files = vec![("D.mtx", d.into_bytes()), ("M.mtx", m.into_bytes())];
+    if let Some(r) = &coupling.recombined {
+        let t = matrix_market::to_string(
+            &r.t,
+            &[
+                "T[j,k]: N~_j = sum_k T[j,k] N_k (recombined slave shape functions, Popp, Gee and Wall 2012); u_s = T^T u~_s",
+                SLAVE_ROWS,
+            ],
+        );
+        files.push((RECOMBINATION_FILE, t.into_bytes()));
+    }
+    files.push(("summary.json", json.into_bytes()));
+    let dir = dir.as_ref();
+    write_outputs(dir, &files)?;
+    // A T.mtx of an earlier run into the same folder would pass for this run's.
+    let written: Vec<&str> = files.iter().map(|(n, _)| *n).collect();
+    remove_stale_outputs(dir, &written, |n| n == RECOMBINATION_FILE)?;
+    Ok(())
 }
 
 /// Writes `files` (name, contents) into `dir`, all or none: `dir` is created if missing (with

@@ -33,6 +33,14 @@ pub enum Integration {
     Element,
 }
 
+/// The file `T` of a coupling in the recombined slave basis is written to, beside `D.mtx`.
+pub const RECOMBINATION_FILE: &str = "T.mtx";
+
+/// `"nodal"`: the slave basis of a summary that does not name one.
+fn nodal() -> String {
+    "nodal".to_string()
+}
+
 /// The choices of a coupling run, as a user states them.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 pub struct CouplingSettings {
@@ -337,6 +345,16 @@ pub struct CouplingSummary {
     pub slave_nodes: Vec<u64>,
     /// Master node tags in column order (the columns of M).
     pub master_nodes: Vec<u64>,
+    /// Which basis of the slave unknowns D and M are in: `"nodal"` (the slave nodes' own
+    /// values), or `"recombined"` (dual multipliers on Tri6 or Quad8 slave faces: D is
+    /// `D T^T`, diagonal, and the slave unknowns are `u~ = T^-T u`, `u = T^T u~`, with `T`
+    /// in the file named by `recombination`; Popp, Gee and Wall 2012).
+    #[serde(default = "nodal")]
+    pub slave_basis: String,
+    /// The file of `T` (`"T.mtx"`, slave x slave, rows and columns as D's) when
+    /// `slave_basis` is `"recombined"`, else `null`.
+    #[serde(default)]
+    pub recombination: Option<String>,
     /// Stored entries of D.
     pub d_nonzeros: usize,
     /// Stored entries of M.
@@ -346,6 +364,13 @@ pub struct CouplingSummary {
     pub d_roundoff_dropped: usize,
     /// The largest of them, relative to its diagonal entry.
     pub d_roundoff_largest: f64,
+    /// Off-diagonal entries of a dual D kept (above round-off): none on an interface covered
+    /// everywhere, unless a warning `dual D not diagonal` says why.
+    #[serde(default)]
+    pub d_off_diagonal: usize,
+    /// The largest of them, relative to its row's diagonal entry.
+    #[serde(default)]
+    pub d_off_diagonal_largest: f64,
     /// Candidate pairs from the search.
     pub candidates: usize,
     /// Slave-master pairs with an overlap.
@@ -433,10 +458,26 @@ impl CouplingSummary {
         parts.join("; ")
     }
 
-    /// The summary of `coupling`, computed on `interface` with `settings`.
+    /// The summary of `coupling`, computed on `interface` with `settings`: of its D as
+    /// [`write_coupling`](super::write_coupling) writes it (in the recombined basis where the
+    /// coupling has one).
     pub fn new(interface: &Interface, coupling: &Coupling, settings: &CouplingSettings) -> Self {
         let s = &coupling.stats;
         let p = s.seconds;
+        let (d, dropped, dropped_largest, basis) = match &coupling.recombined {
+            Some(r) => (
+                &r.d,
+                r.d_roundoff_dropped,
+                r.d_roundoff_largest,
+                Some(RECOMBINATION_FILE),
+            ),
+            None => (
+                &coupling.d,
+                s.d_roundoff_dropped,
+                s.d_roundoff_largest,
+                None,
+            ),
+        };
         Self {
             dimension: match interface.dim() {
                 SpatialDim::Two => 2,
@@ -464,10 +505,19 @@ impl CouplingSummary {
             master_faces: interface.master().face_count(),
             slave_nodes: coupling.slave_nodes.clone(),
             master_nodes: coupling.master_nodes.clone(),
-            d_nonzeros: coupling.d.nnz(),
+            slave_basis: if basis.is_some() {
+                "recombined"
+            } else {
+                "nodal"
+            }
+            .to_string(),
+            recombination: basis.map(str::to_string),
+            d_nonzeros: d.nnz(),
             m_nonzeros: coupling.m.nnz(),
-            d_roundoff_dropped: s.d_roundoff_dropped,
-            d_roundoff_largest: s.d_roundoff_largest,
+            d_roundoff_dropped: dropped,
+            d_roundoff_largest: dropped_largest,
+            d_off_diagonal: s.d_off_diagonal,
+            d_off_diagonal_largest: s.d_off_diagonal_largest,
             candidates: s.candidates,
             pairs: s.pairs,
             segments: s.segments,
@@ -480,7 +530,11 @@ impl CouplingSummary {
             fused_line_faces: s.fused_line_faces,
             straight_line_faces: s.straight_line_faces,
             closed_form_faces: s.closed_form_faces,
-            area: s.area,
+            // D T^T sums as D does (T's columns sum to 1), to round-off: the sum as written.
+            area: match &coupling.recombined {
+                Some(r) => r.d.data().iter().sum(),
+                None => s.area,
+            },
             gap: GapSummary::of(interface, coupling),
             widened_search_faces: s.widened_search_faces,
             widest_search: s.widest_search,
@@ -565,6 +619,18 @@ impl fmt::Display for CouplingSummary {
             ),
         ));
         let mut d = format!("{ns} x {ns}, {}", plural(self.d_nonzeros, "nonzero"));
+        if let Some(t) = &self.recombination {
+            d.push_str(&format!(
+                " in the recombined slave basis (u = T^T u~, T in {t})"
+            ));
+        }
+        if self.d_off_diagonal > 0 {
+            d.push_str(&format!(
+                " ({} kept, up to {:.1e} of the diagonal)",
+                plural(self.d_off_diagonal, "off-diagonal entry"),
+                self.d_off_diagonal_largest
+            ));
+        }
         if self.d_roundoff_dropped > 0 {
             d.push_str(&format!(
                 " ({} below round-off of the diagonal, at most {:.1e} of it, lumped into it)",

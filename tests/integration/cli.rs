@@ -82,12 +82,89 @@ fn couple_and_check(
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    assert_eq!(
-        names,
-        ["D.mtx", "M.mtx", "summary.json"],
-        "only the outputs, no temporaries"
-    );
+    let mut expected = vec!["D.mtx", "M.mtx", "summary.json"];
+    if summary["slave_basis"] == "recombined" {
+        assert_eq!(summary["recombination"], "T.mtx");
+        expected.insert(2, "T.mtx");
+    } else {
+        assert_eq!(summary["slave_basis"], "nodal");
+        assert!(summary["recombination"].is_null());
+    }
+    assert_eq!(names, expected, "only the outputs, no temporaries");
     (d, m, summary)
+}
+
+/// `mortar couple --lm dual` on Tri6 and Quad8 slave faces writes D in the recombined basis
+/// of Popp, Gee and Wall (2012), `D~ = D T^T`, and `T.mtx` beside it: D diagonal as written
+/// (the nodal D had 0.2 of the diagonal off it on the rows of edge nodes), and the slave
+/// values `u_s = T^T D~^-1 M u_m` of the fields x and y at the master nodes are those at the
+/// slave nodes (the flat interface z = 0.5: both sides interpolate them exactly). On Line3
+/// faces (not recombined) the summary says `nodal`, and a `T.mtx` of an earlier run into the
+/// same folder is removed.
+#[test]
+fn couples_second_order_faces_with_dual_multipliers_in_the_recombined_basis() {
+    let dir = TempDir::new("clidualso");
+    let meshes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes");
+    let file = meshes.join("so_3d_hex20.msh");
+    let registry = ElementRegistry::new();
+    let out = dir.join("out");
+    for (slave, master, kind) in [
+        ("top_bottom", "bottom_top", "Tri6"),
+        ("bottom_top", "top_bottom", "Quad8"),
+    ] {
+        let s = format!("{}#{slave}", file.display());
+        let m = format!("{}#{master}", file.display());
+        let (d, m_rows, summary) =
+            couple_and_check(&out, &["--slave", &s, "--master", &m, "--lm", "dual"]);
+        assert_eq!(summary["slave_basis"], "recombined", "{kind}");
+        assert_eq!(summary["d_off_diagonal"], 0, "{kind}");
+        let t = read_mtx(&out.join("T.mtx"));
+        let n = d.len();
+        for (j, row) in d.iter().enumerate() {
+            for (k, v) in row.iter().enumerate() {
+                assert!((j == k) == (*v != 0.0), "{kind}: D[{j}][{k}] = {v}");
+            }
+        }
+        let position = |group: &str, key: &str| {
+            let mesh = read_surface(&file, Some(group), &registry).unwrap();
+            assert!(mesh.face(0).element.name() == kind || group == master);
+            tags(&summary[key])
+                .iter()
+                .map(|t| mesh.coords()[mesh.node_index(*t).unwrap() as usize])
+                .collect::<Vec<_>>()
+        };
+        let (xs, xm) = (
+            position(slave, "slave_nodes"),
+            position(master, "master_nodes"),
+        );
+        for c in 0..2 {
+            let scaled: Vec<f64> = (0..n)
+                .map(|j| {
+                    m_rows[j]
+                        .iter()
+                        .zip(&xm)
+                        .map(|(v, x)| v * x[c])
+                        .sum::<f64>()
+                        / d[j][j]
+                })
+                .collect();
+            for (k, x) in xs.iter().enumerate() {
+                let u: f64 = (0..n).map(|j| t[j][k] * scaled[j]).sum();
+                assert!(
+                    (u - x[c]).abs() < 1e-12,
+                    "{kind}: node {k}: {u} against {}",
+                    x[c]
+                );
+            }
+        }
+    }
+    // Line3 faces into the same folder: nodal, and the T.mtx above removed.
+    let file = meshes.join("so_2d_quad8.msh");
+    let s = format!("{}#right_x0", file.display());
+    let m = format!("{}#left_x1", file.display());
+    let (_, _, summary) = couple_and_check(&out, &["--slave", &s, "--master", &m, "--lm", "dual"]);
+    assert_eq!(summary["slave_basis"], "nodal");
+    assert!(!out.join("T.mtx").exists());
 }
 
 #[test]

@@ -11,6 +11,9 @@ Each file holds two bodies and the two faces of their common interface:
 - so_3d_hex20.msh: bottom [0,1]^2 x [0,0.5] in Hex20 (3 x 3 x 2), top [0,1]^2 x [0.5,1] in
   Tet10 (size 0.35); groups bottom, top, bottom_top, top_bottom, bottom_z0, top_z1.
 - so_3d_hex27.msh: the same with Tet10 below (size 0.35) and Hex27 above (4 x 4 x 2).
+- so_2d_arc.msh: a disc of radius 1 in Tri6 (its circle in 20 Line3) and the annulus
+  1 < r < 2 around it in Tri6 (its inner circle in 27 Line3), meshed apart, the middle nodes
+  on the circle: curved Line3 faces; groups disc, annulus, disc_edge, annulus_inner.
 - so3_2d_tri10.msh: Mesh.ElementOrder = 3, the 2D bodies both in cubic Tri10 (Gmsh type 21,
   faces Line4, type 26: elements the library does not ship; examples/extend_element.rs
   defines them), left size 0.45, right 0.3; the groups of so_2d_quad8.msh.
@@ -109,6 +112,27 @@ def file_3d(name, bottom_hexes, top_hexes, n_hex, incomplete):
     mesh_and_write(name, 3, incomplete)
 
 
+def file_arc(name):
+    occ = gmsh.model.occ
+    gmsh.model.add(name)
+    disc = occ.addDisk(0, 0, 0, 1, 1)
+    annulus = occ.cut([(2, occ.addDisk(0, 0, 0, 2, 2))], [(2, occ.addDisk(0, 0, 0, 1, 1))])
+    annulus = annulus[0][0][1]
+    occ.synchronize()
+    circles = lambda s: [c for _, c in gmsh.model.getBoundary([(2, s)], oriented=False)]
+    inner = [c for c in circles(annulus) if gmsh.model.getBoundingBox(1, c)[3] < 1.5]
+    for c in circles(disc):
+        gmsh.model.mesh.setTransfiniteCurve(c, 21)
+    for c in inner:
+        gmsh.model.mesh.setTransfiniteCurve(c, 28)
+    gmsh.model.mesh.setSize(gmsh.model.getBoundary([(2, annulus)], recursive=True), 0.6)
+    gmsh.model.addPhysicalGroup(2, [disc], name="disc")
+    gmsh.model.addPhysicalGroup(2, [annulus], name="annulus")
+    gmsh.model.addPhysicalGroup(1, circles(disc), name="disc_edge")
+    gmsh.model.addPhysicalGroup(1, inner, name="annulus_inner")
+    mesh_and_write(name, 2, 0)
+
+
 def mesh_and_write(name, dim, incomplete, order=2):
     gmsh.option.setNumber("Mesh.ElementOrder", order)
     gmsh.option.setNumber("Mesh.SecondOrderIncomplete", incomplete)
@@ -126,6 +150,7 @@ def main():
     file_3d("so_3d_hex20", True, False, 3, 1)
     file_3d("so_3d_hex27", False, True, 4, 0)
     file_2d("so3_2d_tri10", False, False, 0, order=3, sizes=(0.45, 0.3))
+    file_arc("so_2d_arc")
     gmsh.finalize()
 
 

@@ -64,7 +64,7 @@ pub mod tolerances;
 
 pub use assembly::{
     assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions, CouplingStats,
-    CouplingWarning,
+    CouplingWarning, Recombined,
 };
 pub use error::{Inversion, MortarError, RangeLimit, Result, Side};
 pub use geometry::ModelGeometry;

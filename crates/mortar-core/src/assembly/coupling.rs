@@ -20,7 +20,7 @@ use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BAT
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
-use crate::multiplier::LmBasis;
+use crate::multiplier::{slave_recombination, LmBasis, MultiplierSpace};
 use crate::search::{
     face_search_radius, keep_within_radius, nearest_master_radii, spatial_order, ChainSearch,
     GroupScratch, LineChains, MasterLineCache, MasterTree, Padding, WALK_LIMIT,
@@ -107,6 +107,15 @@ pub struct CouplingStats {
     pub d_roundoff_dropped: usize,
     /// The largest of them, relative to its diagonal entry.
     pub d_roundoff_largest: f64,
+    /// With a space that claims a diagonal D ([`MultiplierSpace::diagonal_d`]): the
+    /// off-diagonal entries kept (above 1e-12 of their row's diagonal entry), counted
+    /// on the recombined D ([`Coupling::recombined`]) where the slave faces are recombined.
+    /// None on a covered interface; partly covered faces keep some, and so do curved faces
+    /// too coarse for the quadrature to reach the biorthogonality of the basis (see
+    /// [`CouplingWarning::DualNotDiagonal`]). 0 for other spaces.
+    pub d_off_diagonal: usize,
+    /// The largest of them, relative to its row's diagonal entry.
+    pub d_off_diagonal_largest: f64,
     /// Sum of the entries of D: the integrated overlap measure (area in 3D, length in 2D,
     /// the area of the revolved surface, `int 2 pi r ds`, with the axisymmetric measure).
     pub area: f64,
@@ -152,8 +161,37 @@ pub struct Coupling {
     /// Counts and timings.
     pub stats: CouplingStats,
     /// What the coupling noticed without stopping: uncovered slave area, slave area covered
-    /// more than once, skipped pairs.
+    /// more than once, skipped pairs, a dual D that is not diagonal.
     pub warnings: Vec<CouplingWarning>,
+    /// With a space that recombines second-order slave faces
+    /// ([`MultiplierSpace::recombines`]: dual multipliers on Tri6 or Quad8 faces), D in the
+    /// recombined basis and the recombination; `None` where no slave face is recombined (or
+    /// second-order faces of different kinds share an edge node, so that no one recombination
+    /// serves: see [`slave_recombination`]).
+    pub recombined: Option<Recombined>,
+}
+
+/// The mortar coupling in the recombined basis of second-order slave faces (Popp, Gee and
+/// Wall 2012; see [`DualMultipliers`](crate::multiplier::DualMultipliers)): with the slave
+/// shape functions `N~ = T N` and the slave unknowns `u~ = T^-T u` (so `u = T^T u~`), the
+/// constraint `D u_s - M u_m = 0` reads `D~ u~_s - M u_m = 0` with `D~ = D T^T`, M unchanged.
+/// For dual multipliers `D~` is diagonal on a covered interface, so that
+/// `u_s = T^T D~^-1 M u_m`.
+#[derive(Debug, Clone)]
+pub struct Recombined {
+    /// `D~ = D T^T` (slave x slave, CSR), its off-diagonal round-off (at most 1e-12 of the
+    /// diagonal) lumped into the diagonal as a dual D's.
+    pub d: SparseMatrix,
+    /// `T` of `N~ = T N` over the slave rows (slave x slave, CSR): the identity on the rows of
+    /// nodes of faces not recombined; on those of recombined faces, `1 - 2 alpha` on the
+    /// diagonal of an edge node and `alpha`
+    /// ([`RECOMBINATION_ALPHA`](crate::multiplier::RECOMBINATION_ALPHA)) from each of its
+    /// corners.
+    pub t: SparseMatrix,
+    /// Off-diagonal entries of `D~` lumped into its diagonal, those of D included.
+    pub d_roundoff_dropped: usize,
+    /// The largest of them, relative to its diagonal entry.
+    pub d_roundoff_largest: f64,
 }
 
 impl Coupling {
@@ -565,6 +603,40 @@ pub const ROUNDOFF: f64 = 1e-12;
 struct RoundoffDropped {
     count: usize,
     largest: f64,
+}
+
+/// The off-diagonal entries of a matrix.
+#[derive(Debug, Clone, Default)]
+struct OffDiagonal {
+    /// How many.
+    count: usize,
+    /// The largest relative to its row's diagonal entry (infinite on a row without one).
+    largest: f64,
+    /// The rows that have them.
+    rows: usize,
+    /// The first of those rows (at most [`CouplingWarning::EXAMPLES`]).
+    examples: Vec<usize>,
+}
+
+fn off_diagonal(d: &SparseMatrix) -> OffDiagonal {
+    let mut out = OffDiagonal::default();
+    for (r, row) in d.outer_iterator().enumerate() {
+        let diag = row.get(r).copied().unwrap_or(0.0).abs();
+        let before = out.count;
+        for (c, v) in row.iter() {
+            if c != r {
+                out.count += 1;
+                out.largest = out.largest.max(v.abs() / diag);
+            }
+        }
+        if out.count > before {
+            out.rows += 1;
+            if out.examples.len() < CouplingWarning::EXAMPLES {
+                out.examples.push(r);
+            }
+        }
+    }
+    out
 }
 
 /// `d` with the off-diagonal entries at most `tol` times their row's diagonal entry added to
@@ -1016,8 +1088,27 @@ fn finish(
     t_asm: Instant,
 ) -> Coupling {
     let mut roundoff = RoundoffDropped::default();
+    let mut recombined = None;
+    let mut off = OffDiagonal::default();
     if options.multipliers.diagonal_d() {
         (d, roundoff) = drop_roundoff(&d, ROUNDOFF);
+        recombined = recombine(interface, options.multipliers.as_ref(), &d, roundoff);
+        off = off_diagonal(recombined.as_ref().map_or(&d, |r| &r.d));
+    }
+    let mut warnings = warnings;
+    if off.count > 0 && warnings.is_empty() {
+        // Uncovered or overlapped area explains a D that is not diagonal; otherwise say so.
+        let tags = interface.slave().node_tags();
+        warnings.push(CouplingWarning::DualNotDiagonal {
+            entries: off.count,
+            largest: off.largest,
+            rows: off.rows,
+            examples: off
+                .examples
+                .iter()
+                .map(|&r| tags[interface.slave_nodes()[r] as usize])
+                .collect(),
+        });
     }
     seconds.assembly = t_asm.elapsed().as_secs_f64();
     let slave_tags = interface.slave().node_tags();
@@ -1056,6 +1147,8 @@ fn finish(
             skipped_pairs: stats.skipped,
             d_roundoff_dropped: roundoff.count,
             d_roundoff_largest: roundoff.largest,
+            d_off_diagonal: off.count,
+            d_off_diagonal_largest: off.largest,
             uncovered_area: stats.uncovered_area,
             overlapped_area: stats.overlapped_area,
             faces_overlapped: stats.overlapped,
@@ -1078,7 +1171,31 @@ fn finish(
             },
         },
         warnings,
+        recombined,
     }
+}
+
+/// D in the recombined basis of the slave faces ([`Recombined`]), for a space that recombines
+/// them; `None` where none is recombined or no one recombination serves the slave side (then
+/// D keeps its off-diagonal entries, which the coupling counts and reports).
+fn recombine(
+    interface: &Interface,
+    space: &dyn MultiplierSpace,
+    d: &SparseMatrix,
+    nodal: RoundoffDropped,
+) -> Option<Recombined> {
+    if !space.recombines() {
+        return None;
+    }
+    let t = slave_recombination(interface).ok()??;
+    let dt = d * &t.transpose_view().to_csr();
+    let (d, roundoff) = drop_roundoff(&dt, ROUNDOFF);
+    Some(Recombined {
+        d,
+        t,
+        d_roundoff_dropped: nodal.count + roundoff.count,
+        d_roundoff_largest: nodal.largest.max(roundoff.largest),
+    })
 }
 
 /// Entries summed per block of [`SUM_BLOCK`] (four running sums each, added in a fixed

@@ -20,7 +20,7 @@ mod warning;
 
 pub use coupling::{
     assemble_coupling, assemble_coupling_reusing, Coupling, CouplingStats, PhaseSeconds,
-    ThreadSeconds, MAX_THREADS_PER_CORE,
+    Recombined, ThreadSeconds, MAX_THREADS_PER_CORE,
 };
 pub use local::{integrate_batch_into, integrate_face_into, LocalBlocks};
 pub use master_coverage::MASTER_OVERLAP_RATIO;

@@ -6,7 +6,8 @@ use crate::error::MortarError;
 /// the operators ([`Coupling::warnings`](super::Coupling::warnings)), so that nothing is
 /// dropped silently. With
 /// [`CouplingOptions::require_full_coverage`](super::CouplingOptions::require_full_coverage)
-/// each one is an error instead ([`MortarError::IncompleteCoverage`]).
+/// each one about coverage (all but [`DualNotDiagonal`](Self::DualNotDiagonal)) is an error
+/// instead ([`MortarError::IncompleteCoverage`]).
 #[derive(Debug, Clone, PartialEq)]
 #[non_exhaustive]
 pub enum CouplingWarning {
@@ -74,6 +75,24 @@ pub enum CouplingWarning {
         /// The first failure (in the order the faces were processed).
         first: Box<MortarError>,
     },
+    /// A space that claims a diagonal D (dual multipliers) gave a D with off-diagonal entries
+    /// above round-off (1e-12 of their row's diagonal entry) on
+    /// an interface covered once everywhere (the recombined D where the slave faces are
+    /// recombined): the quadrature does not reach the biorthogonality of the basis on curved
+    /// faces as coarse as these (a Line3 arc of 45 degrees: 7e-10 of the diagonal), or
+    /// second-order faces of different kinds share an edge node, so that no one recombination
+    /// serves the slave side. A condensation that needs a diagonal D is then not exact.
+    DualNotDiagonal {
+        /// The off-diagonal entries kept.
+        entries: usize,
+        /// The largest, relative to its row's diagonal entry.
+        largest: f64,
+        /// The rows that have them.
+        rows: usize,
+        /// Tags of the slave nodes of the first of those rows (at most
+        /// [`CouplingWarning::EXAMPLES`]).
+        examples: Vec<u64>,
+    },
 }
 
 impl CouplingWarning {
@@ -81,13 +100,14 @@ impl CouplingWarning {
     pub const EXAMPLES: usize = 8;
 
     /// A short name: `"uncovered slave area"`, `"overlapping master faces"`, `"overlapping
-    /// slave faces"` or `"skipped pairs"`.
+    /// slave faces"`, `"skipped pairs"` or `"dual D not diagonal"`.
     pub fn name(&self) -> &'static str {
         match self {
             CouplingWarning::UncoveredSlaveArea { .. } => "uncovered slave area",
             CouplingWarning::OverlappingMasterFaces { .. } => "overlapping master faces",
             CouplingWarning::OverlappingSlaveFaces { .. } => "overlapping slave faces",
             CouplingWarning::SkippedPairs { .. } => "skipped pairs",
+            CouplingWarning::DualNotDiagonal { .. } => "dual D not diagonal",
         }
     }
 }
@@ -148,6 +168,22 @@ impl fmt::Display for CouplingWarning {
                     tag_list(examples, *master_nodes),
                 )
             }
+            CouplingWarning::DualNotDiagonal {
+                entries,
+                largest,
+                rows,
+                examples,
+            } => write!(
+                f,
+                "dual D not diagonal: {} above round-off, up to {largest:.1e} of their row's \
+                 diagonal entry (rows of slave nodes {}), on an interface covered once \
+                 everywhere: curved faces too coarse for the quadrature to keep the dual basis \
+                 biorthogonal (a finer mesh of the curve brings them to round-off), or \
+                 second-order faces of different kinds side by side (no one recombination); a \
+                 condensation needs a diagonal D",
+                plural(*entries, "off-diagonal entry"),
+                tag_list(examples, *rows),
+            ),
             CouplingWarning::SkippedPairs { count, first } => write!(
                 f,
                 "skipped pairs: {} dropped because a point could not be mapped between the \
@@ -170,6 +206,8 @@ fn tag_list(examples: &[u64], count: usize) -> String {
 pub(crate) fn plural(n: usize, noun: &str) -> String {
     if n == 1 {
         format!("1 {noun}")
+    } else if let Some(stem) = noun.strip_suffix("ry") {
+        format!("{n} {stem}ries")
     } else {
         format!("{n} {noun}s")
     }

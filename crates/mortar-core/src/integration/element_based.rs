@@ -19,7 +19,9 @@ use crate::quadrature::{Quadrature, QuadratureRule};
 /// so the result converges only as the degree grows. The cheap end of the dial.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ElementBased {
-    /// Quadrature degree on the slave face; `None` uses the slave-slave integrand degree.
+    /// Quadrature degree on the slave face; `None` uses the slave-slave integrand degree
+    /// plus what the face's Jacobian needs
+    /// ([`FaceGeometry::jacobian_extra_degree`](crate::interface::FaceGeometry::jacobian_extra_degree)).
     pub degree: Option<u32>,
 }
 
@@ -52,7 +54,12 @@ impl IntegrationStrategy for ElementBased {
     ) -> Result<()> {
         out.clear();
         let el = slave.element;
-        let deg = self.degree.unwrap_or_else(|| default_degree(el, el));
+        // The automatic degree integrates the face's own measure as the dual basis does
+        // (a curved face's Jacobian is not a polynomial), so that a covered face's dual D
+        // stays diagonal.
+        let deg = self
+            .degree
+            .unwrap_or_else(|| (default_degree(el, el) + slave.jacobian_extra_degree()).min(20));
         let rule = QuadratureRule::cached(el.domain(), deg)?;
         // Distinct master faces hit, for the pair count (a handful per slave face).
         let mut hit: Vec<u32> = Vec::new();

@@ -12,7 +12,10 @@ use crate::interface::{FaceGeometry, SpatialDim};
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SegmentBased {
     /// Quadrature degree on each integration cell; `None` picks
-    /// [`default_degree`](super::default_degree) per pair.
+    /// [`default_degree`](super::default_degree) per pair, plus what a slave face's
+    /// Jacobian needs where the face is integrated in its reference coordinates
+    /// ([`FaceGeometry::jacobian_extra_degree`](crate::interface::FaceGeometry::jacobian_extra_degree):
+    /// a curved Line3, a non-affine face in 3D).
     pub degree: Option<u32>,
     /// Curved second-order faces in 3D (see [`curved_3d`](super::curved_3d)): the tolerance
     /// that picks each face's subdivision level from its bend; `None` for

@@ -83,7 +83,11 @@ fn pair_points(
     if hi - lo <= tol.clip_area * 2.0 {
         return Ok(None);
     }
-    let deg = degree.unwrap_or_else(|| default_degree(slave.element, master.element));
+    // The dual basis is biorthogonal with respect to the face's own measure: the automatic
+    // degree integrates that measure too, so that a covered face's D stays diagonal.
+    let deg = degree.unwrap_or_else(|| {
+        (default_degree(slave.element, master.element) + line.extra_degree).min(20)
+    });
     let rule = QuadratureRule::cached(ReferenceDomain::Line, deg)?;
     let half = 0.5 * (hi - lo);
     let mut values = [0.0; MAX_FACE_NODES];
@@ -254,6 +258,9 @@ struct SlaveLine<'a> {
     /// The line and the direction as affine functions of `xi`, when both are
     /// ([`AffineLine`]).
     affine: Option<AffineLine>,
+    /// The degree added to the automatic one for the face's Jacobian
+    /// ([`FaceGeometry::jacobian_extra_degree`]): a curved Line3's is not a polynomial.
+    extra_degree: u32,
     last: arrayvec::ArrayVec<([u64; 3], f64), REMEMBERED>,
 }
 
@@ -341,6 +348,7 @@ impl<'a> SlaveLine<'a> {
             orientation,
             ends,
             affine,
+            extra_degree: face.jacobian_extra_degree(),
             last: Default::default(),
         }
     }

@@ -183,6 +183,22 @@ impl FaceGeometry {
             .all(|xi| (normal(&Vector2::new(xi[0], xi[1])) - n0).amax() <= 1e-12)
     }
 
+    /// The degree a quadrature of an integrand over the face in its reference coordinates
+    /// needs beyond the integrand's polynomial degree, for the face's Jacobian: 0 on an
+    /// affine face (a constant Jacobian), 1 on a flat one (a polynomial), and
+    /// [`WARPED_EXTRA_DEGREE`] on a warped or curved one (the norm of a polynomial vector):
+    /// what keeps integrals over the face, or over parts of it, in step with the dual basis,
+    /// which is built with the face's own Jacobian.
+    pub fn jacobian_extra_degree(&self) -> u32 {
+        if self.is_affine() {
+            0
+        } else if self.is_flat() {
+            1
+        } else {
+            WARPED_EXTRA_DEGREE
+        }
+    }
+
     /// The largest distance between two corner nodes.
     pub fn diameter(&self) -> f64 {
         let c = self.element.corner_count();

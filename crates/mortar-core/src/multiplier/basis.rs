@@ -109,6 +109,16 @@ pub trait MultiplierSpace: Send + Sync + std::fmt::Debug {
         false
     }
 
+    /// Whether the basis on a second-order face whose corner functions do not all integrate
+    /// to a positive value (Tri6, Quad8) is biorthogonal to the recombined functions
+    /// `N~ = T N` of [`recombination`](super::recombination) rather than to the face's own:
+    /// then the coupling also gives D in that basis, `D T^T`
+    /// ([`Coupling::recombined`](crate::Coupling::recombined)), diagonal where D itself is
+    /// not. The default, `false`, gives none.
+    fn recombines(&self) -> bool {
+        false
+    }
+
     /// Whether [`basis_for`](MultiplierSpace::basis_for) gives every face of type `element`
     /// the same basis (to round-off), whatever the face's position, size and orientation,
     /// for the measure `geometry`: the coupling may then build it once for a whole interface

@@ -31,8 +31,10 @@ type Square = SMatrix<f64, MAX_FACE_NODES, MAX_FACE_NODES>;
 /// `N~`: `int Phi_j N~_k = delta_jk int N~_k`. The `Phi_j` are returned in terms of the
 /// face's own `N` (`a = A T` for `N~ = T N`), so D, M and everything built on them keep the
 /// nodal unknowns; D is then `D~ T^-T` with `D~` diagonal (positive on a covered face), not
-/// diagonal itself. Line3 and Quad9 faces (all integrals positive) and linear faces are not
-/// recombined.
+/// diagonal itself. The coupling gives `D~ = D T^T` and `T` too
+/// ([`Coupling::recombined`](crate::Coupling::recombined)): the constraint in the slave
+/// unknowns `u~ = T^-T u` of the recombined basis, `D~ u~_s = M u_m`, condenses. Line3 and
+/// Quad9 faces (all integrals positive) and linear faces are not recombined.
 ///
 /// With the axisymmetric measure ([`ModelGeometry::Axisymmetric`], through
 /// [`basis_for`](MultiplierSpace::basis_for)) both `D_e` and `M_e` are weighted by the radius
@@ -49,6 +51,10 @@ impl MultiplierSpace for DualMultipliers {
     }
 
     fn diagonal_d(&self) -> bool {
+        true
+    }
+
+    fn recombines(&self) -> bool {
         true
     }
 
@@ -216,9 +222,21 @@ pub fn slave_recombination(interface: &Interface) -> Result<Option<SparseMatrix>
     let mut recombined = vec![None::<bool>; rows];
     let mut off: Vec<(u32, u32)> = Vec::new();
     let mut any = false;
+    // One recombination per element type (a quadrature of its shape functions each).
+    let mut known: Vec<(ElementRef, Option<Square>)> = Vec::new();
     for f in 0..slave.face_count() {
         let face = slave.face(f);
-        let t = recombination(face.element);
+        let t = match known
+            .iter()
+            .find(|(el, _)| std::ptr::addr_eq(*el, face.element))
+        {
+            Some((_, t)) => *t,
+            None => {
+                let t = recombination(face.element);
+                known.push((face.element, t));
+                t
+            }
+        };
         any |= t.is_some();
         let row = |i: usize| interface.slave_row(face.nodes[i]).map(|r| r as usize);
         let (k, c) = (face.element.node_count(), face.element.corner_count());

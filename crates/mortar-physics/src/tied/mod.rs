@@ -6,12 +6,15 @@
 //!
 //! Dirichlet conditions on slave interface nodes (where the interface meets a Dirichlet
 //! boundary) conflict with the condensation; see [`SlaveDirichlet`] for how they are handled
-//! (or refused).
+//! (or refused), and [`slave_dirichlet_shares`] for the same treatment of a coupling's rows
+//! in a program that assembles its own system.
 
+mod crosspoint;
 mod formulation;
 mod system;
 mod tie;
 
+pub use crosspoint::{slave_dirichlet_shares, SlaveDirichletShares};
 pub use formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };

@@ -7,6 +7,7 @@ use mortar_core::linalg::{
     SubstructuredCholesky, Triplets,
 };
 
+use super::crosspoint::shares;
 use super::formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };
@@ -890,108 +891,28 @@ fn modified_rows(
             own.push(tie.slave_dofs()[r]);
         }
     }
-    // The nearest free rows of each Dirichlet row in the graph of slave faces (rows of the
-    // same component joined when their nodes share a face): its free face neighbours, or
-    // failing those (a face whose nodes are all Dirichlet nodes, at a corner of the
-    // interface) the free rows one face further.
-    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); ns];
-    // Rows of nodes on second-order faces: their redistribution must keep linear multipliers.
-    let mut second_order = vec![false; ns];
-    if count > 0 {
-        let interface = tie.interface();
-        let slave = interface.slave();
-        let mut adjacent: Vec<Vec<u32>> = vec![Vec::new(); ns];
-        for f in 0..slave.face_count() {
-            let face = slave.face(f);
-            let rows: Vec<u32> = face
-                .nodes
-                .iter()
-                .filter_map(|&n| interface.slave_row(n))
-                .collect();
-            if face.element.node_count() > face.element.corner_count() {
-                for &a in &rows {
-                    for k in 0..comps {
-                        second_order[a as usize * comps + k] = true;
-                    }
-                }
-            }
-            for k in 0..comps as u32 {
-                for &a in &rows {
-                    let a = (a * comps as u32 + k) as usize;
-                    adjacent[a].extend(
-                        rows.iter()
-                            .map(|&b| b * comps as u32 + k)
-                            .filter(|&b| b as usize != a),
-                    );
-                }
-            }
-        }
-        for list in &mut adjacent {
-            list.sort_unstable();
-            list.dedup();
-        }
-        let mut seen = vec![false; ns];
-        for c in (0..ns).filter(|&r| fixed[r]) {
-            let mut front = vec![c as u32];
-            let mut visited = vec![c as u32];
-            seen[c] = true;
-            // Second-order rows gather rings until their free neighbours can reproduce a
-            // linear function at the node (at most three rings).
-            let mut rings = 0;
-            while !front.is_empty()
-                && (neighbours[c].is_empty()
-                    || (second_order[c]
-                        && rings < 3
-                        && linear_weights(tie, c, &neighbours[c]).is_none()))
-            {
-                rings += 1;
-                let mut next: Vec<u32> = front
-                    .iter()
-                    .flat_map(|&r| adjacent[r as usize].iter().copied())
-                    .filter(|&r| !seen[r as usize])
-                    .collect();
-                next.sort_unstable();
-                next.dedup();
-                for &r in &next {
-                    seen[r as usize] = true;
-                    visited.push(r);
-                }
-                neighbours[c].extend(
-                    next.iter()
-                        .copied()
-                        .filter(|&r| carries[r as usize] && !fixed[r as usize]),
-                );
-                front = next;
-            }
-            for r in visited {
-                seen[r as usize] = false;
-            }
-        }
-    }
+    let interface = tie.interface();
+    let shares = shares(
+        interface.slave(),
+        interface.slave_nodes(),
+        |n| interface.slave_row(n),
+        comps,
+        &carries,
+        &fixed,
+    );
     let (mut redistributed, mut dropped) = (0usize, 0usize);
     let mut t = Triplets::default();
     for r in (0..ns).filter(|&r| carries[r]) {
         let targets: Vec<(u32, f64)> = if fixed[r] {
-            let nb = &neighbours[r];
-            if nb.is_empty() {
+            if shares[r].is_empty() {
                 dropped += 1;
             } else {
                 redistributed += 1;
             }
-            let weights = if second_order[r] {
-                linear_weights(tie, r, nb)
-            } else {
-                None
-            };
-            let w = 1.0 / nb.len().max(1) as f64;
-            match weights {
-                Some(ws) => nb
-                    .iter()
-                    .zip(ws)
-                    .map(|(&k, wk)| (new_of[k as usize], wk))
-                    .collect(),
-                None => nb.iter().map(|&k| (new_of[k as usize], w)).collect(),
-            }
+            shares[r]
+                .iter()
+                .map(|&(k, w)| (new_of[k as usize], w))
+                .collect()
         } else {
             vec![(new_of[r], 1.0)]
         };
@@ -1020,37 +941,6 @@ fn modified_rows(
         redistributed,
         dropped,
     })
-}
-
-/// The weights with which the row of a Dirichlet slave node `r` is shared among its free
-/// neighbours `nb` so that the modified multipliers still represent linear functions (as a
-/// second-order multiplier space must, for the flux of a quadratic field): the least-norm
-/// affine combination `sum w_k = 1`, `sum w_k x_k = x_r` of the neighbours' positions; on a
-/// Line3 end, `2` on the middle node and `-1` on the far end. `None` when no such combination
-/// exists (the node off the neighbours' affine hull), leaving the equal shares.
-fn linear_weights(tie: &Tie, r: usize, nb: &[u32]) -> Option<Vec<f64>> {
-    let interface = tie.interface();
-    let comps = tie.components();
-    let x = |row: usize| interface.slave().coords()[interface.slave_nodes()[row / comps] as usize];
-    let xr = x(r);
-    let scale = nb
-        .iter()
-        .map(|&k| (x(k as usize) - xr).norm())
-        .fold(0.0, f64::max);
-    if nb.len() < 2 || scale <= 0.0 {
-        return None;
-    }
-    let a = nalgebra::DMatrix::from_fn(4, nb.len(), |i, j| {
-        if i == 0 {
-            1.0
-        } else {
-            (x(nb[j] as usize) - xr)[i - 1] / scale
-        }
-    });
-    let pinv = a.clone().pseudo_inverse(1e-12).ok()?;
-    let w = pinv.column(0).into_owned();
-    let residual = &a * &w - nalgebra::DVector::from_fn(4, |i, _| if i == 0 { 1.0 } else { 0.0 });
-    (residual.amax() <= 1e-10).then(|| w.iter().copied().collect())
 }
 
 /// Whether the rows can be condensed: each row's own entry positive, and its entries on other
