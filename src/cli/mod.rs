@@ -61,7 +61,9 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Couple two Gmsh 4.1 surfaces: write DIR/D.mtx, DIR/M.mtx and DIR/summary.json.
+    /// Couple two Gmsh 4.1 surfaces: write DIR/D.mtx, DIR/M.mtx, DIR/gap.mtx (the weighted
+    /// gap G = D x_s - M x_m), DIR/normals.mtx (the slave's nodal normals) and
+    /// DIR/summary.json.
     ///
     /// FILE#GROUP selects the elements of a physical group (by name, or by physical tag);
     /// FILE alone takes all elements of dimension 2 of the file, or of dimension 1 if it has
@@ -70,8 +72,9 @@ enum Command {
     /// them, else made consistent and turned to face the other surface; --keep-orientation
     /// trusts the files). Slave area no master face covers is a warning (an error with
     /// --require-full-coverage). Rows of D and M are the slave nodes, columns the slave (D)
-    /// or master (M) nodes, each by ascending node tag. Nothing is written unless everything
-    /// succeeds.
+    /// or master (M) nodes, each by ascending node tag; gap.mtx and normals.mtx are dense
+    /// arrays, a row per slave node (as D's rows), a column per coordinate (2 in 2D). Nothing
+    /// is written unless everything succeeds.
     #[command(
         disable_help_flag = true,
         after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"

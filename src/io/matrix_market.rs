@@ -43,3 +43,31 @@ pub fn to_string(matrix: &CsMat<f64>, comments: &[&str]) -> String {
     }
     out
 }
+
+/// The text of a Matrix Market file holding the dense matrix of `rows` (each of `cols`
+/// values) as an `array real general`: the banner, `comments` as `%` lines, `rows cols`, then
+/// the values column by column (the format's order), each written as [`to_string`] writes
+/// them. `scipy.io.mmread` and `numpy` read it back as a dense array.
+///
+/// ```
+/// let text = mortar::io::matrix_market::dense_to_string(&[[1.0, 2.0], [3.0, 4.0]], 2, &["x"]);
+/// assert_eq!(text, "%%MatrixMarket matrix array real general\n% x\n2 2\n1e0\n3e0\n2e0\n4e0\n");
+/// ```
+pub fn dense_to_string<R: AsRef<[f64]>>(rows: &[R], cols: usize, comments: &[&str]) -> String {
+    let mut out = String::with_capacity(64 + 24 * rows.len() * cols);
+    out.push_str("%%MatrixMarket matrix array real general\n");
+    for c in comments {
+        for line in c.lines() {
+            out.push_str("% ");
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
+    let _ = writeln!(out, "{} {cols}", rows.len());
+    for c in 0..cols {
+        for r in rows {
+            let _ = writeln!(out, "{:e}", r.as_ref()[c]);
+        }
+    }
+    out
+}

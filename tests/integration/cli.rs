@@ -84,7 +84,7 @@ fn couple_and_check(
     names.sort();
     assert_eq!(
         names,
-        ["D.mtx", "M.mtx", "summary.json"],
+        ["D.mtx", "M.mtx", "gap.mtx", "normals.mtx", "summary.json"],
         "only the outputs, no temporaries"
     );
     (d, m, summary)
@@ -471,4 +471,99 @@ fn couples_with_the_quad_subdivision_dial() {
         .zip(m_cut.iter().flatten())
         .fold(0.0f64, |w, (a, b)| w.max((a - b).abs()));
     assert!(changed > 1e-9, "M unchanged: {changed:e}");
+}
+
+/// A dense Matrix Market array (`array real general`): its rows.
+fn read_dense_mtx(path: &std::path::Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("%%MatrixMarket matrix array real general")
+    );
+    let mut lines = lines.filter(|l| !l.starts_with('%'));
+    let size: Vec<usize> = lines
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let values: Vec<f64> = lines.map(|l| l.trim().parse().unwrap()).collect();
+    assert_eq!(values.len(), size[0] * size[1]);
+    (0..size[0])
+        .map(|r| (0..size[1]).map(|c| values[c * size[0] + r]).collect())
+        .collect()
+}
+
+/// `couple` writes the weighted gap and the slave's nodal normals (they were computed and
+/// dropped). Closed form: two parallel flat unit squares a distance `g` apart (slave at
+/// `z = 0` facing `+z`, master at `z = g`), fully covered, so that `M 1 = D 1 = w` (the slave
+/// nodal areas) and linear fields are tied: `G_j = D x_s - M x_m = (0, 0, -g w_j)`, the
+/// normal `n_j = (0, 0, 1)` and the normal gap `-n_j . G_j = g w_j`. In 2D likewise with two
+/// parallel lines, two columns.
+#[test]
+fn couple_writes_the_weighted_gap_and_the_normals() {
+    let dir = TempDir::new("cli-gap");
+    let g = 0.05;
+    let slave = square_triangles(4, Diagonal::Main, 0.0, false, 1).unwrap();
+    let master = square_quads(5, g, true, 1000).unwrap();
+    let (s, m) = (dir.join("slave.msh"), dir.join("master.msh"));
+    write_msh41_ascii(&slave, &s, "top").unwrap();
+    write_msh41_ascii(&master, &m, "bottom").unwrap();
+    let out = dir.join("out3d");
+    let (d, _, _) = couple_and_check(
+        &out,
+        &[
+            "--slave",
+            s.to_str().unwrap(),
+            "--master",
+            m.to_str().unwrap(),
+        ],
+    );
+    let gap = read_dense_mtx(&out.join("gap.mtx"));
+    let normals = read_dense_mtx(&out.join("normals.mtx"));
+    let w = row_sums(&d);
+    assert_eq!((gap.len(), gap[0].len()), (w.len(), 3));
+    assert_eq!((normals.len(), normals[0].len()), (w.len(), 3));
+    for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
+        assert!(
+            gj[0].abs() < 1e-14 && gj[1].abs() < 1e-14,
+            "row {j}: {gj:?}"
+        );
+        assert!((gj[2] + g * wj).abs() < 1e-14, "row {j}: {gj:?}, w {wj}");
+        assert_eq!(nj, &vec![0.0, 0.0, 1.0], "row {j}");
+    }
+
+    // 2D: the line y = 0 (slave, oriented by the program to face the master: normal -y)
+    // above the line y = -g.
+    let slave = line_mesh(6, false, 1).unwrap();
+    let mut master = line_mesh(7, false, 100).unwrap();
+    master
+        .transform(|x| x - nalgebra::Vector3::new(0.0, g, 0.0))
+        .unwrap();
+    let (s, m) = (dir.join("s2.msh"), dir.join("m2.msh"));
+    write_msh41_ascii(&slave, &s, "a").unwrap();
+    write_msh41_ascii(&master, &m, "b").unwrap();
+    let out = dir.join("out2d");
+    let (d, _, _) = couple_and_check(
+        &out,
+        &[
+            "--slave",
+            s.to_str().unwrap(),
+            "--master",
+            m.to_str().unwrap(),
+        ],
+    );
+    let gap = read_dense_mtx(&out.join("gap.mtx"));
+    let normals = read_dense_mtx(&out.join("normals.mtx"));
+    let w = row_sums(&d);
+    assert_eq!(gap[0].len(), 2, "two columns in 2D");
+    for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
+        assert!(gj[0].abs() < 1e-14, "row {j}: {gj:?}");
+        assert!((gj[1] - g * wj).abs() < 1e-14, "row {j}: {gj:?}, w {wj}");
+        assert!(
+            (nj[0]).abs() < 1e-15 && (nj[1] + 1.0).abs() < 1e-15,
+            "row {j}: {nj:?}"
+        );
+    }
 }
