@@ -81,11 +81,16 @@ enum Command {
     )]
     Couple(CoupleArgs),
 
-    /// Solve a scene: a scene file (TOML) naming Gmsh meshes, physical groups, materials,
-    /// boundary conditions and the interface, or a built-in scene. Writes DIR/BODY.vtu
-    /// (temperature) per body and DIR/report.json (formulation and why, unknowns, seconds per
-    /// phase); a built-in scene also writes its scene file and meshes. Nothing is written
-    /// unless everything succeeds.
+    /// Solve a scene: a scene file (TOML, kind = "tied_heat", "contact" or "pellet") naming
+    /// Gmsh meshes, physical groups, materials, boundary conditions and the interface, or a
+    /// built-in scene. Writes DIR/report.json (formulation and why, unknowns, seconds per
+    /// phase) and, for tied_heat, DIR/BODY.vtu per body (temperature); for contact,
+    /// DIR/BODY.vtu per body (displacement, stresses, von Mises) and DIR/interface.vtu (gap,
+    /// contact pressure on the slave surface); for pellet, VTU snapshots over time and PNG
+    /// plots. The built-in tied_heat also writes its scene file (scene.toml) and meshes; the
+    /// built-in contact scenes (hertz2d, hertz3d, shrink_fit) write report.json only, with
+    /// the closed forms beside the computed values. Nothing is written unless everything
+    /// succeeds.
     #[command(
         disable_help_flag = true,
         after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"
@@ -101,7 +106,7 @@ enum Command {
 /// Arguments of `mortar run`.
 #[derive(Debug, Args)]
 struct RunArgs {
-    /// The scene file (TOML; `kind = "tied_heat"` or `kind = "pellet"`).
+    /// The scene file (TOML; `kind = "tied_heat"`, `"contact"` or `"pellet"`).
     #[arg(
         value_name = "SCENE.toml",
         required_unless_present = "scene",

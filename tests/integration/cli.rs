@@ -332,6 +332,38 @@ fn help_is_printed() {
     }
 }
 
+/// `mortar run --help` says what the command does: it listed the kinds tied_heat and pellet
+/// only, said every VTU carries temperature and that built-in scenes write their scene file
+/// and meshes (the contact built-ins write report.json only). It now names the contact kind,
+/// its outputs and what each built-in writes, and couple's help names gap.mtx and
+/// normals.mtx.
+#[test]
+fn run_help_says_what_is_written() {
+    let run = mortar(&["run", "--help"]);
+    assert!(run.status.success());
+    let text = String::from_utf8_lossy(&run.stdout).replace('\n', " ");
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    for needle in [
+        "kind = \"tied_heat\", \"contact\" or \"pellet\"",
+        "DIR/interface.vtu",
+        "displacement, stresses",
+        "(hertz2d, hertz3d, shrink_fit) write report.json only",
+        "The built-in tied_heat also writes its scene file (scene.toml) and meshes",
+    ] {
+        assert!(text.contains(needle), "{needle:?} not in: {text}");
+    }
+    assert!(
+        !text.contains("BODY.vtu (temperature) per body and"),
+        "{text}"
+    );
+    let run = mortar(&["couple", "--help"]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        text.contains("gap.mtx") && text.contains("normals.mtx"),
+        "{text}"
+    );
+}
+
 /// Regression: `mortar ... | head` panicked ("failed printing to stdout: Broken pipe") when
 /// the reader had gone before the summary was printed. It now ends quietly with status 141
 /// (128 + SIGPIPE, as Unix tools do), no panic message.
