@@ -567,3 +567,43 @@ fn second_order_contact_writes_quadratic_vtk_cells() {
         assert!(p.iter().any(|&p| p > 0.0), "{file}: in contact");
     }
 }
+
+/// A 2D mesh written clockwise (its surface's normal along -z, every cell's nodes running
+/// clockwise) was read, then refused at assembly as "cell 31 is inverted or degenerate",
+/// naming one cell as if the others were fine. The reader now says that the whole mesh is
+/// clockwise, naming the file and group, and the scene names the body; one clockwise cell
+/// among counter-clockwise ones is still the assembly's inverted cell.
+#[test]
+fn a_clockwise_2d_mesh_is_named_as_such() {
+    let dir = TempDir::new("contact-clockwise");
+    setup(&dir);
+    let mut lower = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [4, 4], CellShape::Tensor, 1).unwrap();
+    // Mirrored in y and moved back onto [0, 1]^2: every cell clockwise.
+    lower
+        .transform(|x| nalgebra::Vector3::new(x.x, 1.0 - x.y, 0.0))
+        .unwrap();
+    let bytes = body_file(&lower, "lower", 0.0, 1.0);
+    let path = Path::new("lower.msh");
+    let registry = mortar::elements::volume::VolumeRegistry::default();
+    let err = mortar::io::parse_gmsh_volume(bytes.clone(), path, "lower", &registry).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        matches!(err, mortar::io::IoError::ClockwiseMesh { cells: 16, .. }),
+        "{text}"
+    );
+    assert!(
+        text.contains("whole 2D mesh is clockwise") && text.contains("\"lower\""),
+        "{text}"
+    );
+    dir.file("lower.msh", bytes);
+    assert_fails(
+        &dir,
+        "clockwise.toml",
+        SCENE,
+        &[
+            "bodies.lower.group",
+            "whole 2D mesh is clockwise",
+            "all 16 cells",
+        ],
+    );
+}
