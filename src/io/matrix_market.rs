@@ -21,14 +21,7 @@ use sprs::CsMat;
 /// ```
 pub fn to_string(matrix: &CsMat<f64>, comments: &[&str]) -> String {
     let mut out = String::with_capacity(64 + 32 * matrix.nnz());
-    out.push_str("%%MatrixMarket matrix coordinate real general\n");
-    for c in comments {
-        for line in c.lines() {
-            out.push_str("% ");
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
+    banner(&mut out, "coordinate", comments);
     let _ = writeln!(out, "{} {} {}", matrix.rows(), matrix.cols(), matrix.nnz());
     // A CSC matrix iterates by column: write by row all the same.
     let csr;
@@ -55,14 +48,7 @@ pub fn to_string(matrix: &CsMat<f64>, comments: &[&str]) -> String {
 /// ```
 pub fn dense_to_string<R: AsRef<[f64]>>(rows: &[R], cols: usize, comments: &[&str]) -> String {
     let mut out = String::with_capacity(64 + 24 * rows.len() * cols);
-    out.push_str("%%MatrixMarket matrix array real general\n");
-    for c in comments {
-        for line in c.lines() {
-            out.push_str("% ");
-            out.push_str(line);
-            out.push('\n');
-        }
-    }
+    banner(&mut out, "array", comments);
     let _ = writeln!(out, "{} {cols}", rows.len());
     for c in 0..cols {
         for r in rows {
@@ -70,4 +56,17 @@ pub fn dense_to_string<R: AsRef<[f64]>>(rows: &[R], cols: usize, comments: &[&st
         }
     }
     out
+}
+
+/// The banner of a real general matrix in `format` (`coordinate` or `array`) and `comments`
+/// as `%` lines (line breaks in a comment start new comment lines).
+fn banner(out: &mut String, format: &str, comments: &[&str]) {
+    let _ = writeln!(out, "%%MatrixMarket matrix {format} real general");
+    for c in comments {
+        for line in c.lines() {
+            out.push_str("% ");
+            out.push_str(line);
+            out.push('\n');
+        }
+    }
 }

@@ -533,6 +533,27 @@ fn read_dense_mtx(path: &std::path::Path) -> Vec<Vec<f64>> {
 /// nodal areas) and linear fields are tied: `G_j = D x_s - M x_m = (0, 0, -g w_j)`, the
 /// normal `n_j = (0, 0, 1)` and the normal gap `-n_j . G_j = g w_j`. In 2D likewise with two
 /// parallel lines, two columns.
+/// Couples the surfaces of `slave` and `master` into `out`; returns the rows of gap.mtx, of
+/// normals.mtx and the slave nodal areas (the row sums of D), one per slave node.
+fn gap_and_normals(
+    out: &std::path::Path,
+    slave: &std::path::Path,
+    master: &std::path::Path,
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
+    let args = [
+        "--slave",
+        slave.to_str().unwrap(),
+        "--master",
+        master.to_str().unwrap(),
+    ];
+    let (d, _, _) = couple_and_check(out, &args);
+    let w = row_sums(&d);
+    let gap = read_dense_mtx(&out.join("gap.mtx"));
+    let normals = read_dense_mtx(&out.join("normals.mtx"));
+    assert_eq!((gap.len(), normals.len()), (w.len(), w.len()));
+    (gap, normals, w)
+}
+
 #[test]
 fn couple_writes_the_weighted_gap_and_the_normals() {
     let dir = TempDir::new("cli-gap");
@@ -542,21 +563,8 @@ fn couple_writes_the_weighted_gap_and_the_normals() {
     let (s, m) = (dir.join("slave.msh"), dir.join("master.msh"));
     write_msh41_ascii(&slave, &s, "top").unwrap();
     write_msh41_ascii(&master, &m, "bottom").unwrap();
-    let out = dir.join("out3d");
-    let (d, _, _) = couple_and_check(
-        &out,
-        &[
-            "--slave",
-            s.to_str().unwrap(),
-            "--master",
-            m.to_str().unwrap(),
-        ],
-    );
-    let gap = read_dense_mtx(&out.join("gap.mtx"));
-    let normals = read_dense_mtx(&out.join("normals.mtx"));
-    let w = row_sums(&d);
-    assert_eq!((gap.len(), gap[0].len()), (w.len(), 3));
-    assert_eq!((normals.len(), normals[0].len()), (w.len(), 3));
+    let (gap, normals, w) = gap_and_normals(&dir.join("out3d"), &s, &m);
+    assert_eq!((gap[0].len(), normals[0].len()), (3, 3));
     for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
         assert!(
             gj[0].abs() < 1e-14 && gj[1].abs() < 1e-14,
@@ -576,20 +584,12 @@ fn couple_writes_the_weighted_gap_and_the_normals() {
     let (s, m) = (dir.join("s2.msh"), dir.join("m2.msh"));
     write_msh41_ascii(&slave, &s, "a").unwrap();
     write_msh41_ascii(&master, &m, "b").unwrap();
-    let out = dir.join("out2d");
-    let (d, _, _) = couple_and_check(
-        &out,
-        &[
-            "--slave",
-            s.to_str().unwrap(),
-            "--master",
-            m.to_str().unwrap(),
-        ],
+    let (gap, normals, w) = gap_and_normals(&dir.join("out2d"), &s, &m);
+    assert_eq!(
+        (gap[0].len(), normals[0].len()),
+        (2, 2),
+        "two columns in 2D"
     );
-    let gap = read_dense_mtx(&out.join("gap.mtx"));
-    let normals = read_dense_mtx(&out.join("normals.mtx"));
-    let w = row_sums(&d);
-    assert_eq!(gap[0].len(), 2, "two columns in 2D");
     for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
         assert!(gj[0].abs() < 1e-14, "row {j}: {gj:?}");
         assert!((gj[1] - g * wj).abs() < 1e-14, "row {j}: {gj:?}, w {wj}");
