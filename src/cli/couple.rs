@@ -44,7 +44,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
     summary.slave = Some(slave.label());
     summary.master = Some(master.label());
     summary.orientation = orientation;
-    write_coupling(&args.out, &coupling, &summary).map_err(|e| e.to_string())?;
+    write_coupling(&args.out, &interface, &coupling, &summary).map_err(|e| e.to_string())?;
     print_warnings(&coupling.warnings, &settings.widen_search_hint());
     print_summary(&summary, json);
     if !json {
@@ -54,7 +54,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
             ""
         };
         say!(
-            "{:<9}{} (D.mtx, M.mtx{t}, summary.json)",
+            "{:<9}{} (D.mtx, M.mtx{t}, gap.mtx, normals.mtx, summary.json)",
             "output",
             args.out.display()
         );

@@ -61,7 +61,9 @@ struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
-    /// Couple two Gmsh 4.1 surfaces: write DIR/D.mtx, DIR/M.mtx and DIR/summary.json.
+    /// Couple two Gmsh 4.1 surfaces: write DIR/D.mtx, DIR/M.mtx, DIR/gap.mtx (the weighted
+    /// gap G = D x_s - M x_m), DIR/normals.mtx (the slave's nodal normals) and
+    /// DIR/summary.json.
     ///
     /// FILE#GROUP selects the elements of a physical group (by name, or by physical tag);
     /// FILE alone takes all elements of dimension 2 of the file, or of dimension 1 if it has
@@ -70,19 +72,25 @@ enum Command {
     /// them, else made consistent and turned to face the other surface; --keep-orientation
     /// trusts the files). Slave area no master face covers is a warning (an error with
     /// --require-full-coverage). Rows of D and M are the slave nodes, columns the slave (D)
-    /// or master (M) nodes, each by ascending node tag. Nothing is written unless everything
-    /// succeeds.
+    /// or master (M) nodes, each by ascending node tag; gap.mtx and normals.mtx are dense
+    /// arrays, a row per slave node (as D's rows), a column per coordinate (2 in 2D). Nothing
+    /// is written unless everything succeeds.
     #[command(
         disable_help_flag = true,
         after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"
     )]
     Couple(CoupleArgs),
 
-    /// Solve a scene: a scene file (TOML) naming Gmsh meshes, physical groups, materials,
-    /// boundary conditions and the interface, or a built-in scene. Writes DIR/BODY.vtu
-    /// (temperature) per body and DIR/report.json (formulation and why, unknowns, seconds per
-    /// phase); a built-in scene also writes its scene file and meshes. Nothing is written
-    /// unless everything succeeds.
+    /// Solve a scene: a scene file (TOML, kind = "tied_heat", "contact" or "pellet") naming
+    /// Gmsh meshes, physical groups, materials, boundary conditions and the interface, or a
+    /// built-in scene. Writes DIR/report.json (formulation and why, unknowns, seconds per
+    /// phase) and, for tied_heat, DIR/BODY.vtu per body (temperature); for contact,
+    /// DIR/BODY.vtu per body (displacement, stresses, von Mises) and DIR/interface.vtu (gap,
+    /// contact pressure on the slave surface); for pellet, VTU snapshots over time and PNG
+    /// plots. The built-in tied_heat also writes its scene file (scene.toml) and meshes; the
+    /// built-in contact scenes (hertz2d, hertz3d, shrink_fit) write report.json only, with
+    /// the closed forms beside the computed values. Nothing is written unless everything
+    /// succeeds.
     #[command(
         disable_help_flag = true,
         after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"
@@ -98,7 +106,7 @@ enum Command {
 /// Arguments of `mortar run`.
 #[derive(Debug, Args)]
 struct RunArgs {
-    /// The scene file (TOML; `kind = "tied_heat"` or `kind = "pellet"`).
+    /// The scene file (TOML; `kind = "tied_heat"`, `"contact"` or `"pellet"`).
     #[arg(
         value_name = "SCENE.toml",
         required_unless_present = "scene",

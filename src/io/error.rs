@@ -211,6 +211,17 @@ pub enum IoError {
         /// The dimension of the group.
         dim: i32,
     },
+    /// Every cell of a 2D body runs clockwise in the plane `z = 0` (a surface meshed with its
+    /// normal along `-z`): each would be refused as inverted when assembled.
+    #[error("{}: physical group \"{group}\": the whole 2D mesh is clockwise (all {cells} cells run clockwise in the xy-plane, their surface's normal along -z); the cells of a 2D body must run counter-clockwise: reverse the surface's orientation in Gmsh (e.g. ReverseMesh Surface{{...}};) and mesh it again", path.display())]
+    ClockwiseMesh {
+        /// The file.
+        path: PathBuf,
+        /// The body's group.
+        group: String,
+        /// Its cell count.
+        cells: usize,
+    },
     /// A body's mesh refused a node or a cell.
     #[error("{}, {at}: element {element}: {source}", path.display())]
     Cell {

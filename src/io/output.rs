@@ -3,28 +3,59 @@
 
 use std::path::{Path, PathBuf};
 
-use mortar_core::Coupling;
+use mortar_core::{Coupling, Interface, SpatialDim};
 
 use super::error::IoError;
 use super::matrix_market;
 use super::summary::{CouplingSummary, RECOMBINATION_FILE};
 
-/// Writes `D.mtx`, `M.mtx` and `summary.json` into `dir` (created if missing), all or none;
-/// for a coupling in the recombined slave basis ([`Coupling::recombined`]: dual multipliers
-/// on Tri6 or Quad8 slave faces), `D.mtx` holds its diagonal `D T^T` and `T.mtx` the
-/// recombination `T` (`summary.slave_basis`, `summary.recombination`), so that the slave
-/// unknowns condense: `u_s = T^T D~^-1 M u_m`.
+/// Writes `D.mtx`, `M.mtx`, `gap.mtx`, `normals.mtx` and `summary.json` into `dir` (created
+/// if missing), all or none; for a coupling in the recombined slave basis
+/// ([`Coupling::recombined`]: dual multipliers on Tri6 or Quad8 slave faces), `D.mtx` holds
+/// its diagonal `D T^T` and `T.mtx` the recombination `T` (`summary.slave_basis`,
+/// `summary.recombination`), so that the slave unknowns condense: `u_s = T^T D~^-1 M u_m`.
 ///
 /// Rows of D and M are the slave nodes, columns the slave (D, T) or master (M) nodes, each in
-/// ascending node tag order: `summary.slave_nodes` and `summary.master_nodes`.
+/// ascending node tag order: `summary.slave_nodes` and `summary.master_nodes`. `gap.mtx` is
+/// the weighted gap `G = D x_s - M x_m` of the surfaces of `interface` (the positions of
+/// their nodes; D the nodal one, whatever basis `D.mtx` is written in: `D~ x~_s` is the same
+/// vector), and `normals.mtx` the slave's averaged unit nodal normals: dense Matrix Market
+/// arrays, one row per slave node (the rows of D), one column per coordinate (2 for lines in
+/// the plane `z = 0`, 3 for faces). The nodal normal gap is `g_j = -n_j . G_j` (positive
+/// where the surfaces are apart).
 ///
 /// # Errors
 /// As [`write_outputs`].
 pub fn write_coupling(
     dir: impl AsRef<Path>,
+    interface: &Interface,
     coupling: &Coupling,
     summary: &CouplingSummary,
 ) -> Result<(), IoError> {
+    let dim = match interface.dim() {
+        SpatialDim::Two => 2,
+        SpatialDim::Three => 3,
+    };
+    let gap = coupling.weighted_gap(
+        &coupling.slave_positions(interface),
+        &coupling.master_positions(interface),
+    );
+    let gap = matrix_market::dense_to_string(
+        &gap.iter().map(|g| g.as_slice()[..dim].to_vec()).collect::<Vec<_>>(),
+        dim,
+        &[
+            "G = D x_s - M x_m (weighted gap, one row per slave node as the rows of D; normal gap g_j = -n_j . G_j)",
+        ],
+    );
+    let normals = matrix_market::dense_to_string(
+        &coupling
+            .slave_normals
+            .iter()
+            .map(|n| n.as_slice()[..dim].to_vec())
+            .collect::<Vec<_>>(),
+        dim,
+        &["n_j: averaged unit normal of each slave node (rows of D), pointing out of the slave side"],
+    );
     const SLAVE_ROWS: &str = "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)";
     let d = match &coupling.recombined {
         Some(r) => matrix_market::to_string(
@@ -48,7 +79,12 @@ pub fn write_coupling(
     );
     let mut json = summary.to_json();
     json.push('\n');
-    let mut files = vec![("D.mtx", d.into_bytes()), ("M.mtx", m.into_bytes())];
+    let mut files = vec![
+        ("D.mtx", d.into_bytes()),
+        ("M.mtx", m.into_bytes()),
+        ("gap.mtx", gap.into_bytes()),
+        ("normals.mtx", normals.into_bytes()),
+    ];
     if let Some(r) = &coupling.recombined {
         let t = matrix_market::to_string(
             &r.t,

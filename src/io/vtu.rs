@@ -36,6 +36,7 @@ use std::io::Write as _;
 use std::path::Path;
 
 use mortar_core::element::volume::VolumeDomain;
+use mortar_core::element::{ElementRef, ReferenceDomain};
 use mortar_core::mesh::VolumeMesh;
 
 use super::IoError;
@@ -275,16 +276,38 @@ pub fn vtu_string_with_vectors(
     Ok(s)
 }
 
-/// The VTU document of a surface: `points`, `cells` (node indices into `points`: 2 nodes a
-/// `VTK_LINE` (3), 3 a `VTK_TRIANGLE` (5), 4 a `VTK_QUAD` (9)) and nodal scalar fields.
+/// The VTK cell type of a surface element, by its Gmsh type (whose node order is VTK's for
+/// each of these): Line2 -> `VTK_LINE` (3), Line3 -> `VTK_QUADRATIC_EDGE` (21), Tri3 ->
+/// `VTK_TRIANGLE` (5), Tri6 -> `VTK_QUADRATIC_TRIANGLE` (22), Quad4 -> `VTK_QUAD` (9), Quad8 ->
+/// `VTK_QUADRATIC_QUAD` (23), Quad9 -> `VTK_BIQUADRATIC_QUAD` (28).
+fn vtk_surface_type(gmsh_type: Option<u32>) -> Option<u8> {
+    match gmsh_type? {
+        1 => Some(3),
+        8 => Some(21),
+        2 => Some(5),
+        9 => Some(22),
+        3 => Some(9),
+        16 => Some(23),
+        10 => Some(28),
+        _ => None,
+    }
+}
+
+/// The VTU document of a surface: `points`, `cells` (each its surface element and its node
+/// indices into `points`, in the element's order) and nodal scalar fields.
+///
+/// Each cell is written with the VTK type of its element (see `vtk_surface_type`: the
+/// quadratic edge, triangle and quads of second-order faces included); a cell of another
+/// element (a program's own cubic line, say) as the linear cell of its corners (`VTK_LINE`,
+/// `VTK_TRIANGLE` or `VTK_QUAD`), its other nodes still in the file.
 ///
 /// # Errors
-/// [`IoError::Write`] (kind `InvalidInput`) for a cell of another node count, a node index
-/// out of range or a field of the wrong length.
+/// [`IoError::Write`] (kind `InvalidInput`) for a cell whose node count is not its element's,
+/// a node index out of range or a field of the wrong length.
 pub fn surface_vtu_string(
     path: &Path,
     points: &[nalgebra::Vector3<f64>],
-    cells: &[Vec<u32>],
+    cells: &[(ElementRef, Vec<u32>)],
     point_data: &[(&str, &[f64])],
 ) -> Result<String, IoError> {
     let invalid = |message: String| IoError::Write {
@@ -292,13 +315,31 @@ pub fn surface_vtu_string(
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
     };
     let mut types = Vec::with_capacity(cells.len());
-    for (c, nodes) in cells.iter().enumerate() {
-        types.push(match nodes.len() {
-            2 => 3,
-            3 => 5,
-            4 => 9,
-            n => return Err(invalid(format!("surface cell {c} has {n} nodes"))),
-        });
+    let mut conn: Vec<&[u32]> = Vec::with_capacity(cells.len());
+    for (c, (element, nodes)) in cells.iter().enumerate() {
+        if nodes.len() != element.node_count() {
+            return Err(invalid(format!(
+                "surface cell {c} is a {} of {} nodes, given {}",
+                element.name(),
+                element.node_count(),
+                nodes.len()
+            )));
+        }
+        match vtk_surface_type(element.gmsh_type()) {
+            Some(t) => {
+                types.push(t);
+                conn.push(nodes);
+            }
+            None => {
+                let corners = element.corner_count();
+                types.push(match element.domain() {
+                    ReferenceDomain::Line => 3,
+                    ReferenceDomain::Triangle => 5,
+                    ReferenceDomain::Quadrilateral => 9,
+                });
+                conn.push(&nodes[..corners]);
+            }
+        }
         if let Some(n) = nodes.iter().find(|&&n| n as usize >= points.len()) {
             return Err(invalid(format!(
                 "surface cell {c}: node {n} of {}",
@@ -347,12 +388,15 @@ pub fn surface_vtu_string(
     );
     s.push_str("        </DataArray>\n      </Points>\n      <Cells>\n");
     s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    write_values(&mut s, cells.iter().flatten().map(|n| n.to_string()));
+    write_values(
+        &mut s,
+        conn.iter().copied().flatten().map(|n| n.to_string()),
+    );
     s.push_str("        </DataArray>\n");
     s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
     write_values(
         &mut s,
-        cells.iter().scan(0usize, |o, c| {
+        conn.iter().scan(0usize, |o, c| {
             *o += c.len();
             Some(o.to_string())
         }),

@@ -82,7 +82,7 @@ fn couple_and_check(
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    let mut expected = vec!["D.mtx", "M.mtx", "summary.json"];
+    let mut expected = vec!["D.mtx", "M.mtx", "gap.mtx", "normals.mtx", "summary.json"];
     if summary["slave_basis"] == "recombined" {
         assert_eq!(summary["recombination"], "T.mtx");
         expected.insert(2, "T.mtx");
@@ -409,6 +409,38 @@ fn help_is_printed() {
     }
 }
 
+/// `mortar run --help` says what the command does: it listed the kinds tied_heat and pellet
+/// only, said every VTU carries temperature and that built-in scenes write their scene file
+/// and meshes (the contact built-ins write report.json only). It now names the contact kind,
+/// its outputs and what each built-in writes, and couple's help names gap.mtx and
+/// normals.mtx.
+#[test]
+fn run_help_says_what_is_written() {
+    let run = mortar(&["run", "--help"]);
+    assert!(run.status.success());
+    let text = String::from_utf8_lossy(&run.stdout).replace('\n', " ");
+    let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    for needle in [
+        "kind = \"tied_heat\", \"contact\" or \"pellet\"",
+        "DIR/interface.vtu",
+        "displacement, stresses",
+        "(hertz2d, hertz3d, shrink_fit) write report.json only",
+        "The built-in tied_heat also writes its scene file (scene.toml) and meshes",
+    ] {
+        assert!(text.contains(needle), "{needle:?} not in: {text}");
+    }
+    assert!(
+        !text.contains("BODY.vtu (temperature) per body and"),
+        "{text}"
+    );
+    let run = mortar(&["couple", "--help"]);
+    let text = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        text.contains("gap.mtx") && text.contains("normals.mtx"),
+        "{text}"
+    );
+}
+
 /// Regression: `mortar ... | head` panicked ("failed printing to stdout: Broken pipe") when
 /// the reader had gone before the summary was printed. It now ends quietly with status 141
 /// (128 + SIGPIPE, as Unix tools do), no panic message.
@@ -548,4 +580,99 @@ fn couples_with_the_quad_subdivision_dial() {
         .zip(m_cut.iter().flatten())
         .fold(0.0f64, |w, (a, b)| w.max((a - b).abs()));
     assert!(changed > 1e-9, "M unchanged: {changed:e}");
+}
+
+/// A dense Matrix Market array (`array real general`): its rows.
+fn read_dense_mtx(path: &std::path::Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("%%MatrixMarket matrix array real general")
+    );
+    let mut lines = lines.filter(|l| !l.starts_with('%'));
+    let size: Vec<usize> = lines
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let values: Vec<f64> = lines.map(|l| l.trim().parse().unwrap()).collect();
+    assert_eq!(values.len(), size[0] * size[1]);
+    (0..size[0])
+        .map(|r| (0..size[1]).map(|c| values[c * size[0] + r]).collect())
+        .collect()
+}
+
+/// `couple` writes the weighted gap and the slave's nodal normals (they were computed and
+/// dropped). Closed form: two parallel flat unit squares a distance `g` apart (slave at
+/// `z = 0` facing `+z`, master at `z = g`), fully covered, so that `M 1 = D 1 = w` (the slave
+/// nodal areas) and linear fields are tied: `G_j = D x_s - M x_m = (0, 0, -g w_j)`, the
+/// normal `n_j = (0, 0, 1)` and the normal gap `-n_j . G_j = g w_j`. In 2D likewise with two
+/// parallel lines, two columns.
+/// Couples the surfaces of `slave` and `master` into `out`; returns the rows of gap.mtx, of
+/// normals.mtx and the slave nodal areas (the row sums of D), one per slave node.
+fn gap_and_normals(
+    out: &std::path::Path,
+    slave: &std::path::Path,
+    master: &std::path::Path,
+) -> (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>) {
+    let args = [
+        "--slave",
+        slave.to_str().unwrap(),
+        "--master",
+        master.to_str().unwrap(),
+    ];
+    let (d, _, _) = couple_and_check(out, &args);
+    let w = row_sums(&d);
+    let gap = read_dense_mtx(&out.join("gap.mtx"));
+    let normals = read_dense_mtx(&out.join("normals.mtx"));
+    assert_eq!((gap.len(), normals.len()), (w.len(), w.len()));
+    (gap, normals, w)
+}
+
+#[test]
+fn couple_writes_the_weighted_gap_and_the_normals() {
+    let dir = TempDir::new("cli-gap");
+    let g = 0.05;
+    let slave = square_triangles(4, Diagonal::Main, 0.0, false, 1).unwrap();
+    let master = square_quads(5, g, true, 1000).unwrap();
+    let (s, m) = (dir.join("slave.msh"), dir.join("master.msh"));
+    write_msh41_ascii(&slave, &s, "top").unwrap();
+    write_msh41_ascii(&master, &m, "bottom").unwrap();
+    let (gap, normals, w) = gap_and_normals(&dir.join("out3d"), &s, &m);
+    assert_eq!((gap[0].len(), normals[0].len()), (3, 3));
+    for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
+        assert!(
+            gj[0].abs() < 1e-14 && gj[1].abs() < 1e-14,
+            "row {j}: {gj:?}"
+        );
+        assert!((gj[2] + g * wj).abs() < 1e-14, "row {j}: {gj:?}, w {wj}");
+        assert_eq!(nj, &vec![0.0, 0.0, 1.0], "row {j}");
+    }
+
+    // 2D: the line y = 0 (slave, oriented by the program to face the master: normal -y)
+    // above the line y = -g.
+    let slave = line_mesh(6, false, 1).unwrap();
+    let mut master = line_mesh(7, false, 100).unwrap();
+    master
+        .transform(|x| x - nalgebra::Vector3::new(0.0, g, 0.0))
+        .unwrap();
+    let (s, m) = (dir.join("s2.msh"), dir.join("m2.msh"));
+    write_msh41_ascii(&slave, &s, "a").unwrap();
+    write_msh41_ascii(&master, &m, "b").unwrap();
+    let (gap, normals, w) = gap_and_normals(&dir.join("out2d"), &s, &m);
+    assert_eq!(
+        (gap[0].len(), normals[0].len()),
+        (2, 2),
+        "two columns in 2D"
+    );
+    for (j, ((gj, nj), wj)) in gap.iter().zip(&normals).zip(&w).enumerate() {
+        assert!(gj[0].abs() < 1e-14, "row {j}: {gj:?}");
+        assert!((gj[1] - g * wj).abs() < 1e-14, "row {j}: {gj:?}, w {wj}");
+        assert!(
+            (nj[0]).abs() < 1e-15 && (nj[1] + 1.0).abs() < 1e-15,
+            "row {j}: {nj:?}"
+        );
+    }
 }

@@ -567,3 +567,185 @@ fn a_body_pulled_off_the_contact_is_named() {
         &["upper (its translation along y held by contact alone)"],
     );
 }
+
+/// A contact scene of two bodies of `file` (tests/meshes, made by Gmsh with
+/// `Mesh.ElementOrder = 2`): `slave` pressed onto `master` by a prescribed displacement `push`
+/// of its outer face `slave_end`, the master's outer face `master_end` held.
+fn second_order_scene(
+    file: &str,
+    [slave, master]: [&str; 2],
+    [slave_end, master_end]: [&str; 2],
+    [slave_face, master_face]: [&str; 2],
+    push: &str,
+) -> String {
+    let mesh = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/meshes")
+        .join(file);
+    let mesh = mesh.display();
+    format!(
+        r#"kind = "contact"
+[bodies.{slave}]
+mesh = "{mesh}"
+group = "{slave}"
+youngs_modulus = 1e9
+poisson_ratio = 0.3
+dirichlet = [{{ group = "{slave_end}", component = "all", value = {push} }}]
+[bodies.{master}]
+mesh = "{mesh}"
+group = "{master}"
+youngs_modulus = 1e9
+poisson_ratio = 0.3
+dirichlet = [{{ group = "{master_end}", component = "all", value = 0.0 }}]
+[contact]
+slave = {{ body = "{slave}", group = "{slave_face}" }}
+master = {{ body = "{master}", group = "{master_face}" }}
+"#
+    )
+}
+
+/// Second-order contact writes its results: the interface (the slave surface) of Quad9,
+/// Quad8, Tri6 and Line3 faces was refused ("surface cell 0 has 9 nodes", everything lost) or
+/// written as VTK triangles (a Line3, typed by its node count). Each face is now written with
+/// VTK's quadratic type (VTK file format documentation, cell types: 21 quadratic edge, 22
+/// quadratic triangle, 23 quadratic quad, 28 biquadratic quad) and the bodies with theirs
+/// (22, 23, 24 quadratic tetra, 25 quadratic hexahedron, 29 triquadratic hexahedron), each
+/// connectivity the cell's node count long.
+#[test]
+fn second_order_contact_writes_quadratic_vtk_cells() {
+    let dir = TempDir::new("contact-second-order");
+    let cases = [
+        (
+            "so_3d_hex27.msh",
+            ["top", "bottom"],
+            ["top_z1", "bottom_z0"],
+            ["top_bottom", "bottom_top"],
+            "[0.0, 0.0, -0.001]",
+            (28, 9),
+            [(29, 27), (24, 10)],
+        ),
+        (
+            "so_3d_hex20.msh",
+            ["bottom", "top"],
+            ["bottom_z0", "top_z1"],
+            ["bottom_top", "top_bottom"],
+            "[0.0, 0.0, 0.001]",
+            (23, 8),
+            [(25, 20), (24, 10)],
+        ),
+        (
+            "so_3d_hex20.msh",
+            ["top", "bottom"],
+            ["top_z1", "bottom_z0"],
+            ["top_bottom", "bottom_top"],
+            "[0.0, 0.0, -0.001]",
+            (22, 6),
+            [(24, 10), (25, 20)],
+        ),
+        (
+            "so_2d_quad8.msh",
+            ["right", "left"],
+            ["right_x1", "left_x0"],
+            ["right_x0", "left_x1"],
+            "[-0.001, 0.0]",
+            (21, 3),
+            [(23, 8), (22, 6)],
+        ),
+    ];
+    for (k, (file, bodies, ends, faces, push, interface, volumes)) in cases.into_iter().enumerate()
+    {
+        let scene = dir.file(
+            &format!("scene{k}.toml"),
+            second_order_scene(file, bodies, ends, faces, push),
+        );
+        let out = dir.join(&format!("out{k}"));
+        let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+        assert!(
+            o.status.success(),
+            "{file}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let check = |name: &str, (vtk, nodes): (u8, usize)| {
+            let vtu = std::fs::read_to_string(out.join(name)).unwrap();
+            let types = array(&vtu, "types");
+            assert!(
+                !types.is_empty() && types.iter().all(|&t| t == f64::from(vtk)),
+                "{file} {name}: {types:?}"
+            );
+            let offsets = array(&vtu, "offsets");
+            assert_eq!(
+                offsets.last().copied(),
+                Some((nodes * types.len()) as f64),
+                "{file} {name}"
+            );
+        };
+        check("interface.vtu", interface);
+        check(&format!("{}.vtu", bodies[0]), volumes[0]);
+        check(&format!("{}.vtu", bodies[1]), volumes[1]);
+        let interface = std::fs::read_to_string(out.join("interface.vtu")).unwrap();
+        let p = array(&interface, "contact_pressure");
+        assert!(p.iter().any(|&p| p > 0.0), "{file}: in contact");
+    }
+}
+
+/// A 2D mesh written clockwise (its surface's normal along -z, every cell's nodes running
+/// clockwise) was read, then refused at assembly as "cell 31 is inverted or degenerate",
+/// naming one cell as if the others were fine. The reader now says that the whole mesh is
+/// clockwise, naming the file and group, and the scene names the body; one clockwise cell
+/// among counter-clockwise ones is still the assembly's inverted cell.
+#[test]
+fn a_clockwise_2d_mesh_is_named_as_such() {
+    let dir = TempDir::new("contact-clockwise");
+    setup(&dir);
+    let mut lower = rectangle_mesh([0.0, 0.0], [1.0, 1.0], [4, 4], CellShape::Tensor, 1).unwrap();
+    // Mirrored in y and moved back onto [0, 1]^2: every cell clockwise.
+    lower
+        .transform(|x| nalgebra::Vector3::new(x.x, 1.0 - x.y, 0.0))
+        .unwrap();
+    let bytes = body_file(&lower, "lower", 0.0, 1.0);
+    let path = Path::new("lower.msh");
+    let registry = mortar::elements::volume::VolumeRegistry::default();
+    let err = mortar::io::parse_gmsh_volume(bytes.clone(), path, "lower", &registry).unwrap_err();
+    let text = err.to_string();
+    assert!(
+        matches!(err, mortar::io::IoError::ClockwiseMesh { cells: 16, .. }),
+        "{text}"
+    );
+    assert!(
+        text.contains("whole 2D mesh is clockwise") && text.contains("\"lower\""),
+        "{text}"
+    );
+    dir.file("lower.msh", bytes);
+    assert_fails(
+        &dir,
+        "clockwise.toml",
+        SCENE,
+        &[
+            "bodies.lower.group",
+            "whole 2D mesh is clockwise",
+            "all 16 cells",
+        ],
+    );
+}
+
+/// The shipped example contact scene (`examples/scenes/contact_blocks.toml`, Gmsh-made meshes
+/// of `make_contact_blocks.py`) runs from the command line and passes the contact patch test
+/// it describes: the 50 MPa on the upper block's top crosses the non-matching interface as a
+/// uniform contact pressure of 50 MPa.
+#[test]
+fn example_contact_scene_runs() {
+    let dir = TempDir::new("contact-example");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/contact_blocks.toml"
+    );
+    let out = dir.join("out");
+    let o = mortar(&["run", scene, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let interface = std::fs::read_to_string(out.join("interface.vtu")).unwrap();
+    let p = array(&interface, "contact_pressure");
+    assert!(!p.is_empty());
+    assert!(p.iter().all(|p| (p - SIGMA).abs() < 1e-6 * SIGMA), "{p:?}");
+    for f in ["upper.vtu", "lower.vtu", "report.json"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+}

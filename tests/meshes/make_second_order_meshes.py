@@ -17,6 +17,8 @@ Each file holds two bodies and the two faces of their common interface:
 - so3_2d_tri10.msh: Mesh.ElementOrder = 3, the 2D bodies both in cubic Tri10 (Gmsh type 21,
   faces Line4, type 26: elements the library does not ship; examples/extend_element.rs
   defines them), left size 0.45, right 0.3; the groups of so_2d_quad8.msh.
+- fo_3d_hex8.msh: first order (Mesh.ElementOrder = 1), Hex8 below (3 x 3 x 2) and Tet4
+  above (size 0.35); the groups of so_3d_hex20.msh.
 ASCII, Gmsh 4.1 format.
 """
 
@@ -99,7 +101,7 @@ def at_z(faces, z):
     return out
 
 
-def file_3d(name, bottom_hexes, top_hexes, n_hex, incomplete):
+def file_3d(name, bottom_hexes, top_hexes, n_hex, incomplete, order=2):
     gmsh.model.add(name)
     bottom, bf = body_3d(0.0, bottom_hexes, n_hex, 2, 0.35)
     top, tf = body_3d(0.5, top_hexes, n_hex, 2, 0.35)
@@ -109,7 +111,7 @@ def file_3d(name, bottom_hexes, top_hexes, n_hex, incomplete):
     gmsh.model.addPhysicalGroup(2, at_z(tf, 0.5), name="top_bottom")
     gmsh.model.addPhysicalGroup(2, at_z(bf, 0.0), name="bottom_z0")
     gmsh.model.addPhysicalGroup(2, at_z(tf, 1.0), name="top_z1")
-    mesh_and_write(name, 3, incomplete)
+    mesh_and_write(name, 3, incomplete, order)
 
 
 def file_arc(name):
@@ -151,6 +153,7 @@ def main():
     file_3d("so_3d_hex27", False, True, 4, 0)
     file_2d("so3_2d_tri10", False, False, 0, order=3, sizes=(0.45, 0.3))
     file_arc("so_2d_arc")
+    file_3d("fo_3d_hex8", True, False, 3, 0, order=1)
     gmsh.finalize()
 
 

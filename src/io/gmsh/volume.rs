@@ -5,6 +5,7 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+use mortar_core::element::volume::MAX_CELL_NODES;
 use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::SurfaceMesh;
 use mortar_elements::volume::VolumeRegistry;
@@ -69,6 +70,7 @@ pub fn read_volume(
 /// [`read_gmsh_surface`](super::read_gmsh_surface); [`IoError::GroupNotFound`],
 /// [`IoError::WrongGroupDimension`] (a group of lines or points), [`IoError::NoCells`],
 /// [`IoError::MissingSection`] (no `$Entities`) for a selection that cannot be made;
+/// [`IoError::ClockwiseMesh`] for a 2D body whose cells all run clockwise;
 /// [`IoError::UnsupportedElement`], [`IoError::UndefinedNode`],
 /// [`IoError::NonFiniteCoordinate`] and [`IoError::Cell`] (a node of a 2D body off `z = 0`,
 /// mixed cell dimensions) for cells that cannot be built.
@@ -124,6 +126,13 @@ pub fn parse_gmsh_volume(
         });
     }
     let mesh = build_volume(&data, &blocks, group.dim, path, &bytes, encoding, registry)?;
+    if group.dim == 2 && mesh.cell_count() > 0 && all_clockwise(&mesh) {
+        return Err(IoError::ClockwiseMesh {
+            path: path.to_path_buf(),
+            group: group.name_or_tag(),
+            cells: mesh.cell_count(),
+        });
+    }
     Ok(GmshVolume {
         mesh,
         dimension: group.dim as u8,
@@ -372,4 +381,16 @@ fn build_volume(
         }
     }
     Ok(mesh)
+}
+
+/// Whether every cell of a 2D mesh has a negative Jacobian determinant at the centre of its
+/// reference domain (runs clockwise in the xy-plane).
+fn all_clockwise(mesh: &VolumeMesh) -> bool {
+    let mut x = [nalgebra::Vector3::zeros(); MAX_CELL_NODES];
+    (0..mesh.cell_count()).all(|c| {
+        let n = mesh.cell_coords_into(c, &mut x);
+        let element = mesh.cell(c).element;
+        let centre = element.domain().centre();
+        element.jacobian(&x[..n], &centre).determinant() < 0.0
+    })
 }

@@ -31,6 +31,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
+use mortar_core::element::ElementRef;
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::Interface;
 use mortar_physics::contact::{
@@ -972,10 +973,14 @@ impl SolvedContact {
             .iter()
             .map(|&n| slave.mesh.coords()[n as usize])
             .collect();
-        let cells: Vec<Vec<u32>> = self
+        let cells: Vec<(ElementRef, Vec<u32>)> = self
             .slave_faces
             .iter()
-            .filter_map(|f| f.nodes.iter().map(|n| row_of.get(n).copied()).collect())
+            .filter_map(|f| {
+                let nodes: Option<Vec<u32>> =
+                    f.nodes.iter().map(|n| row_of.get(n).copied()).collect();
+                nodes.map(|nodes| (f.element, nodes))
+            })
             .collect();
         let vtu = surface_vtu_string(
             Path::new("interface.vtu"),

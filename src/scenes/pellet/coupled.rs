@@ -920,8 +920,11 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
             per_node(&|j| pressure[j] + f.gas_pressure),
         ),
     ];
-    let cells: Vec<Vec<u32>> = (0..surface.face_count())
-        .map(|i| surface.face(i).nodes.to_vec())
+    let cells: Vec<_> = (0..surface.face_count())
+        .map(|i| {
+            let face = surface.face(i);
+            (face.element, face.nodes.to_vec())
+        })
         .collect();
     let data: Vec<(&str, &[f64])> = fields.iter().map(|(n, v)| (*n, v.as_slice())).collect();
     let iname = format!("interface_{k:04}.vtu");

@@ -488,6 +488,47 @@ pub fn solve_contact<L: ConstraintLaw>(
     })
 }
 
+/// Sums of sparse vectors over `0..n`, each entry stored once: [`add`](Self::add) adds
+/// `scale` times a vector, [`drain`](Self::drain) hands out the sum (indices ascending) and
+/// clears it.
+struct Accumulator {
+    value: Vec<f64>,
+    seen: Vec<bool>,
+    touched: Vec<u32>,
+}
+
+impl Accumulator {
+    fn new(n: usize) -> Self {
+        Self {
+            value: vec![0.0; n],
+            seen: vec![false; n],
+            touched: Vec::new(),
+        }
+    }
+
+    fn add(&mut self, entries: &[(u32, f64)], scale: f64) {
+        for &(i, v) in entries {
+            let k = i as usize;
+            if !self.seen[k] {
+                self.seen[k] = true;
+                self.touched.push(i);
+            }
+            self.value[k] += scale * v;
+        }
+    }
+
+    fn drain(&mut self, mut f: impl FnMut(u32, f64)) {
+        self.touched.sort_unstable();
+        for &i in &self.touched {
+            let k = i as usize;
+            f(i, self.value[k]);
+            self.value[k] = 0.0;
+            self.seen[k] = false;
+        }
+        self.touched.clear();
+    }
+}
+
 /// A Newton step: the change of the free displacements and of the pressures.
 /// A Newton step: the displacement and pressure increments, and whether its system had to be
 /// regularised (see [`condensed_step`]).
@@ -701,15 +742,25 @@ fn condensed_step(
         }
     }
     // S = Q^T K' Q, b = Q^T (rhs' - K' q). The entries of K_ff between two unknowns that
-    // are not pivots (nearly all) go straight into S's compressed rows, in order; those
-    // touching a pivot and the N_j^T s_j N_j terms go through triplets, added after.
+    // are not pivots (nearly all) go straight into S's compressed rows, in order. The rest is
+    // summed row by row in a dense accumulator before it is stored, each entry once: a row
+    // that is not a pivot's gets `sum_k K_ik Q_k` over its pivot columns `k`; the pivots'
+    // rows of K Q are kept as a matrix `R` and enter as `Q_p^T R` (a sparse product); the
+    // `N_j^T s_j N_j` terms as `s_j (N_j Q)^T (N_j Q)`. Pushing each product of expansions
+    // as a triplet instead made, on second-order faces (a pivot's row of K spans some 25
+    // other pivots, each expanding into its row of N, about 100 unknowns with a Tet10
+    // master), some 300,000 triplets per pivot: 1.3 GB for 12,000 unknowns.
     let kq = kprime_times(&q);
     let mut b = vec![0.0; nr];
     let (mut ei, mut ek) = (Vec::new(), Vec::new());
     let mut extra = Triplets::default();
+    let mut acc = Accumulator::new(nr);
     let mut ptr = Vec::with_capacity(nr + 1);
     let (mut idx, mut val) = (Vec::with_capacity(kff.nnz()), Vec::with_capacity(kff.nnz()));
     ptr.push(0usize);
+    // R: the pivots' rows of K Q (one row per pivot, in the order met), and Q_p^T's entries.
+    let (mut r_ptr, mut r_idx, mut r_val) = (vec![0usize], Vec::new(), Vec::new());
+    let mut qpt = Triplets::default();
     for (i, row) in kff.outer_iterator().enumerate() {
         expansion(i, &mut ei);
         for &(ri, wi) in &ei {
@@ -723,43 +774,52 @@ fn condensed_step(
                     val.push(*v);
                 } else {
                     expansion(k, &mut ek);
-                    for &(rk, wk) in &ek {
-                        extra.push(ri, rk, v * wk);
-                    }
+                    acc.add(&ek, *v);
                 }
             }
+            acc.drain(|rk, v| extra.push(ri, rk, v));
             ptr.push(idx.len());
         } else {
             for (k, v) in row.iter() {
                 expansion(k, &mut ek);
-                for &(ri, wi) in &ei {
-                    for &(rk, wk) in &ek {
-                        extra.push(ri, rk, wi * v * wk);
-                    }
-                }
+                acc.add(&ek, *v);
+            }
+            let p = (r_ptr.len() - 1) as u32;
+            acc.drain(|rk, v| {
+                r_idx.push(rk as usize);
+                r_val.push(v);
+            });
+            r_ptr.push(r_idx.len());
+            for &(ri, wi) in &ei {
+                qpt.push(ri, p, wi);
             }
         }
     }
+    let mut z = Vec::new();
     for (j, row) in lin.n_free.iter().enumerate() {
         if weight[j] == 0.0 {
             continue;
         }
         for &(i, vi) in row {
             expansion(i as usize, &mut ei);
-            for &(k, vk) in row {
-                expansion(k as usize, &mut ek);
-                let v = weight[j] * vi * vk;
-                for &(ri, wi) in &ei {
-                    for &(rk, wk) in &ek {
-                        extra.push(ri, rk, wi * v * wk);
-                    }
-                }
+            acc.add(&ei, vi);
+        }
+        z.clear();
+        acc.drain(|r, v| z.push((r, v)));
+        for &(ri, zi) in &z {
+            for &(rk, zk) in &z {
+                extra.push(ri, rk, weight[j] * zi * zk);
             }
         }
     }
+    let npiv = r_ptr.len() - 1;
+    let r = SparseMatrix::new((npiv, nr), r_ptr, r_idx, r_val);
+    let pivots_part = &qpt.to_csr(nr, npiv) * &r;
+    drop(r);
     let base = SparseMatrix::new((nr, nr), ptr, idx, val);
-    let s = &base + &extra.to_csr(nr, nr);
+    let s = &(&base + &extra.to_csr(nr, nr)) + &pivots_part;
     drop(base);
+    drop(pivots_part);
     // The elimination order of the single factor, made only if the system is not solved by
     // body: the free displacements' order (made from this system the first time, the pivots
     // of that step put last) without this step's pivots.
