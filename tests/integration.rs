@@ -45,3 +45,6 @@ mod overlap;
 
 #[path = "integration/small_overlaps.rs"]
 mod small_overlaps;
+
+#[path = "integration/scene_keys.rs"]
+mod scene_keys;
