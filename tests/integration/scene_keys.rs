@@ -1720,8 +1720,11 @@ fn opens(f: &Pellet, changes: &[(&str, &str)]) {
 fn pellet_rows() -> Vec<Row<Pellet>> {
     vec![
         ("scene", |f| {
-            // `kind = "pellet"`: `mortar run` runs the pellet.
+            // `kind = "pellet"` (or `scene = "pellet"`): `mortar run` runs the pellet.
             kind_row(&f.dir, PELLET, "pellet", "tied_heat");
+            let spelled = PELLET.replacen("kind =", "scene =", 1);
+            let report = cli(&f.dir, "scene.toml", &spelled).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(report["scene"], "pellet");
             let e = f.err(&[("kind", "\"contact\"")]);
             assert!(e.contains("scene = \"contact\" is not \"pellet\""), "{e}");
         }),
