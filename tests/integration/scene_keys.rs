@@ -2042,3 +2042,34 @@ fn every_pellet_key_has_an_effect() {
     let f = Pellet::new();
     check_rows("pellet", &keys, &pellet_rows(), &f);
 }
+
+// ---------------------------------------------------------------------------------------
+// Keys that were accepted and passed over
+
+/// Regression: with `named_law`, the exponential law's `base_pressure`, `stiffness` and
+/// `onset` were accepted and passed over (the named law's own parameters apply). They are
+/// refused, naming the key.
+#[test]
+fn a_named_contact_law_refuses_the_built_in_law_keys() {
+    let base: toml::Table = toml::from_str(CONTACT).unwrap();
+    let named = (
+        "contact.named_law",
+        "{ name = \"exponential_pressure\", base_pressure = 1e5, stiffness = 1e12, onset = 1e-5 }",
+    );
+    let path = Path::new("scene.toml");
+    let parse = |doc: toml::Table| ContactSpec::parse(&toml::to_string(&doc).unwrap(), path);
+    assert!(parse(with(&base, &[named])).is_ok());
+    for (key, value) in [
+        ("contact.onset", "2e-5"),
+        ("contact.stiffness", "1e12"),
+        ("contact.base_pressure", "1e5"),
+    ] {
+        let e = parse(with(&base, &[named, (key, value)]))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains(&format!("{key}: only the exponential law")) && e.contains("named_law"),
+            "{e}"
+        );
+    }
+}
