@@ -2073,3 +2073,27 @@ fn a_named_contact_law_refuses_the_built_in_law_keys() {
         );
     }
 }
+
+/// Regression: a parameter a shipped law does not take (`named_law`, `[laws.*]`) was passed
+/// over, so that a misspelt one left its default in place (`gas_conductivty = 0.3`: helium).
+/// It is refused, naming it, in both file kinds that name laws.
+#[test]
+fn laws_by_name_refuse_parameters_they_do_not_take() {
+    let contact = Scenes::new(
+        "scene-keys-law-params",
+        [CONTACT, CONTACT_CURVED, CONTACT_QUADS],
+        run_contact,
+    );
+    let e = contact.err(&[(
+        "contact.named_law",
+        "{ name = \"contact_complementarity\", c = 1e12, onset = 1e-5 }",
+    )]);
+    assert!(
+        e.contains("contact.named_law") && e.contains("unknown parameter \"onset\""),
+        "{e}"
+    );
+    let pellet = Pellet::new();
+    let law = thermal_law("0.0").replace(" }", ", gas_conductivty = 0.3 }");
+    let e = pellet.err(&[("laws.thermal", &law)]);
+    assert!(e.contains("unknown parameter \"gas_conductivty\""), "{e}");
+}
