@@ -2097,3 +2097,23 @@ fn laws_by_name_refuse_parameters_they_do_not_take() {
     let e = pellet.err(&[("laws.thermal", &law)]);
     assert!(e.contains("unknown parameter \"gas_conductivty\""), "{e}");
 }
+
+/// Regression: `[laws.thermal]` (and `[laws.contact]`) in a thermal-only pellet scene
+/// (`[model] mechanics = false`) were passed over: the scene ran with the gap conductance of
+/// `[gap]`. They are refused, naming the table.
+#[test]
+fn the_thermal_pellet_refuses_laws_by_name() {
+    let base = format!("{PELLET}\n[model]\nmechanics = false\n");
+    assert!(PelletScene::from_toml(&base).is_ok());
+    for (table, law) in [
+        ("thermal", thermal_law("1e-4")),
+        ("contact", contact_law("5e-6")),
+    ] {
+        let text = format!("{base}\n[laws]\n{table} = {law}\n");
+        let e = PelletScene::from_toml(&text).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("laws.{table} with model.mechanics = false")),
+            "{e}"
+        );
+    }
+}
