@@ -48,3 +48,6 @@ mod small_overlaps;
 
 #[path = "integration/open_gap.rs"]
 mod open_gap;
+
+#[path = "integration/scene_keys.rs"]
+mod scene_keys;

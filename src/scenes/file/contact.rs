@@ -414,8 +414,14 @@ impl ContactSpec {
             }
         }
         match c.law {
-            _ if c.named_law.is_some() => {}
-            LawSpec::Exact => {
+            // Exact contact, or a law by name: the exponential law's keys are refused rather
+            // than passed over.
+            _ if c.named_law.is_some() || c.law == LawSpec::Exact => {
+                let by_name = if c.named_law.is_some() {
+                    "; a law by name takes its parameters in named_law"
+                } else {
+                    ""
+                };
                 for (k, v) in [
                     ("base_pressure", c.base_pressure),
                     ("stiffness", c.stiffness),
@@ -424,12 +430,15 @@ impl ContactSpec {
                     if v.is_some() {
                         return Err(invalid(
                             &format!("contact.{k}"),
-                            "only the exponential law (law = \"exponential\") has it".into(),
+                            format!(
+                                "only the exponential law (law = \"exponential\") has it{by_name}"
+                            ),
                         ));
                     }
                 }
             }
-            LawSpec::Exponential => {
+            // The built-in exponential law.
+            _ => {
                 for (k, v) in [
                     ("base_pressure", c.base_pressure),
                     ("stiffness", c.stiffness),

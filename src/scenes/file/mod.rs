@@ -102,23 +102,28 @@ pub struct SceneOutput {
     pub warnings: Vec<String>,
 }
 
-/// The `kind` of a scene file's text.
+/// The `kind` of a scene file's text: its `kind`, or else its `scene` (the pellet scene's
+/// other spelling of the key, the name of its field).
 ///
 /// # Errors
 /// [`SceneError::Syntax`] for text that is not TOML, [`SceneError::Invalid`] without a
-/// string `kind` at the top level.
+/// string `kind` (or `scene`) at the top level.
 pub fn scene_kind(text: &str, path: &Path) -> Result<String, SceneError> {
     let table: toml::Table = SceneError::parse(path, text)?;
-    match table.get("kind") {
+    let (key, value) = match (table.get("kind"), table.get("scene")) {
+        (None, Some(scene)) => ("scene", Some(scene)),
+        (kind, _) => ("kind", kind),
+    };
+    match value {
         Some(toml::Value::String(kind)) => Ok(kind.clone()),
         Some(other) => Err(SceneError::Invalid {
             path: path.to_path_buf(),
-            key: "kind".into(),
+            key: key.into(),
             what: format!("must be a string such as \"tied_heat\", found {other}"),
         }),
         None => Err(SceneError::Invalid {
             path: path.to_path_buf(),
-            key: "kind".into(),
+            key: key.into(),
             what: "missing: the scene file must start with kind = \"tied_heat\" (or another kind)"
                 .into(),
         }),

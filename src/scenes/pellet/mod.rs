@@ -538,8 +538,8 @@ pub struct PelletScene {
 pub type LawSpec = crate::scenes::NamedLaw;
 
 /// `[laws]`: the coupled scene's interface laws by name (each optional; both built-in when
-/// absent). `[laws.thermal]` replaces the gap conductance of `[gap]`, `[laws.contact]` the
-/// pressure law of `[contact]`:
+/// absent; refused with `[model] mechanics = false`). `[laws.thermal]` replaces the gap
+/// conductance of `[gap]`, `[laws.contact]` the pressure law of `[contact]`:
 ///
 /// ```toml
 /// [laws.thermal]
@@ -699,6 +699,20 @@ impl PelletScene {
                  cross-section",
                 m.geometry
             ));
+        }
+        // The thermal scene makes its gap conductance from [gap] alone: a law by name would
+        // be passed over.
+        for (what, set) in [
+            ("laws.thermal", self.laws.thermal.is_some()),
+            ("laws.contact", self.laws.contact.is_some()),
+        ] {
+            if set && !m.mechanics {
+                return bad(format!(
+                    "{what} with model.mechanics = false: the thermal scene holds the gap at its \
+                     as-built width with the law of [gap]; laws by name are for the \
+                     thermomechanical scene"
+                ));
+            }
         }
         if !(m.segment_height > 0.0 && m.segment_height.is_finite()) {
             return bad(format!(

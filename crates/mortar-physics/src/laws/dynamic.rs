@@ -130,6 +130,18 @@ fn get(law: &'static str, params: &LawParameters, key: &str) -> Result<f64, LawE
         })
 }
 
+/// Refuses a parameter that the shipped law `law` does not take (`known`), so that a
+/// misspelt one is not passed over for a default.
+fn only(law: &'static str, params: &LawParameters, known: &[&str]) -> Result<(), LawError> {
+    match params.keys().find(|k| !known.contains(&k.as_str())) {
+        Some(k) => Err(LawError::InvalidParameter {
+            law,
+            what: format!("unknown parameter {k:?} (the law takes {known:?})"),
+        }),
+        None => Ok(()),
+    }
+}
+
 /// The gas of a gap law: `gas_conductivity` (W/m/K) if given, else helium.
 fn gas(params: &LawParameters) -> GasConductivity {
     params
@@ -153,11 +165,27 @@ impl LawRegistry {
     /// - `exponential_pressure`: `base_pressure`, `stiffness`, `onset`;
     /// - `exponential_contact`: `stiffness`, `onset`;
     /// - `contact_complementarity`: `c`.
+    ///
+    /// A parameter a law does not take is refused, naming it.
     pub fn with_shipped() -> Self {
         let mut r = Self::new();
-        r.register("tying", |_| Ok(DynLaw::new("tying", Tying)));
+        r.register("tying", |p| {
+            only("tying", p, &[])?;
+            Ok(DynLaw::new("tying", Tying))
+        });
         r.register("gap_conductance", |p| {
             let law = "gap conductance";
+            only(
+                law,
+                p,
+                &[
+                    "gap_width",
+                    "roughness_fuel",
+                    "roughness_cladding",
+                    "jump_distance",
+                    "gas_conductivity",
+                ],
+            )?;
             Ok(DynLaw::new(
                 "gap_conductance",
                 GapConductance::ross_stoute(
@@ -171,6 +199,17 @@ impl LawRegistry {
         });
         r.register("mechanical_gap_conductance", |p| {
             let law = "mechanical gap conductance";
+            only(
+                law,
+                p,
+                &[
+                    "roughness_fuel",
+                    "roughness_cladding",
+                    "jump_distance",
+                    "contact_conductance",
+                    "gas_conductivity",
+                ],
+            )?;
             Ok(DynLaw::new(
                 "mechanical_gap_conductance",
                 MechanicalGapConductance::try_new(
@@ -184,6 +223,7 @@ impl LawRegistry {
         });
         r.register("exponential_pressure", |p| {
             let law = "exponential pressure";
+            only(law, p, &["base_pressure", "stiffness", "onset"])?;
             Ok(DynLaw::new(
                 "exponential_pressure",
                 ExponentialPressure::try_new(
@@ -195,12 +235,14 @@ impl LawRegistry {
         });
         r.register("exponential_contact", |p| {
             let law = "exponential contact";
+            only(law, p, &["stiffness", "onset"])?;
             Ok(DynLaw::new(
                 "exponential_contact",
                 ExponentialContact::try_new(get(law, p, "stiffness")?, get(law, p, "onset")?)?,
             ))
         });
         r.register("contact_complementarity", |p| {
+            only("contact complementarity", p, &["c"])?;
             Ok(DynLaw::new(
                 "contact_complementarity",
                 ContactComplementarity::try_new(get("contact complementarity", p, "c")?)?,
@@ -228,7 +270,7 @@ impl LawRegistry {
     ///
     /// # Errors
     /// [`LawError::InvalidParameter`] for an unknown name (listing the known ones), a missing
-    /// parameter, or a value the law refuses.
+    /// parameter, a parameter a shipped law does not take, or a value the law refuses.
     pub fn make(&self, name: &str, params: &LawParameters) -> Result<DynLaw, LawError> {
         match self.makers.get(name) {
             Some(make) => make(params),
@@ -253,13 +295,13 @@ mod tests {
         let params = |kv: &[(&str, f64)]| -> LawParameters {
             kv.iter().map(|(k, v)| (k.to_string(), *v)).collect()
         };
-        let gap = [
-            ("gap_width", 20e-6),
+        let surfaces = [
             ("roughness_fuel", 2e-6),
             ("roughness_cladding", 1e-6),
             ("jump_distance", 10e-6),
-            ("contact_conductance", 1e-4),
         ];
+        let gap = [&surfaces[..], &[("gap_width", 20e-6)]].concat();
+        let mechanical_gap = [&surfaces[..], &[("contact_conductance", 1e-4)]].concat();
         let cases: Vec<(DynLaw, Box<dyn ObjectLaw>)> = vec![
             (r.make("tying", &params(&[])).unwrap(), Box::new(Tying)),
             (
@@ -270,7 +312,8 @@ mod tests {
                 ),
             ),
             (
-                r.make("mechanical_gap_conductance", &params(&gap)).unwrap(),
+                r.make("mechanical_gap_conductance", &params(&mechanical_gap))
+                    .unwrap(),
                 Box::new(
                     MechanicalGapConductance::try_new(
                         2e-6,
@@ -336,5 +379,18 @@ mod tests {
             .make("exponential_contact", &params(&[("onset", 5e-6)]))
             .unwrap_err();
         assert!(e.to_string().contains("stiffness"), "{e}");
+        // A parameter the law does not take (here misspelt) is refused, naming it, rather
+        // than passed over for a default.
+        let e = r
+            .make(
+                "mechanical_gap_conductance",
+                &params(&[&mechanical_gap[..], &[("gas_conductivty", 0.3)]].concat()),
+            )
+            .unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("unknown parameter \"gas_conductivty\""),
+            "{e}"
+        );
     }
 }
