@@ -22,23 +22,29 @@ use crate::{CouplingOptions, Interface};
 /// element-based integration sums M with its quadrature error; two layers give about 2.
 pub const MASTER_OVERLAP_RATIO: f64 = 1.25;
 
+/// A node's integral counts as positive above this fraction of the measure of the faces
+/// around it: the corners of Tri6 faces integrate to zero, which rounding leaves at either
+/// sign (1e-17 of the area), and a column sum of the same size must not read as overlap.
+const SIGNIFICANT_SHARE: f64 = 1e-9;
+
 /// The warning of master area covered by more than one slave layer, if any: the master
 /// nodes whose column sum of `m` exceeds [`MASTER_OVERLAP_RATIO`] times their integral `int
 /// N_l` (nodes whose integral is not positive, the corners of Tri6 and Quad8 faces, are
-/// judged by the others of their faces).
+/// judged by the others of their faces; "positive" is relative to the faces' measure, see
+/// [`SIGNIFICANT_SHARE`]).
 pub(super) fn overlapping_slave_faces(
     interface: &Interface,
     options: &CouplingOptions,
     m: &SparseMatrix,
 ) -> Option<CouplingWarning> {
     let covered = column_sums(m);
-    let own = master_nodal_integrals(interface, options);
+    let (own, reach) = master_nodal_integrals(interface, options);
     let mut extra = 0.0;
     let mut nodes = 0usize;
     let mut examples = Vec::new();
     let tags = interface.master().node_tags();
     for (col, (&c, &a)) in covered.iter().zip(&own).enumerate() {
-        if a > 0.0 && c > MASTER_OVERLAP_RATIO * a {
+        if a > SIGNIFICANT_SHARE * reach[col] && c > MASTER_OVERLAP_RATIO * a {
             extra += c - a;
             nodes += 1;
             if examples.len() < CouplingWarning::EXAMPLES {
@@ -52,7 +58,12 @@ pub(super) fn overlapping_slave_faces(
     examples.sort_unstable();
     Some(CouplingWarning::OverlappingSlaveFaces {
         area: extra,
-        total: own.iter().filter(|a| **a > 0.0).sum(),
+        total: own
+            .iter()
+            .zip(&reach)
+            .filter(|(a, r)| **a > SIGNIFICANT_SHARE * **r)
+            .map(|(a, _)| a)
+            .sum(),
         master_nodes: nodes,
         examples,
     })
@@ -74,9 +85,14 @@ fn column_sums(m: &SparseMatrix) -> Vec<f64> {
 /// linear triangles alone (the common case) has its measures computed inline: on the coupling
 /// benchmark's plane3d (2.3e6 master triangles) this takes 19 ms on one thread, as long as
 /// the column sums of M. One pass over the faces in their order, so that the sums do not
-/// depend on the thread count.
-fn master_nodal_integrals(interface: &Interface, options: &CouplingOptions) -> Vec<f64> {
+/// depend on the thread count. Second, by column, the summed measure of the faces around the
+/// node (the scale its integral is judged against).
+fn master_nodal_integrals(
+    interface: &Interface,
+    options: &CouplingOptions,
+) -> (Vec<f64>, Vec<f64>) {
     let mut out = vec![0.0; interface.master_nodes().len()];
+    let mut reach = vec![0.0; out.len()];
     let master = interface.master();
     let coords = master.coords();
     let cartesian = !options.geometry.is_axisymmetric();
@@ -98,20 +114,23 @@ fn master_nodal_integrals(interface: &Interface, options: &CouplingOptions) -> V
             match *master.face_nodes(f) {
                 [a, b] => {
                     let half = 0.5 * (coords[b as usize] - coords[a as usize]).norm();
-                    out[col(a)] += half;
-                    out[col(b)] += half;
+                    for node in [a, b] {
+                        out[col(node)] += half;
+                        reach[col(node)] += 2.0 * half;
+                    }
                 }
                 [a, b, c] => {
                     let (xa, xb, xc) = (coords[a as usize], coords[b as usize], coords[c as usize]);
                     let third = (xb - xa).cross(&(xc - xa)).norm() / 6.0;
-                    out[col(a)] += third;
-                    out[col(b)] += third;
-                    out[col(c)] += third;
+                    for node in [a, b, c] {
+                        out[col(node)] += third;
+                        reach[col(node)] += 3.0 * third;
+                    }
                 }
                 _ => unreachable!("two-node lines and three-node triangles"),
             }
         }
-        return out;
+        return (out, reach);
     }
     let shares: Vec<Option<[f64; MAX_FACE_NODES]>> = master
         .element_types()
@@ -158,11 +177,13 @@ fn master_nodal_integrals(interface: &Interface, options: &CouplingOptions) -> V
                 }
             }
         }
+        let measure: f64 = sums[..k].iter().sum();
         for (&node, s) in view.nodes.iter().zip(&sums[..k]) {
             out[col(node)] += s;
+            reach[col(node)] += measure.abs();
         }
     }
-    out
+    (out, reach)
 }
 
 /// Each node's share `int N_l / |ref|` of the reference domain of `el`; `None` if no rule
