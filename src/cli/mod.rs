@@ -87,10 +87,9 @@ enum Command {
     /// phase) and, for tied_heat, DIR/BODY.vtu per body (temperature); for contact,
     /// DIR/BODY.vtu per body (displacement, stresses, von Mises) and DIR/interface.vtu (gap,
     /// contact pressure on the slave surface); for pellet, VTU snapshots over time and PNG
-    /// plots. The built-in tied_heat also writes its scene file (scene.toml) and meshes; the
-    /// built-in contact scenes (hertz2d, hertz3d, shrink_fit) write report.json only, with
-    /// the closed forms beside the computed values. Nothing is written unless everything
-    /// succeeds.
+    /// plots. The built-in tied_heat, hertz2d, hertz3d and shrink_fit also write their scene
+    /// file (scene.toml) and meshes; the contact ones put the closed forms beside the
+    /// computed values in report.json. Nothing is written unless everything succeeds.
     #[command(
         disable_help_flag = true,
         after_help = "Examples:\n  mortar run examples/scenes/tied_square.toml --out out\n  mortar run --scene tied_heat --out out"

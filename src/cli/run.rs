@@ -6,10 +6,7 @@ use std::path::Path;
 
 use crate::io::write_outputs;
 use crate::scenes::file::{
-    builtin_scene,
-    contact::{run_builtin_contact, ContactSpec},
-    scene_kind,
-    tied_heat::TiedHeatSpec,
+    builtin_scene, contact::ContactSpec, run_builtin_contact, scene_kind, tied_heat::TiedHeatSpec,
     FileSystem, InMemory, SceneOutput, SceneSource, BUILTIN_CONTACT_SCENES,
 };
 

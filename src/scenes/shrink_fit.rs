@@ -35,11 +35,11 @@ use mortar_core::interface::Interface;
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
 use mortar_physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactStep, NormalGap,
+    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
+    NormalGap,
 };
 use mortar_physics::elastic::{
-    assemble_elastic_load, assemble_elastic_stiffness, ComponentSet, ElasticBody, ElasticMaterial,
-    ElasticOptions,
+    assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticMaterial, ElasticOptions,
 };
 use mortar_physics::laws::ContactComplementarity;
 use mortar_physics::tied::Tie;
@@ -49,6 +49,11 @@ use nalgebra::Vector3;
 use crate::generate::{
     quarter_annulus_mesh, quarter_disc_mesh, second_order_mesh, CellShape, SecondOrder,
 };
+use crate::scenes::file::contact::Component;
+use crate::scenes::file::contact_files::{
+    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
+};
+use crate::scenes::file::SceneError;
 
 /// The closed form: Lamé's thick cylinder in plane strain (Timoshenko and Goodier, sec. 33).
 /// A disc and a ring of the same material (`E`, `nu`), interference `delta` on the radius at
@@ -128,13 +133,11 @@ impl ShrinkFitScene {
         }
     }
 
-    /// Builds and solves the scene.
-    ///
-    /// # Errors
-    /// The errors of mesh generation, of the coupling, of the assembly and of
-    /// [`solve_contact`].
-    pub fn run(&self) -> Result<ShrinkFitRun, PhysicsError> {
-        let t0 = Instant::now();
+    /// The two bodies with their groups and conditions, slave first (the disc, groups
+    /// `disc_x0`, `disc_y0`, `disc_rim`; the ring, groups `ring_x0`, `ring_y0`, `ring_inner`;
+    /// swapped with `ring_is_slave`), the slave and master group suffixes and the search
+    /// radius.
+    fn bodies(&self) -> Result<ShrinkFitBodies, PhysicsError> {
         let ShrinkFit {
             inner: b,
             outer: c,
@@ -143,10 +146,7 @@ impl ShrinkFitScene {
         } = self.fit;
         let rs = b + delta;
         let dts = std::f64::consts::FRAC_PI_2 / self.slave_cells as f64;
-        let dtm = std::f64::consts::FRAC_PI_2 / self.master_cells as f64;
-        let nr = self
-            .ring_radial_cells
-            .unwrap_or_else(|| ((c - b) / (b * dtm)).round().max(1.0) as usize);
+        let nr = self.ring_radial_cell_count();
         let disc = quarter_disc_mesh(rs, [0.0, 0.0], self.slave_cells, 1.0, CellShape::Tensor, 1)?;
         let ring = quarter_annulus_mesh(b, c, [self.master_cells, nr], CellShape::Tensor, 1)?;
         let (disc, ring) = match self.order {
@@ -172,18 +172,6 @@ impl ShrinkFitScene {
 
         let tol = 1e-12 * c;
         let near = move |a: f64, v: f64| (a - v).abs() <= tol;
-        let zero = |_: &Vector3<f64>| Vector3::zeros();
-        let hold = |body: ElasticBody| -> Result<ElasticBody, PhysicsError> {
-            body.with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
-                .with_dirichlet_where(|f| near(f.centroid.y, 0.0), ComponentSet::One(1), zero)
-        };
-        let disc = hold(ElasticBody::new("disc", disc, material))?;
-        let ring = hold(ElasticBody::new("ring", ring, material))?;
-        let ((slave, r_slave), (master, r_master)) = if self.ring_is_slave {
-            ((ring, b), (disc, rs))
-        } else {
-            ((disc, rs), (ring, b))
-        };
         let on_circle = |coords: &[Vector3<f64>], r: f64| {
             let coords = coords.to_vec();
             move |f: &BoundaryFace| {
@@ -193,22 +181,91 @@ impl ShrinkFitScene {
                 })
             }
         };
-        let slave_surface = slave
-            .mesh
-            .boundary_surface(on_circle(slave.mesh.coords(), r_slave))?;
-        let master_surface = master
-            .mesh
-            .boundary_surface(on_circle(master.mesh.coords(), r_master))?;
+        let held = |body: SceneBody, arc: &str, r: f64| -> Result<SceneBody, SceneError> {
+            let on_arc = on_circle(body.mesh.coords(), r);
+            Ok(body
+                .group("x0", |f| near(f.centroid.x, 0.0))?
+                .group("y0", |f| near(f.centroid.y, 0.0))?
+                .group(arc, on_arc)?
+                .hold("x0", Component::X, 0.0)
+                .hold("y0", Component::Y, 0.0))
+        };
+        let scene = |e: SceneError| PhysicsError::InvalidInput {
+            body: "shrink fit".into(),
+            what: e.to_string(),
+        };
+        let disc = held(SceneBody::new("disc", disc, material), "rim", rs).map_err(scene)?;
+        let ring = held(SceneBody::new("ring", ring, material), "inner", b).map_err(scene)?;
         let search = self
             .search_radius
             .unwrap_or(SearchRadius::Distance((4.0 * delta).max(rs * dts)));
+        Ok(if self.ring_is_slave {
+            ShrinkFitBodies {
+                bodies: [ring, disc],
+                groups: ["inner", "rim"],
+                search,
+            }
+        } else {
+            ShrinkFitBodies {
+                bodies: [disc, ring],
+                groups: ["rim", "inner"],
+                search,
+            }
+        })
+    }
+
+    /// The scene as a scene file and its meshes (`disc.msh`, `ring.msh`, see
+    /// [`run`](Self::run) for the groups): what `mortar run --scene shrink_fit` runs and
+    /// writes.
+    ///
+    /// # Errors
+    /// The errors of the meshing, and [`SceneError::Other`] for a coupling or a search
+    /// radius a scene file cannot state.
+    pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
+        let parts = self
+            .bodies()
+            .map_err(|e| SceneError::Other(e.to_string()))?;
+        let search_radius = match parts.search {
+            SearchRadius::Distance(d) => Some(d),
+            s if s == SearchRadius::DEFAULT => None,
+            s => {
+                return Err(SceneError::Other(format!(
+                    "a contact scene file cannot state the search radius {s:?}"
+                )))
+            }
+        };
+        contact_scene_files(
+            "shrink fit: a disc in a ring (plane strain, quarter model)",
+            parts.bodies,
+            &SceneContact {
+                slave: parts.groups[0],
+                master: parts.groups[1],
+                coupling: &self.coupling,
+                search_radius,
+                require_full_coverage: self.coupling.require_full_coverage,
+                solve: &self.contact,
+            },
+        )
+    }
+
+    /// Builds and solves the scene: the disc (groups `disc_x0`, `disc_y0` held in x and y,
+    /// `disc_rim` its arc) and the ring (`ring_x0`, `ring_y0`, `ring_inner`).
+    ///
+    /// # Errors
+    /// The errors of mesh generation, of the coupling, of the assembly and of
+    /// [`solve_contact`].
+    pub fn run(&self) -> Result<ShrinkFitRun, PhysicsError> {
+        let t0 = Instant::now();
+        let parts = self.bodies()?;
+        let [slave, master] = &parts.bodies;
+        let (slave, slave_surface) = slave.elastic(parts.groups[0])?;
+        let (master, master_surface) = master.elastic(parts.groups[1])?;
         let tolerances = Tolerances {
-            search_radius: search,
+            search_radius: parts.search,
             ..Tolerances::default()
         };
         let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
         let coupling = assemble_coupling(&interface, &self.coupling)?;
-        let warnings: Vec<String> = coupling.warnings.iter().map(|w| w.to_string()).collect();
         let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
 
         let options = ElasticOptions::default();
@@ -234,6 +291,51 @@ impl ShrinkFitScene {
             &self.contact,
         )?;
         let seconds = t0.elapsed().as_secs_f64();
+        Ok(self.evaluate(
+            ShrinkFitSolved {
+                slave: &slave,
+                master_nodes: nm,
+                tie: &tie,
+                gap: &gap,
+                complementarity: cpar,
+            },
+            sol,
+            seconds,
+        ))
+    }
+
+    /// The comparison with the closed form of the solution `sol` of this scene (built in
+    /// memory by [`run`](Self::run), or read back from its [scene
+    /// file](Self::scene_files)); `seconds` is reported as the run's time.
+    pub fn evaluate(
+        &self,
+        solved: ShrinkFitSolved<'_>,
+        sol: ContactSolution,
+        seconds: f64,
+    ) -> ShrinkFitRun {
+        let ShrinkFitSolved {
+            slave,
+            master_nodes,
+            tie,
+            gap,
+            complementarity: cpar,
+        } = solved;
+        let nr = self.ring_radial_cell_count();
+        let ShrinkFit {
+            inner: b,
+            interference: delta,
+            ..
+        } = self.fit;
+        let rs = b + delta;
+        let dts = std::f64::consts::FRAC_PI_2 / self.slave_cells as f64;
+        let dtm = std::f64::consts::FRAC_PI_2 / self.master_cells as f64;
+        let warnings: Vec<String> = tie
+            .coupling()
+            .warnings
+            .iter()
+            .map(|w| w.to_string())
+            .collect();
+        let (ns, nm) = (slave.mesh.node_count(), master_nodes);
         let coords = slave.mesh.coords();
         let mut nodes: Vec<(f64, f64, f64)> = (0..sol.pressure.len())
             .map(|j| {
@@ -261,7 +363,7 @@ impl ShrinkFitScene {
             .copied()
             .fold(f64::NEG_INFINITY, f64::max);
         let faceted_delta = delta + b * dtm * dtm / 12.0 - rs * dts * dts / 12.0;
-        Ok(ShrinkFitRun {
+        ShrinkFitRun {
             slave_cells: self.slave_cells,
             master_cells: self.master_cells,
             ring_is_slave: self.ring_is_slave,
@@ -280,8 +382,42 @@ impl ShrinkFitScene {
             steps: sol.steps,
             warnings,
             seconds,
-        })
+        }
     }
+
+    /// Cells across the ring: `ring_radial_cells`, or about square cells at the inner arc.
+    pub fn ring_radial_cell_count(&self) -> usize {
+        let dtm = std::f64::consts::FRAC_PI_2 / self.master_cells as f64;
+        let (b, c) = (self.fit.inner, self.fit.outer);
+        self.ring_radial_cells
+            .unwrap_or_else(|| ((c - b) / (b * dtm)).round().max(1.0) as usize)
+    }
+}
+
+/// The parts of a solved [`ShrinkFitScene`] its comparison with the closed form reads (see
+/// [`ShrinkFitScene::evaluate`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ShrinkFitSolved<'a> {
+    /// The slave body.
+    pub slave: &'a ElasticBody,
+    /// The master body's node count.
+    pub master_nodes: usize,
+    /// The tie of the contact surfaces.
+    pub tie: &'a Tie,
+    /// Its normal gap.
+    pub gap: &'a NormalGap,
+    /// The exact law's `c` (Pa/m).
+    pub complementarity: f64,
+}
+
+/// [`ShrinkFitScene::bodies`]'s parts.
+struct ShrinkFitBodies {
+    /// Slave first.
+    bodies: [SceneBody; 2],
+    /// The slave's and the master's contact group suffixes.
+    groups: [&'static str; 2],
+    /// The search radius.
+    search: SearchRadius,
 }
 
 /// The result of [`ShrinkFitScene::run`].

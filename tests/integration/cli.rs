@@ -411,9 +411,9 @@ fn help_is_printed() {
 
 /// `mortar run --help` says what the command does: it listed the kinds tied_heat and pellet
 /// only, said every VTU carries temperature and that built-in scenes write their scene file
-/// and meshes (the contact built-ins write report.json only). It now names the contact kind,
-/// its outputs and what each built-in writes, and couple's help names gap.mtx and
-/// normals.mtx.
+/// and meshes (the contact built-ins wrote report.json only). It now names the contact kind,
+/// its outputs and what each built-in writes (all four their scene file and meshes), and
+/// couple's help names gap.mtx and normals.mtx.
 #[test]
 fn run_help_says_what_is_written() {
     let run = mortar(&["run", "--help"]);
@@ -424,8 +424,8 @@ fn run_help_says_what_is_written() {
         "kind = \"tied_heat\", \"contact\" or \"pellet\"",
         "DIR/interface.vtu",
         "displacement, stresses",
-        "(hertz2d, hertz3d, shrink_fit) write report.json only",
-        "The built-in tied_heat also writes its scene file (scene.toml) and meshes",
+        "The built-in tied_heat, hertz2d, hertz3d and shrink_fit also write their scene file \
+         (scene.toml) and meshes",
     ] {
         assert!(text.contains(needle), "{needle:?} not in: {text}");
     }

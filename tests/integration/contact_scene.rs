@@ -319,6 +319,86 @@ fn builtin_hertz2d_matches_the_closed_form() {
     assert!(out.join("report.json").is_file());
 }
 
+/// The built-in contact scenes write what a user opens and copies (the README's promise):
+/// a VTU per body, `interface.vtu`, the scene file and its meshes. The scene file written
+/// runs to the same interface pressures (to 1e-12 of the peak), and the closed-form figures
+/// of the built-in (solved from those files) are those of the scene's in-memory run (the
+/// library's `HertzScene::run` and `ShrinkFitScene::run`) to 1e-9: one scene, two ways in.
+#[test]
+fn builtin_contact_scenes_write_their_results_and_their_scene_file() {
+    use mortar::scenes::file::HERTZ_ARC_CELLS;
+    use mortar::scenes::hertz::HertzScene;
+    use mortar::scenes::shrink_fit::ShrinkFitScene;
+    let dir = TempDir::new("contact-builtin-files");
+    for (name, bodies) in [
+        ("hertz2d", ["cylinder", "block"]),
+        ("shrink_fit", ["disc", "ring"]),
+    ] {
+        let out = dir.join(name);
+        let o = mortar(&[
+            "--json",
+            "run",
+            "--scene",
+            name,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let report: Value = serde_json::from_slice(&o.stdout).unwrap();
+        for body in bodies {
+            for file in [format!("{body}.vtu"), format!("{body}.msh")] {
+                assert!(out.join(&file).is_file(), "{name}: {file}");
+            }
+        }
+        assert!(out.join("interface.vtu").is_file(), "{name}");
+        assert_eq!(report["scene"]["kind"], "contact", "{name}");
+
+        // The scene file written runs, to the same pressures.
+        let again = dir.join(&format!("{name}-again"));
+        let scene = out.join("scene.toml");
+        let o = mortar(&[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            again.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let read = |d: &Path| {
+            array(
+                &std::fs::read_to_string(d.join("interface.vtu")).unwrap(),
+                "contact_pressure",
+            )
+        };
+        let (p, q) = (read(&out), read(&again));
+        let peak = p.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        assert!(peak > 0.0 && p.len() == q.len(), "{name}");
+        let worst = p
+            .iter()
+            .zip(&q)
+            .fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        assert!(
+            worst <= 1e-12 * peak,
+            "{name}: pressures differ by {worst:e}"
+        );
+
+        // The built-in's figures are the in-memory run's.
+        let (computed, in_memory) = match name {
+            "hertz2d" => {
+                let run = HertzScene::new(HERTZ_ARC_CELLS).run().unwrap();
+                (report["computed"]["p0"].as_f64().unwrap(), run.peak)
+            }
+            _ => {
+                let run = ShrinkFitScene::new(32, 32).run().unwrap();
+                (report["computed"]["p_mean"].as_f64().unwrap(), run.mean)
+            }
+        };
+        assert!(
+            (computed - in_memory).abs() <= 1e-9 * in_memory,
+            "{name}: {computed} from the scene file, {in_memory} in memory"
+        );
+    }
+}
+
 /// The built-in 3D Hertz scene (a sphere octant on a block, the default mesh of
 /// `mortar::scenes::hertz::sphere`): report.json carries the inputs, and the closed form of
 /// Johnson (1985, sec. 4.2) at the imposed approach `d` (`a = sqrt(R d)`,

@@ -19,7 +19,7 @@ use crate::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 pub const BUILTIN_SCENES: &[&str] = &["tied_heat", "pellet", "hertz2d", "hertz3d", "shrink_fit"];
 
 /// The built-in contact scenes, run from memory by
-/// [`run_builtin_contact`](super::contact::run_builtin_contact): `hertz2d`, `hertz3d` and
+/// [`run_builtin_contact`](super::run_builtin_contact): `hertz2d`, `hertz3d` and
 /// `shrink_fit`.
 pub const BUILTIN_CONTACT_SCENES: &[&str] = &["hertz2d", "hertz3d", "shrink_fit"];
 
@@ -49,7 +49,7 @@ pub fn builtin_scene(name: &str) -> Result<BuiltinScene, SceneError> {
         )),
         name if BUILTIN_CONTACT_SCENES.contains(&name) => Err(SceneError::Other(format!(
             "the built-in scene \"{name}\" is a contact scene run from memory: run it with \
-             `mortar run --scene {name}` (or mortar::scenes::file::contact::run_builtin_contact)"
+             `mortar run --scene {name}` (or mortar::scenes::file::run_builtin_contact)"
         ))),
         _ => Err(SceneError::Other(format!(
             "no built-in scene named \"{name}\" (built-in scenes: {})",

@@ -32,6 +32,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use mortar_core::element::ElementRef;
+use mortar_core::linalg::SparseMatrix;
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::Interface;
 use mortar_physics::contact::{
@@ -723,6 +724,7 @@ impl ContactSpec {
             tolerance: self.solve.tolerance,
         };
         let c = &self.contact;
+        let mut complementarity = None;
         let (solution, law_description) = match c.law {
             _ if c.named_law.is_some() => {
                 let named = c.named_law.as_ref().expect("checked by the guard");
@@ -738,6 +740,7 @@ impl ContactSpec {
                 let cc = automatic_complementarity(&stiffness[0], &tie, &gap, dim);
                 let law = ContactComplementarity::try_new(cc)
                     .map_err(|e| invalid("contact.law".into(), e.to_string()))?;
+                complementarity = Some(cc);
                 (
                     solve_steps(&stiffness, &load, &dirichlet, &gap, &law, &contact_options),
                     format!("exact complementarity, c = {cc:e} Pa/m (automatic)"),
@@ -792,6 +795,11 @@ impl ContactSpec {
             slave_faces,
             solution,
             stresses: stresses.map(|s| (s.nodal, s.von_mises)),
+            stiffness,
+            load,
+            dirichlet,
+            gap,
+            complementarity,
             seconds: [
                 ("read", t_read),
                 ("coupling", t_coupling),
@@ -913,11 +921,26 @@ pub struct SolvedContact {
     pub solution: ContactSolution,
     /// Per body (slave first): nodal stresses (Voigt) and von Mises stresses.
     pub stresses: [(Vec<[f64; 6]>, Vec<f64>); 2],
+    /// Per body: the stiffness matrix (reactions are `K u - f` on the Dirichlet rows).
+    pub stiffness: [SparseMatrix; 2],
+    /// Per body: the load vector.
+    pub load: [Vec<f64>; 2],
+    /// Per body: the Dirichlet unknowns and their values.
+    pub dirichlet: [(Vec<u32>, Vec<f64>); 2],
+    /// The weighted normal gap of the tie.
+    pub gap: NormalGap,
+    /// The exact law's parameter `c` (Pa/m), automatic; `None` for another law.
+    pub complementarity: Option<f64>,
     seconds: [(&'static str, f64); 5],
     t_start: Instant,
 }
 
 impl SolvedContact {
+    /// Seconds per phase so far: reading, coupling, assembly, contact solve, stresses.
+    pub fn seconds(&self) -> &[(&'static str, f64)] {
+        &self.seconds
+    }
+
     /// `NAME.vtu` per body, `interface.vtu`, `report.json` and a summary.
     ///
     /// # Errors
@@ -982,15 +1005,23 @@ impl SolvedContact {
             .iter()
             .map(|&n| slave.mesh.coords()[n as usize])
             .collect();
-        let cells: Vec<(ElementRef, Vec<u32>)> = self
+        // Every node of a slave face has a row (the interface is made of these faces): a
+        // face without is refused, not left out of the file.
+        let cells = self
             .slave_faces
             .iter()
-            .filter_map(|f| {
+            .map(|f| {
                 let nodes: Option<Vec<u32>> =
                     f.nodes.iter().map(|n| row_of.get(n).copied()).collect();
-                nodes.map(|nodes| (f.element, nodes))
+                nodes.map(|nodes| (f.element, nodes)).ok_or_else(|| {
+                    SceneError::Other(format!(
+                        "interface.vtu: a node of slave face {} (of cell {}) has no row of the \
+                         coupling",
+                        f.local_face, f.cell
+                    ))
+                })
             })
-            .collect();
+            .collect::<Result<Vec<(ElementRef, Vec<u32>)>, SceneError>>()?;
         let vtu = surface_vtu_string(
             Path::new("interface.vtu"),
             &points,
@@ -1073,7 +1104,7 @@ impl SolvedContact {
 }
 
 /// The load steps of a contact solution as the reports write them.
-fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json::Value> {
+pub(super) fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json::Value> {
     steps
         .iter()
         .enumerate()
@@ -1089,198 +1120,3 @@ fn steps_json(steps: &[mortar_physics::contact::ContactStep]) -> Vec<serde_json:
         })
         .collect()
 }
-
-/// The built-in contact scenes ([`BUILTIN_CONTACT_SCENES`](super::BUILTIN_CONTACT_SCENES)),
-/// run from their builders in memory (no scene file or meshes are written): `hertz2d`
-/// ([`crate::scenes::hertz::HertzScene::new`]`(HERTZ_ARC_CELLS)`), `hertz3d`
-/// ([`crate::scenes::hertz::HertzSphereScene::default`], compared with the closed form both at
-/// the imposed approach and at the computed load) and `shrink_fit`
-/// ([`crate::scenes::shrink_fit::ShrinkFitScene::new`]`(32, 32)`). `None` for another name.
-/// Their `report.json` carries the inputs and the closed-form values beside the computed
-/// ones, and the contact steps as a scene file's report does.
-///
-/// # Errors
-/// [`SceneError::Other`] if the scene cannot be built or solved.
-pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError> {
-    let t = Instant::now();
-    let fail = |e: PhysicsError| SceneError::Other(format!("built-in scene {name}: {e}"));
-    // The Hertz scenes require full coverage (an error otherwise): only the shrink fit can
-    // carry coupling warnings.
-    let mut warnings = Vec::new();
-    let (report, summary) = match name {
-        "hertz2d" => {
-            let scene = crate::scenes::hertz::HertzScene::new(HERTZ_ARC_CELLS);
-            let closed = scene.closed_form();
-            let run = scene.run().map_err(fail)?;
-            let report = serde_json::json!({
-                "kind": "contact",
-                "scene": "hertz2d",
-                "title": "2D Hertz contact: a cylinder on a block (plane strain, half model)",
-                "dimension": 2,
-                "inputs": {
-                    "R": scene.radius,
-                    "E_star": closed.contact_modulus,
-                    "d": scene.approach,
-                    "arc_cells": run.arc_cells,
-                    "block_cells": run.block_cells,
-                },
-                "P": run.load,
-                "computed": {
-                    "a": run.half_width.estimate,
-                    "a_bracket": [run.half_width.last_in_contact, run.half_width.first_open],
-                    "a_squared": run.half_width.squared,
-                    "p0": run.peak,
-                },
-                "closed_form": { "a": run.a_exact, "p0": run.p0_exact },
-                "error": {
-                    "a": run.half_width_error(),
-                    "a_squared": (run.half_width.squared - run.a_exact) / run.a_exact,
-                    "p0": run.peak_error(),
-                    "profile_l2": run.profile_l2,
-                    "equilibrium": run.equilibrium_error(),
-                },
-                "load_steps": steps_json(&run.steps),
-                "active": run.active,
-                "contact_force": run.force,
-                "complementarity": run.complementarity,
-                "seconds": { "run": run.seconds, "total": t.elapsed().as_secs_f64() },
-            });
-            let summary = format!(
-                "hertz2d: P = {:.6e} N/m; a = {:.6e} m (closed form {:.6e}, {:+.2e}); p0 = {:.6e} Pa (closed form {:.6e}, {:+.2e})",
-                run.load,
-                run.half_width.estimate,
-                run.a_exact,
-                run.half_width_error(),
-                run.peak,
-                run.p0_exact,
-                run.peak_error()
-            );
-            (report, summary)
-        }
-        "hertz3d" => {
-            let scene = crate::scenes::hertz::HertzSphereScene::default();
-            let closed = scene.closed_form();
-            let run = scene.run().map_err(fail)?;
-            let bracket = |h: &crate::scenes::hertz::HalfWidth| [h.last_in_contact, h.first_open];
-            let closed_json = |c: &crate::scenes::hertz::HertzContact| serde_json::json!({ "a": c.radius, "p0": c.peak, "P": c.load, "d": c.approach });
-            let report = serde_json::json!({
-                "kind": "contact",
-                "scene": "hertz3d",
-                "title": "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
-                "dimension": 3,
-                "inputs": {
-                    "R": scene.radius,
-                    "E_star": closed.contact_modulus,
-                    "d": scene.approach,
-                    "E": scene.sphere.youngs_modulus,
-                    "nu": scene.sphere.poisson_ratio,
-                    "block_size": scene.block_size * scene.radius,
-                    "cells": run.cells,
-                    "block_cells": run.block_cells,
-                },
-                "P": run.load,
-                "computed": {
-                    "a": run.contact_radius.estimate,
-                    "a_bracket": bracket(&run.contact_radius),
-                    "a_bracket_along_y0": bracket(&run.contact_radius_axis),
-                    "a_squared": run.contact_radius.squared,
-                    "p0": run.peak,
-                    "P": run.load,
-                },
-                "closed_form": {
-                    "at_d": closed_json(&run.at_approach),
-                    "at_P": closed_json(&run.at_load),
-                },
-                "element_at_a": { "at_d": run.edge_cell, "at_P": run.edge_cell_at_load },
-                "error": {
-                    "at_d": {
-                        "a": run.radius_error_at_approach(),
-                        "a_in_elements": (run.contact_radius.estimate - run.at_approach.radius) / run.edge_cell,
-                        "p0": run.peak_error_at_approach(),
-                        "P": run.load_error_at_approach(),
-                    },
-                    "at_P": {
-                        "a": run.radius_error_at_load(),
-                        "a_in_elements": (run.contact_radius.estimate - run.at_load.radius) / run.edge_cell_at_load,
-                        "p0": run.peak_error_at_load(),
-                        "profile_l2": run.profile_l2,
-                    },
-                    "equilibrium": run.equilibrium_error(),
-                },
-                "load_steps": steps_json(&run.steps),
-                "active": run.active,
-                "slave_nodes": run.slave_nodes,
-                "unknowns": run.unknowns,
-                "contact_force": run.force,
-                "complementarity": run.complementarity,
-                "seconds": { "build": run.seconds_build, "run": run.seconds, "total": t.elapsed().as_secs_f64() },
-            });
-            let summary = format!(
-                "hertz3d: d = {:.6e} m, P = {:.6e} N ({:+.2e} off the closed form at d); a = {:.6e} m (closed form {:.6e} at d, {:.6e} at P); p0 = {:.6e} Pa (closed form {:.6e} at d, {:+.2e}; {:.6e} at P, {:+.2e})",
-                scene.approach,
-                run.load,
-                run.load_error_at_approach(),
-                run.contact_radius.estimate,
-                run.at_approach.radius,
-                run.at_load.radius,
-                run.peak,
-                run.at_approach.peak,
-                run.peak_error_at_approach(),
-                run.at_load.peak,
-                run.peak_error_at_load()
-            );
-            (report, summary)
-        }
-        "shrink_fit" => {
-            let scene = crate::scenes::shrink_fit::ShrinkFitScene::new(32, 32);
-            let run = scene.run().map_err(fail)?;
-            let fit = scene.fit;
-            let report = serde_json::json!({
-                "kind": "contact",
-                "scene": "shrink_fit",
-                "title": "shrink fit: a disc in a ring (plane strain, quarter model)",
-                "dimension": 2,
-                "inputs": {
-                    "b": fit.inner,
-                    "c": fit.outer,
-                    "delta": fit.interference,
-                    "E": fit.material.youngs_modulus,
-                    "nu": fit.material.poisson_ratio,
-                    "slave_cells": scene.slave_cells,
-                    "master_cells": scene.master_cells,
-                },
-                "computed": { "p_mean": run.mean, "p_min": run.min, "p_max": run.max },
-                "closed_form": { "p": run.exact, "p_faceted": run.faceted_pressure },
-                "error": { "worst": run.worst_error(), "mean": run.mean_error() },
-                "load_steps": steps_json(&run.steps),
-                "active": run.active,
-                "complementarity": run.complementarity,
-                "warnings": run.warnings,
-                "seconds": { "run": run.seconds, "total": t.elapsed().as_secs_f64() },
-            });
-            warnings = run.warnings.clone();
-            let summary = format!(
-                "shrink_fit: p mean {:.6e} Pa in [{:.6e}, {:.6e}] (closed form {:.6e}, mean error {:+.2e})",
-                run.mean,
-                run.min,
-                run.max,
-                run.exact,
-                run.mean_error()
-            );
-            (report, summary)
-        }
-        _ => return Ok(None),
-    };
-    let mut json = serde_json::to_string_pretty(&report)
-        .map_err(|e| SceneError::Other(format!("report.json: {e}")))?;
-    json.push('\n');
-    Ok(Some(SceneOutput {
-        files: vec![("report.json".to_string(), json.into_bytes())],
-        summary,
-        warnings,
-    }))
-}
-
-/// Arc cells of the built-in `hertz2d`: fine enough for the half-width estimate (the midpoint
-/// of the bracketing slave face) to be within 2 % of the closed form.
-pub const HERTZ_ARC_CELLS: usize = 96;

@@ -32,7 +32,9 @@
 //! ```
 
 mod builtin;
+mod builtin_contact;
 pub mod contact;
+pub mod contact_files;
 pub(crate) mod error;
 pub mod tied_heat;
 
@@ -42,6 +44,7 @@ pub use builtin::{
     builtin_scene, tied_block, tied_block_exact, BuiltinScene, BUILTIN_CONTACT_SCENES,
     BUILTIN_SCENES,
 };
+pub use builtin_contact::{run_builtin_contact, HERTZ_ARC_CELLS};
 pub use error::SceneError;
 
 use crate::io::IoError;

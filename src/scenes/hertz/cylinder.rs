@@ -30,16 +30,20 @@ use std::time::Instant;
 
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::CouplingOptions;
-use mortar_physics::contact::{ContactOptions, ContactStep};
-use mortar_physics::elastic::{ComponentSet, ElasticBody, ElasticMaterial};
+use mortar_physics::contact::{ContactOptions, ContactSolution, ContactStep};
+use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
-use nalgebra::Vector3;
 
 use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
 use crate::generate::{
     graded_points, grid_rectangle_mesh, onto_sphere, quarter_disc_mesh, second_order_mesh,
     CellShape, SecondOrder,
 };
+use crate::scenes::file::contact::Component;
+use crate::scenes::file::contact_files::{
+    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
+};
+use crate::scenes::file::SceneError;
 #[cfg(doc)]
 use mortar_physics::contact::solve_contact;
 
@@ -188,6 +192,47 @@ impl HertzScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
+        let [slave, master] = self.bodies()?;
+        let zone = self.contact_zone * self.radius;
+        let (slave, slave_surface) = slave.elastic("contact")?;
+        let (master, master_surface) = master.elastic("top")?;
+        HertzProblem::assemble(
+            [slave, master],
+            [slave_surface, master_surface],
+            zone,
+            &self.coupling,
+            2,
+            self.block_cell_count(),
+        )
+    }
+
+    /// The scene as a scene file and its meshes (`cylinder.msh`, `block.msh`; groups
+    /// `cylinder_axis`, `cylinder_top`, `cylinder_contact`, `block_axis`, `block_bottom`,
+    /// `block_top`): what `mortar run --scene hertz2d` runs and writes.
+    ///
+    /// # Errors
+    /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
+    /// coupling a scene file cannot state.
+    pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
+        let bodies = self
+            .bodies()
+            .map_err(|e| SceneError::Other(e.to_string()))?;
+        contact_scene_files(
+            "2D Hertz contact: a cylinder on a block (plane strain, half model)",
+            bodies,
+            &SceneContact {
+                slave: "contact",
+                master: "top",
+                coupling: &self.coupling,
+                search_radius: Some(self.contact_zone * self.radius),
+                require_full_coverage: true,
+                solve: &self.contact,
+            },
+        )
+    }
+
+    /// The two bodies with their groups and conditions (see the [module](self)).
+    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
         let invalid = |what: String| PhysicsError::InvalidInput {
             body: "hertz scene".into(),
             what,
@@ -224,39 +269,32 @@ impl HertzScene {
 
         let tol = 1e-12 * r;
         let near = move |a: f64, b: f64| (a - b).abs() <= tol;
-        let zero = |_: &Vector3<f64>| Vector3::zeros();
-        let d = self.approach;
-        let slave = ElasticBody::new("cylinder", disc, self.cylinder)
-            .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
-            .with_dirichlet_where(
-                |f| near(f.centroid.y, r),
-                ComponentSet::One(1),
-                move |_| Vector3::new(0.0, -d, 0.0),
-            )?;
-        let master = ElasticBody::new("block", block, self.block)
-            .with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
-            .with_dirichlet_where(|f| near(f.centroid.y, -h), ComponentSet::One(1), zero)?;
-
-        // The interface: the arc faces near the contact, the block's top.
-        let coords = slave.mesh.coords();
+        // The slave surface: the arc faces near the contact. The gap grows to
+        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
+        let coords = disc.coords().to_vec();
         let zone = self.contact_zone * r;
-        let on_arc = |f: &BoundaryFace| {
+        let on_arc = move |f: &BoundaryFace| {
             f.nodes.iter().all(|&n| {
                 let x = coords[n as usize];
                 (x.x.hypot(x.y - r) - r).abs() <= 1e-9 * r && x.x <= zone
             })
         };
-        let slave_surface = slave.mesh.boundary_surface(on_arc)?;
-        let master_surface = master.mesh.boundary_surface(|f| near(f.centroid.y, 0.0))?;
-        // The gap grows to r - sqrt(r^2 - zone^2) < zone at the zone's end: search that far.
-        HertzProblem::assemble(
-            [slave, master],
-            [slave_surface, master_surface],
-            zone,
-            &self.coupling,
-            2,
-            nb,
-        )
+        let scene = |e: SceneError| invalid(e.to_string());
+        let slave = SceneBody::new("cylinder", disc, self.cylinder)
+            .group("axis", |f| near(f.centroid.x, 0.0))
+            .and_then(|b| b.group("top", |f| near(f.centroid.y, r)))
+            .and_then(|b| b.group("contact", on_arc))
+            .map_err(scene)?
+            .hold("axis", Component::X, 0.0)
+            .hold("top", Component::Y, -self.approach);
+        let master = SceneBody::new("block", block, self.block)
+            .group("axis", |f| near(f.centroid.x, 0.0))
+            .and_then(|b| b.group("bottom", |f| near(f.centroid.y, -h)))
+            .and_then(|b| b.group("top", |f| near(f.centroid.y, 0.0)))
+            .map_err(scene)?
+            .hold("axis", Component::X, 0.0)
+            .hold("bottom", Component::Y, 0.0);
+        Ok([slave, master])
     }
 
     /// Builds and solves the scene and compares it with the closed form.
@@ -265,11 +303,24 @@ impl HertzScene {
     /// The errors of [`build`](Self::build) and of [`solve_contact`].
     pub fn run(&self) -> Result<HertzRun, PhysicsError> {
         let t0 = Instant::now();
+        let problem = self.build()?;
+        let sol = problem.solve(&self.contact)?;
+        Ok(self.evaluate(&problem, &sol, t0.elapsed().as_secs_f64()))
+    }
+
+    /// The comparison with the closed form of the solution `sol` of this scene's `problem`
+    /// (built by [`build`](Self::build), or read back from its [scene
+    /// file](Self::scene_files)); `seconds` is reported as the run's time.
+    pub fn evaluate(
+        &self,
+        problem: &HertzProblem,
+        sol: &ContactSolution,
+        seconds: f64,
+    ) -> HertzRun {
         let r = self.radius;
         let h = self.block_size * r;
         let tol = 1e-12 * r;
         let near = move |a: f64, b: f64| (a - b).abs() <= tol;
-        let problem = self.build()?;
         let HertzProblem {
             bodies: [slave, master],
             tie,
@@ -277,16 +328,14 @@ impl HertzScene {
             law,
             block_cells: nb,
             ..
-        } = &problem;
+        } = problem;
         let (ns, nm) = (slave.mesh.node_count(), master.mesh.node_count());
         let c = law.parameter();
-        let sol = problem.solve(&self.contact)?;
-        let seconds = t0.elapsed().as_secs_f64();
 
         // Reactions: K u - f on the Dirichlet rows of u_y at the block's bottom and at the
         // cylinder's top.
-        let reaction_bottom = problem.reaction(&sol, 1, 1, |x| near(x.y, -h));
-        let reaction_top = -problem.reaction(&sol, 0, 1, |x| near(x.y, r));
+        let reaction_bottom = problem.reaction(sol, 1, 1, |x| near(x.y, -h));
+        let reaction_top = -problem.reaction(sol, 0, 1, |x| near(x.y, r));
 
         // The profile, by x, over the nodes that carry a multiplier (with linear multipliers
         // on Line3 faces the corners: the pressure is linear between them).
@@ -320,7 +369,7 @@ impl HertzScene {
             .find(|w| w[1].x >= a_exact)
             .map_or(f64::NAN, |w| length(&w[0], &w[1]));
         let profile_l2 = profile_error(&nodes, &hertz, load);
-        Ok(HertzRun {
+        HertzRun {
             arc_cells: self.arc_cells,
             block_cells: *nb,
             unknowns: 2 * (ns + nm) + nodes.len(),
@@ -342,7 +391,7 @@ impl HertzScene {
             formulation: sol.formulation.clone(),
             seconds,
             profile: nodes,
-        })
+        }
     }
 }
 

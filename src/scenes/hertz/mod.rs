@@ -26,6 +26,8 @@ use mortar_physics::tied::Tie;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
+use crate::scenes::file::contact::SolvedContact;
+
 pub mod cylinder;
 pub mod sphere;
 
@@ -127,6 +129,47 @@ impl HertzProblem {
             law,
             block_cells,
         })
+    }
+
+    /// The problem a Hertz scene's [scene file](HertzScene::scene_files) was solved as, and
+    /// its solution: the bodies, matrices and tie the scene file's run built (the block's
+    /// cells per direction `block_cells` given, as the run does not know them).
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] if the scene was not solved with the exact law.
+    pub fn from_solved(
+        solved: SolvedContact,
+        block_cells: usize,
+    ) -> Result<(Self, ContactSolution), PhysicsError> {
+        let SolvedContact {
+            bodies,
+            tie,
+            solution,
+            stiffness,
+            load,
+            dirichlet,
+            gap,
+            complementarity,
+            ..
+        } = solved;
+        let c = complementarity.ok_or_else(|| PhysicsError::InvalidInput {
+            body: "hertz scene".into(),
+            what: "solved with another law than the exact one".into(),
+        })?;
+        let law = ContactComplementarity::try_new(c)?;
+        Ok((
+            Self {
+                bodies,
+                stiffness,
+                load,
+                dirichlet,
+                tie,
+                gap,
+                law,
+                block_cells,
+            },
+            solution,
+        ))
     }
 
     /// Solves the contact problem.

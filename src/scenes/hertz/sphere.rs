@@ -48,13 +48,18 @@ use std::time::Instant;
 
 use mortar_core::mesh::BoundaryFace;
 use mortar_core::CouplingOptions;
-use mortar_physics::contact::{ContactOptions, ContactStep};
-use mortar_physics::elastic::{ComponentSet, ElasticBody, ElasticMaterial};
+use mortar_physics::contact::{ContactOptions, ContactSolution, ContactStep};
+use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
 use crate::generate::{ball_octant_mesh, graded_points, grid_box_mesh, CellShape};
+use crate::scenes::file::contact::Component;
+use crate::scenes::file::contact_files::{
+    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
+};
+use crate::scenes::file::SceneError;
 #[cfg(doc)]
 use mortar_physics::contact::solve_contact;
 
@@ -241,6 +246,46 @@ impl HertzSphereScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
+        let [slave, master] = self.bodies()?;
+        let (slave, slave_surface) = slave.elastic("contact")?;
+        let (master, master_surface) = master.elastic("top")?;
+        HertzProblem::assemble(
+            [slave, master],
+            [slave_surface, master_surface],
+            self.contact_zone * self.radius,
+            &self.coupling,
+            3,
+            self.block_cell_count(),
+        )
+    }
+
+    /// The scene as a scene file and its meshes (`sphere.msh`, `block.msh`; groups
+    /// `sphere_x0`, `sphere_y0`, `sphere_top`, `sphere_contact`, `block_x0`, `block_y0`,
+    /// `block_bottom`, `block_top`): what `mortar run --scene hertz3d` runs and writes.
+    ///
+    /// # Errors
+    /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
+    /// coupling a scene file cannot state.
+    pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
+        let bodies = self
+            .bodies()
+            .map_err(|e| SceneError::Other(e.to_string()))?;
+        contact_scene_files(
+            "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
+            bodies,
+            &SceneContact {
+                slave: "contact",
+                master: "top",
+                coupling: &self.coupling,
+                search_radius: Some(self.contact_zone * self.radius),
+                require_full_coverage: true,
+                solve: &self.contact,
+            },
+        )
+    }
+
+    /// The two bodies with their groups and conditions (see the [module](self)).
+    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
         let r = self.radius;
         if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 0.7) {
             return Err(PhysicsError::InvalidInput {
@@ -262,42 +307,39 @@ impl HertzSphereScene {
 
         let tol = 1e-12 * r;
         let near = move |a: f64, b: f64| (a - b).abs() <= tol;
-        let zero = |_: &Vector3<f64>| Vector3::zeros();
-        let d = self.approach;
-        let symmetric = |body: ElasticBody| -> Result<ElasticBody, PhysicsError> {
-            body.with_dirichlet_where(|f| near(f.centroid.x, 0.0), ComponentSet::One(0), zero)?
-                .with_dirichlet_where(|f| near(f.centroid.y, 0.0), ComponentSet::One(1), zero)
-        };
-        let slave = symmetric(ElasticBody::new("sphere", ball, self.sphere))?
-            .with_dirichlet_where(
-                |f| near(f.centroid.z, r),
-                ComponentSet::One(2),
-                move |_| Vector3::new(0.0, 0.0, -d),
-            )?;
-        let master = symmetric(ElasticBody::new("block", block, self.block))?
-            .with_dirichlet_where(|f| near(f.centroid.z, -h), ComponentSet::One(2), zero)?;
-
-        // The interface: the sphere's faces near the pole, the block's top.
-        let coords = slave.mesh.coords();
+        // The slave surface: the sphere's faces near the pole. The gap grows to
+        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
+        let coords = ball.coords().to_vec();
         let zone = self.contact_zone * r;
         let centre = Vector3::new(0.0, 0.0, r);
-        let on_cap = |f: &BoundaryFace| {
+        let on_cap = move |f: &BoundaryFace| {
             f.nodes.iter().all(|&n| {
                 let x = coords[n as usize];
                 ((x - centre).norm() - r).abs() <= 1e-9 * r && x.x.hypot(x.y) <= zone
             })
         };
-        let slave_surface = slave.mesh.boundary_surface(on_cap)?;
-        let master_surface = master.mesh.boundary_surface(|f| near(f.centroid.z, 0.0))?;
-        // The gap grows to r - sqrt(r^2 - zone^2) < zone at the zone's end: search that far.
-        HertzProblem::assemble(
-            [slave, master],
-            [slave_surface, master_surface],
-            zone,
-            &self.coupling,
-            3,
-            nb,
-        )
+        let symmetric = |body: SceneBody| -> Result<SceneBody, SceneError> {
+            Ok(body
+                .group("x0", |f| near(f.centroid.x, 0.0))?
+                .group("y0", |f| near(f.centroid.y, 0.0))?
+                .hold("x0", Component::X, 0.0)
+                .hold("y0", Component::Y, 0.0))
+        };
+        let scene = |e: SceneError| PhysicsError::InvalidInput {
+            body: "hertz sphere scene".into(),
+            what: e.to_string(),
+        };
+        let slave = symmetric(SceneBody::new("sphere", ball, self.sphere))
+            .and_then(|b| b.group("top", |f| near(f.centroid.z, r)))
+            .and_then(|b| b.group("contact", on_cap))
+            .map_err(scene)?
+            .hold("top", Component::Z, -self.approach);
+        let master = symmetric(SceneBody::new("block", block, self.block))
+            .and_then(|b| b.group("bottom", |f| near(f.centroid.z, -h)))
+            .and_then(|b| b.group("top", |f| near(f.centroid.z, 0.0)))
+            .map_err(scene)?
+            .hold("bottom", Component::Z, 0.0);
+        Ok([slave, master])
     }
 
     /// Builds and solves the scene and compares it with the closed form.
@@ -306,19 +348,30 @@ impl HertzSphereScene {
     /// The errors of [`build`](Self::build) and of [`solve_contact`].
     pub fn run(&self) -> Result<HertzSphereRun, PhysicsError> {
         let t0 = Instant::now();
+        let problem = self.build()?;
+        let seconds_build = t0.elapsed().as_secs_f64();
+        let sol = problem.solve(&self.contact)?;
+        Ok(self.evaluate(&problem, &sol, [seconds_build, t0.elapsed().as_secs_f64()]))
+    }
+
+    /// The comparison with the closed form of the solution `sol` of this scene's `problem`
+    /// (built by [`build`](Self::build), or read back from its [scene
+    /// file](Self::scene_files)); `seconds` are reported as the build's and the run's time.
+    pub fn evaluate(
+        &self,
+        problem: &HertzProblem,
+        sol: &ContactSolution,
+        [seconds_build, seconds]: [f64; 2],
+    ) -> HertzSphereRun {
         let r = self.radius;
         let h = self.block_size * r;
         let tol = 1e-12 * r;
         let near = move |a: f64, b: f64| (a - b).abs() <= tol;
-        let problem = self.build()?;
-        let seconds_build = t0.elapsed().as_secs_f64();
-        let sol = problem.solve(&self.contact)?;
-        let seconds = t0.elapsed().as_secs_f64();
         let [slave, master] = &problem.bodies;
         let (tie, gap) = (&problem.tie, &problem.gap);
 
-        let reaction_bottom = problem.reaction(&sol, 1, 2, |x| near(x.z, -h));
-        let reaction_top = -problem.reaction(&sol, 0, 2, |x| near(x.z, r));
+        let reaction_bottom = problem.reaction(sol, 1, 2, |x| near(x.z, -h));
+        let reaction_top = -problem.reaction(sol, 0, 2, |x| near(x.z, r));
 
         // The profile, by the distance from the axis.
         let cpl = tie.coupling();
@@ -371,7 +424,7 @@ impl HertzSphereScene {
             / (std::f64::consts::PI / 8.0))
             .sqrt()
             / (at_load.peak * at_load.radius);
-        Ok(HertzSphereRun {
+        HertzSphereRun {
             cells: self.cells,
             block_cells: problem.block_cells,
             sphere_nodes: slave.mesh.node_count(),
@@ -397,7 +450,7 @@ impl HertzSphereScene {
             seconds_build,
             seconds,
             profile: nodes,
-        })
+        }
     }
 }
 
