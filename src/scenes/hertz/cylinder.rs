@@ -34,15 +34,13 @@ use mortar_physics::contact::{ContactOptions, ContactSolution, ContactStep};
 use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 
-use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
+use super::{contact_modulus, first_cell, hertz_scene_files, HalfWidth, HertzProblem};
 use crate::generate::{
     graded_points, grid_rectangle_mesh, onto_sphere, quarter_disc_mesh, second_order_mesh,
     CellShape, SecondOrder,
 };
 use crate::scenes::file::contact::Component;
-use crate::scenes::file::contact_files::{
-    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
-};
+use crate::scenes::file::contact_files::{ContactSceneFiles, SceneBody};
 use crate::scenes::file::SceneError;
 #[cfg(doc)]
 use mortar_physics::contact::solve_contact;
@@ -192,14 +190,9 @@ impl HertzScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
-        let [slave, master] = self.bodies()?;
-        let zone = self.contact_zone * self.radius;
-        let (slave, slave_surface) = slave.elastic("contact")?;
-        let (master, master_surface) = master.elastic("top")?;
-        HertzProblem::assemble(
-            [slave, master],
-            [slave_surface, master_surface],
-            zone,
+        HertzProblem::of_bodies(
+            self.bodies()?,
+            self.contact_zone * self.radius,
             &self.coupling,
             2,
             self.block_cell_count(),
@@ -217,17 +210,12 @@ impl HertzScene {
         let bodies = self
             .bodies()
             .map_err(|e| SceneError::Other(e.to_string()))?;
-        contact_scene_files(
+        hertz_scene_files(
             "2D Hertz contact: a cylinder on a block (plane strain, half model)",
             bodies,
-            &SceneContact {
-                slave: "contact",
-                master: "top",
-                coupling: &self.coupling,
-                search_radius: Some(self.contact_zone * self.radius),
-                require_full_coverage: true,
-                solve: &self.contact,
-            },
+            self.contact_zone * self.radius,
+            &self.coupling,
+            &self.contact,
         )
     }
 

@@ -27,6 +27,34 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 use crate::scenes::file::contact::SolvedContact;
+use crate::scenes::file::contact_files::{
+    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
+};
+use crate::scenes::file::SceneError;
+
+/// The scene file of a Hertz scene's bodies: the slave's group `contact` against the master's
+/// group `top` with the exact law, the slave's full coverage required, the search as far as
+/// `search_distance`.
+pub(crate) fn hertz_scene_files(
+    title: &str,
+    bodies: [SceneBody; 2],
+    search_distance: f64,
+    coupling: &CouplingOptions,
+    solve: &ContactOptions,
+) -> Result<ContactSceneFiles, SceneError> {
+    contact_scene_files(
+        title,
+        bodies,
+        &SceneContact {
+            slave: "contact",
+            master: "top",
+            coupling,
+            search_radius: Some(search_distance),
+            require_full_coverage: true,
+            solve,
+        },
+    )
+}
 
 pub mod cylinder;
 pub mod sphere;
@@ -129,6 +157,27 @@ impl HertzProblem {
             law,
             block_cells,
         })
+    }
+
+    /// The problem of a Hertz scene's bodies: the slave's group `contact` against the master's
+    /// group `top` (see [`assemble`](Self::assemble)).
+    pub(crate) fn of_bodies(
+        [slave, master]: [SceneBody; 2],
+        search_distance: f64,
+        coupling: &CouplingOptions,
+        dim: usize,
+        block_cells: usize,
+    ) -> Result<Self, PhysicsError> {
+        let (slave, slave_surface) = slave.elastic("contact")?;
+        let (master, master_surface) = master.elastic("top")?;
+        Self::assemble(
+            [slave, master],
+            [slave_surface, master_surface],
+            search_distance,
+            coupling,
+            dim,
+            block_cells,
+        )
     }
 
     /// The problem a Hertz scene's [scene file](HertzScene::scene_files) was solved as, and

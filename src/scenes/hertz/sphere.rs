@@ -53,12 +53,10 @@ use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
-use super::{contact_modulus, first_cell, HalfWidth, HertzProblem};
+use super::{contact_modulus, first_cell, hertz_scene_files, HalfWidth, HertzProblem};
 use crate::generate::{ball_octant_mesh, graded_points, grid_box_mesh, CellShape};
 use crate::scenes::file::contact::Component;
-use crate::scenes::file::contact_files::{
-    contact_scene_files, ContactSceneFiles, SceneBody, SceneContact,
-};
+use crate::scenes::file::contact_files::{ContactSceneFiles, SceneBody};
 use crate::scenes::file::SceneError;
 #[cfg(doc)]
 use mortar_physics::contact::solve_contact;
@@ -246,12 +244,8 @@ impl HertzSphereScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
-        let [slave, master] = self.bodies()?;
-        let (slave, slave_surface) = slave.elastic("contact")?;
-        let (master, master_surface) = master.elastic("top")?;
-        HertzProblem::assemble(
-            [slave, master],
-            [slave_surface, master_surface],
+        HertzProblem::of_bodies(
+            self.bodies()?,
             self.contact_zone * self.radius,
             &self.coupling,
             3,
@@ -270,17 +264,12 @@ impl HertzSphereScene {
         let bodies = self
             .bodies()
             .map_err(|e| SceneError::Other(e.to_string()))?;
-        contact_scene_files(
+        hertz_scene_files(
             "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
             bodies,
-            &SceneContact {
-                slave: "contact",
-                master: "top",
-                coupling: &self.coupling,
-                search_radius: Some(self.contact_zone * self.radius),
-                require_full_coverage: true,
-                solve: &self.contact,
-            },
+            self.contact_zone * self.radius,
+            &self.coupling,
+            &self.contact,
         )
     }
 

@@ -103,8 +103,8 @@ pub struct HeldMotions {
 }
 
 /// For each of the two bodies of a contact problem (slave first), the rigid motions their
-/// Dirichlet conditions leave free, and those the contact does not hold either (see the
-/// [module](self) documentation). `coords` are the bodies' node coordinates (index order),
+/// Dirichlet conditions leave free, and those the contact does not hold either (a body held
+/// by contact alone in some direction is sound only while the contact is active). `coords` are the bodies' node coordinates (index order),
 /// `dirichlet` their prescribed unknowns (`node * dim + k`), `gap` the contact's normal gap
 /// (columns: the slave body's unknowns, then the master body's). Cartesian bodies (plane
 /// strain in 2D, or 3D); an axisymmetric body's only rigid motion is along its axis.
