@@ -332,6 +332,24 @@ pub fn run(args: Args) -> Res<()> {
         )?;
         println!("wrote {}", png.display());
     }
+    // The example's own checks (after the report is printed, so that a failure keeps it):
+    // the patch test to rounding on every exact path, and the straight study's rates those
+    // of the element order (`p + 1` in L2, `p` in H1; 0.2 of slack for the coarse levels).
+    let patch_worst = p_cond
+        .max_nodal
+        .max(p_saddle.max_nodal)
+        .max(p_standard.max_nodal);
+    if patch_worst > 1e-12 {
+        return Err(format!("patch test: max nodal error {patch_worst:e} above 1e-12").into());
+    }
+    let p = f64::from(args.order);
+    if l2_rate < p + 0.8 || h1_rate < p - 0.2 {
+        return Err(format!(
+            "straight study: L2 rate {l2_rate:.3}, H1 rate {h1_rate:.3}, expected about {} and {p}",
+            p + 1.0
+        )
+        .into());
+    }
     Ok(())
 }
 

@@ -1,9 +1,10 @@
-//! The examples a user copies from, run by the test command (issue 11): each light example's
+//! The examples a user copies from, run by the test command: each light example's
 //! code is compiled into this test as a module (its own `main` unused here) and run, with a
 //! small size where it takes one and its outputs in a temporary folder. Each test fails when
 //! its example returns an error or panics; `extend_element`, `extend_law`, `pellet`,
-//! `shrink_fit`, `tie_two_squares` and `tied_heat` return one when their own checks of the
-//! results fail, `write_scene_meshes` is compared here with the committed meshes, and
+//! `shrink_fit` (the mean pressure converging at the faceting's rate), `tie_two_squares` and
+//! `tied_heat` (the patch test to 1e-12, the refinement rates of the element order) return one
+//! when their own checks of the results fail, `write_scene_meshes` is compared here with the committed meshes, and
 //! `hertz2d` and `hertz3d` (refinement studies) only have to run: the accuracy of their scenes
 //! is checked in `tests/convergence`. About 6 s in all.
 //!

@@ -60,8 +60,10 @@ fn the_exponential_pressure_law_carries_the_load_at_its_closed_form_gap() {
             "exponential law {dim}D: pressure error {worst_p:.1e}, gap error {worst_g:.1e} \
              (g* = {g_star:.3e} m), Newton steps per load step {steps:?}"
         );
-        assert!(worst_p < 1e-8, "{dim}D: pressure off by {worst_p:e}");
-        assert!(worst_g < 1e-8, "{dim}D: gap off by {worst_g:e}");
+        // Measured 1.4e-12 and 6.8e-12 (pressure), 1.4e-13 and 5.7e-13 (gap) in 2D and 3D:
+        // the Newton tolerance's level, with a decade or two to spare.
+        assert!(worst_p < 1e-10, "{dim}D: pressure off by {worst_p:e}");
+        assert!(worst_g < 1e-10, "{dim}D: gap off by {worst_g:e}");
         // From zero pressure the first load step walks up the exponential (15 steps in 2D and 3D);
         // the later ones start near the solution.
         assert!(steps.iter().all(|&n| n <= 20), "{steps:?}");
@@ -84,7 +86,7 @@ fn a_body_held_only_by_contact_falls_into_it_or_is_refused() {
         .iter()
         .map(|p| (p - SIGMA).abs() / SIGMA)
         .fold(0.0f64, f64::max);
-    assert!(worst_p < 1e-8, "pressure off by {worst_p:e}");
+    assert!(worst_p < 1e-10, "pressure off by {worst_p:e}");
     assert!(sol.gap.iter().all(|g| g.abs() < 1e-12), "{:?}", sol.gap);
     assert!(sol.steps[0].regularised >= 1, "{:?}", sol.steps[0]);
 
@@ -132,7 +134,7 @@ fn dual_multipliers_condense_the_pressure_and_standard_ones_keep_the_saddle_poin
                 .map(|p| (p - SIGMA).abs() / SIGMA)
                 .fold(0.0f64, f64::max);
             assert!(
-                worst < 1e-8,
+                worst < 1e-10,
                 "{dim}D {}: pressure off by {worst:e}",
                 sol.formulation
             );

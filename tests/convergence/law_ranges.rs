@@ -103,9 +103,9 @@ fn slabs_through_gap_conductance(u: f64, dual: bool) -> (f64, f64) {
 
 /// The gap conductance through [`GapHeat`] from `U = 1e-12` (an insulating gap, twelve
 /// decades below the slabs' own conductance) to `U = 1e12` (twelve above: the gap all but
-/// tied), standard and dual multipliers: nodal temperatures to 1e-10 of the span and the
-/// interface flux to 1e-8 relative at every decade, with the Newton defaults and no
-/// multiplier scale given.
+/// tied), standard and dual multipliers: nodal temperatures and the interface flux to 1e-13
+/// relative at every decade (rounding level: measured at most 2.0e-15 and 3.2e-15), with the
+/// Newton defaults and no multiplier scale given.
 #[test]
 fn gap_conductance_is_exact_from_1e_minus_12_to_1e12() {
     let mut worst = (0.0f64, 0.0f64);
@@ -114,7 +114,7 @@ fn gap_conductance_is_exact_from_1e_minus_12_to_1e12() {
         for dual in [false, true] {
             let (e_t, e_q) = slabs_through_gap_conductance(u, dual);
             assert!(
-                e_t < 1e-10 && e_q < 1e-8,
+                e_t < 1e-13 && e_q < 1e-13,
                 "U = {u:e}, dual {dual}: temperature error {e_t:e}, flux error {e_q:e}"
             );
             worst = (worst.0.max(e_t), worst.1.max(e_q));
@@ -131,7 +131,7 @@ fn gap_conductance_is_exact_from_1e_minus_12_to_1e12() {
 /// sqrt(ln(sigma / P_o) / S)`, from 1e-2 m (soft: 40 times the blocks' elastic compression)
 /// down to 1e-13 m. Source of the reference (closed form): the stacked blocks under a uniform
 /// pressure `sigma` carry it through the interface, so the pressure is `sigma` at every slave
-/// node and the gap is `-delta`. In 2D and 3D, the pressure to 1e-8 relative at every
+/// node and the gap is `-delta`. In 2D and 3D, the pressure to 1e-10 relative at every
 /// stiffness, and the gap to 1e-8 of `delta` or to 16 ulps of the blocks' compression
 /// `2 sigma / E` (the rounding of the displacements the gap is computed from), whichever is
 /// larger: the gap is exact to 1e-8 down to `delta` = 1e-9 m, and below that to its rounding.
@@ -178,8 +178,9 @@ fn the_exponential_contact_penalty_is_exact_over_22_decades_of_stiffness() {
                 "{dim}D penalty S = {s:.1e} (delta {delta:.0e} m): pressure {worst_p:.1e}, \
                  gap {worst_g:.1e}, {steps} Newton steps"
             );
+            // Measured at most 1.4e-12 (2D) and 6.9e-12 (3D) over the stiffnesses.
             assert!(
-                worst_p < 1e-8,
+                worst_p < 1e-10,
                 "{dim}D, delta {delta:e}: pressure {worst_p:e}"
             );
             assert!(
@@ -196,7 +197,7 @@ fn the_exponential_contact_penalty_is_exact_over_22_decades_of_stiffness() {
 /// solution, and each gives it. The upper block starts 1 cm above the lower one and is held by
 /// nothing but the contact, so the active set must be found. Source of the reference (closed
 /// form): as above, the pressure is `sigma` at every slave node and the gap zero. Pressure to
-/// 1e-8 relative, gap to 16 ulps of the blocks' compression, in 2D and 3D.
+/// 1e-10 relative, gap to 16 ulps of the blocks' compression, in 2D and 3D.
 #[test]
 fn the_exact_contact_law_is_exact_for_its_parameter_over_18_decades() {
     for dim in [2, 3] {
@@ -227,7 +228,8 @@ fn the_exact_contact_law_is_exact_for_its_parameter_over_18_decades() {
                 "{dim}D exact law c = {c:.0e}: pressure {worst_p:.1e}, gap {worst_g:.1e} m, \
                  {steps} Newton steps"
             );
-            assert!(worst_p < 1e-8, "{dim}D, c = {c:e}: pressure {worst_p:e}");
+            // Measured 1.2e-12 (2D) and 6.5e-12 (3D) for every c.
+            assert!(worst_p < 1e-10, "{dim}D, c = {c:e}: pressure {worst_p:e}");
             assert!(
                 worst_g <= 16.0 * f64::EPSILON * 2.0 * SIGMA / E,
                 "{dim}D, c = {c:e}: gap {worst_g:e} m"

@@ -162,7 +162,7 @@ fn cylinder_triangle_slaves_measure_the_faces() {
     }
 }
 
-/// Issue 8, item 6: the dual D is written without its round-off off-diagonal entries (they
+/// The dual D is written without its round-off off-diagonal entries (they
 /// are lumped into the diagonal, counted, and the largest is reported), so the file a user
 /// reads is diagonal, and its row sums are unchanged.
 #[test]
@@ -177,8 +177,15 @@ fn dual_d_is_written_diagonal_and_says_what_it_dropped() {
     assert!(coupling.d.iter().all(|(_, (r, c))| r == c));
     let stats = coupling.stats;
     assert!(stats.d_roundoff_dropped > 0, "{stats:?}");
+    // Lumped entries are below 1e-12 of their diagonal by construction; the dual basis makes
+    // them rounding (measured 7.3e-16 here), so the bound is two decades above that, not the
+    // threshold.
+    eprintln!(
+        "largest lumped off-diagonal entry: {:e}",
+        stats.d_roundoff_largest
+    );
     assert!(
-        stats.d_roundoff_largest > 0.0 && stats.d_roundoff_largest <= 1e-12,
+        stats.d_roundoff_largest > 0.0 && stats.d_roundoff_largest <= 1e-14,
         "{stats:?}"
     );
     let areas = nodal_areas(&pair.slave);
