@@ -79,10 +79,14 @@ fn print_coupled(report: &Value, out: &Path) {
     let f = |v: &Value| v.as_f64().unwrap_or(f64::NAN);
     let m = &report["models"];
     let law = m["contact_law"].as_str().unwrap_or("?");
-    let elasticity = match m["geometry"].as_str() {
-        Some("3d") => "3D thermoelasticity (a segment, ends held in z)",
-        Some("axisymmetric") => "r-z thermoelasticity (a segment, ends held in z)",
-        _ => "plane-strain thermoelasticity",
+    let free = m["axial"].as_str() == Some("generalized");
+    let elasticity = match (m["geometry"].as_str(), free) {
+        (Some("3d"), true) => "3D thermoelasticity (a segment, its top free axially)",
+        (Some("3d"), false) => "3D thermoelasticity (a segment, ends held in z)",
+        (Some("axisymmetric"), true) => "r-z thermoelasticity (a segment, its top free axially)",
+        (Some("axisymmetric"), false) => "r-z thermoelasticity (a segment, ends held in z)",
+        (_, true) => "generalized plane strain thermoelasticity (free axial expansion)",
+        (_, false) => "plane-strain thermoelasticity",
     };
     say!(
         "{:<28} heat with k(T), {elasticity}, gap conductance on the",

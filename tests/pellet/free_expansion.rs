@@ -1,16 +1,20 @@
-//! Free thermal expansion of the pellet in plane strain: the first piece of the
-//! thermomechanical pellet (issue 15), the elasticity of the pellet cross-section loaded by
-//! its own steady temperature.
+//! Free thermal expansion of the pellet cross-section loaded by its own steady temperature,
+//! in plane strain and in generalized plane strain (free axial expansion).
 //!
-//! Source of the reference (closed form): a long solid cylinder of radius `a` in plane strain
-//! (`eps_zz = 0`), free surface, axisymmetric temperature `T(r)`: the surface moves by
-//! `u(a) = (1 + nu) (2 alpha / a) int_0^a (T - T_ref) r dr` (Timoshenko and Goodier, *Theory
-//! of Elasticity*, 3rd ed., McGraw-Hill 1970, sec. 150, with `eps_zz = 0`). The temperature is
+//! Source of the reference (closed form): a long solid cylinder of radius `a`, free surface,
+//! axisymmetric temperature `T(r)`, `I = int_0^a (T - T_ref) r dr` (Timoshenko and Goodier,
+//! *Theory of Elasticity*, 3rd ed., McGraw-Hill 1970, sec. 150): in plane strain
+//! (`eps_zz = 0`) the surface moves by `u(a) = (1 + nu) (2 alpha / a) I`; with a uniform
+//! `eps_zz` and no axial force (free ends) by `u(a) = 2 alpha I / a`, with
+//! `eps_zz = 2 alpha I / a^2` (the mean temperature's free expansion). The temperature is
 //! the steady closed form of the pellet scene (docs/physics.md, section 5): with
 //! `k = 1 / (A + B T)` and uniform heating `q''' = q' / (pi a^2)`,
 //! `T(r) = ((A + B T_ps) exp(B q''' (a^2 - r^2) / 4) - A) / B`, interpolated at the nodes.
 
-use mortar::physics::elastic::{solve_elastic, ComponentSet, ElasticBody, ElasticMaterial};
+use mortar::physics::elastic::{
+    recover_stress_with_axial_strain, solve_elastic, solve_generalized_plane_strain, AxialForce,
+    ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
+};
 use mortar::scenes::pellet::{pellet_mesh, PelletScene};
 use nalgebra::Vector3;
 
@@ -21,8 +25,15 @@ const ALPHA: f64 = 1e-5;
 const T_REF: f64 = 293.0;
 
 /// The largest relative error of the surface's radial displacement on the O-grid pellet
-/// mesh with `n` core cells per side and `layers` radial layers, and the closed form `u(a)`.
-fn surface_error(scene: &PelletScene, n: usize, layers: usize) -> (f64, f64) {
+/// mesh with `n` core cells per side and `layers` radial layers, and the closed form `u(a)`;
+/// in generalized plane strain (`generalized`) also the relative error of the axial strain
+/// (zero otherwise).
+fn surface_error(
+    scene: &PelletScene,
+    n: usize,
+    layers: usize,
+    generalized: bool,
+) -> (f64, f64, f64) {
     let a = scene.pellet.radius;
     let (ka, kb) = (scene.pellet.conductivity_a, scene.pellet.conductivity_b);
     let q3 = scene.power.linear_power / (std::f64::consts::PI * a * a);
@@ -47,7 +58,8 @@ fn surface_error(scene: &PelletScene, n: usize, layers: usize) -> (f64, f64) {
         .sum::<f64>()
         * h
         / 3.0;
-    let exact = (1.0 + NU) * 2.0 * ALPHA / a * simpson;
+    let factor = if generalized { 1.0 } else { 1.0 + NU };
+    let exact = factor * 2.0 * ALPHA / a * simpson;
 
     let mesh = pellet_mesh(a, n, layers).unwrap();
     let coords = mesh.coords().to_vec();
@@ -69,7 +81,14 @@ fn surface_error(scene: &PelletScene, n: usize, layers: usize) -> (f64, f64) {
         .with_dirichlet_nodes(vec![east as u32], ComponentSet::One(1), |_| {
             Vector3::zeros()
         });
-    let u = solve_elastic(&body).unwrap();
+    let (u, strain_error) = if generalized {
+        let options = ElasticOptions::default();
+        let (u, e) = solve_generalized_plane_strain(&body, AxialForce::FREE, &options).unwrap();
+        let want = 2.0 * ALPHA * simpson / (a * a);
+        (u, ((e - want) / want).abs())
+    } else {
+        (solve_elastic(&body).unwrap(), 0.0)
+    };
     let mut worst = 0.0f64;
     for (i, x) in coords.iter().enumerate() {
         if (x.norm() - a).abs() < 1e-9 * a {
@@ -77,7 +96,7 @@ fn surface_error(scene: &PelletScene, n: usize, layers: usize) -> (f64, f64) {
             worst = worst.max((ur - exact).abs() / exact);
         }
     }
-    (worst, exact)
+    (worst, exact, strain_error)
 }
 
 #[test]
@@ -85,7 +104,7 @@ fn free_expansion_of_the_pellet_matches_the_plane_strain_closed_form() {
     let scene = PelletScene::from_toml("").unwrap();
     let mut errors = Vec::new();
     for r in [1usize, 2, 4] {
-        let (e, exact) = surface_error(&scene, 4 * r, 2 * r);
+        let (e, exact, _) = surface_error(&scene, 4 * r, 2 * r, false);
         eprintln!("free expansion, pellet mesh refinement {r}: u(a) = {exact:.6e} m, surface error {e:.2e}");
         errors.push(e);
     }
@@ -96,4 +115,70 @@ fn free_expansion_of_the_pellet_matches_the_plane_strain_closed_form() {
         assert!(w[0] / w[1] > 3.5, "second order: {errors:?}");
     }
     assert!(errors[2] < 1e-3, "{errors:?}");
+}
+
+/// Generalized plane strain, the default of the coupled pellet: the surface displacement and
+/// the axial strain against the free-ends closed form, second order, within 1e-3 from the
+/// coupled scene's default pellet mesh (refinement 3) on.
+#[test]
+fn free_expansion_of_the_pellet_matches_the_generalized_plane_strain_closed_form() {
+    let scene = PelletScene::from_toml("").unwrap();
+    let mut errors = Vec::new();
+    for r in [1usize, 2, 3, 4] {
+        let (e, exact, strain) = surface_error(&scene, 4 * r, 2 * r, true);
+        eprintln!(
+            "generalized plane strain, refinement {r}: u(a) = {exact:.6e} m, surface error {e:.2e}, axial strain error {strain:.2e}"
+        );
+        errors.push((e, strain));
+    }
+    for w in errors.windows(2) {
+        assert!(w[0].0 / w[1].0 > 1.7, "second order: {errors:?}");
+    }
+    assert!(errors[2].0 < 1e-3 && errors[2].1 < 1e-3, "{errors:?}");
+}
+
+/// The cold state (source: a body free to expand under a uniform temperature change carries
+/// no stress): the pellet disc at a uniform `T != T_ref`, free ends, has zero stress to
+/// rounding in generalized plane strain, its axial strain `alpha (T - T_ref)`; in plane strain
+/// the same body carries `sigma_zz = -E alpha (T - T_ref)` (the constraint's stress).
+#[test]
+fn a_uniformly_heated_pellet_with_free_ends_is_stress_free() {
+    let a = 4.1e-3;
+    let mesh = pellet_mesh(a, 8, 4).unwrap();
+    let coords = mesh.coords().to_vec();
+    let centre = (0..coords.len())
+        .min_by(|&i, &j| coords[i].norm().total_cmp(&coords[j].norm()))
+        .unwrap();
+    let east = (0..coords.len())
+        .find(|&i| (coords[i] - Vector3::new(a, 0.0, 0.0)).norm() < 1e-9 * a)
+        .unwrap();
+    let dt = 700.0;
+    let body = ElasticBody::new(
+        "pellet",
+        mesh,
+        ElasticMaterial::new(E, NU).with_expansion(ALPHA, T_REF),
+    )
+    .with_temperature(vec![T_REF + dt; coords.len()])
+    .unwrap()
+    .with_dirichlet_nodes(vec![centre as u32], ComponentSet::All, |_| Vector3::zeros())
+    .with_dirichlet_nodes(vec![east as u32], ComponentSet::One(1), |_| {
+        Vector3::zeros()
+    });
+    let options = ElasticOptions::default();
+    let (u, e) = solve_generalized_plane_strain(&body, AxialForce::FREE, &options).unwrap();
+    let stress = recover_stress_with_axial_strain(&body, &u, e, &options).unwrap();
+    let scale = E * ALPHA * dt;
+    let largest = stress
+        .cells
+        .iter()
+        .flat_map(|s| s.iter())
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    eprintln!("uniform dT = {dt} K, free ends: largest stress {largest:.2e} Pa ({:.1e} of E alpha dT), eps_zz = {e:.6e}", largest / scale);
+    assert!(largest < 1e-12 * scale, "{largest}");
+    assert!((e - ALPHA * dt).abs() < 1e-13 * ALPHA * dt, "{e}");
+    let held = solve_elastic(&body).unwrap();
+    let stress = recover_stress_with_axial_strain(&body, &held, 0.0, &options).unwrap();
+    for s in &stress.cells {
+        assert!((s[2] + scale).abs() < 1e-10 * scale, "{s:?}");
+    }
 }

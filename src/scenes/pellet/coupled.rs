@@ -8,7 +8,8 @@ use std::time::Instant;
 use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
 use mortar_physics::elastic::{
-    recover_stress, ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
+    recover_stress_with_axial_strain, AxialForce, ComponentSet, ElasticBody, ElasticMaterial,
+    ElasticOptions,
 };
 use mortar_physics::heat::{
     assemble_conduction, Conductivity, HeatBody, HeatMaterial, HeatOptions,
@@ -27,7 +28,8 @@ use serde_json::{json, Value};
 
 use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
-    annulus_mesh, pellet_mesh, ContactLawName, Geometry, PelletError, PelletScene, SolverMethod,
+    annulus_mesh, pellet_mesh, AxialModel, ContactLawName, Geometry, PelletError, PelletScene,
+    SolverMethod,
 };
 use crate::generate::{extrude_mesh, rectangle_mesh, CellShape};
 use crate::io::plot::{line_chart_png, Chart, Curve};
@@ -107,7 +109,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // Meshes, the pellet's cross-section area (the heat source is q'(t) / area), and the
     // axial component (held on the end planes in 3D and r-z: plane strain).
     let (pellet_mesh, cladding_mesh, area, axial) = match geometry {
-        Geometry::PlaneStrain | Geometry::ThreeD => {
+        Geometry::Plane | Geometry::PlaneStrain | Geometry::ThreeD => {
             // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not
             // match (they share the four nodes on the axes, which hold the rigid motions). In
             // 3D both cross-sections are swept along z through `axial_layers` layers of Hex8.
@@ -154,7 +156,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let end_coordinate = move |x: &Vector3<f64>| match geometry {
         Geometry::ThreeD => Some(x.z),
         Geometry::Axisymmetric => Some(x.y),
-        Geometry::PlaneStrain => None,
+        Geometry::Plane | Geometry::PlaneStrain => None,
     };
     // Faces: lateral unless on an end plane; the radius: in the xy plane, or x in r-z.
     let lateral = move |f: &BoundaryFace| {
@@ -180,12 +182,17 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             .filter(|&i| (mesh.coords()[i as usize].xy() - xy).norm() < tol)
             .collect()
     };
-    // Plane strain in 3D and r-z: no axial displacement on the end planes.
+    // In 3D and r-z: no axial displacement on the bottom plane (symmetry), nor on the top
+    // one in plane strain (free axial expansion: the top is the axial unknown's).
+    let free_ends = scene.model.axial() == AxialModel::Generalized;
+    let held = move |f: &BoundaryFace| {
+        end_coordinate(&f.centroid).is_some_and(|z| z <= tol || (!free_ends && z >= height - tol))
+    };
     let ends = move |body: ElasticBody| -> Result<ElasticBody, PelletError> {
         if axial == usize::MAX {
             Ok(body)
         } else {
-            Ok(body.with_dirichlet_where(|f| !lateral(f), ComponentSet::One(axial), zero)?)
+            Ok(body.with_dirichlet_where(held, ComponentSet::One(axial), zero)?)
         }
     };
 
@@ -269,11 +276,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     };
     let pl = &scene.plenum;
     // Per unit length in 2D; the segment's share of the plenum in 3D and r-z.
-    let length = if geometry == Geometry::PlaneStrain {
-        1.0
-    } else {
-        height
-    };
+    let length = if geometry.is_plane() { 1.0 } else { height };
     let plenum = Plenum::from_fill(
         pl.volume * length,
         PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
@@ -291,6 +294,11 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         nominal_gap: Some(gap),
         gas: GasPressure::Plenum(plenum),
         flux_unit: 1.0 / GapConductance::DEFAULT_REFERENCE_RESISTANCE,
+        axial: if free_ends {
+            axial_forces(scene, area)
+        } else {
+            [None, None]
+        },
         ..ThermoMechOptions::default()
     };
     Ok(GapThermoMechanics::new(
@@ -312,6 +320,34 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         contact,
         &options,
     )?)
+}
+
+/// The axial forces `[pellet, cladding]` of free axial expansion: the plenum pressure on the
+/// pellet's ends over its cross-section, `-P_o A_pellet`; on the cladding's closed ends over
+/// the area its inner surface encloses, less the coolant's over the area its outer surface
+/// encloses, `P_o A_inner - P_coolant A_outer`. The areas are those of the model's own
+/// surfaces (the polygons of `20 r` edges of the cladding's circles in 2D and 3D, exact
+/// circles in r-z), so that a uniform axial stress balances them exactly; `pellet_area` is
+/// the pellet mesh's.
+fn axial_forces(scene: &PelletScene, pellet_area: f64) -> [Option<AxialForce>; 2] {
+    let c = &scene.cladding;
+    // The area of a circle of radius 1 as the model sees it.
+    let unit = if scene.model.geometry == Geometry::Axisymmetric {
+        PI
+    } else {
+        let n = (20 * scene.mesh.refinement) as f64;
+        0.5 * n * (2.0 * PI / n).sin()
+    };
+    [
+        Some(AxialForce {
+            force: 0.0,
+            per_gas_pressure: -pellet_area,
+        }),
+        Some(AxialForce {
+            force: -c.coolant_pressure * unit * c.outer_radius.powi(2),
+            per_gas_pressure: unit * c.inner_radius.powi(2),
+        }),
+    ]
 }
 
 /// Runs the coupled scene (see [`run`](super::run)).
@@ -639,9 +675,10 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let steady = summary(&problem, &x, centre);
     let heat_out = outer_heat_flow(&problem, &x)?;
     // Per unit length in 2D, over the segment in 3D.
-    let length = match scene.model.geometry {
-        Geometry::PlaneStrain => 1.0,
-        _ => scene.model.segment_height,
+    let length = if scene.model.geometry.is_plane() {
+        1.0
+    } else {
+        scene.model.segment_height
     };
     let power_in = scene.power.at(t_steady) * length;
     outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
@@ -681,6 +718,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "heat": true,
             "mechanics": true,
             "geometry": scene.model.geometry,
+            "axial": scene.model.axial(),
             "contact_law": names.1,
             "gap_conductance": names.0,
             "plenum": "ideal gas, fixed moles",
@@ -710,6 +748,11 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "interface_pressure": steady.interface_pressure,
             "plenum_pressure": steady.plenum,
             "pellet_surface_displacement": steady.displacement,
+            // The bodies' axial strains (null where the axial direction is held).
+            "axial_strain": {
+                "pellet": problem.fields(&x).axial_strain[0],
+                "cladding": problem.fields(&x).axial_strain[1],
+            },
             "power_in": power_in,
             "heat_out": heat_out,
             "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
@@ -867,8 +910,17 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
         let body = elastic[b]
             .clone()
             .with_temperature(f.temperature[b].to_vec())?;
-        von_mises.push(recover_stress(&body, &u, &problem.options().elastic)?.von_mises);
         let dim = body.components();
+        let options = &problem.options().elastic;
+        // Generalized plane strain's axial strain is not in the 2D displacement (a free end's
+        // is, in r-z and 3D).
+        let axial_strain = if dim == 2 && !options.geometry.is_axisymmetric() {
+            f.axial_strain[b].unwrap_or(0.0)
+        } else {
+            0.0
+        };
+        von_mises
+            .push(recover_stress_with_axial_strain(&body, &u, axial_strain, options)?.von_mises);
         displacement.push(
             u.chunks(dim)
                 .flat_map(|c| [c[0], c[1], if dim == 3 { c[2] } else { 0.0 }])

@@ -1,7 +1,8 @@
 //! The pellet scene of the seed: a fuel pellet (disc, `k = 1 / (A + B T)`) inside its
 //! cladding (annulus, constant `k`), helium in the gap between them, a power ramp, the
 //! cladding's outer temperature fixed (docs/physics.md, sections 3 and 4). By default it is
-//! thermomechanical ([`run_coupled`]): both bodies expand (plane-strain thermoelasticity),
+//! thermomechanical ([`run_coupled`]): both bodies expand (thermoelasticity, free to expand
+//! axially: generalized plane strain),
 //! the gap closes, the gap conductance follows the mechanical gap and the contact pressure,
 //! the interface pressure follows the seed's exponential law (or exact contact), the plenum
 //! pressure follows the gap's volume and temperature (ideal gas), the coolant presses on the
@@ -54,7 +55,8 @@
 //! volume = 2e-6              # m^3 per metre of rod
 //! [model]
 //! mechanics = true           # false: heat only, the gap held open
-//! geometry = "plane_strain"  # or "axisymmetric" (r-z) or "3d": a segment, ends held in z
+//! geometry = "plane"         # or "axisymmetric" (r-z) or "3d": a segment, its bottom held in z
+//! axial = "generalized"      # free axial expansion; or "plane_strain" (no axial strain)
 //! reference_temperature = 293.0
 //! segment_height = 1e-3      # m, the r-z and 3D segment (its plenum share: volume x height)
 //! [power]
@@ -386,15 +388,45 @@ impl Default for PlenumData {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Geometry {
-    /// The 2D plane-strain cross-section.
+    /// The 2D cross-section of a long rod; its axial direction as `[model] axial` says
+    /// (generalized plane strain by default).
     #[default]
+    Plane,
+    /// The 2D cross-section in plane strain: `geometry = "plane"` with
+    /// `axial = "plane_strain"`.
     PlaneStrain,
-    /// An axisymmetric r-z model of a pellet segment (no axial variation: its end planes held
-    /// in z, plane strain, as the 2D model).
+    /// An axisymmetric r-z model of a pellet segment: its bottom held in z (a plane of
+    /// symmetry), its top as `[model] axial` says (free and kept plane by default).
     Axisymmetric,
-    /// A 3D pellet segment: the cross-section swept along z, its end planes held in z.
+    /// A 3D pellet segment, the cross-section swept along z: bottom and top as for
+    /// [`Axisymmetric`](Self::Axisymmetric).
     #[serde(rename = "3d")]
     ThreeD,
+}
+
+impl Geometry {
+    /// Whether this is the 2D cross-section ([`Plane`](Self::Plane) or
+    /// [`PlaneStrain`](Self::PlaneStrain)).
+    pub fn is_plane(self) -> bool {
+        matches!(self, Self::Plane | Self::PlaneStrain)
+    }
+}
+
+/// The axial direction of the rod: `[model] axial`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum AxialModel {
+    /// Free axial expansion, as fuel-performance codes model a pellet stack: each body's
+    /// axial strain is one unknown (generalized plane strain in 2D; in r-z and 3D the top
+    /// end free and kept plane), balanced by its axial force: the plenum pressure on the
+    /// pellet's ends (`int sigma_zz dA = -P_o A_pellet`) and on the cladding's closed ends
+    /// with the coolant outside (`P_o A_inner - P_coolant A_outer`). Pellet and cladding are
+    /// independent axially (no axial friction).
+    #[default]
+    Generalized,
+    /// Plane strain: no axial strain in either body (the r-z and 3D segments held in z at
+    /// both ends).
+    PlaneStrain,
 }
 
 /// What is modelled: `[model]`.
@@ -406,18 +438,34 @@ pub struct ModelData {
     pub mechanics: bool,
     /// The geometry.
     pub geometry: Geometry,
+    /// The axial direction; `None`: generalized, but plane strain for
+    /// `geometry = "plane_strain"` ([`ModelData::axial`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axial: Option<AxialModel>,
     /// The temperature of zero thermal strain (K).
     pub reference_temperature: f64,
-    /// The height of the pellet segment of the 3D model (m): its end planes slide freely in
-    /// x and y and are held in z (plane strain, as the 2D model).
+    /// The height of the pellet segment of the r-z and 3D models (m).
     pub segment_height: f64,
+}
+
+impl ModelData {
+    /// The axial model in effect: the one given, else plane strain for
+    /// `geometry = "plane_strain"` and generalized otherwise.
+    pub fn axial(&self) -> AxialModel {
+        match (self.axial, self.geometry) {
+            (Some(a), _) => a,
+            (None, Geometry::PlaneStrain) => AxialModel::PlaneStrain,
+            (None, _) => AxialModel::Generalized,
+        }
+    }
 }
 
 impl Default for ModelData {
     fn default() -> Self {
         Self {
             mechanics: true,
-            geometry: Geometry::PlaneStrain,
+            geometry: Geometry::Plane,
+            axial: None,
             reference_temperature: 293.0,
             segment_height: 1e-3,
         }
@@ -693,7 +741,14 @@ impl PelletScene {
                 ct.onset_gap
             ));
         }
-        if m.geometry != Geometry::PlaneStrain && !m.mechanics {
+        if m.geometry == Geometry::PlaneStrain && m.axial == Some(AxialModel::Generalized) {
+            return bad(
+                "model.geometry = \"plane_strain\" with model.axial = \"generalized\": give \
+                 geometry = \"plane\" for generalized plane strain"
+                    .into(),
+            );
+        }
+        if !m.geometry.is_plane() && !m.mechanics {
             return bad(format!(
                 "model.geometry = {:?} with model.mechanics = false: the thermal scene is the 2D \
                  cross-section",

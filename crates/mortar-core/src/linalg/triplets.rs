@@ -41,6 +41,14 @@ impl Triplets {
         self.entries.len()
     }
 
+    /// Renumbers the row of every triplet by `f` (several rows mapped to one are summed
+    /// there, in insertion order, when the matrix is built).
+    pub fn map_rows(&mut self, f: impl Fn(u32) -> u32) {
+        for e in &mut self.entries {
+            e.row = f(e.row);
+        }
+    }
+
     /// Removes every triplet, keeping the allocation.
     pub fn clear(&mut self) {
         self.entries.clear();

@@ -15,6 +15,9 @@
 //! - [`recover_stress`]: the Cauchy stress (Voigt `[xx, yy, zz, yz, xz, xy]`) per cell and
 //!   averaged at the nodes, with the von Mises stress ([`StressField`]).
 //!
+//! - [`GeneralizedPlaneStrain`]: a 2D cross-section of a long body with one uniform axial
+//!   strain unknown fixed by the axial force ([`AxialForce`]), instead of plane strain;
+//!   [`solve_generalized_plane_strain`] for one body.
 //! - [`solve_elastic`] ([`solve_elastic_with`] for given options): the static solve of one
 //!   body held by its own displacement conditions (sparse Cholesky on the free unknowns), with
 //!   compiled examples.
@@ -25,6 +28,7 @@
 //! tying and contact (`crate::tied`, `crate::contact`) for two.
 
 mod assembly;
+mod axial;
 mod body;
 mod material;
 mod solve;
@@ -36,7 +40,8 @@ pub use crate::field::{ComponentSet, DofLayout};
 pub use assembly::{
     assemble_elastic_load, assemble_elastic_stiffness, assemble_thermal_load_matrix, ElasticOptions,
 };
+pub use axial::{solve_generalized_plane_strain, AxialForce, GeneralizedPlaneStrain};
 pub use body::{DisplacementCondition, ElasticBody, TractionCondition, VectorField};
 pub use material::{von_mises, ElasticMaterial};
 pub use solve::{solve_elastic, solve_elastic_with};
-pub use stress::{recover_stress, StressField};
+pub use stress::{recover_stress, recover_stress_with_axial_strain, StressField};

@@ -1,6 +1,6 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization};
+use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
 
 use crate::field::free::{free_block, free_numbering, FIXED};
 
@@ -82,12 +82,24 @@ pub fn solve_elastic_with(
     let k = assemble_elastic_stiffness(body, options)?;
     let f = assemble_elastic_load(body, options)?;
     let (fixed, values) = body.dirichlet_dofs();
-    let (free, m) = free_numbering(f.len(), &fixed);
+    solve_held(body, &k, &f, &fixed, &values)
+}
+
+/// Solves `k u = f` for the unknowns not in `fixed` (held at `values`) by sparse Cholesky:
+/// `K_ff u_f = f_f - K_fd u_d`. `body` names the errors.
+pub(crate) fn solve_held(
+    body: &ElasticBody,
+    k: &SparseMatrix,
+    f: &[f64],
+    fixed: &[u32],
+    values: &[f64],
+) -> Result<Vec<f64>, PhysicsError> {
+    let (free, m) = free_numbering(f.len(), fixed);
     let mut u = vec![0.0; f.len()];
-    for (&d, &v) in fixed.iter().zip(&values) {
+    for (&d, &v) in fixed.iter().zip(values) {
         u[d as usize] = v;
     }
-    let kff = free_block(&[&k], &free, m);
+    let kff = free_block(&[k], &free, m);
     // The right-hand side less the prescribed displacements' forces.
     let mut rhs = Vec::with_capacity(m);
     for (r, row) in k.outer_iterator().enumerate() {

@@ -53,7 +53,32 @@ pub fn recover_stress(
     displacement: &[f64],
     options: &ElasticOptions,
 ) -> Result<StressField, PhysicsError> {
+    recover_stress_with_axial_strain(body, displacement, 0.0, options)
+}
+
+/// [`recover_stress`] of a 2D body in generalized plane strain
+/// ([`GeneralizedPlaneStrain`](super::GeneralizedPlaneStrain)): the axial strain is
+/// `eps_zz = axial_strain` instead of zero, so
+/// `sigma_zz = lambda (eps_xx + eps_yy) + (lambda + 2 mu) eps_zz - 3 K alpha (T - T_ref)`
+/// and the in-plane normal stresses gain `lambda eps_zz`. Ignored (must be zero) in 3D and in
+/// the axisymmetric geometry, whose hoop strain is in that slot.
+///
+/// # Errors
+/// As [`recover_stress`]; [`PhysicsError::InvalidInput`] for a non-zero `axial_strain` on a
+/// 3D or axisymmetric body.
+pub fn recover_stress_with_axial_strain(
+    body: &ElasticBody,
+    displacement: &[f64],
+    axial_strain: f64,
+    options: &ElasticOptions,
+) -> Result<StressField, PhysicsError> {
     check(body, options)?;
+    if axial_strain != 0.0 && (body.layout().components != 2 || options.geometry.is_axisymmetric())
+    {
+        return Err(body.invalid(format!(
+            "an axial strain ({axial_strain}) is a 2D Cartesian body's generalized plane strain"
+        )));
+    }
     let mesh = &body.mesh;
     let layout = body.layout();
     let dim = layout.components;
@@ -99,6 +124,7 @@ pub fn recover_stress(
                     // The displacement gradient h[i][j] = du_i/dx_j (zero third row and
                     // column in 2D).
                     let mut h = [[0.0; 3]; 3];
+                    h[2][2] = axial_strain;
                     for (u, ga) in ue[..nn].iter().zip(g) {
                         for i in 0..3 {
                             for j in 0..3 {

@@ -10,8 +10,8 @@ use nalgebra::Vector3;
 use super::plenum::GasPressure;
 use crate::contact::NormalGap;
 use crate::elastic::{
-    assemble_elastic_load, assemble_elastic_stiffness, assemble_thermal_load_matrix, ElasticBody,
-    ElasticOptions,
+    assemble_elastic_load, assemble_elastic_stiffness, assemble_thermal_load_matrix, AxialForce,
+    ElasticBody, ElasticOptions, GeneralizedPlaneStrain,
 };
 use crate::error::PhysicsError;
 use crate::heat::{Conductivity, GapHeat, HeatBody, HeatOptions, Linearization, StepData};
@@ -54,10 +54,20 @@ pub struct ThermoMechOptions {
     /// The unit of the heat flux unknowns (W/m^2): with a gap conductance of the order of
     /// it, the flux unknowns are kelvin-like.
     pub flux_unit: f64,
+    /// Per body `[slave, master]`: `None` holds the axial direction as the bodies' own
+    /// conditions say (plane strain in 2D); `Some(force)` frees it with one axial unknown
+    /// whose balance is `int sigma_zz dA = force.at(P_gas)` over the body's cross-section:
+    /// in 2D (Cartesian) the uniform axial strain of generalized plane strain
+    /// ([`GeneralizedPlaneStrain`]); in the axisymmetric geometry and in 3D the axial
+    /// displacement of the body's top end (the nodes at its largest `y` in r-z, `z` in 3D),
+    /// kept plane, loaded by the force and otherwise free (the bottom held by the body's own
+    /// conditions: a segment of a long stack).
+    pub axial: [Option<AxialForce>; 2],
 }
 
 impl Default for ThermoMechOptions {
-    /// Default assembly, the mesh gap, no gas; micrometres, megapascals and 1e4 W/m^2.
+    /// Default assembly, the mesh gap, no gas; micrometres, megapascals and 1e4 W/m^2; the
+    /// axial direction as the bodies' conditions say.
     fn default() -> Self {
         Self {
             heat: HeatOptions::default(),
@@ -67,6 +77,7 @@ impl Default for ThermoMechOptions {
             displacement_unit: 1e-6,
             pressure_unit: 1e6,
             flux_unit: 1e4,
+            axial: [None, None],
         }
     }
 }
@@ -84,8 +95,33 @@ pub(crate) struct Offsets {
     pub pressure: usize,
     /// The gas pressure.
     pub gas: usize,
+    /// Per body, its axial unknown (after the gas pressure), if it has one.
+    pub axial: [Option<usize>; 2],
     /// The size.
     pub len: usize,
+}
+
+/// The state unit of the axial strain of generalized plane strain (a microstrain).
+pub(crate) const AXIAL_STRAIN_UNIT: f64 = 1e-6;
+
+/// How a body's axial direction is freed ([`ThermoMechOptions::axial`]).
+#[derive(Debug, Clone)]
+pub(crate) enum AxialFreedom {
+    /// 2D: the uniform axial strain (in [`AXIAL_STRAIN_UNIT`]).
+    Generalized(GeneralizedPlaneStrain),
+    /// r-z and 3D: the axial displacement (in the displacement unit) of these unknowns of
+    /// the body (its top end's axial components), all equal to it.
+    PlaneEnd(Vec<usize>),
+}
+
+/// A body's axial unknown: how it frees the body and the force it balances.
+#[derive(Debug, Clone)]
+pub(crate) struct Axial {
+    pub freedom: AxialFreedom,
+    pub force: AxialForce,
+    /// The body's axial extent (m; 1 in 2D): a free end's axial strain is its displacement
+    /// over it.
+    pub length: f64,
 }
 
 /// Two bodies in thermomechanical contact across a gap: transient heat conduction with `k(T)`
@@ -97,8 +133,13 @@ pub(crate) struct Offsets {
 ///
 /// Unknowns, in this order: temperatures (slave, master; K), displacements (slave, master,
 /// `node * dim + k`, in `displacement_unit`), heat fluxes leaving the slave (`flux_unit`),
-/// contact pressures (`pressure_unit`), one per slave interface node (row of D), and the gas
-/// pressure (`pressure_unit`). Residual (each body's rows; `G` the thermal load matrix,
+/// contact pressures (`pressure_unit`), one per slave interface node (row of D), the gas
+/// pressure (`pressure_unit`), and per body whose axial direction is free
+/// ([`ThermoMechOptions::axial`]) its axial unknown: the axial strain of generalized plane
+/// strain (in microstrain; the in-plane rows gain `c e` and its row is the axial balance
+/// `c . u + k e - h . (T - T_ref) - F(P_o)`, [`GeneralizedPlaneStrain`]), or a free end's
+/// axial displacement `w` (`displacement_unit`; the end's axial rows become `u_d - w` and
+/// their sum, less `F(P_o)`, is its row). Residual (each body's rows; `G` the thermal load matrix,
 /// `N` the weighted normal gap operator, `g_j = (g~_0 - N u)_j / w_j` the nodal gap, `a` the
 /// integrals `int N n` of each body's interface surface with its outward normal `n`: the gas
 /// pressure acts on each surface over its own area, the contact pressure is an interaction
@@ -133,6 +174,8 @@ pub struct GapThermoMechanics<TL, ML> {
     pub(crate) options: ThermoMechOptions,
     pub(crate) row_scale: f64,
     pub(crate) offsets: Offsets,
+    /// Per body, its axial unknown ([`ThermoMechOptions::axial`]).
+    pub(crate) axial: [Option<Axial>; 2],
 }
 
 impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
@@ -282,13 +325,26 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let nt = ns + nm;
         let rows = gap.weights.len();
         let u = [nt, nt + dim * ns, nt + dim * (ns + nm)];
+        let gas_index = u[2] + 2 * rows;
+        let axial = [
+            axial_freedom(&es, options.axial[0], &options.elastic)?,
+            axial_freedom(&em, options.axial[1], &options.elastic)?,
+        ];
+        let mut len = gas_index + 1;
+        let axial_index = [0, 1].map(|b| {
+            axial[b].as_ref().map(|_| {
+                len += 1;
+                len - 1
+            })
+        });
         let offsets = Offsets {
             t: [0, ns, nt],
             u,
             flux: u[2],
             pressure: u[2] + rows,
-            gas: u[2] + 2 * rows,
-            len: u[2] + 2 * rows + 1,
+            gas: gas_index,
+            axial: axial_index,
+            len,
         };
         let mut pinned = vec![false; dim * (ns + nm)];
         let mut pinned_values = Vec::new();
@@ -298,6 +354,22 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 let i = u[b] - u[0] + d as usize;
                 pinned[i] = true;
                 pinned_values.push((u[0] + i, v / options.displacement_unit));
+            }
+            if let Some(Axial {
+                freedom: AxialFreedom::PlaneEnd(dofs),
+                ..
+            }) = &axial[b]
+            {
+                if let Some(&d) = dofs.iter().find(|&&d| pinned[u[b] - u[0] + d]) {
+                    return Err(invalid(
+                        &body.name,
+                        format!(
+                            "node {} of the top end is held axially: a free end needs the \
+                             axial component of its nodes free",
+                            body.mesh.node_tags()[d / dim]
+                        ),
+                    ));
+                }
             }
         }
         Ok(Self {
@@ -314,6 +386,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             options: *options,
             row_scale,
             offsets,
+            axial,
         })
     }
 
@@ -385,7 +458,19 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             contact_pressure: &x[o.pressure..o.gas],
             pressure_unit: self.options.pressure_unit,
             gas_pressure: x[o.gas] * self.options.pressure_unit,
+            axial_strain: [0, 1].map(|b| self.axial_strain(x, b)),
         }
+    }
+
+    /// The axial strain of body `b` (0 slave, 1 master) in a state `x`, if its axial direction
+    /// is free ([`ThermoMechOptions::axial`]): the uniform strain of generalized plane strain,
+    /// or a free end's displacement over the body's axial extent.
+    pub fn axial_strain(&self, x: &[f64], b: usize) -> Option<f64> {
+        let (ax, ia) = (self.axial.get(b)?.as_ref()?, self.offsets.axial[b]?);
+        Some(match ax.freedom {
+            AxialFreedom::Generalized(_) => x[ia] * AXIAL_STRAIN_UNIT,
+            AxialFreedom::PlaneEnd(_) => x[ia] * self.options.displacement_unit / ax.length,
+        })
     }
 
     /// The nodal gaps `g_j` (m) of a state, one per slave interface node.
@@ -448,13 +533,25 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             let t_ref = self.elastic[b].material.reference_temperature;
             let ub = &x[o.u[b]..o.u[b + 1]];
             let tb = &x[o.t[b]..o.t[b + 1]];
+            // Generalized plane strain: the in-plane rows gain c e.
+            let gps = match (&self.axial[b], o.axial[b]) {
+                (
+                    Some(Axial {
+                        freedom: AxialFreedom::Generalized(gps),
+                        ..
+                    }),
+                    Some(ia),
+                ) => Some((gps, ia, x[ia] * AXIAL_STRAIN_UNIT)),
+                _ => None,
+            };
             for (i, (krow, grow)) in k.outer_iterator().zip(g.outer_iterator()).enumerate() {
                 let gi = o.u[b] + i;
                 let ku: f64 = krow.iter().map(|(c, v)| v * ub[c]).sum::<f64>() * uu;
                 let gt: f64 = grow.iter().map(|(c, v)| v * (tb[c] - t_ref)).sum();
                 // The gas pressure on the interface surface: nodal forces -P_o int N n.
                 let gas_force = x[o.gas] * pu * self.gas_load[b][i];
-                r[gi] = su * (ku - gt - self.load[b][i] + gas_force);
+                let axial = gps.map_or(0.0, |(gps, _, e)| gps.coupling[i] * e);
+                r[gi] = su * (ku - gt - self.load[b][i] + gas_force + axial);
                 if lin.is_some() && !self.pinned[gi - o.u[0]] {
                     for (c, v) in krow.iter() {
                         trip.push(gi as u32, (o.u[b] + c) as u32, su * uu * v);
@@ -465,6 +562,36 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                     if self.gas_load[b][i] != 0.0 {
                         trip.push(gi as u32, o.gas as u32, su * pu * self.gas_load[b][i]);
                     }
+                    if let Some((gps, ia, _)) = gps {
+                        if gps.coupling[i] != 0.0 {
+                            let v = su * gps.coupling[i] * AXIAL_STRAIN_UNIT;
+                            trip.push(gi as u32, ia as u32, v);
+                        }
+                    }
+                }
+            }
+            // The axial balance of generalized plane strain:
+            // s_u (c . u + k e - h . (T - T_ref) - F(P_o)).
+            if let (Some((gps, ia, e)), Some(ax)) = (gps, &self.axial[b]) {
+                let dt: Vec<f64> = tb.iter().map(|t| t - t_ref).collect();
+                let u_si: Vec<f64> = ub.iter().map(|v| v * uu).collect();
+                let force = ax.force.at(x[o.gas] * pu);
+                r[ia] = su * (gps.axial_force(&u_si, e, &dt) - force);
+                if lin.is_some() {
+                    for (c, &v) in gps.coupling.iter().enumerate() {
+                        if v != 0.0 {
+                            trip.push(ia as u32, (o.u[b] + c) as u32, su * uu * v);
+                        }
+                    }
+                    for (c, &v) in gps.thermal.iter().enumerate() {
+                        if v != 0.0 {
+                            trip.push(ia as u32, (o.t[b] + c) as u32, -su * v);
+                        }
+                    }
+                    let (ia32, kzz) = (ia as u32, gps.stiffness * AXIAL_STRAIN_UNIT);
+                    trip.push(ia32, ia32, su * kzz);
+                    let dgas = -su * ax.force.per_gas_pressure * pu;
+                    trip.push(ia32, o.gas as u32, dgas);
                 }
             }
         }
@@ -620,8 +747,113 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 trip.push(i as u32, i as u32, 1.0);
             }
         }
+        self.plane_end_terms(x, r, lin.is_some().then_some(&mut trip));
         Ok(lin.map(|_| trip.to_csr(n, n)))
     }
+
+    /// A free plane end (r-z, 3D): its nodes' axial equilibrium rows summed into the axial
+    /// unknown's row, the balance of the end's axial force, `sum_d r_d - s_u F(P_o)`; each of
+    /// those rows becomes `x_d - w` (the end stays plane, moving by `w`).
+    fn plane_end_terms(&self, x: &[f64], r: &mut [f64], trip: Option<&mut Triplets>) {
+        let o = self.offsets;
+        let su = self.row_scale;
+        let pu = self.options.pressure_unit;
+        let mut rows: Vec<(usize, usize)> = Vec::new();
+        for b in 0..2 {
+            let (Some(ax), Some(ia)) = (&self.axial[b], o.axial[b]) else {
+                continue;
+            };
+            let AxialFreedom::PlaneEnd(dofs) = &ax.freedom else {
+                continue;
+            };
+            let mut sum = 0.0;
+            for &d in dofs {
+                let gi = o.u[b] + d;
+                sum += r[gi];
+                r[gi] = x[gi] - x[ia];
+                rows.push((gi, ia));
+            }
+            r[ia] = sum - su * ax.force.at(x[o.gas] * pu);
+            rows.push((ia, ia));
+        }
+        let Some(trip) = trip else {
+            return;
+        };
+        if rows.is_empty() {
+            return;
+        }
+        // The end's rows move into the axial unknown's row.
+        let mut target: Vec<u32> = (0..o.len as u32).collect();
+        for &(gi, ia) in &rows {
+            target[gi] = ia as u32;
+        }
+        trip.map_rows(|row| target[row as usize]);
+        for (gi, ia) in rows {
+            if gi == ia {
+                let dgas = -su * pu * self.axial_force(gi).per_gas_pressure;
+                trip.push(ia as u32, o.gas as u32, dgas);
+            } else {
+                trip.push(gi as u32, gi as u32, 1.0);
+                trip.push(gi as u32, ia as u32, -1.0);
+            }
+        }
+    }
+
+    /// The axial force balanced by the axial unknown `index`.
+    fn axial_force(&self, index: usize) -> AxialForce {
+        (0..2)
+            .find(|&b| self.offsets.axial[b] == Some(index))
+            .and_then(|b| self.axial[b].as_ref())
+            .map_or(AxialForce::FREE, |a| a.force)
+    }
+}
+
+/// The axial unknown of `body` for the force `force` (none without one): generalized plane
+/// strain in 2D Cartesian, the top end's axial components otherwise.
+fn axial_freedom(
+    body: &ElasticBody,
+    force: Option<AxialForce>,
+    options: &ElasticOptions,
+) -> Result<Option<Axial>, PhysicsError> {
+    let Some(force) = force else {
+        return Ok(None);
+    };
+    if !(force.force.is_finite() && force.per_gas_pressure.is_finite()) {
+        return Err(body.invalid(format!("axial force {force:?} is not finite")));
+    }
+    let dim = body.components();
+    let axi = options.geometry.is_axisymmetric();
+    let (freedom, length) = if dim == 2 && !axi {
+        (
+            AxialFreedom::Generalized(GeneralizedPlaneStrain::assemble(body, options)?),
+            1.0,
+        )
+    } else {
+        let k = if axi { 1 } else { 2 };
+        let coords = body.mesh.coords();
+        let (lo, hi) = coords
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x[k]), hi.max(x[k]))
+            });
+        let length = hi - lo;
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(body.invalid(format!(
+                "a free axial end needs a body of positive axial extent, not {length}"
+            )));
+        }
+        let tol = 1e-9 * length;
+        let dofs = (0..coords.len())
+            .filter(|&n| coords[n][k] >= hi - tol)
+            .map(|n| n * dim + k)
+            .collect();
+        (AxialFreedom::PlaneEnd(dofs), length)
+    };
+    Ok(Some(Axial {
+        freedom,
+        force,
+        length,
+    }))
 }
 
 /// `int N_a n` over the faces of `surface` (a surface of `body`'s mesh, by node tags), `n`
@@ -699,6 +931,9 @@ pub struct StateView<'a> {
     pressure_unit: f64,
     /// The gas pressure (Pa).
     pub gas_pressure: f64,
+    /// Per body, its axial strain when its axial direction is free
+    /// ([`GapThermoMechanics::axial_strain`]).
+    pub axial_strain: [Option<f64>; 2],
 }
 
 impl StateView<'_> {
