@@ -1,3 +1,7 @@
+//! The mortar coupling of an interface: `Coupling` (D, M, node maps, nodal normals, statistics),
+//! `assemble_coupling` and `assemble_coupling_reusing`, which search, segment, integrate and
+//! assemble slave face by slave face on a rayon pool.
+
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Instant;

@@ -1,3 +1,6 @@
+//! `FaceGeometry`: one face's element, node coordinates and nodal normals gathered on the stack,
+//! with its map, measure and the flat/affine tests that choose the quadrature degree.
+
 use nalgebra::{Vector2, Vector3};
 
 use crate::element::{ElementRef, MAX_FACE_NODES};

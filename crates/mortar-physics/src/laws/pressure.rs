@@ -1,3 +1,6 @@
+//! The exponential contact pressure `P_c = P_o exp(S_NE (xi - g)^2)`: `ExponentialPressure`
+//! with a fixed gas pressure, `ExponentialContact` with the gas pressure an unknown.
+
 use num_traits::Float;
 
 use super::{cst, ConstraintLaw, LawError, LawPoint};
