@@ -1,4 +1,4 @@
-//! Benchmark of the frictionless contact solve (issue 9, item 6).
+//! Benchmark of the frictionless contact solve.
 //!
 //! ```text
 //! cargo run --release --example bench_contact -- --json docs/bench_contact.json

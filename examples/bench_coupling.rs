@@ -51,8 +51,8 @@
 //! `--against OTHER --at cylinder:1024,plane3d:708 --threads-list 1,2 --rounds 3` runs this
 //! build and the `bench_coupling` at `OTHER` (a copy of the previous build's) alternately and
 //! prints the ratios of their medians and whether D and M are bit-identical (see
-//! `against.rs`): the measurement the speed issue asks for, each run beside one of the
-//! previous build.
+//! `against.rs`): a speed change measured against the build before it, each run beside one
+//! of the previous build.
 
 #[path = "bench_coupling/against.rs"]
 mod against;
@@ -260,7 +260,7 @@ fn build(case: &str, n: usize, order: &str) -> Res<Interface> {
             split_in_two(&half_circle_mesh(master_n(n), true, 1)?)?,
         ),
         // One slave face against n master lines (2D) or n x n master quads (3D): the work of
-        // a face must stay linear in its partners (issue 14, item 1).
+        // a face must stay linear in its partners.
         "ratio2d" => (line_mesh(1, false, 1)?, line_mesh(n, true, 1)?),
         "ratio3d" => (
             square_quads(1, 0.0, false, 1)?,

@@ -1,4 +1,4 @@
-//! Benchmark of the thermomechanical pellet's solvers (issue 15, item 3): Newton on the
+//! Benchmark of the thermomechanical pellet's solvers: Newton on the
 //! assembled Jacobian (sparse LU every Newton step) against JFNK with the block
 //! preconditioner kept across steps, on the default scene (30 backward Euler steps through
 //! the ramp and hold, then the steady state) at several refinements.

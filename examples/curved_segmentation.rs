@@ -1,4 +1,4 @@
-//! Speed for accuracy on curved interfaces with second-order faces (issue 10 items 2 and 5),
+//! Speed for accuracy on curved interfaces with second-order faces,
 //! on two surfaces whose areas are known:
 //!
 //! - `sphere`: the sphere of radius 0.3 between a ball (master) and the box around it

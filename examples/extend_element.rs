@@ -1,4 +1,4 @@
-//! An element of one's own, end to end (issue 11): the library ships elements up to order
+//! An element of one's own, end to end: the library ships elements up to order
 //! two; here a program adds the cubic pair Gmsh writes with `-order 3` in 2D, the ten-node
 //! triangle (Gmsh type 21) and its four-node edges (Gmsh type 26), and uses them through the
 //! library's own doors on a file Gmsh made (`tests/meshes/so3_2d_tri10.msh`, two bodies meshed

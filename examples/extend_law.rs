@@ -1,4 +1,4 @@
-//! A law of one's own in the pellet scene (issue 11): heat across the gap by gas conduction
+//! A law of one's own in the pellet scene: heat across the gap by gas conduction
 //! and radiation, `q = U (T_s - T_m) + sigma eps (T_s^4 - T_m^4)`, written once over a generic
 //! float (the tangent comes by dual numbers), checked against finite differences by the
 //! library's `check_tangent`, then run in the built-in thermomechanical scene as it is, with

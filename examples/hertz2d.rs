@@ -26,7 +26,7 @@
 //! `a_exact`, `contact_cell` (the slave element at `x = 0`), `edge_cell` (the one in which
 //! `a` falls), `p0_h`, `p0_exact`, relative errors, `profile_l2`, `newton_steps`,
 //! `settled_at`, `seconds`, the forces and reactions), `rates` (observed, against the contact
-//! cell) and `targets` (the issue's: peak within 2 %, half-width within one slave element at
+//! cell) and `targets` (peak within 2 %, half-width within one slave element at
 //! the first level, the L2 error decreasing, at most 10 Newton steps per load step).
 
 use std::path::PathBuf;

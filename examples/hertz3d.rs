@@ -29,9 +29,9 @@
 //!
 //! The JSON report: the inputs, `levels` (per level: mesh sizes, `unknowns`, the computed and
 //! closed-form values at `d` and at `P` with relative errors, the brackets, `profile_l2`,
-//! `newton_steps`, `settled_at`, `seconds`, the forces and reactions) and `targets` (the
-//! issue's: `p0` within 3 % and `a` within one element at the first level, at most 10 Newton
-//! steps per load step), each at `d` and at `P`.
+//! `newton_steps`, `settled_at`, `seconds`, the forces and reactions) and `targets` (`p0`
+//! within 3 % and `a` within one element at the first level, at most 10 Newton steps per load
+//! step), each at `d` and at `P`.
 
 use std::path::PathBuf;
 

@@ -1,5 +1,5 @@
 //! The traits a user implements to extend the toolkit, in one place, each with an example
-//! that compiles and runs (issue 11). Every piece of the coupling and of the physics is one of
+//! that compiles and runs. Every piece of the coupling and of the physics is one of
 //! them, and the library's own implementations go through the same doors:
 //!
 //! | trait | what it adds | where it plugs in |

@@ -1,4 +1,4 @@
-//! A property test as a user crate writes one (issue 11, item 1): only the public
+//! A property test as a user crate writes one: only the public
 //! `mortar::testing` API (feature `proptest-support`) and the public coupling, no helper of
 //! this repository's own tests. The caller lists the element kinds; the pairs cover the same
 //! square, moved by a rigid motion (rotations uniform, translations up to the documented

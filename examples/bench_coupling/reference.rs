@@ -1,5 +1,5 @@
-//! D and M of a benchmark case saved by one build and compared by another (issue 13 item 4:
-//! "D and M agree with the previous build's to 1e-13 relative on every benchmark case").
+//! D and M of a benchmark case saved by one build and compared by another: a change to the
+//! coupling must leave D and M within 1e-13 (relative) of the previous build's on every case.
 //!
 //! `--save-reference DIR` writes the CSR arrays of D and M of each (case, n, order) to
 //! `DIR/CASE_N_ORDER.dm` (little-endian: for D then M, rows, cols, nnz as u64, then indptr and
@@ -17,7 +17,7 @@ use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
 
-/// The tolerance of issue 13 item 4.
+/// The relative tolerance within which D and M must match the saved build's.
 pub const TOLERANCE: f64 = 1e-13;
 
 /// The file of a case.

@@ -1,3 +1,5 @@
+//! The lateral surface of a cylinder about the z-axis, in Quad4 or Tri3 faces.
+
 use std::f64::consts::PI;
 
 use mortar_core::error::Result;

@@ -1,3 +1,6 @@
+//! A disc in a square or a ball in a cube (`Inclusion`): O-grid meshes of the inclusion
+//! (`ball_mesh`) and of the box around it (`box_with_hole_mesh`).
+
 use std::collections::HashMap;
 
 use mortar_core::element::volume::VolumeElementRef;

@@ -1,3 +1,5 @@
+//! Line2 surfaces in the xy-plane: the unit segment and the half circle.
+
 use mortar_core::error::Result;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_elements::LINE2;

@@ -1,3 +1,5 @@
+//! The unit square at height `z`, as Tri3 (either diagonal) or Quad4 faces.
+
 use mortar_core::error::Result;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_elements::{QUAD4, TRI3};

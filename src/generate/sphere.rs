@@ -1,3 +1,5 @@
+//! The sphere as Tri3 faces, from a subdivided icosahedron projected onto it.
+
 use std::collections::HashMap;
 
 use mortar_core::error::Result;

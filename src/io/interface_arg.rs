@@ -83,8 +83,8 @@ pub fn parse_interface_arg(arg: &str) -> Result<InterfaceArg, IoError> {
 mod tests {
     use super::*;
 
-    /// Issue 14, item 9: a group whose name contains `#` can be selected (it was cut at the
-    /// last `#`, and the file part did not exist).
+    /// A group whose name contains `#` can be selected: the argument is split at the first
+    /// `#` whose file part exists, not at the last `#`.
     #[test]
     fn a_group_name_may_contain_a_hash() {
         let dir = std::env::temp_dir().join(format!("mortar-hash-{}", std::process::id()));

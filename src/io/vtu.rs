@@ -444,8 +444,8 @@ mod tests {
     use crate::generate::{box_mesh, CellShape};
 
     #[test]
-    /// Issue 8, item 6: two bodies were written as two `<Piece>`s and meshio 5.3 read only the
-    /// first (the pellet's VTU lost the pellet). Now one piece holds both, node indices of the
+    /// Two bodies go in one `<Piece>`: meshio 5.3 reads only the first of several pieces, so
+    /// two pieces would lose the second body. One piece holds both, node indices of the
     /// second body shifted past the first's, and a field one body lacks is NaN there.
     fn bodies_in_one_piece_counts_and_errors() {
         let a = box_mesh([0.0; 3], [1.0; 3], [1, 1, 2], CellShape::Tensor, 1).unwrap();

@@ -1,4 +1,4 @@
-//! Ready-made problems of the seed, built in code: meshes, data and solver settings in one
+//! Ready-made problems, built in code: meshes, data and solver settings in one
 //! place, for the examples, the tests and the command line.
 //!
 //! - [`pellet`]: the fuel pellet in its cladding, thermomechanical (2D, r-z or 3D: expansion,

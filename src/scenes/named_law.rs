@@ -1,3 +1,5 @@
+//! `NamedLaw`: a law named in a scene file with its parameters, made by a `LawRegistry`.
+
 use std::collections::BTreeMap;
 
 use mortar_physics::laws::{DynLaw, LawError, LawRegistry};

@@ -1,4 +1,4 @@
-//! The tied heat scene of the seed: heat conduction in two bodies meshed independently and
+//! The tied heat scene: heat conduction in two bodies meshed independently and
 //! tied by mortar, with a manufactured solution, for convergence studies and patch tests.
 //!
 //! Geometries (the domain is the unit square or cube; `n` is the coarse body's number of

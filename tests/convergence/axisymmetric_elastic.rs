@@ -12,7 +12,7 @@
 //! - Free thermal expansion of a solid cylinder in plane strain, traction-free outside
 //!   (Timoshenko and Goodier, section 150):
 //!   `u(r) = (1 + nu) / (1 - nu) alpha ((1 / r) int_0^r dT r dr + (1 - 2 nu) (r / a^2) int_0^a dT r dr)`,
-//!   so `u(a) = (1 + nu) (2 alpha / a) int_0^a (T - T_ref) r dr` (PHYSICS.md, section 6);
+//!   so `u(a) = (1 + nu) (2 alpha / a) int_0^a (T - T_ref) r dr`;
 //!   for `dT = dT_0 (1 - r^2 / a^2)`: `u(a) = (1 + nu) alpha dT_0 a / 2`.
 //! - The patch test: the uniform dilatation `u = eps (r, z)` (strains `eps` in rr, zz and tt,
 //!   stress `3 K eps` in all three) lies in the discrete space and is reproduced to round-off

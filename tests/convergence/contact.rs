@@ -237,7 +237,7 @@ fn hertz_2d_criteria(run: &mortar::scenes::hertz::HertzRun, what: &str) {
 /// University Press, 1985, sec. 4.2 (a sphere on a plane, the pressure
 /// `p(r) = p0 sqrt(1 - r^2 / a^2)`): with `1 / E* = (1 - nu1^2) / E1 + (1 - nu2^2) / E2` and
 /// the approach `d`, `a = sqrt(R d)`, `p0 = 2 E* a / (pi R)`, `P = 4 E* a^3 / (3 R)`; for the
-/// load `P`, `a = (3 P R / (4 E*))^(1/3)`, `p0 = 3 P / (2 pi a^2)`. The issue's targets, at
+/// load `P`, `a = (3 P R / (4 E*))^(1/3)`, `p0 = 3 P / (2 pi a^2)`. The targets, at
 /// the imposed `d`: the peak pressure within 3 % and the contact radius within one element
 /// (the slave face along `y = 0` in which `a` ends). At the computed load `P` (four times the
 /// quarter model's vertical contact force), which leaves out the bodies' compliance away
@@ -360,7 +360,7 @@ fn the_newton_solve_is_exact_once_the_active_set_settles() {
 
 /// The 2D Hertz contact of [`hertz_cylinder_on_block_2d`] with second-order bodies (Quad9
 /// cells; the cylinder's Line3 arc faces with their middle nodes on the circle), the same
-/// source and criteria (issue 10 item 4): at the computed load the peak pressure within 2 %
+/// source and criteria: at the computed load the peak pressure within 2 %
 /// (measured +5.8e-3; first order -2.5e-4), the half-width within one slave node spacing
 /// (measured 3.4e-4 off, spacing 0.010) and bracketed, equilibrium to 1e-8. Linear
 /// multipliers (on the arc's corner nodes only) meet them with the spacing of those nodes:
@@ -400,7 +400,7 @@ fn hertz_cylinder_on_block_2d_second_order() {
 
 /// The contact patch test (the module's closed form) with second-order blocks (Quad9 below,
 /// Tri6 above in 2D; Hex27 below, Tet10 above in 3D, the upper mesh twisted in the plane of
-/// the interface): the same criteria as first order (issue 10 item 4), standard multipliers
+/// the interface): the same criteria as first order, standard multipliers
 /// in 2D, dual and linear ones in 2D and 3D. With standard multipliers a Tri6 slave's corner
 /// functions integrate to zero, so its corner nodes have no contact area (row sum of D): the nodal
 /// contact formulation refuses it with a typed error naming the node, checked here; the dual

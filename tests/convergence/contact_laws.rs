@@ -26,7 +26,7 @@ fn solve<L: mortar::physics::laws::ConstraintLaw>(
     )
 }
 
-/// The seed's exponential pressure law `P_c(g) = P_o exp(S (xi - g)^2)` through the same
+/// The exponential pressure law `P_c(g) = P_o exp(S (xi - g)^2)` through the same
 /// Newton iteration as the exact law. Source of the reference (closed form): the stacked
 /// blocks under a uniform pressure `sigma` carry it through the interface, so the pressure is
 /// `sigma` at every slave node and the gap is the one at which the law gives it,

@@ -1,4 +1,4 @@
-//! Conductivity contrast (issue 14, item 2): two rectangles tied at x = 0.5 along a
+//! Conductivity contrast: two rectangles tied at x = 0.5 along a
 //! non-matching interface, conductivities `k_left`, `k_right`, `T = 0` at x = 0 and `T = 1` at
 //! x = 1, insulated top and bottom. The exact solution is piecewise linear with the flux
 //! continuous: `q = 1 / (0.5 / k_left + 0.5 / k_right)`, `T = q x / k_left` on the left and

@@ -1,4 +1,4 @@
-//! The curved segmentation against an independent reference (issue 10 item 2): on the quarter
+//! The curved segmentation against an independent reference: on the quarter
 //! cylinder of `examples/curved_segmentation.rs` at its smallest size (n = 4: 16 Quad8 slave
 //! faces of a Hex20 tube against 9 Quad9 master faces of a Hex27 solid, their second-order
 //! nodes on the cylinder r = 0.3, h = 0.3), D and M of `SegmentBased` at subdivision levels 1

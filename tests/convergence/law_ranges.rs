@@ -1,7 +1,6 @@
-//! The ranges of the interface laws' parameters over which each formulation is tested
-//! (issue 14, item 2: "state the range each formulation is tested over"): the gap conductance
-//! through the mortar heat problem [`GapHeat`] and the seed's exponential contact penalty
-//! through the mortar contact solver, each against a closed form, across many decades of the
+//! The ranges of the interface laws' parameters over which each formulation is tested: the
+//! gap conductance through the mortar heat problem [`GapHeat`] and the exponential contact
+//! penalty `P_c = P_o exp(S_NE (xi - g)^2)` through the mortar contact solver, each against a closed form, across many decades of the
 //! parameter. The README states the ranges (beside the conductivity contrast).
 
 use mortar::core::mesh::BoundaryFace;
@@ -126,7 +125,7 @@ fn gap_conductance_is_exact_from_1e_minus_12_to_1e12() {
     );
 }
 
-/// The seed's exponential pressure law `P_c(g) = P_o exp(S (xi - g)^2)` as a contact penalty,
+/// The exponential pressure law `P_c(g) = P_o exp(S (xi - g)^2)` as a contact penalty,
 /// its stiffness `S` over 22 decades: the penetration it allows at the load, `delta =
 /// sqrt(ln(sigma / P_o) / S)`, from 1e-2 m (soft: 40 times the blocks' elastic compression)
 /// down to 1e-13 m. Source of the reference (closed form): the stacked blocks under a uniform

@@ -1,4 +1,4 @@
-//! A coarse slave face against many master faces (issue 14, item 1): the coupling splits the
+//! A coarse slave face against many master faces: the coupling splits the
 //! face's candidates into batches of `CANDIDATE_BATCH` and must stay exact. On a flat covered
 //! interface the closed forms are: the entries of D sum to the slave area (length in 2D),
 //! `D 1 = M 1` row by row (constants reproduced), and `D x_s = M x_m` for the node

@@ -51,7 +51,7 @@ fn linear_fields_are_reproduced_in_2d_and_3d() {
 
 #[test]
 fn element_based_integration_fails_the_patch_test() {
-    // The speed-for-accuracy trade of PHYSICS.md: element-based integration is not exact on a
+    // Element-based integration trades accuracy for speed: it is not exact on a
     // non-matching interface, so the linear field is only approximated.
     let coupling = CouplingOptions::default()
         .dual()

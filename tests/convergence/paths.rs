@@ -20,8 +20,8 @@ fn condensed_and_saddle_point_solutions_agree() {
         (3, Geometry::Straight, 8),
         (2, Geometry::Curved, 16),
         // Warped quads on the sphere: their dual D is diagonal to round-off since the
-        // integrals over warped faces take their non-polynomial Jacobian to 1e-10 (it was
-        // 6e-8 off, and the saddle point was kept: issue 14, item 7).
+        // integrals over warped faces take their non-polynomial Jacobian to 1e-10 (at a flat
+        // face's degree D would be 6e-8 off diagonal and `Auto` would keep the saddle point).
         (3, Geometry::Curved, 8),
     ] {
         let problem = TiedHeatScene::new(dim, geometry, n).build().unwrap();

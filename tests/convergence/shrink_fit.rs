@@ -209,7 +209,7 @@ fn shrink_fit_non_matching_coarse_slave() {
 /// Second-order bodies (Quad9 cells, Line3 arcs with their middle nodes on the circles),
 /// non-matching arcs (slave : master = 2 : 3): the arcs are no longer faceted, and the mean
 /// pressure converges to the closed form on the slave's radius, `p b / (b + delta)`, at rate
-/// 2 at least (issue 10 item 4; measured 4.0: relative errors 1.2e-3, 7.7e-5, 4.8e-6 at
+/// 2 at least (measured 4.0: relative errors 1.2e-3, 7.7e-5, 4.8e-6 at
 /// 8, 16, 32 slave cells), every node in contact, the pressure uniform to 1e-3 at 32 cells
 /// (measured 1.8e-4)
 /// (first order: 0.35 at 32 cells, nodes lifting off).

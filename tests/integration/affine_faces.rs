@@ -1,4 +1,4 @@
-//! Affinity is a property of the face, not of its type (issue 11, item 4): a straight Line3
+//! Affinity is a property of the face, not of its type: a straight Line3
 //! with its middle node at the centre maps `[-1, 1]` affinely, so the 2D coupling takes the
 //! affine path on it (the master point in one exact step instead of a bracketed root) without
 //! the element declaring `is_affine`, and gives the bits of an element that does.

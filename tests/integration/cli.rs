@@ -460,7 +460,7 @@ fn a_closed_standard_output_ends_quietly() {
     assert_eq!(out.status.code(), Some(141), "{stderr}");
 }
 
-/// Issue 14, item 5: a long transient stops cleanly on Ctrl-C. A pellet scene of 10^5 steps
+/// A long transient stops cleanly on Ctrl-C. A pellet scene of 10^5 steps
 /// (the r-z model, about half a millisecond a step) gets SIGINT after a second: the process
 /// ends with status 130 (128 + SIGINT), says it was interrupted, and leaves report.json with
 /// `"status": "interrupted"`, the steps that are valid and their history.
@@ -501,7 +501,7 @@ fn ctrl_c_stops_a_long_run_cleanly() {
 /// Quad8 master, `tests/meshes/so_3d_hex20.msh`, the unit square `z = 0.5`): the summary
 /// names the space, D 1 = M 1 and sum(D) = 1 (checked by `couple_and_check`), and only the
 /// corner nodes of the slave faces have rows (closed form: linear multipliers live on the
-/// corners, issue 10 item 3).
+/// corners).
 #[test]
 fn couples_second_order_faces_with_linear_multipliers() {
     let dir = TempDir::new("clilinear");

@@ -393,7 +393,7 @@ fn bad_options_and_unwritable_outputs() {
     assert_eq!(run.status.code(), Some(2));
 }
 
-/// Issue 14, item 6: a fin (a third face on an edge) and a T junction (a third line at a node)
+/// A fin (a third face on an edge) and a T junction (a third line at a node)
 /// are refused, whether the surfaces are oriented by the program or kept as given, naming
 /// every face involved with its line in the file.
 #[test]

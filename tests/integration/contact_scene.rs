@@ -490,7 +490,7 @@ fn scene_warnings_are_printed_and_reported() {
     );
 }
 
-/// Scene files name their contact law (issue 11, item 2): `named_law = { name = ... }` with a
+/// Scene files name their contact law: `named_law = { name = ... }` with a
 /// law of the registry runs as the built-in `law` key does (exact contact: the uniform
 /// pressure to 1e-8); an unknown name is refused naming the key and the known laws; `law` and
 /// `named_law` together are refused.

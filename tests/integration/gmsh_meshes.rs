@@ -56,11 +56,10 @@ fn couple(dir: &TempDir, out: &str, file: &str, extra: &[&str]) -> std::process:
     mortar(&args)
 }
 
-/// Reproduces issue 8, item 3: Gmsh's cladding curves run the same way as the pellet's, so
-/// `couple` refused the pair (master "looks the same way") while `run` solved it. The master
-/// is now turned outward from the cells of its file, every row of D is covered across the
-/// open gap (item 2: no zero rows near 0, 90, 180, 270 degrees), and sum(D) is the slave's
-/// length.
+/// Gmsh's cladding curves run the same way as the pellet's (as given, the master "looks the
+/// same way"): `couple` turns the master outward from the cells of its file and couples the
+/// pair as `run` does, every row of D is covered across the open gap (no zero rows near 0,
+/// 90, 180, 270 degrees), and sum(D) is the slave's length.
 #[test]
 fn couples_the_2d_pellet_and_cladding_across_the_open_gap() {
     let dir = TempDir::new("g-2d");
@@ -99,7 +98,7 @@ fn couples_the_2d_pellet_and_cladding_across_the_open_gap() {
     assert!(!dir.join("kept").exists());
 }
 
-/// Issue 8, items 2 and 3 in 3D: the cylinder pair couples; the slave area the master does not
+/// The same in 3D: the cylinder pair couples across the open gap; the slave area the master does not
 /// cover (slivers at the two ends, where the tilted facets of the pellet project past the
 /// cladding's end across the gap) is reported as a named warning and in the summary, and
 /// `--require-full-coverage` turns it into an error that writes nothing.
@@ -146,7 +145,7 @@ fn couples_the_3d_pellet_and_cladding_and_names_the_uncovered_area() {
     assert!(!dir.join("strict").exists(), "output written on error");
 }
 
-/// Issue 8, item 3: a 2D file named without its group is ambiguous (the disc and annulus, or
+/// A 2D file named without its group is ambiguous (the disc and annulus, or
 /// their boundary lines): the error names the groups the file has.
 #[test]
 fn a_2d_file_without_a_group_lists_its_groups() {

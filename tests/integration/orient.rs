@@ -1,5 +1,5 @@
 //! Orientation of surfaces before coupling (`mortar::core::mesh::orient`) and the search
-//! radius across an open gap (issue 8, items 2 and 3), through the library.
+//! radius across an open gap, through the library.
 //!
 //! Reference values are closed forms: the unit square has area 1, and what D misses of it is
 //! what the warning reports uncovered.

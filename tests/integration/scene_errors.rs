@@ -54,8 +54,7 @@ fn unknown_keys_are_named_with_their_line() {
     );
     let bad = text.replace("[interface]", "[interface]\nmultiplier = \"dual\"");
     assert_fails(&dir, "key2.toml", &bad, &["unknown field `multiplier`"]);
-    // A value of the wrong type is named by its key as well as its line (issue 14, item 9:
-    // the line alone was given).
+    // A value of the wrong type is named by its key as well as its line.
     let bad = text.replace("conductivity = 2.0", "conductivity = \"2.0\"");
     let line = 1 + bad.lines().position(|l| l.contains("\"2.0\"")).unwrap();
     let body = bad
@@ -254,8 +253,8 @@ fn scene_kinds() {
         ),
         &["rho_cp", "transient"],
     );
-    // A step count without end (it ran on and on) is refused at once, naming the key and
-    // the limit (issue 14, item 5).
+    // A step count too large to ever finish is refused at once, naming the key and the
+    // limit.
     for steps in ["1000000000000", "9223372036854775807"] {
         assert_fails(
             &dir,

@@ -1208,7 +1208,7 @@ fn exponential<'a>(changes: &[(&'a str, &'a str)]) -> Vec<(&'a str, &'a str)> {
     all
 }
 
-/// The gap at which `P_o exp(S (xi - g)^2)` is `p` (`g < xi`): the seed's exponential law
+/// The gap at which `P_o exp(S (xi - g)^2)` is `p` (`g < xi`): the exponential pressure law
 /// solved for the gap.
 fn exponential_gap(p: f64, po: f64, s: f64, xi: f64) -> f64 {
     xi - ((p / po).ln() / s).sqrt()

@@ -516,7 +516,7 @@ fn tied_heat_scene_on_second_order_bodies_is_exact() {
     }
 }
 
-/// Curved second-order faces in 3D (issue 10 item 2): the sphere of radius 0.3 between a Hex27
+/// Curved second-order faces in 3D: the sphere of radius 0.3 between a Hex27
 /// ball (master) and a Hex27 box around it (slave; `box_with_hole_mesh` makes hexahedra in
 /// 3D), their second-order nodes on the sphere.
 /// The slave is fully covered, so sum(D) is its own area (its Jacobian integrated by a
@@ -600,8 +600,8 @@ fn curved_second_order_sphere_converges_with_the_subdivision_level() {
 
 /// A quadratic field (`u = 0.7 x^2 - 0.4 y^2 + 0.2 z^2 + 0.5 x y`, with its source) on the
 /// straight interface of the tied-heat study raised to second order (Quad9 | Tri6 in 2D,
-/// Hex27 | Tet10 in 3D, meshes 2:3), standard multipliers: reproduced to 1e-10 at every node
-/// (issue 10 item 4), the Dirichlet slave nodes' multipliers redistributed so that linear
+/// Hex27 | Tet10 in 3D, meshes 2:3), standard multipliers: reproduced to 1e-10 at every node,
+/// the Dirichlet slave nodes' multipliers redistributed so that linear
 /// fluxes stay representable (equal shares gave 7.8e-6 in 2D). Dual multipliers represent
 /// only constants across faces (each face's coefficients of a linear function differ), so the
 /// linear flux of this field is not in their space: in 3D they miss it by 3.8e-5 at this
@@ -674,7 +674,7 @@ fn second_order_tie_reproduces_a_quadratic_field() {
 /// Mixed first- and second-order sides: a Tri3 or Quad4 plane (`generate`) against the
 /// Gmsh-made Quad8 and Quad9 faces, and the Gmsh-made Tri6 faces against a Quad4 plane, at the
 /// interface `z = 0.5`: sum(D) = 1 and D f = M f for f = 1, x, y, z to 1e-12, standard and
-/// dual (issue 10 item 1).
+/// dual.
 #[test]
 fn first_order_faces_couple_with_second_order_ones() {
     use mortar::generate::{square_quads, square_triangles, Diagonal};

@@ -1,6 +1,6 @@
-//! The closed-form integration of clip polygons (3D linear triangles, segment-based; issue
-//! 13, item 1) against the general path it replaces: the same D and M, to round-off, on
-//! every interface it takes, and the same counts and warnings.
+//! The closed-form integration of clip polygons (3D linear triangles, segment-based) against
+//! the general path it replaces: the same D and M, to round-off, on every interface it takes,
+//! and the same counts and warnings.
 //!
 //! Reference: the general path, forced by `common::Plain` (the strategy's quadrature points
 //! on the clip triangles, integrated by the coupling), whose exactness on affine faces the

@@ -196,10 +196,10 @@ fn dual_d_is_written_diagonal_and_says_what_it_dropped() {
     }
 }
 
-/// Issue 14, item 7 (the reproducer): slave Quad4 faces warped out of their plane by 0.02 and
-/// 0.2 of their size (a checkerboard of node heights: every quad a saddle) against a flat
-/// master had sum(D) 4e-4 and 3.7e-2 short of the bilinear surfaces' area (their projection
-/// on the auxiliary plane was measured). Source of the reference: the nodal areas
+/// Slave Quad4 faces warped out of their plane by 0.02 and 0.2 of their size (a checkerboard
+/// of node heights: every quad a saddle) against a flat master: integrated on their projection
+/// onto the auxiliary plane, sum(D) falls 4e-4 and 3.7e-2 short of the bilinear surfaces'
+/// area, so the faces themselves must be integrated. Source of the reference: the nodal areas
 /// `int N_j dA` of the bilinear faces by their own quadrature (`common::nodal_areas`); the
 /// row sums of D must equal them to 1e-10, standard and dual.
 #[test]

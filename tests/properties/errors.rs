@@ -440,8 +440,8 @@ fn with_duplicate(mesh: &SurfaceMesh, face: usize, tag: u64, turn: usize) -> Sur
 proptest! {
     #![proptest_config(config(32))]
 
-    /// Regression (issue 14, item 6): a face given twice (same nodes, any starting node) made
-    /// its area count twice (sum(D) 1.12 for a unit square, exit 0). It is a topology error
+    /// A face given twice (same nodes, any starting node) would count its area twice (sum(D)
+    /// 1.12 for a unit square, exit 0), so it is a topology error
     /// naming both faces, on either side, in 2D and 3D.
     #[test]
     fn a_duplicated_face_is_a_topology_error_naming_both(
@@ -466,9 +466,8 @@ proptest! {
         prop_assert!(text.contains("duplicate"), "{text}");
     }
 
-    /// Regression (issue 14, item 6): a third face on an interior edge (a fin standing out of
-    /// the surface, above or below it) was accepted, its area added to the interface's. It is
-    /// a topology error naming the three faces, on either side.
+    /// A third face on an interior edge (a fin standing out of the surface, above or below it)
+    /// would add its area to the interface's, so it is a topology error naming the three faces, on either side.
     #[test]
     fn a_fin_on_an_interior_edge_is_a_topology_error_naming_its_faces(
         (mesh, as_master) in (cell_kind(), 2..=4usize, any::<bool>()).prop_flat_map(|(k, n, m)| {
@@ -502,8 +501,8 @@ proptest! {
         }
     }
 
-    /// Regression (issue 14, item 6): a third line at an interior node of a 2D interface (a T
-    /// junction) was accepted. It is a topology error naming the three lines.
+    /// A third line at an interior node of a 2D interface (a T junction) is a topology error
+    /// naming the three lines.
     #[test]
     fn a_t_junction_of_three_lines_is_a_topology_error_naming_them(
         n in 2..=8usize,

@@ -1,4 +1,4 @@
-//! No false diagnosis (issue 14, item 8): coarse closed surfaces whose neighbouring faces turn
+//! No false diagnosis: coarse closed surfaces whose neighbouring faces turn
 //! by 120 degrees are valid, and a valid interface stays valid, with D and M scaled by the
 //! scale's power, from 1e-100 to 1e100; beyond what double precision carries, a typed error
 //! names the range.

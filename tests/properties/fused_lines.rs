@@ -1,4 +1,4 @@
-//! The fused kernel for straight two-node lines (2D, segment-based; issue 13, item 2)
+//! The fused kernel for straight two-node lines (2D, segment-based)
 //! against the general path it replaces: the same D and M, to round-off, on every interface
 //! it takes, and the same warnings where it hands faces back.
 //!

@@ -1,4 +1,4 @@
-//! The sorted merge of a straight 2D interface (issue 13, item 2) against the general path it
+//! The sorted merge of a straight 2D interface against the general path it
 //! replaces: the same D and M, to round-off, on every interface it takes, and the general
 //! path's results (warnings included) on every interface it leaves.
 //!

@@ -1,3 +1,5 @@
+//! The two-node line `Line2` (Gmsh type 1).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

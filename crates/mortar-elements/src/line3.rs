@@ -1,3 +1,5 @@
+//! The three-node quadratic line `Line3` (Gmsh type 8).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

@@ -1,3 +1,5 @@
+//! The four-node bilinear quadrilateral face `Quad4` (Gmsh type 3).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

@@ -1,3 +1,5 @@
+//! The eight-node serendipity quadrilateral face `Quad8` (Gmsh type 16).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

@@ -1,3 +1,5 @@
+//! The nine-node biquadratic quadrilateral face `Quad9` (Gmsh type 10).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

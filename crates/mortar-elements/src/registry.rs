@@ -1,3 +1,6 @@
+//! `ElementRegistry`: surface elements by Gmsh type number and by name, the built-in ones
+//! first, user elements added with `register`.
+
 use mortar_core::element::{ElementRef, SurfaceElement};
 
 use crate::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};

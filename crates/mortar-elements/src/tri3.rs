@@ -1,3 +1,5 @@
+//! The three-node linear triangle face `Tri3` (Gmsh type 2).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

@@ -1,3 +1,5 @@
+//! The six-node quadratic triangle face `Tri6` (Gmsh type 9).
+
 use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
 use nalgebra::Vector2;
 

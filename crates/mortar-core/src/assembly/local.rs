@@ -1,3 +1,6 @@
+//! The local blocks of one slave face: its D block and one M block per master face it meets,
+//! integrated from the paired quadrature points the integration strategy hands over.
+
 use super::key_index::KeyIndex;
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::integration::PairedPoint;

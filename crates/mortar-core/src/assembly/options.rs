@@ -1,3 +1,6 @@
+//! `CouplingOptions`: the multiplier space, integration strategy, projector, thread count and
+//! measure a coupling is computed with, and their defaults.
+
 use std::sync::Arc;
 
 use crate::error::Result;

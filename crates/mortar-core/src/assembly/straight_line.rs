@@ -1,4 +1,4 @@
-//! A 2D interface along one straight line, coupled as a sorted merge (issue 13, item 2).
+//! A 2D interface along one straight line, coupled as a sorted merge.
 //!
 //! When the projection direction is one vector `n` at every point of the slave (the nodal
 //! normals of a straight slave line), projecting along `n` is taking the coordinate

@@ -1,3 +1,7 @@
+//! `CouplingWarning`: what a coupling noticed without failing (uncovered slave area, master or
+//! slave faces overlapping, skipped pairs, a dual D that is not diagonal), returned with the
+//! operators so that nothing is dropped silently.
+
 use std::fmt;
 
 use crate::error::MortarError;

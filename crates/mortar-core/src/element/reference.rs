@@ -1,3 +1,6 @@
+//! Reference domains of surface elements (`[-1, 1]`, the unit triangle, `[-1, 1]^2`) and the
+//! `ReferenceElement` trait: shape functions and their derivatives on those domains.
+
 use nalgebra::Vector2;
 
 /// The largest node count of a surface element (Quad9).

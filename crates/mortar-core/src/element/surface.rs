@@ -1,3 +1,6 @@
+//! `SurfaceElement`: a reference element mapped into space (points, tangents, unit normals and
+//! Jacobians), and `ElementRef`, the shared static handle the meshes store.
+
 use nalgebra::{Vector2, Vector3};
 
 use super::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};

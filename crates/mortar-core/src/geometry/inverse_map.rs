@@ -1,3 +1,7 @@
+//! Inverse maps of surface elements: the reference coordinates of a point, by Newton's method
+//! on the face's map projected into a plane, or on a line's map along one coordinate, with
+//! the reason when it fails.
+
 use nalgebra::{Matrix2, Vector2};
 
 use crate::element::{ReferenceElement, MAX_FACE_NODES};

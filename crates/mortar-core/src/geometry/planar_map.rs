@@ -1,3 +1,6 @@
+//! `PlanarMap`: a face's map into the auxiliary plane, set up once and inverted many times
+//! (a 2x2 product for affine faces, Newton otherwise).
+
 use nalgebra::{Matrix2, Vector2};
 
 use super::inverse_map::planar_map_and_jacobian;

@@ -1,3 +1,6 @@
+//! `AuxiliaryPlane`: the plane through a slave face's centre with its orthonormal in-plane
+//! basis, onto which the 3D segmenter projects both faces before clipping.
+
 use nalgebra::{Vector2, Vector3};
 
 /// A plane through `origin` with unit normal `normal` and an orthonormal in-plane basis

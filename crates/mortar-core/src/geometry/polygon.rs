@@ -1,3 +1,6 @@
+//! Planar polygons on the stack (`Polygon`): signed area, diameter, deduplication of close
+//! vertices and triangulation into the triangles that the quadrature integrates.
+
 use arrayvec::ArrayVec;
 use nalgebra::Vector2;
 

@@ -1,4 +1,4 @@
-//! 3D segmentation of curved second-order faces (issue 10 item 2): the clip polygon of two
+//! 3D segmentation of curved second-order faces: the clip polygon of two
 //! curved faces is not polygonal, so each face is cut, in its reference coordinates, into
 //! `L^2` sub-triangles (a `Tri6` into the `L^2` of a regular split, a `Quad8`/`Quad9` into
 //! `L^2` squares of two triangles each), each replaced by the flat triangle through its mapped

@@ -1,3 +1,5 @@
+//! The default quadrature degree of the mortar integrands for a pair of faces.
+
 use crate::element::SurfaceElement;
 
 /// The degree of the mortar integrands `Phi_j N_k` and `Phi_j N_l^m` on affine faces: the

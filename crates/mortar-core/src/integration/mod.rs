@@ -230,7 +230,7 @@ pub const CANDIDATE_BATCH: usize = 4096;
 /// adds. A genuine small overlap is far wider: 1e-5 at 1e5 from the origin (5.6e4 roundings,
 /// `tests/integration/small_overlaps.rs`); on the benchmark's cylinder at n = 1024, 382
 /// corner triangles of 1e-18 to 1e-17 (1e-13 of a face, 1e-10 to 2e-9 wide: 1e5 roundings
-/// and more), which the area alone dropped before stop 43.
+/// and more), which a test on the area alone would drop.
 pub(crate) const SLIVER_ROUNDINGS: f64 = 64.0;
 
 /// Whether a 3D clip polygon `clip` of (signed) `area` counts as an overlap: more than

@@ -1,3 +1,6 @@
+//! `SegmentBased`: integration over the exact slave-master overlaps (line segments in 2D,
+//! clip polygons in 3D, subdivided for curved second-order faces), exact on affine faces.
+
 use super::curved_3d::{self, subdivision_level, DEFAULT_CURVED_TOLERANCE, MAX_SUBDIVISION};
 use super::{
     segments_2d, segments_3d, IntegrationStrategy, LineSegments, PairedRule, PolygonSegments,

@@ -1,3 +1,6 @@
+//! `FaceGeometry`: one face's element, node coordinates and nodal normals gathered on the stack,
+//! with its map, measure and the flat/affine tests that choose the quadrature degree.
+
 use nalgebra::{Vector2, Vector3};
 
 use crate::element::{ElementRef, MAX_FACE_NODES};
@@ -8,7 +11,7 @@ use crate::quadrature::{Quadrature, QuadratureRule};
 
 /// The quadrature degree added for a warped or curved face (see [`FaceGeometry::is_flat`]):
 /// a bilinear quad whose corners leave its plane by 0.2 of its size then integrates to 1e-10
-/// of its nodal areas, standard and dual (the degree of a flat face: 6e-8; issue 14, item 7).
+/// of its nodal areas, standard and dual (the degree of a flat face: 6e-8).
 pub const WARPED_EXTRA_DEGREE: u32 = 9;
 
 /// One face's geometry gathered on the stack: element, node coordinates and (on the slave side)

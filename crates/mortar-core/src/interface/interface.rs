@@ -1,3 +1,6 @@
+//! `Interface`: a validated slave/master pair of surface meshes with the slave's averaged
+//! nodal normals and the maps from mesh nodes to rows of D and columns of M.
+
 use std::sync::OnceLock;
 
 use nalgebra::Vector3;

@@ -1,8 +1,8 @@
 //! CSR matrices from arrays the toolkit filled itself, their structure checked in parallel.
 //!
 //! `sprs::CsMat::new` checks a matrix's structure in one pass on one thread: at 10^6 rows,
-//! 1.5 % of a two-thread coupling of 10^6 lines (stop 40's profile of arc2d), 6.2 ms of a
-//! 141 ms two-thread call on line2d (stop 41's). The assembly writes its arrays row block by
+//! 1.5 % of a two-thread coupling of 10^6 lines (a profile of arc2d), 6.2 ms of a 141 ms
+//! two-thread call on line2d. The assembly writes its arrays row block by
 //! row block in parallel, so it checks them the same way: every check `CsMat::new` makes,
 //! each block on its own thread, then the matrix built unchecked. A structure that fails
 //! goes to `CsMat::new`, which says what is wrong.

@@ -1,3 +1,7 @@
+//! Sparse assembly in a fixed summation order: `Triplets` and `RowAccumulator` gather
+//! `(row, column, value)` entries and build CSR matrices that are the same bit for bit
+//! whatever the thread count.
+
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 

@@ -1,3 +1,6 @@
+//! `NodeSet`: the coordinates and tags of a mesh's nodes and the index of each tag, shared by
+//! the surface and volume meshes.
+
 use std::collections::hash_map::Entry;
 
 use nalgebra::Vector3;

@@ -1,3 +1,6 @@
+//! `SurfaceMesh`: the nodes and faces of one side of an interface (tags, coordinates, element
+//! types and connectivity), and `FaceView`, one face read from it.
+
 use nalgebra::Vector3;
 
 use super::nodes::{NodeRefusal, NodeSet};

@@ -1,3 +1,6 @@
+//! `VolumeMesh`: the nodes and cells of a body, the extraction of its boundary faces as a
+//! `SurfaceMesh`, and `VolumeMeshError`, which names the node or cell at fault.
+
 use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 

@@ -1,3 +1,6 @@
+//! `LmBasis`, the multiplier basis on one slave face (`Phi_j = sum_k a[j][k] N_k`), and the
+//! `MultiplierSpace` trait that builds it per face.
+
 use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
 use crate::geometry::ModelGeometry;

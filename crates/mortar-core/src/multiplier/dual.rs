@@ -1,3 +1,7 @@
+//! Dual (biorthogonal) multipliers: per slave face `A = D_e M_e^-1`, so that D is diagonal on a
+//! covered interface, with the recombination of the shape functions that second-order faces
+//! need first.
+
 use nalgebra::SMatrix;
 
 use super::{LmBasis, MultiplierSpace};

@@ -1,3 +1,6 @@
+//! Linear multipliers on second-order faces: one multiplier per corner node, carrying the
+//! first-order shape function of that corner; edge and centre nodes get none.
+
 use arrayvec::ArrayVec;
 use nalgebra::{DMatrix, Vector2};
 

@@ -1,3 +1,5 @@
+//! Standard multipliers: the slave shape functions themselves (`Phi_j = N_j`).
+
 use super::{LmBasis, MultiplierSpace};
 use crate::element::ElementRef;
 use crate::error::Result;

@@ -1,3 +1,6 @@
+//! Quadrature rules on the reference line, triangle and square (`QuadratureRule`), by degree,
+//! with a cache of the rules already built.
+
 use nalgebra::Vector2;
 
 use crate::element::ReferenceDomain;

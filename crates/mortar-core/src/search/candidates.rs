@@ -1,3 +1,7 @@
+//! The contact search: BVHs over the master faces' bounding boxes (`MasterTree`), queried with
+//! each slave face for its candidate master faces (`Candidates`, sorted, so independent of
+//! the thread count).
+
 use std::sync::Arc;
 
 use arrayvec::ArrayVec;

@@ -1,3 +1,5 @@
+//! The twenty-node serendipity hexahedron `Hex20` (Gmsh type 17) and its `Quad8` faces.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
 use nalgebra::Vector3;

@@ -1,3 +1,5 @@
+//! The twenty-seven-node triquadratic hexahedron `Hex27` (Gmsh type 12) and its `Quad9` faces.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
 use nalgebra::Vector3;

@@ -1,3 +1,5 @@
+//! The eight-node trilinear hexahedron `Hex8` (Gmsh type 5) and its `Quad4` faces.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
 use nalgebra::Vector3;

@@ -1,3 +1,5 @@
+//! The four-node bilinear quadrilateral cell of a 2D body (Gmsh type 3) and its `Line2` edges.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ElementRef, ReferenceElement};
 use nalgebra::{Vector2, Vector3};

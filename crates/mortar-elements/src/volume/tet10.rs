@@ -1,3 +1,5 @@
+//! The ten-node quadratic tetrahedron `Tet10` (Gmsh type 11) and its `Tri6` faces.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
 use nalgebra::Vector3;

@@ -1,3 +1,5 @@
+//! The four-node linear tetrahedron `Tet4` (Gmsh type 4) and its `Tri3` faces.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
 use nalgebra::Vector3;

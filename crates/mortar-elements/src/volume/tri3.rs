@@ -1,3 +1,5 @@
+//! The three-node triangle cell of a 2D body (Gmsh type 2) and its `Line2` edges.
+
 use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ElementRef, ReferenceElement};
 use nalgebra::{Vector2, Vector3};

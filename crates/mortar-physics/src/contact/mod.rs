@@ -16,7 +16,7 @@
 //! [`ContactComplementarity`](crate::laws::ContactComplementarity) `C = p - max(0, p - c g)`,
 //! the generalised derivative makes it the semi-smooth Newton of the primal-dual active set
 //! method (active: `g = 0`; inactive: `p = 0`), which, the problem being linear otherwise,
-//! ends when the active set stops changing; with a regularised law such as the seed's
+//! ends when the active set stops changing; with a regularised law such as the exponential
 //! [`ExponentialPressure`](crate::laws::ExponentialPressure) it is Newton's method on the
 //! pressure law, its tangent from the law's dual numbers. `c` is chosen from the stiffness
 //! and the nodal areas when not given ([`automatic_complementarity`]).

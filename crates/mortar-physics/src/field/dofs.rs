@@ -1,3 +1,6 @@
+//! Numbering of a nodal field's unknowns (`DofLayout`: `node * components + k`) and
+//! `ComponentSet`, the components a condition acts on.
+
 use std::fmt;
 use std::str::FromStr;
 

@@ -1,3 +1,6 @@
+//! `HeatBody`: a volume mesh with its thermal material (`HeatMaterial`), source, and Dirichlet
+//! and Neumann conditions.
+
 use std::fmt;
 use std::sync::Arc;
 

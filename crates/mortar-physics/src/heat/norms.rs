@@ -1,3 +1,6 @@
+//! L2, H1-seminorm and largest nodal errors of a discrete temperature against an exact
+//! solution (`error_norms`), for convergence studies.
+
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::mesh::VolumeMesh;
 use mortar_core::quadrature::VolumeQuadratureRule;

@@ -1,3 +1,7 @@
+//! `TiedHeat`: linear heat conduction in two bodies tied by mortar across a non-conforming
+//! interface, steady or by backward Euler, with its solution, timings and the limits on the
+//! conductivity contrast it accepts.
+
 use std::time::Instant;
 
 use mortar_core::mesh::SurfaceMesh;

@@ -1,3 +1,6 @@
+//! `check_tangent`: a law's tangent by dual numbers against central finite differences of its
+//! residual, argument by argument.
+
 use super::{evaluate, ConstraintLaw, LawError, LawPoint};
 
 /// The tangent of a law at a point against central finite differences of its residual, one

@@ -1,3 +1,6 @@
+//! `ContactComplementarity`: exact frictionless contact as the complementarity function
+//! `C = t - max(0, t - c g)`, solved by semi-smooth Newton.
+
 use num_traits::Float;
 
 use super::{cst, ConstraintLaw, LawError, LawPoint};

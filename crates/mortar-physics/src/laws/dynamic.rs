@@ -1,3 +1,6 @@
+//! Laws chosen at run time: `DynLaw`, an object-safe law with its name, and `LawRegistry`,
+//! which makes the shipped and the user's laws by name from numeric parameters.
+
 use std::collections::BTreeMap;
 use std::fmt;
 use std::sync::Arc;

@@ -1,3 +1,7 @@
+//! Heat across a gap: the gas conductivity `k_g(T)` (`GasConductivity`), the Ross-Stoute gap
+//! conductance at a fixed width (`GapConductance`) and at the mechanical gap with contact
+//! conductance (`MechanicalGapConductance`), in resistance form.
+
 use num_traits::Float;
 
 use super::{cst, ConstraintLaw, LawError, LawPoint};

@@ -15,7 +15,7 @@
 //! - [`MechanicalGapConductance`]: the same across a gap that moves, `U = k_g(T) /
 //!   (max(g_n, 0) + added) + h_contact p_contact` with the point's mechanical gap and contact
 //!   pressure (the pellet in its cladding).
-//! - [`ExponentialPressure`]: the seed's regularised contact pressure
+//! - [`ExponentialPressure`]: the regularised (exponential) contact pressure
 //!   `P_c = P_o exp(S_NE (xi - g)^2)`, overflow-safe; [`ExponentialContact`], the same with
 //!   `P_o` the point's gas pressure as it goes and the contact pressure `P_c - P_o` as the
 //!   multiplier.

@@ -1,8 +1,11 @@
+//! The exponential contact pressure `P_c = P_o exp(S_NE (xi - g)^2)`: `ExponentialPressure`
+//! with a fixed gas pressure, `ExponentialContact` with the gas pressure an unknown.
+
 use num_traits::Float;
 
 use super::{cst, ConstraintLaw, LawError, LawPoint};
 
-/// The seed's regularised gap pressure
+/// The regularised (exponential) gap pressure
 ///
 /// ```text
 /// P_c(g) = P_o exp(S_NE (xi - g)^2)   for g < xi,      P_c = P_o   for g >= xi,
@@ -131,7 +134,7 @@ impl ConstraintLaw for ExponentialPressure {
     }
 }
 
-/// The seed's exponential law with the gas pressure as it goes: the multiplier is the contact
+/// The exponential pressure law with the gas pressure as it goes: the multiplier is the contact
 /// pressure `p_c = P_c - P_o` (Pa, in excess of the gas pressure, which acts on both surfaces
 /// beside it), and `P_o` is the point's [`gas_pressure`](LawPoint::gas_pressure), an unknown
 /// of a problem with a plenum:

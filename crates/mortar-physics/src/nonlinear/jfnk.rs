@@ -1,3 +1,6 @@
+//! Jacobian-free Newton-Krylov: the Jacobian applied by finite differences of the residual
+//! (`FiniteDifferenceJacobian`) and solved by preconditioned GMRES (`jfnk_solve`).
+
 use std::cell::RefCell;
 
 use mortar_core::linalg::{

@@ -1,3 +1,6 @@
+//! Newton's method with backtracking line search and Eisenstat-Walker forcing (`newton`), for
+//! any `NewtonProblem` that gives a residual and solves its own linearised system.
+
 use std::time::Instant;
 
 use mortar_core::linalg::SparseMatrix;

@@ -1,3 +1,6 @@
+//! `SolverStats`: counts and timings of Newton steps, linear iterations and factorisations,
+//! accumulated over the solves of a problem.
+
 use std::time::Instant;
 
 use mortar_core::linalg::{LuFactorization, SparseMatrix};

@@ -1,3 +1,7 @@
+//! How a tied system is solved: dual-condensed SPD or saddle point (`Formulation`), the
+//! automatic choice between them, the treatment of Dirichlet slave nodes, and the report of
+//! which was taken and why.
+
 use std::fmt;
 
 /// How a tied system is solved.

@@ -1,3 +1,7 @@
+//! `TiedSystem`: the linear system of two bodies tied by mortar, built and factorised in the
+//! chosen formulation (condensed Cholesky, substructured Cholesky or saddle point), and its
+//! solve into both fields and the multipliers.
+
 use std::time::Instant;
 
 use rayon::prelude::*;

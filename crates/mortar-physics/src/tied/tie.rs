@@ -1,3 +1,6 @@
+//! `Tie`: an interface's mortar coupling mapped onto the node indices of the two bodies'
+//! volume meshes, for fields of any number of components (`D (x) I_c`, `M (x) I_c`).
+
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::mesh::{SurfaceMesh, VolumeMesh};
 use mortar_core::multiplier::{LinearMultipliers, MultiplierSpace};

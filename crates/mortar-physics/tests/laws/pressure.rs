@@ -1,3 +1,6 @@
+//! Properties of the exponential contact pressure law: finite and monotone over any finite
+//! gap, linear past the maximum pressure, NaN and bad parameters refused.
+
 use mortar_physics::laws::{evaluate, ExponentialPressure, LawError, LawPoint};
 use proptest::prelude::*;
 

@@ -1,3 +1,5 @@
+//! The tangents of the shipped laws by dual numbers against central finite differences.
+
 use mortar_physics::laws::{
     evaluate, ConstraintLaw, ContactComplementarity, ExponentialPressure, GapConductance,
     GasConductivity, LawPoint, Tying,

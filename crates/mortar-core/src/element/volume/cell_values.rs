@@ -1,3 +1,6 @@
+//! `CellValues`: shape values, physical gradients, points and `J x w` of one volume cell at the
+//! points of a quadrature rule, recomputed in place for each cell.
+
 use nalgebra::Vector3;
 
 use super::{jacobian_from_gradients, VolumeElementRef};
