@@ -2,7 +2,7 @@
 //! (issue 14, item 2: "state the range each formulation is tested over"): the gap conductance
 //! through the mortar heat problem [`GapHeat`] and the seed's exponential contact penalty
 //! through the mortar contact solver, each against a closed form, across many decades of the
-//! parameter. The README states the ranges (beside the conductivity contrast).
+//! parameter. `docs/verification.md` states the ranges (beside the conductivity contrast).
 
 use mortar::core::mesh::BoundaryFace;
 use mortar::core::SearchRadius;
