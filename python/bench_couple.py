@@ -19,7 +19,7 @@ Times, medians over the repeats:
   `cargo run --release --example bench_coupling` reports (mesh set-up excluded).
 
 The overhead ratio is python / library. For scale: a vectorised numpy + shapely
-implementation does about 65 thousand pairs per second on this machine (README).
+implementation does about 65 thousand pairs per second on this machine (docs/performance.md).
 """
 
 from __future__ import annotations

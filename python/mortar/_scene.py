@@ -23,7 +23,7 @@ def run_scene(
 
     Args:
         scene: the path of a scene file (TOML; ``kind = "tied_heat"``, ``"contact"`` or
-            ``"pellet"``, keys as in the README), or the same scene as a dict (mesh paths
+            ``"pellet"``, keys as in docs/scenes.md), or the same scene as a dict (mesh paths
             in it relative to the current folder).
         out: a folder to write the scene's outputs into (VTU files, ``report.json``); None
             keeps none.

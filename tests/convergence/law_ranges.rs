@@ -1,7 +1,8 @@
 //! The ranges of the interface laws' parameters over which each formulation is tested: the
 //! gap conductance through the mortar heat problem [`GapHeat`] and the exponential contact
-//! penalty `P_c = P_o exp(S_NE (xi - g)^2)` through the mortar contact solver, each against a closed form, across many decades of the
-//! parameter. The README states the ranges (beside the conductivity contrast).
+//! penalty `P_c = P_o exp(S_NE (xi - g)^2)` through the mortar contact solver, each against a
+//! closed form, across many decades of the parameter. `docs/verification.md` states the
+//! ranges (beside the conductivity contrast).
 
 use mortar::core::mesh::BoundaryFace;
 use mortar::core::SearchRadius;

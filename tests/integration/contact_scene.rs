@@ -319,7 +319,7 @@ fn builtin_hertz2d_matches_the_closed_form() {
     assert!(out.join("report.json").is_file());
 }
 
-/// The built-in contact scenes write what a user opens and copies (the README's promise):
+/// The built-in contact scenes write what a user opens and copies (as `docs/scenes.md` says):
 /// a VTU per body, `interface.vtu`, the scene file and its meshes. The scene file written
 /// runs to the same interface pressures (to 1e-12 of the peak), and the closed-form figures
 /// of the built-in (solved from those files) are those of the scene's in-memory run (the

@@ -736,8 +736,7 @@ pub fn assemble_coupling(interface: &Interface, options: &CouplingOptions) -> Re
 /// machine each 4 KiB page costs a trap, its allocation and its zeroing: a fifth of a
 /// coupling of 10^6 straight line faces on this project's benchmark machine, which this
 /// takes away (`bench_coupling --reuse`: 89 -> 70 ns per pair on one thread, the same
-/// peak memory; see "a repeated coupling writes into the last one's arrays" in
-/// `docs/speed.md`).
+/// peak memory; see `docs/performance.md`).
 ///
 /// Which couplings write into `previous`'s arrays: those of a straight 2D interface taken
 /// by the sorted merge ([`CouplingStats::straight_line_faces`]), which writes D and M in
