@@ -21,7 +21,7 @@ pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
     if !json {
         say!(
             "mortar: default scene, a fuel pellet in its cladding: heat, thermal expansion, gap \
-             closure, contact, plenum pressure (2D plane strain)"
+             closure, contact, plenum pressure (2D, free axial expansion)"
         );
         say!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
     }
