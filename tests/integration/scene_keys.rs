@@ -37,7 +37,7 @@ use mortar::scenes::file::tied_heat::{
     SolveSpec, TiedHeatSpec,
 };
 use mortar::scenes::file::FileSystem;
-use mortar::scenes::pellet::PelletScene;
+use mortar::scenes::pellet::{AxialModel, PelletScene};
 use mortar::scenes::NamedLaw;
 use nalgebra::Vector3;
 use serde_json::Value;
@@ -1576,6 +1576,11 @@ snapshots = 1
 
 [power]
 ramp_time = 1.0
+
+# Plane strain: its gap closes within the two steps, so that the keys' effects on the contact
+# show (with free axial expansion it stays above the pressure law's onset).
+[model]
+axial = "plane_strain"
 "#;
 
 /// A pellet scene with every optional key set, as TOML.
@@ -1589,6 +1594,7 @@ fn pellet_full() -> toml::Table {
         ..PelletScene::default()
     };
     s.gap.gas_conductivity = Some(0.3);
+    s.model.axial = Some(AxialModel::Generalized);
     s.laws.thermal = Some(law(
         "mechanical_gap_conductance",
         "contact_conductance",
@@ -1868,6 +1874,16 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
         ("model.reference_temperature", |f| {
             opens(f, &[("model.reference_temperature", "400.0")])
         }),
+        ("model.axial", |f| {
+            // Free axial expansion: the pellet expands less radially (by 1 + nu for free
+            // expansion) than in the base's plane strain, the gap stays wider.
+            let r = f.ok(&[("model.axial", "\"generalized\"")]);
+            assert_eq!(r["models"]["axial"], "generalized");
+            assert_eq!(f.report["models"]["axial"], "plane_strain");
+            let key = "steady.pellet_surface_displacement";
+            assert!(1.1 * num(&r, key) < num(&f.report, key));
+            assert!(num(&r, "steady.gap") > num(&f.report, "steady.gap"));
+        }),
         ("model.segment_height", |f| {
             // The r-z segment: the power and heat flow scale with its height, the
             // temperatures do not.
@@ -2103,7 +2119,7 @@ fn laws_by_name_refuse_parameters_they_do_not_take() {
 /// `[gap]`. They are refused, naming the table.
 #[test]
 fn the_thermal_pellet_refuses_laws_by_name() {
-    let base = format!("{PELLET}\n[model]\nmechanics = false\n");
+    let base = PELLET.replace("[model]\n", "[model]\nmechanics = false\n");
     assert!(PelletScene::from_toml(&base).is_ok());
     for (table, law) in [
         ("thermal", thermal_law("1e-4")),
