@@ -336,9 +336,16 @@ fn a_failing_step_is_cut_then_reported() {
     let _ = std::fs::remove_dir_all(&dir);
     let e = run(&s, &dir, false).unwrap_err();
     match &e {
-        PelletError::Physics(PhysicsError::Newton(f)) => {
+        PelletError::SolveFailed {
+            step,
+            block,
+            source: PhysicsError::Newton(f),
+            ..
+        } => {
             assert_eq!(f.reason, NewtonFailureReason::MaxIterations);
             assert_eq!(f.residual_history.len(), 2);
+            assert_eq!(*step, Some(1));
+            assert!(block.is_some());
         }
         other => panic!("expected a Newton failure, got {other}"),
     }

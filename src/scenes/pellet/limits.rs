@@ -226,13 +226,21 @@ pub fn summary_lines(warnings: &Value) -> Vec<String> {
                 ),
                 None => format!("above {}", scaled(f(&w["bound"]), unit)),
             };
+            // The solve: a step number, "initial" or "steady".
+            let step = |v: &Value| match v {
+                Value::String(s) => s.clone(),
+                v => format!("step {v}"),
+            };
+            let (first, extreme) = (&w["when"]["first"], &w["when"]["extreme"]);
             format!(
-                "{}: {} {} {bound} (first at t = {:.2} s, extreme at t = {:.2} s, {} r = {:.3} mm): {}",
+                "{}: {} {} {bound} (first: {}, t = {:.2} s; extreme: {}, t = {:.2} s, {} r = {:.3} mm): {}",
                 w["name"].as_str().unwrap_or("?"),
                 w["quantity"].as_str().unwrap_or("?"),
                 scaled(f(&w["value"]), unit),
-                f(&w["when"]["first"]["time"]),
-                f(&w["when"]["extreme"]["time"]),
+                step(&first["step"]),
+                f(&first["time"]),
+                step(&extreme["step"]),
+                f(&extreme["time"]),
                 w["where"]["body"].as_str().unwrap_or("?"),
                 1e3 * f(&w["where"]["radius"]),
                 w["what"].as_str().unwrap_or(""),
