@@ -339,9 +339,12 @@ fn a_failing_step_is_cut_then_reported() {
         PelletError::SolveFailed {
             step,
             block,
-            source: PhysicsError::Newton(f),
+            source,
             ..
-        } => {
+        } if matches!(**source, PhysicsError::Newton(_)) => {
+            let PhysicsError::Newton(f) = source.as_ref() else {
+                unreachable!()
+            };
             assert_eq!(f.reason, NewtonFailureReason::MaxIterations);
             assert_eq!(f.residual_history.len(), 2);
             assert_eq!(*step, Some(1));

@@ -117,7 +117,12 @@ fn a_failed_solve_names_its_step_time_and_block() {
         }
         other => panic!("expected a located failure, got {other}"),
     }
-    for needle in ["time step 1 of 30", "t = 0.0625 s", "LineSearch", "heat equations"] {
+    for needle in [
+        "time step 1 of 30",
+        "t = 0.0625 s",
+        "LineSearch",
+        "heat equations",
+    ] {
         assert!(text.contains(needle), "no {needle:?} in {text}");
     }
     let rep: Value =

@@ -536,12 +536,13 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                    outputs: Vec<(String, Vec<u8>)>,
                    files: &[(String, f64)]|
      -> PelletError {
-        let newton = match &e {
-            PelletError::Physics(PhysicsError::Newton(f))
-            | PelletError::SolveFailed {
-                source: PhysicsError::Newton(f),
-                ..
-            } => Some(f),
+        let physics = match &e {
+            PelletError::Physics(p) => Some(p),
+            PelletError::SolveFailed { source, .. } => Some(source.as_ref()),
+            _ => None,
+        };
+        let newton = match physics {
+            Some(PhysicsError::Newton(f)) => Some(f),
             _ => None,
         };
         let history = newton.map_or(Vec::new(), |f| f.residual_history.clone());
@@ -599,7 +600,15 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     };
     let mut watch = LimitWatch::default();
     if let Err(e) = problem.solve(&mut x, 0.0, None, &mut solver, &newton) {
-        let e = located(&problem, e, "the initial state".into(), Some(0), 0.0, &x, None);
+        let e = located(
+            &problem,
+            e,
+            "the initial state".into(),
+            Some(0),
+            0.0,
+            &x,
+            None,
+        );
         return Err(failure(e, &rows, &watch, outputs, &files));
     }
     watch.observe(
@@ -641,7 +650,8 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                             "time step {k} of {steps} (from t = {time} s, dt = {dt} s after \
                              {MAX_STEP_CUTS} halvings)"
                         );
-                        let e = located(&problem, e, solve, Some(k), time + dt, &x, Some((&old, dt)));
+                        let e =
+                            located(&problem, e, solve, Some(k), time + dt, &x, Some((&old, dt)));
                         return Err(failure(e, &rows, &watch, outputs, &files));
                     }
                     x = old;
@@ -680,7 +690,15 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let t_steady = time.max(scene.power.ramp_time);
     if let Err(e) = problem.solve(&mut x, t_steady, None, &mut solver, &newton) {
         bar.finish_and_clear();
-        let e = located(&problem, e, "the steady state at full power".into(), None, t_steady, &x, None);
+        let e = located(
+            &problem,
+            e,
+            "the steady state at full power".into(),
+            None,
+            t_steady,
+            &x,
+            None,
+        );
         return Err(failure(e, &rows, &watch, outputs, &files));
     }
     watch.observe(
@@ -834,7 +852,7 @@ fn located<TL: ConstraintLaw, ML: ConstraintLaw>(
         time,
         block,
         blocks: blocks.map_or(Vec::new(), |b| b.to_vec()),
-        source: e,
+        source: Box::new(e),
     }
 }
 

@@ -143,10 +143,14 @@ impl LimitWatch {
     /// Records the state `when` with its `extremes`.
     pub fn observe(&mut self, when: &When, extremes: &Extremes) {
         for (limit, &(value, at)) in LIMITS.iter().zip(extremes) {
-            if !(excess(limit, value) > 0.0) {
+            if value.is_nan() || excess(limit, value) <= 0.0 {
                 continue;
             }
-            match self.warnings.iter_mut().find(|w| w.limit.name == limit.name) {
+            match self
+                .warnings
+                .iter_mut()
+                .find(|w| w.limit.name == limit.name)
+            {
                 Some(w) => {
                     if excess(limit, value) > excess(limit, w.value) {
                         (w.value, w.at, w.extreme) = (value, at, when.clone());
@@ -271,9 +275,13 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     let elastic = problem.elastic_bodies();
     let coords = |b: usize| elastic[b].mesh.coords();
     let largest = |values: &mut dyn Iterator<Item = (usize, f64)>, b: usize, body| {
-        let (i, v) = values
-            .filter(|(_, v)| !v.is_nan())
-            .fold((0, f64::NEG_INFINITY), |m, (i, v)| if v > m.1 { (i, v) } else { m });
+        let (i, v) =
+            values
+                .filter(|(_, v)| !v.is_nan())
+                .fold(
+                    (0, f64::NEG_INFINITY),
+                    |m, (i, v)| if v > m.1 { (i, v) } else { m },
+                );
         (
             v,
             At {
@@ -310,21 +318,18 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     );
     let pellet = stress(0)?;
     let tension = largest(
-        &mut pellet
-            .nodal
-            .iter()
-            .map(largest_principal)
-            .enumerate(),
+        &mut pellet.nodal.iter().map(largest_principal).enumerate(),
         0,
         "pellet",
     );
     // The interface pressure at each slave interface node (a row of D).
     let tie = problem.heat().tie();
     let pressure = f.contact_pressure();
-    let (j, p) = pressure
-        .iter()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |m, (j, &p)| if p > m.1 { (j, p) } else { m });
+    let (j, p) =
+        pressure.iter().enumerate().fold(
+            (0, f64::NEG_INFINITY),
+            |m, (j, &p)| if p > m.1 { (j, p) } else { m },
+        );
     let node = tie.coupling().slave_nodes.get(j).copied().unwrap_or(0) as usize;
     let slave = tie.interface().slave();
     let position = slave

@@ -142,7 +142,7 @@ pub enum PelletError {
         blocks: Vec<(&'static str, f64)>,
         /// Why the solve failed.
         #[source]
-        source: PhysicsError,
+        source: Box<PhysicsError>,
     },
     /// The coupling could not be built.
     #[error(transparent)]
@@ -174,7 +174,10 @@ fn residual_text(block: &Option<&'static str>, blocks: &[(&'static str, f64)]) -
     let total = blocks.iter().map(|b| b.1 * b.1).sum::<f64>().sqrt();
     match block {
         Some(name) => {
-            let largest = blocks.iter().find(|b| b.0 == *name).map_or(f64::NAN, |b| b.1);
+            let largest = blocks
+                .iter()
+                .find(|b| b.0 == *name)
+                .map_or(f64::NAN, |b| b.1);
             let others: Vec<String> = blocks
                 .iter()
                 .filter(|b| b.0 != *name)

@@ -39,7 +39,8 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             o.pressure..o.gas,
             o.gas..o.len,
         ];
-        let norm = |range: std::ops::Range<usize>| r[range].iter().map(|v| v * v).sum::<f64>().sqrt();
+        let norm =
+            |range: std::ops::Range<usize>| r[range].iter().map(|v| v * v).sum::<f64>().sqrt();
         let mut out = [("", 0.0); 5];
         for ((slot, name), range) in out.iter_mut().zip(RESIDUAL_BLOCKS).zip(ranges) {
             *slot = (name, norm(range));
