@@ -37,7 +37,7 @@ pub fn run(args: &[String]) -> Result<(), Box<dyn std::error::Error>> {
         let s = &r["solver"];
         println!("{method:?}: outputs in {}", dir.display());
         println!(
-            "  gap closed at {:.3} s; centre {:.4} K, gap {:.4} um, peak interface pressure {:.4} MPa, plenum {:.5} MPa",
+            "  contact engaged at {:.3} s (gap below xi); centre {:.4} K, gap {:.4} um, peak interface pressure {:.4} MPa, plenum {:.5} MPa",
             num(&r["gap_closure_time"]),
             num(&r["center_temperature"]),
             1e6 * num(&r["gap"]),

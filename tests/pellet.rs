@@ -1,11 +1,12 @@
 //! The pellet scene: the steady state against the closed form of PHYSICS.md section 5 and its
 //! convergence under refinement, Newton against JFNK, the scene file, and the independent 1D
-//! radial reference of the coupled thermomechanical pellet (issue 15).
+//! radial reference of the coupled thermomechanical pellet, and the limits of its models.
 
 mod pellet {
     mod closed_form;
     mod coupled;
     mod free_expansion;
+    mod limits;
     mod radial;
     mod scene_file;
     mod solvers;

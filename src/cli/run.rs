@@ -20,8 +20,8 @@ use super::RunArgs;
 pub(super) fn default_job(out: &Path, json: bool) -> Result<(), String> {
     if !json {
         say!(
-            "mortar: default scene, a fuel pellet in its cladding: heat, thermal expansion, gap \
-             closure, contact, plenum pressure (2D, free axial expansion)"
+            "mortar: default scene, a fuel pellet in its cladding: heat, thermal expansion, \
+             contact across the gap, plenum pressure (2D, free axial expansion)"
         );
         say!("(your own scenes: `mortar run SCENE.toml --out DIR`; see `mortar --help`)\n");
     }
@@ -96,13 +96,22 @@ fn print_coupled(report: &Value, out: &Path) {
         "{:<28} mechanical gap, {law} contact law, plenum pressure (ideal gas)",
         ""
     );
-    match report["gap_closure_time"].as_f64() {
-        Some(t) => say!(
-            "{:<28} closed at t = {t:.2} s: contact engaged (the gap's pressure law acts)",
+    // The exponential law engages below its onset gap xi, with the gap still open; the
+    // exact law engages at a closed gap.
+    let onset = m["contact_onset_gap"].as_f64();
+    match (report["gap_closure_time"].as_f64(), onset) {
+        (Some(t), Some(xi)) => say!(
+            "{:<28} contact engaged at t = {t:.2} s (gap below the onset of the pressure law, \
+             xi = {:.2} um)",
+            "gap",
+            1e6 * xi
+        ),
+        (Some(t), None) => say!(
+            "{:<28} contact engaged at t = {t:.2} s (gap closed, contact pressure positive)",
             "gap"
         ),
-        None => say!(
-            "{:<28} never closed: no contact work (the pressure law stays at the gas pressure)",
+        (None, _) => say!(
+            "{:<28} contact never engaged (the pressure stays at the gas pressure)",
             "gap"
         ),
     }
@@ -138,6 +147,20 @@ fn print_coupled(report: &Value, out: &Path) {
     );
     for w in report["coupling_warnings"].as_array().into_iter().flatten() {
         eprintln!("mortar: warning: {}", w.as_str().unwrap_or_default());
+    }
+    // The model ranges the run left (docs/physics.md, Limits), one line each.
+    let limits = pellet::limits::summary_lines(&report["warnings"]);
+    if limits.is_empty() {
+        say!("{:<28} ok: every state within the models' ranges", "status");
+    } else {
+        say!(
+            "{:<28} warnings: {} model range(s) left, the results there are not physical",
+            "status",
+            limits.len()
+        );
+        for line in limits {
+            say!("  warning {line}");
+        }
     }
     let solver = &report["solver"];
     say!(

@@ -353,11 +353,12 @@ fn newton_and_jfnk_agree_on_the_coupled_scene() {
     assert!(sj["reused_preconditioners"].as_u64().unwrap() > 0);
 }
 
-/// A Newton that cannot converge (one step allowed at a tolerance it cannot reach) cuts the
-/// step MAX_STEP_CUTS times, then fails with its residual history, having written the
-/// report (status "failed", the valid steps) and the last converged state.
+/// A Newton that cannot converge (one step allowed at a tolerance it cannot reach) fails at
+/// the first solve, the initial state (no step to cut there; a time step cut MAX_STEP_CUTS
+/// times is tests/pellet/limits.rs's 1e12 W/m), with its residual history, the solve named,
+/// having written the report (status "failed", no valid step).
 #[test]
-fn a_failing_step_is_cut_then_reported() {
+fn a_failing_initial_solve_is_reported() {
     let mut s = scene(ContactLawName::Exponential);
     s.mesh.refinement = 1;
     s.solver.max_iterations = 1;
@@ -366,9 +367,19 @@ fn a_failing_step_is_cut_then_reported() {
     let _ = std::fs::remove_dir_all(&dir);
     let e = run(&s, &dir, false).unwrap_err();
     match &e {
-        PelletError::Physics(PhysicsError::Newton(f)) => {
+        PelletError::SolveFailed {
+            step,
+            block,
+            source,
+            ..
+        } if matches!(**source, PhysicsError::Newton(_)) => {
+            let PhysicsError::Newton(f) = source.as_ref() else {
+                unreachable!()
+            };
             assert_eq!(f.reason, NewtonFailureReason::MaxIterations);
             assert_eq!(f.residual_history.len(), 2);
+            assert_eq!(*step, Some(0));
+            assert!(block.is_some());
         }
         other => panic!("expected a Newton failure, got {other}"),
     }
@@ -376,6 +387,12 @@ fn a_failing_step_is_cut_then_reported() {
     let rep: Value = serde_json::from_str(&text).unwrap();
     assert_eq!(rep["status"], "failed");
     assert!(rep["error"].as_str().unwrap().contains("Newton"));
+    assert!(rep["error"]
+        .as_str()
+        .unwrap()
+        .contains("the initial state failed at t = 0 s"));
+    assert_eq!(rep["failure"]["step"], 0);
+    assert_eq!(rep["valid_steps"], 0);
     assert!(rep["residual_history"]
         .as_array()
         .is_some_and(|h| !h.is_empty()));

@@ -1,4 +1,4 @@
-//! The thermomechanical pellet: expansion, gap closure, contact, gap conductance on the
+//! The thermomechanical pellet: expansion, contact across the gap, gap conductance on the
 //! mechanical gap, plenum pressure (docs/physics.md, sections 4 and 6).
 
 use std::f64::consts::PI;
@@ -9,7 +9,7 @@ use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
 use mortar_physics::elastic::{
     recover_stress_with_axial_strain, AxialForce, ComponentSet, ElasticBody, ElasticMaterial,
-    ElasticOptions,
+    ElasticOptions, StressField,
 };
 use mortar_physics::heat::{
     assemble_conduction, Conductivity, HeatBody, HeatMaterial, HeatOptions,
@@ -19,13 +19,14 @@ use mortar_physics::laws::{
     GasConductivity, LawRegistry, MechanicalGapConductance,
 };
 use mortar_physics::thermomech::{
-    GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
+    GapThermoMechanics, GasPressure, Plenum, StateView, ThermoElasticBody, ThermoMechOptions,
     ThermoMechSolver, ThermoMechSolverState,
 };
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 use serde_json::{json, Value};
 
+use super::limits::{extremes, LimitWatch, When};
 use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
     annulus_mesh, pellet_mesh, AxialModel, ContactLawName, Geometry, PelletError, PelletScene,
@@ -451,7 +452,7 @@ pub fn run_with_registry(
 /// Runs the coupled scene with a program's own interface laws in place of the scene's
 /// (`[gap]` and `[contact]` then serve only the gap's search radius): everything else, the
 /// solver, the report, the VTU and plots, as [`run_coupled`]. The report names the laws by
-/// their Rust types; the gap counts as closed once the mean contact pressure exceeds a
+/// their Rust types; contact counts as engaged once the mean contact pressure exceeds a
 /// millionth of the gas pressure.
 ///
 /// # Errors
@@ -530,7 +531,7 @@ fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
 }
 
 /// The time stepping, reports and outputs of the coupled scene with contact law `law`
-/// (`onset`: the exponential law's `xi`, for the closure time).
+/// (`onset`: the exponential law's `xi`, for the time contact engages).
 fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     scene: &PelletScene,
     laws: (TL, ML),
@@ -567,12 +568,37 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // The initial state: mechanical equilibrium at the uniform temperature, no power.
     let failure = |e: PelletError,
                    rows: &[(f64, Summary, usize, usize, usize)],
+                   watch: &LimitWatch,
                    outputs: Vec<(String, Vec<u8>)>,
                    files: &[(String, f64)]|
      -> PelletError {
-        let history = match &e {
-            PelletError::Physics(PhysicsError::Newton(f)) => f.residual_history.clone(),
-            _ => Vec::new(),
+        let physics = match &e {
+            PelletError::Physics(p) => Some(p),
+            PelletError::SolveFailed { source, .. } => Some(source.as_ref()),
+            _ => None,
+        };
+        let newton = match physics {
+            Some(PhysicsError::Newton(f)) => Some(f),
+            _ => None,
+        };
+        let history = newton.map_or(Vec::new(), |f| f.residual_history.clone());
+        let located = match &e {
+            PelletError::SolveFailed {
+                solve,
+                step,
+                time,
+                block,
+                blocks,
+                source,
+            } => json!({
+                "solve": solve,
+                "step": step,
+                "time": time,
+                "reason": newton.map_or_else(|| source.to_string(), |f| format!("{:?}", f.reason)),
+                "block": block,
+                "blocks": blocks.iter().map(|(n, v)| (n.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+            }),
+            _ => Value::Null,
         };
         let status = if matches!(e, PelletError::Interrupted { .. }) {
             "interrupted"
@@ -583,7 +609,9 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "scene": "pellet",
             "status": status,
             "error": e.to_string(),
+            "failure": located,
             "residual_history": history,
+            "warnings": watch.to_json(),
             "valid_steps": rows.len(),
             "history": history_json(scene, rows),
             "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
@@ -606,9 +634,26 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             Err(w) => PelletError::Invalid(format!("{e}; and the outputs of the failure: {w}")),
         }
     };
+    let mut watch = LimitWatch::default();
     if let Err(e) = problem.solve(&mut x, 0.0, None, &mut solver, &newton) {
-        return Err(failure(e.into(), &rows, outputs, &files));
+        let e = located(
+            &problem,
+            e,
+            "the initial state".into(),
+            Some(0),
+            0.0,
+            &x,
+            None,
+        );
+        return Err(failure(e, &rows, &watch, outputs, &files));
     }
+    watch.observe(
+        &When {
+            time: 0.0,
+            step: json!("initial"),
+        },
+        &extremes(&problem, &x)?,
+    );
     let rep0 = solver.stats;
     rows.push((
         0.0,
@@ -622,7 +667,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         if crate::interrupt::requested() {
             bar.finish_and_clear();
             let e = PelletError::Interrupted { time, steps: k - 1 };
-            return Err(failure(e, &rows, outputs, &files));
+            return Err(failure(e, &rows, &watch, outputs, &files));
         }
         let target = (k as f64 * scene.time.step).min(scene.time.end);
         let before = solver.stats;
@@ -634,18 +679,31 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             match problem.solve(&mut x, time + dt, Some((&old, dt)), &mut solver, &newton) {
                 Ok(_) => time += dt,
                 Err(e) => {
-                    x = old;
                     cuts += 1;
                     if cuts > MAX_STEP_CUTS {
                         bar.finish_and_clear();
-                        return Err(failure(e.into(), &rows, outputs, &files));
+                        let solve = format!(
+                            "time step {k} of {steps} (from t = {time} s, dt = {dt} s after \
+                             {MAX_STEP_CUTS} halvings)"
+                        );
+                        let e =
+                            located(&problem, e, solve, Some(k), time + dt, &x, Some((&old, dt)));
+                        return Err(failure(e, &rows, &watch, outputs, &files));
                     }
+                    x = old;
                 }
             }
         }
         time = target;
         cuts_total += cuts;
         let s = summary(&problem, &x, centre);
+        watch.observe(
+            &When {
+                time,
+                step: json!(k),
+            },
+            &extremes(&problem, &x)?,
+        );
         rows.push((
             time,
             s,
@@ -668,8 +726,24 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let t_steady = time.max(scene.power.ramp_time);
     if let Err(e) = problem.solve(&mut x, t_steady, None, &mut solver, &newton) {
         bar.finish_and_clear();
-        return Err(failure(e.into(), &rows, outputs, &files));
+        let e = located(
+            &problem,
+            e,
+            "the steady state at full power".into(),
+            None,
+            t_steady,
+            &x,
+            None,
+        );
+        return Err(failure(e, &rows, &watch, outputs, &files));
     }
+    watch.observe(
+        &When {
+            time: t_steady,
+            step: json!("steady"),
+        },
+        &extremes(&problem, &x)?,
+    );
     bar.inc(1);
     bar.finish_and_clear();
     let steady = summary(&problem, &x, centre);
@@ -687,8 +761,8 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         pvd(&interface_files(&files)).into_bytes(),
     ));
 
-    // When the surfaces touch: the exponential law's pressure rises below xi (mean gap); the
-    // exact law's mean contact pressure is positive.
+    // When contact engages: the exponential law's pressure rises below xi (mean gap, not
+    // zero: the gap is not closed); the exact law's mean contact pressure is positive.
     // (A millionth of the gas pressure: the round-off of an inactive node's pressure is
     // far below it.)
     let touches = |s: &Summary| match onset {
@@ -713,7 +787,9 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     };
     let report = json!({
         "scene": "pellet",
-        "status": "ok",
+        "status": if watch.is_empty() { "ok" } else { "warnings" },
+        // The model ranges the run left, each once (docs/physics.md, Limits).
+        "warnings": watch.to_json(),
         "models": {
             "heat": true,
             "mechanics": true,
@@ -723,10 +799,14 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "gap_conductance": names.0,
             "plenum": "ideal gas, fixed moles",
             "contact_engaged": closure.is_some(),
+            // The exponential law's onset gap xi (m), below which its pressure rises.
+            "contact_onset_gap": onset,
         },
         "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
         "center_temperature": last.center,
         "gap": last.gap,
+        // When contact engaged (the mean gap fell below xi, or the exact law's pressure
+        // became positive); the key's name is kept for the scripts that read it.
         "gap_closure_time": closure,
         "peak_interface_pressure": peak,
         "plenum_pressure": last.plenum,
@@ -787,6 +867,36 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     outputs.push(("report.json".to_string(), text.into_bytes()));
     write_scene_outputs(out, outputs)?;
     Ok(report)
+}
+
+/// The error of the failed solve `solve` (`step`, to time `time`; `transient` as
+/// [`GapThermoMechanics::solve`]), with the block of equations holding the largest residual
+/// at its last iterate `x`.
+fn located<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
+    e: PhysicsError,
+    solve: String,
+    step: Option<usize>,
+    time: f64,
+    x: &[f64],
+    transient: Option<(&[f64], f64)>,
+) -> PelletError {
+    // A block whose residual is not finite is the one named; else the largest.
+    let blocks = problem.residual_blocks(x, time, transient).ok();
+    let block = blocks.and_then(|b| {
+        b.iter()
+            .find(|(_, v)| !v.is_finite())
+            .or_else(|| b.iter().max_by(|p, q| p.1.total_cmp(&q.1)))
+            .map(|b| b.0)
+    });
+    PelletError::SolveFailed {
+        solve,
+        step,
+        time,
+        block,
+        blocks: blocks.map_or(Vec::new(), |b| b.to_vec()),
+        source: Box::new(e),
+    }
 }
 
 /// The heat leaving through the cladding's outer surface (W/m): the reaction of its
@@ -890,6 +1000,35 @@ fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)
     })
 }
 
+/// The stress of body `b` (0 pellet, 1 cladding) in the state `f`, with its temperature and,
+/// in 2D generalized plane strain, its axial strain (which the 2D displacement does not hold;
+/// a free end's, in r-z and 3D, it does).
+///
+/// # Errors
+/// [`PelletError::Physics`] if the stresses cannot be recovered.
+pub(super) fn stress_field<TL: ConstraintLaw, ML: ConstraintLaw>(
+    problem: &GapThermoMechanics<TL, ML>,
+    f: &StateView,
+    b: usize,
+) -> Result<StressField, PelletError> {
+    let body = problem.elastic_bodies()[b]
+        .clone()
+        .with_temperature(f.temperature[b].to_vec())?;
+    let options = &problem.options().elastic;
+    let axial_strain = if body.components() == 2 && !options.geometry.is_axisymmetric() {
+        f.axial_strain[b].unwrap_or(0.0)
+    } else {
+        0.0
+    };
+    let u = f.displacement(b);
+    Ok(recover_stress_with_axial_strain(
+        &body,
+        &u,
+        axial_strain,
+        options,
+    )?)
+}
+
 /// The VTU files of the state `x` at `time`: the bodies (temperature, displacement vector,
 /// von Mises stress) in `pellet_NNNN.vtu`, the interface (the pellet's surface: gap, heat
 /// flux, contact and interface pressure) in `interface_NNNN.vtu`.
@@ -907,20 +1046,8 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
     let mut displacement = Vec::new();
     for b in 0..2 {
         let u = f.displacement(b);
-        let body = elastic[b]
-            .clone()
-            .with_temperature(f.temperature[b].to_vec())?;
-        let dim = body.components();
-        let options = &problem.options().elastic;
-        // Generalized plane strain's axial strain is not in the 2D displacement (a free end's
-        // is, in r-z and 3D).
-        let axial_strain = if dim == 2 && !options.geometry.is_axisymmetric() {
-            f.axial_strain[b].unwrap_or(0.0)
-        } else {
-            0.0
-        };
-        von_mises
-            .push(recover_stress_with_axial_strain(&body, &u, axial_strain, options)?.von_mises);
+        let dim = elastic[b].components();
+        von_mises.push(stress_field(problem, &f, b)?.von_mises);
         displacement.push(
             u.chunks(dim)
                 .flat_map(|c| [c[0], c[1], if dim == 3 { c[2] } else { 0.0 }])

@@ -2,8 +2,9 @@
 //! cladding (annulus, constant `k`), helium in the gap between them, a power ramp, the
 //! cladding's outer temperature fixed (docs/physics.md, sections 3 and 4). By default it is
 //! thermomechanical ([`run_coupled`]): both bodies expand (thermoelasticity, free to expand
-//! axially: generalized plane strain),
-//! the gap closes, the gap conductance follows the mechanical gap and the contact pressure,
+//! axially: generalized plane strain), the gap narrows until contact engages (below the onset
+//! gap `xi` of the pressure law), the gap conductance follows the mechanical gap and the
+//! contact pressure,
 //! the interface pressure follows the seed's exponential law (or exact contact), the plenum
 //! pressure follows the gap's volume and temperature (ideal gas), the coolant presses on the
 //! cladding. With `[model] mechanics = false` it is thermal only, the gap held at its
@@ -30,7 +31,7 @@
 //! poisson_ratio = 0.3
 //! thermal_expansion = 1.0e-5 # 1/K
 //! [cladding]
-//! inner_radius = 4.12e-3     # a 20 um gap (PHYSICS.md's 4.18 mm never closes at 20 kW/m)
+//! inner_radius = 4.12e-3     # a 20 um gap (at 4.18 mm contact never engages at 20 kW/m)
 //! outer_radius = 4.75e-3
 //! conductivity = 16.0
 //! outer_temperature = 580.0  # K, also the initial temperature everywhere
@@ -74,7 +75,8 @@
 //! axial_layers = 2           # cells along z of the r-z (pellet; cladding one more) and 3D models
 //! ```
 //!
-//! Outputs: `report.json` (what was modelled, the closure time, the histories, the steady
+//! Outputs: `report.json` (what was modelled, the warnings of the model
+//! ranges it left (see [`limits`]), the time contact engages, the histories, the steady
 //! state and its energy balance, the solver's counts), `pellet_NNNN.vtu` (temperature,
 //! displacement, von Mises stress) and `interface_NNNN.vtu` (gap, heat flux, pressures) with
 //! their `.pvd` collections, and `temperatures.png`, `gap.png`, `pressures.png`.
@@ -87,6 +89,7 @@
 
 mod closed_form;
 mod coupled;
+pub mod limits;
 mod mesh;
 mod run;
 
@@ -122,6 +125,27 @@ pub enum PelletError {
     /// The physics failed (a Newton solve that did not converge, say).
     #[error(transparent)]
     Physics(#[from] PhysicsError),
+    /// A solve of the coupled scene failed: which one and when, why (`source`, Newton's
+    /// reason and residual history for a Newton failure), and the block of equations holding
+    /// the largest residual at its last iterate.
+    #[error("{solve} failed at t = {time} s: {source}; {}", residual_text(.block, .blocks))]
+    SolveFailed {
+        /// The solve: `"the initial state"`, `"time step K of N ..."` or `"the steady state"`.
+        solve: String,
+        /// The time step (0 for the initial state, `None` for the steady state).
+        step: Option<usize>,
+        /// The time the solve was to reach (s).
+        time: f64,
+        /// The block of equations (`"heat"`, `"mechanics"`, `"flux"`, `"contact"`,
+        /// `"plenum"`) with the largest residual norm at the last iterate; `None` when the
+        /// residual could not be evaluated there.
+        block: Option<&'static str>,
+        /// Each block's residual norm at the last iterate, in Newton's units.
+        blocks: Vec<(&'static str, f64)>,
+        /// Why the solve failed.
+        #[source]
+        source: Box<PhysicsError>,
+    },
     /// The coupling could not be built.
     #[error(transparent)]
     Mortar(#[from] mortar_core::MortarError),
@@ -145,6 +169,30 @@ pub enum PelletError {
         /// The cause.
         source: std::io::Error,
     },
+}
+
+/// Where a failed solve's residual was left, for [`PelletError::SolveFailed`].
+fn residual_text(block: &Option<&'static str>, blocks: &[(&'static str, f64)]) -> String {
+    let total = blocks.iter().map(|b| b.1 * b.1).sum::<f64>().sqrt();
+    match block {
+        Some(name) => {
+            let largest = blocks
+                .iter()
+                .find(|b| b.0 == *name)
+                .map_or(f64::NAN, |b| b.1);
+            let others: Vec<String> = blocks
+                .iter()
+                .filter(|b| b.0 != *name)
+                .map(|(n, v)| format!("{n} {v:.3e}"))
+                .collect();
+            format!(
+                "at the last iterate the largest residual is in the {name} equations \
+                 (norm {largest:.3e} of {total:.3e}; {})",
+                others.join(", ")
+            )
+        }
+        None => "the residual could not be evaluated at the last iterate".to_string(),
+    }
 }
 
 /// The pellet: `[pellet]`.
@@ -207,8 +255,8 @@ pub struct CladdingData {
 
 impl Default for CladdingData {
     /// docs/physics.md, sections 4 and 6, but the inner radius: 4.12 mm (a 20 um as-built
-    /// gap, 40 um diametral) rather than 4.18 mm, so that the gap closes during the ramp at
-    /// 20 kW/m (with 4.18 mm it never closes below about 72 kW/m, the independent radial model
+    /// gap, 40 um diametral) rather than 4.18 mm, so that contact engages during the ramp
+    /// at 20 kW/m (with 4.18 mm it does not below about 72 kW/m, the independent radial model
     /// of tests/pellet/radial.rs finds).
     fn default() -> Self {
         Self {
@@ -238,7 +286,7 @@ pub struct GapData {
     /// A constant gas conductivity (W/m/K); `None`: helium, `2.531e-3 T^0.7146`.
     pub gas_conductivity: Option<f64>,
     /// `h_contact` (W/m^2/K/Pa): the conductance gained per pascal of contact pressure once
-    /// the gap is closed.
+    /// contact engages (a positive contact pressure).
     pub contact_conductance: f64,
 }
 
@@ -433,7 +481,7 @@ pub enum AxialModel {
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ModelData {
-    /// Thermal expansion, gap closure, contact and plenum pressure; `false`: heat only, the
+    /// Thermal expansion, contact and plenum pressure; `false`: heat only, the
     /// gap held at its as-built width.
     pub mechanics: bool,
     /// The geometry.

@@ -17,6 +17,7 @@
 //! assembled Jacobian or by Jacobian-free Newton-Krylov with a block preconditioner
 //! ([`ThermoMechSolver`]); any pair of laws goes through the same solver.
 
+mod blocks;
 mod plenum;
 mod problem;
 mod solve;
