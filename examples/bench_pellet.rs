@@ -1,22 +1,23 @@
 //! Benchmark of the thermomechanical pellet's solvers: Newton on the
 //! assembled Jacobian (sparse LU every Newton step) against JFNK with the block
 //! preconditioner kept across steps, on the default scene (30 backward Euler steps through
-//! the ramp and hold, then the steady state) at several refinements.
+//! the ramp and hold, then the steady state) in each geometry at several refinements: the
+//! data of the `[solver] method = "auto"` rule.
 //!
 //! ```text
 //! cargo run --release --example bench_pellet -- --json docs/bench_pellet.json
 //! cargo run --release --example bench_pellet -- --quick
 //! ```
 //!
-//! Each refinement runs Newton and JFNK alternately, three times each (one run of each with
+//! Each case runs Newton and JFNK alternately, three times each (one run of each with
 //! `--quick`), in this process; the figures are the medians of the seconds spent in the
 //! Newton solves (setup and output excluded), and the ratio JFNK / Newton is formed from the
-//! medians of one session. Prints one JSON record per refinement and a line a person can read.
+//! medians of one session. Prints one JSON record per case and a line a person can read.
 
 use std::path::PathBuf;
 
 use clap::Parser;
-use mortar::scenes::pellet::{run, PelletScene, SolverMethod};
+use mortar::scenes::pellet::{run, Geometry, PelletScene, SolverMethod};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -39,14 +40,26 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() -> Res<()> {
     let args = Args::parse();
-    let (refinements, repeats) = if args.quick {
-        (vec![3usize], 1)
+    let (cases, repeats) = if args.quick {
+        (vec![(Geometry::Plane, 3usize)], 1)
     } else {
-        (vec![3usize, 6], 3)
+        (
+            vec![
+                (Geometry::Plane, 1usize),
+                (Geometry::Plane, 3),
+                (Geometry::Plane, 6),
+                (Geometry::Axisymmetric, 1),
+                (Geometry::Axisymmetric, 3),
+                (Geometry::Axisymmetric, 8),
+                (Geometry::ThreeD, 1),
+                (Geometry::ThreeD, 2),
+            ],
+            3,
+        )
     };
     let out = std::env::temp_dir().join(format!("mortar-bench-pellet-{}", std::process::id()));
     let mut records = Vec::new();
-    for &r in &refinements {
+    for &(geometry, r) in &cases {
         let mut seconds = [Vec::new(), Vec::new()];
         let mut last: [Value; 2] = [Value::Null, Value::Null];
         for _ in 0..repeats {
@@ -56,6 +69,7 @@ fn main() -> Res<()> {
             {
                 let mut scene = PelletScene::default();
                 scene.mesh.refinement = r;
+                scene.model.geometry = geometry;
                 scene.solver.method = method;
                 scene.time.snapshots = 0;
                 let rep = run(&scene, &out, false)?;
@@ -85,6 +99,7 @@ fn main() -> Res<()> {
             })
         };
         let record = json!({
+            "geometry": geometry,
             "refinement": r,
             "unknowns": last[0]["mesh"]["unknowns"],
             "time_steps": last[0]["history"]["time"].as_array().map_or(0, |t| t.len() - 1),
@@ -95,7 +110,7 @@ fn main() -> Res<()> {
         });
         println!("{record}");
         eprintln!(
-            "refinement {r} ({} unknowns): Newton {tn:.3} s ({} steps, {} LU), JFNK {tj:.3} s ({} steps, {} GMRES iterations, {} block factorisations): JFNK / Newton = {:.2}, centre temperatures agree to {agreement:.1e}",
+            "{geometry:?}, refinement {r} ({} unknowns): Newton {tn:.3} s ({} steps, {} LU), JFNK {tj:.3} s ({} steps, {} GMRES iterations, {} block factorisations): JFNK / Newton = {:.2}, centre temperatures agree to {agreement:.1e}",
             record["unknowns"],
             record["newton"]["newton_iterations"],
             record["newton"]["factorizations"],
