@@ -5,12 +5,15 @@
 //! - [`LuFactorization`], [`CholeskyFactorization`]: factorise once, solve many times, and
 //!   [`refactor`](LuFactorization::refactor) a new matrix of the same pattern reusing the
 //!   symbolic analysis (Newton steps, new time step sizes).
+//! - [`BorderedLu`]: the LU of a sparse matrix bordered by a few dense rows and columns,
+//!   the border eliminated by its Schur complement outside the sparse factorisation.
 //! - [`SubstructuredCholesky`]: the same for two domains coupled through a small separator
 //!   (two tied bodies), the domains factorised in parallel.
 //! - [`gmres`]: right-preconditioned restarted GMRES(m) on any [`LinearOperator`] (an
 //!   assembled matrix or a matrix-free product), with any [`Preconditioner`] (the
 //!   factorisations above, or [`IdentityPreconditioner`]).
 
+mod bordered;
 mod conditioning;
 pub(crate) mod csr;
 mod faer_backend;
@@ -19,6 +22,7 @@ pub mod nested_dissection;
 mod substructured;
 mod triplets;
 
+pub use bordered::BorderedLu;
 pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
 pub use faer_backend::{
     fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{LuFactorization, SparseMatrix};
+use mortar_core::linalg::{BorderedLu, LuFactorization, SparseMatrix};
 
 use super::{newton, NewtonOptions, NewtonProblem, NewtonReport};
 use crate::error::PhysicsError;
@@ -62,6 +62,27 @@ impl SolverStats {
         };
         if !reused {
             *lu = Some(LuFactorization::try_new(a)?);
+            self.symbolic_analyses += 1;
+        }
+        self.factorizations += 1;
+        Ok(lu.as_ref().expect("factorised above"))
+    }
+
+    /// [`factorize`](Self::factorize) with the last `border` rows and columns eliminated by
+    /// their Schur complement ([`BorderedLu`]): a few dense rows and columns (the axial
+    /// unknowns of free axial expansion) kept out of the sparse factorisation.
+    pub(crate) fn factorize_bordered<'a>(
+        &mut self,
+        lu: &'a mut Option<BorderedLu>,
+        a: &SparseMatrix,
+        border: usize,
+    ) -> Result<&'a BorderedLu, PhysicsError> {
+        let reused = match lu {
+            Some(f) => f.refactor(a).is_ok(),
+            None => false,
+        };
+        if !reused {
+            *lu = Some(BorderedLu::try_new(a, border)?);
             self.symbolic_analyses += 1;
         }
         self.factorizations += 1;

@@ -1,6 +1,8 @@
 use std::time::Instant;
 
-use mortar_core::linalg::{LuFactorization, Preconditioner, SolverError, SparseMatrix, Triplets};
+use mortar_core::linalg::{
+    BorderedLu, LuFactorization, Preconditioner, SolverError, SparseMatrix, Triplets,
+};
 
 use super::problem::{GapThermoMechanics, Offsets};
 use crate::error::PhysicsError;
@@ -41,7 +43,7 @@ const SLOWDOWN_MIN: usize = 5;
 pub struct ThermoMechSolverState {
     /// The method.
     pub method: ThermoMechSolver,
-    lu: Option<LuFactorization>,
+    lu: Option<BorderedLu>,
     block: Option<BlockPreconditioner>,
     /// GMRES iterations of the first solve after the last factorisation, and of the last.
     iterations: (usize, usize),
@@ -74,14 +76,21 @@ struct BlockPreconditioner {
     thermal: Vec<usize>,
     mechanical: Vec<usize>,
     thermal_lu: LuFactorization,
-    mechanical_lu: LuFactorization,
+    /// The mechanical block, its last unknowns (the axial ones, dense rows and columns) as a
+    /// border.
+    mechanical_lu: BorderedLu,
     /// Mechanical rows, thermal columns (local numbering).
     coupling: SparseMatrix,
 }
 
 impl BlockPreconditioner {
-    /// The blocks of `a`; `thermal[i]` says whether unknown `i` is thermal.
-    fn new(a: &SparseMatrix, is_thermal: &[bool]) -> Result<(Self, usize), SolverError> {
+    /// The blocks of `a`; `thermal[i]` says whether unknown `i` is thermal; the last
+    /// `border` unknowns (mechanical) are the mechanical block's border.
+    fn new(
+        a: &SparseMatrix,
+        is_thermal: &[bool],
+        border: usize,
+    ) -> Result<(Self, usize), SolverError> {
         let mut local = vec![0u32; is_thermal.len()];
         let (mut thermal, mut mechanical) = (Vec::new(), Vec::new());
         for (i, &t) in is_thermal.iter().enumerate() {
@@ -110,7 +119,7 @@ impl BlockPreconditioner {
         }
         let (nt, nm) = (thermal.len(), mechanical.len());
         let thermal_lu = LuFactorization::try_new(&tt.to_csr(nt, nt))?;
-        let mechanical_lu = LuFactorization::try_new(&mm.to_csr(nm, nm))?;
+        let mechanical_lu = BorderedLu::try_new(&mm.to_csr(nm, nm), border)?;
         Ok((
             Self {
                 thermal,
@@ -191,6 +200,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             .expect("a matrix was asked"))
     }
 
+    /// The number of axial unknowns (the last ones).
+    fn axial_unknowns(&self) -> usize {
+        self.offsets.axial.iter().flatten().count()
+    }
+
     /// Whether each unknown is thermal (temperature, flux) rather than mechanical.
     fn thermal_unknowns(&self) -> Vec<bool> {
         let o: Offsets = self.offsets;
@@ -233,7 +247,8 @@ fn refresh_blocks<TL: ConstraintLaw, ML: ConstraintLaw>(
 ) -> Result<(), PhysicsError> {
     let a = matrix(problem, data, &mut solver.stats, x, Linearization::Picard)?;
     let t0 = Instant::now();
-    let (pc, analyses) = BlockPreconditioner::new(&a, &problem.thermal_unknowns())?;
+    let border = problem.axial_unknowns();
+    let (pc, analyses) = BlockPreconditioner::new(&a, &problem.thermal_unknowns(), border)?;
     let stats = &mut solver.stats;
     stats.symbolic_analyses += analyses;
     stats.factorizations += 1;
@@ -266,7 +281,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> NewtonProblem for Step<'_, TL, ML> {
                 )?;
                 let t0 = Instant::now();
                 let solver = &mut *self.solver;
-                let lu = solver.stats.factorize(&mut solver.lu, &a)?;
+                // The axial unknowns (last, dense rows and columns) as the border.
+                let border = self.problem.axial_unknowns();
+                let lu = solver
+                    .stats
+                    .factorize_bordered(&mut solver.lu, &a, border)?;
                 dx.copy_from_slice(r);
                 lu.solve_in_place(dx)?;
                 solver.stats.linear_seconds += t0.elapsed().as_secs_f64();
