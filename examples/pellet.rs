@@ -1,6 +1,6 @@
-//! The built-in pellet scene (PHYSICS.md sections 4 to 6): a UO2 pellet in its zircaloy
+//! The built-in pellet scene (docs/physics.md, sections 3 and 3a): a UO2 pellet in its zircaloy
 //! cladding, helium in the gap, power ramped to 20 kW/m, cladding outer surface at 580 K;
-//! thermal expansion closes the gap, the pressure law and the plenum act. Solved by Newton
+//! thermal expansion narrows the gap into contact, the pressure law and the plenum act. Solved by Newton
 //! and by JFNK, which must agree; then the thermal-only scene (gap held open) against the
 //! closed form.
 //!

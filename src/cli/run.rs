@@ -171,6 +171,13 @@ fn print_coupled(report: &Value, out: &Path) {
         solver["factorizations"],
         solver["step_cuts"]
     );
+    let choice = &report["solver_choice"];
+    if let Some(why) = choice["why"].as_str() {
+        say!("{:<28} {why}", "");
+    }
+    if let Some(t) = choice["fallback_to_newton"]["time"].as_f64() {
+        say!("{:<28} JFNK failed at t = {t} s: Newton took over", "");
+    }
     say!("{:<28} {:.3} s", "time", f(&report["seconds"]["total"]));
     say!("output: {} (report.json, VTU over time)", out.display());
 }

@@ -1923,12 +1923,17 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
             assert_eq!((count(&f.report), count(&r)), (2, 3));
         }),
         ("solver.method", |f| {
-            let r = f.ok(&[("solver.method", "\"jfnk\"")]);
+            // The base asks for "auto", which picks JFNK for the coupled scene.
+            let r = f.ok(&[("solver.method", "\"newton\"")]);
             assert_eq!(
                 (text(&f.report, "method"), text(&r, "method")),
-                ("newton".into(), "jfnk".into())
+                ("jfnk".into(), "newton".into())
             );
-            assert!(num(&r, "solver.linear_iterations") > num(&r, "solver.newton_iterations"));
+            assert_eq!(text(&f.report, "solver_choice.asked"), "auto");
+            assert_eq!(text(&r, "solver_choice.asked"), "newton");
+            let its =
+                |r: &Value| num(r, "solver.linear_iterations") - num(r, "solver.newton_iterations");
+            assert!(its(&f.report) > 0.0 && its(&r) == 0.0);
             let key = "steady.center_temperature";
             assert!(off(&[num(&r, key)], num(&f.report, key)) < 1e-8);
         }),

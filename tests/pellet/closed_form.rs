@@ -51,7 +51,7 @@ fn default_mesh_within_one_percent_and_converging() {
     assert!(rate > 1.5, "centre error rate {rate}: {e:?}");
 }
 
-/// Regression (issue 14, item 3): at zero or tiny power the residual starts at round-off
+/// Regression: at zero or tiny power the residual starts at round-off
 /// (1e-11 W/m against conduction terms of 1e4), Newton's relative criterion asked for
 /// round-off of round-off and the line search failed. Source of the reference (closed form):
 /// at zero power the temperature is the outer one everywhere; at low power the steady closed

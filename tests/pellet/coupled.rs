@@ -1,4 +1,4 @@
-//! The thermomechanical pellet (issue 15): the 2D plane-strain cross-section against the
+//! The thermomechanical pellet: the 2D cross-section and the r-z model against the
 //! independent 1D radial model of `radial.rs`, its energy balance, its Jacobian against
 //! finite differences, Newton against JFNK, and its failures.
 
@@ -329,9 +329,23 @@ fn newton_and_jfnk_agree_on_the_coupled_scene() {
     let mut s = scene(ContactLawName::Exponential);
     s.mesh.refinement = 2;
     s.time.snapshots = 1;
+    s.solver.method = SolverMethod::Newton;
     let newton = run_scene(&s, "newton");
+    assert_eq!(newton["method"], "newton");
     s.solver.method = SolverMethod::Jfnk;
     let jfnk = run_scene(&s, "jfnk");
+    assert_eq!(jfnk["method"], "jfnk");
+    // "auto" picks JFNK for the coupled scene and says so: the same run.
+    s.solver.method = SolverMethod::Auto;
+    let auto = run_scene(&s, "auto");
+    assert_eq!(auto["method"], "jfnk");
+    assert_eq!(auto["solver_choice"]["asked"], "auto");
+    assert!(auto["solver_choice"]["why"]
+        .as_str()
+        .unwrap()
+        .contains("measured"));
+    assert!(auto["solver_choice"]["fallback_to_newton"].is_null());
+    assert_same_history(&auto, &jfnk);
     for key in [
         "center_temperature",
         "gap",
@@ -576,7 +590,7 @@ fn free_expansion_error(r: usize, axial: AxialModel) -> f64 {
     worst
 }
 
-/// Run-time choice of laws (issue 11, item 2): the scene run with its laws made by name from
+/// Run-time choice of laws: the scene run with its laws made by name from
 /// the registry (`DynLaw`, through `run_coupled_with`) gives the built-in run's history bit
 /// for bit.
 #[test]
@@ -617,7 +631,7 @@ fn laws_chosen_by_name_run_the_scene_as_the_built_in_ones() {
     assert_same_history(&built_in, &by_name);
 }
 
-/// Scene files naming laws (issue 11, item 2): `[laws.thermal]` and `[laws.contact]` with the
+/// Scene files naming laws: `[laws.thermal]` and `[laws.contact]` with the
 /// built-in laws' names and parameters run as the built-in scene, bit for bit; an unknown
 /// name is an error listing the known ones, a missing parameter one naming it; a program's
 /// own law registered by name (gap conductance plus radiation) runs through the same file

@@ -1,17 +1,18 @@
-//! The independent reference of the coupled pellet (issue 15, item 4, fourth bullet): a fine
+//! The independent reference of the coupled pellet: a fine
 //! 1D radial model of the thermomechanical pellet in its cladding, written here from the
-//! equations of PHYSICS.md (sections 2 to 6) without calling the library's heat, elastic,
+//! equations of docs/physics.md (sections 3 and 3a) without calling the library's heat, elastic,
 //! contact or law code, so that the 2D cross-section and the r-z model can be checked
-//! against it later (centre temperature, gap, contact pressure, plenum pressure through the
+//! against it (centre temperature, gap, contact pressure, plenum pressure through the
 //! ramp). It reads only the thermal defaults of `PelletScene::from_toml("")` (numbers).
 //!
-//! # The model (axisymmetric, plane strain `eps_zz = 0`, per unit length of rod)
+//! # The model (axisymmetric, per unit length of rod; plane strain `eps_zz = 0`, or
+//! generalized plane strain: a uniform `eps_zz` per body balancing its axial force)
 //!
 //! **Heat.** `rho c_p T_t = (1/r) (r k(T) T_r)_r + Q(t)` in the pellet `0 <= r <= a`
 //! (`k = 1/(A + B T)`, `Q = q'(t) / (pi a^2)`, `q'(t) = q' min(t / t_ramp, 1)`), the same with
 //! `k_c` and no source in the cladding `b <= r <= c`, `T(c) = T_co`, initially `T = T_co`.
 //! Across the gap the heat per unit length `2 pi a q`, `q = U (T_ps - T_ci)` per unit area of
-//! the pellet's (reference) surface, as PHYSICS.md section 5 (`T_ps = T_ci + q'/(2 pi a U)`),
+//! the pellet's (reference) surface, as docs/physics.md section 3 (`T_ps = T_ci + q'/(2 pi a U)`),
 //!
 //! ```text
 //! U = k_g(T_gap) / (max(g, 0) + 1.5 (R_f + R_c) + j) + h_contact p_contact,
@@ -41,12 +42,21 @@
 //! from equilibrium `sigma_r' + (sigma_r - sigma_theta)/r = 0` with
 //! `sigma = lambda tr(eps - eps_th) + 2 mu (eps - eps_th)`. Pellet: `C2 = 0`, `sigma_r(a) = -P`,
 //! so `u_p(a) = 2 (1 + nu) alpha I_p / a - P a (1 + nu)(1 - 2 nu) / E` (free expansion for
-//! `P = 0`, PHYSICS.md section 6). Cladding (thick-walled cylinder): `sigma_r(b) = -P`,
+//! `P = 0`, docs/physics.md section 3a). Cladding (thick-walled cylinder): `sigma_r(b) = -P`,
 //! `sigma_r(c) = -p_cool` fix `C1`, `C2` (Lame's solution when `T = T_ref`).
 //! `P = P_o + p_contact` is the normal pressure on both gap surfaces. The integrals of `T r` are
 //! exact for the piecewise-linear interpolant of the nodal temperatures.
 //!
-//! **Gap, contact, plenum.** `g = (b + u_c(b)) - (a + u_p(a))`. Contact laws (PHYSICS.md 3, 6):
+//! **Free axial expansion** (generalized plane strain, the scene's default). With a uniform
+//! `eps_zz = e` per body the same `u(r)` holds (the equilibrium does not see `e`) and
+//! `sigma_r` gains `lambda e`: the plane-strain solution with the surface pressures shifted
+//! by `lambda e`. Each body's `e` balances its axial force,
+//! `int sigma_zz dA = 2 pi int (lambda (beta (T - T_ref) + 2 C1) + (lambda + 2 mu) e
+//! - 3 K alpha (T - T_ref)) r dr`, against `-P_o pi a^2` (the plenum on the pellet's ends) and
+//! `P_o pi b^2 - p_cool pi c^2` (the cladding's closed ends): linear in `e`, solved from two
+//! evaluations (`pellet_axial_strain`, `cladding_axial_strain`).
+//!
+//! **Gap, contact, plenum.** `g = (b + u_c(b)) - (a + u_p(a))`. Contact laws (docs/physics.md, section 3a):
 //!
 //! - `Exponential`: `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`; past the maximum
 //!   pressure `P_max = max_pressure_ratio P_o` (reached at `g* = xi - sqrt(ln(ratio)/S_NE)`) the
@@ -97,7 +107,7 @@ pub enum GasConductivity {
 /// The normal pressure law of the gap.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactLaw {
-    /// The seed's regularised `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`.
+    /// The regularised `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`.
     Exponential,
     /// Kuhn-Tucker `g >= 0`, `p >= 0`, `p g = 0`, with `P_o` acting beside it.
     Exact,
@@ -141,7 +151,7 @@ impl Thermoelastic {
     }
 }
 
-/// Every input of the 1D radial pellet (PHYSICS.md sections 4 and 6), SI units.
+/// Every input of the 1D radial pellet (docs/physics.md, sections 3 and 3a), SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RadialPellet {
     /// Pellet radius `a` (m).
@@ -214,23 +224,23 @@ pub struct RadialPellet {
 }
 
 impl Default for RadialPellet {
-    /// The thermal data of `PelletScene::from_toml("")` (PHYSICS.md section 4), the mechanical
+    /// The thermal data of `PelletScene::from_toml("")` (docs/physics.md, section 3), the mechanical
     /// and gap data of sections 4 and 6, and:
     ///
     /// - `S_NE = 1e12 /m^2` (the exponent is `((xi - g) / 1 um)^2`): in the closing scene the
     ///   peak interface pressure (about 220 MPa at 30 s, `P_c/P_o` about 20) is reached at
     ///   `xi - g` of 1.7 um, i.e. `g` = 3.3 um: the surfaces never interpenetrate (that would
-    ///   need `P_c/P_o = e^25`), far inside PHYSICS.md's "penetration below a micrometre"
+    ///   need `P_c/P_o = e^25`), far inside the requirement of a penetration below a micrometre
     ///   (which needs only `S_NE > ln(P_c/P_o) / (xi + 1 um)^2`, about 1e11 here), while the
     ///   law's stiffness there, `2 S_NE (xi - g) P_c` (8e14 Pa/m), is within a decade of the
     ///   pellet's radial stiffness `E / (a (1 + nu)(1 - 2 nu))` (9.4e13 Pa/m), which Newton
     ///   handles without a step cut;
     /// - `xi = 5 um`, the maximum pressure `1e6 P_o` (the library's ratio);
-    /// - `h_contact = 1e-4 W/m^2/K/Pa` (1 kW/m^2/K at 10 MPa): PHYSICS.md gives no value;
+    /// - `h_contact = 1e-4 W/m^2/K/Pa` (1 kW/m^2/K at 10 MPa): the specification gives no value;
     /// - 400 pellet and 60 cladding cells (about 10 um each).
     fn default() -> Self {
         let mut scene = PelletScene::from_toml("").expect("the default pellet scene");
-        // PHYSICS.md's as-built gap, 80 um (the scene's default is 20 um, so that its gap
+        // The specification's as-built gap, 80 um (the scene's default is 20 um, so that its gap
         // closes at 20 kW/m: what this model's tests found).
         scene.cladding.inner_radius = 4.18e-3;
         Self {
@@ -1154,7 +1164,7 @@ impl RadialHistory {
 // Verification of the reference itself.
 // ---------------------------------------------------------------------------------------------
 
-/// The steady closed form of PHYSICS.md section 5 (open gap held at `b - a`), written again
+/// The steady closed form of docs/physics.md section 3 (open gap held at `b - a`), written again
 /// here: `T_ci = T_co + q' ln(c/b) / (2 pi k_c)`, `T_ps = T_ci + q' / (2 pi a U(T_gap))`
 /// (fixed point, `U` at the mean of the two surfaces), `T_0 = ((A + B T_ps) e^{B q'/(4 pi)} - A)/B`.
 fn closed_form(m: &RadialPellet, q: f64) -> [f64; 3] {
@@ -1184,7 +1194,7 @@ fn steady_by_continuation(m: &RadialPellet, q: f64, steps: usize) -> RadialState
     s
 }
 
-/// The defaults are the tables of PHYSICS.md sections 4 and 6 (the thermal ones read from the
+/// The defaults are the data tables of docs/physics.md, sections 3 and 3a (the thermal ones read from the
 /// library's default scene, so a change there shows here).
 #[test]
 fn defaults_follow_physics_md() {
@@ -1229,7 +1239,7 @@ fn defaults_follow_physics_md() {
     assert_eq!(constant.gas_conductivity(900.0), (0.3, 0.0));
 }
 
-/// The exponential law of PHYSICS.md section 3: `P_o` for `g >= xi`, `P_o exp(S_NE (xi - g)^2)`
+/// The exponential law (docs/physics.md, section 3a): `P_o` for `g >= xi`, `P_o exp(S_NE (xi - g)^2)`
 /// below, continued by its tangent past `P_max = ratio P_o` (value and slope continuous there),
 /// finite for any gap; its derivatives against central differences.
 #[test]
@@ -1349,7 +1359,7 @@ fn jacobian_matches_finite_differences() {
 }
 
 /// Mechanics off (rigid bodies, the gap held at `b - a`): the steady state against the closed
-/// form of PHYSICS.md section 5, written again above, and the library's
+/// form of docs/physics.md section 3, written again above, and the library's
 /// `PelletScene::closed_form()` read as numbers. The finite volumes are exact for the steady
 /// profiles, so the agreement is to the solver's tolerance on any grid.
 #[test]

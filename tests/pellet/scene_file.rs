@@ -81,7 +81,7 @@ fn run_from_toml_writes_the_report() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// Regression (issue 14, item 4): a run that fails in the transient (here Newton allowed one
+/// Regression: a run that fails in the transient (here Newton allowed one
 /// step at a tolerance it cannot reach in one) left `pellet_0000.vtu` behind. Every output
 /// is now written at the end, all or none: the failed run leaves no output folder.
 #[test]

@@ -65,3 +65,55 @@ fn a_failing_newton_reports_its_history() {
         other => panic!("expected a Newton failure, got {other}"),
     }
 }
+
+/// `[solver] method = "auto"` (the default) picks by the benchmark's rule and says why: JFNK
+/// for the coupled scene (faster in every geometry and size measured), Newton for a 2D
+/// cross-section above the size where the 2D trend crosses over and for the heat-only scene;
+/// a method given is kept.
+#[test]
+fn auto_picks_by_the_measured_rule() {
+    use mortar::scenes::pellet::{SolverData, AUTO_NEWTON_ABOVE_2D};
+    let auto = SolverData::default();
+    assert_eq!(auto.method, SolverMethod::Auto);
+    let pick = |thermomech, plane, n| auto.choose(thermomech, plane, n);
+    assert_eq!(pick(true, true, 2730).method, SolverMethod::Jfnk);
+    assert_eq!(pick(true, false, 100_000).method, SolverMethod::Jfnk);
+    let big = pick(true, true, AUTO_NEWTON_ABOVE_2D + 1);
+    assert_eq!(big.method, SolverMethod::Newton);
+    assert!(big.picked && big.reason.contains("2D"), "{big:?}");
+    assert_eq!(pick(false, true, 0).method, SolverMethod::Newton);
+    let given = SolverData {
+        method: SolverMethod::Newton,
+        ..SolverData::default()
+    };
+    let kept = given.choose(true, false, 5000);
+    assert_eq!(kept.method, SolverMethod::Newton);
+    assert!(!kept.picked);
+}
+
+/// A JFNK solve that fails under `"auto"` (GMRES restarted after every iteration cannot reach
+/// its tolerance at the steady state) is handed to Newton: the run finishes, says so
+/// (`solver_choice.fallback_to_newton`, with the time and the cause) and gives Newton's
+/// answer; with JFNK asked for, the same failure is an error.
+#[test]
+fn a_failed_jfnk_solve_under_auto_falls_back_to_newton() {
+    let mut s = PelletScene::default();
+    s.mesh.refinement = 1;
+    s.time.end = 2.0;
+    s.time.snapshots = 1;
+    s.solver.gmres_restart = 1;
+    let dir = out("fallback");
+    let rep = run(&s, &dir, false).unwrap();
+    assert_eq!(rep["solver_choice"]["picked"], "jfnk");
+    assert_eq!(rep["method"], "newton");
+    let fallback = &rep["solver_choice"]["fallback_to_newton"];
+    assert!(fallback["time"].as_f64().is_some(), "{fallback}");
+    assert!(fallback["cause"].as_str().unwrap().contains("Newton"), "{fallback}");
+    s.solver.method = SolverMethod::Newton;
+    let newton = run(&s, &dir, false).unwrap();
+    let key = |r: &serde_json::Value| r["steady"]["center_temperature"].as_f64().unwrap();
+    assert!((key(&rep) - key(&newton)).abs() <= 1e-9 * key(&newton));
+    s.solver.method = SolverMethod::Jfnk;
+    assert!(run(&s, &dir, false).is_err());
+    let _ = std::fs::remove_dir_all(&dir);
+}

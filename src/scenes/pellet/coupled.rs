@@ -544,12 +544,35 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let problem = coupled_problem_with(scene, laws.0, laws.1)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let c = &scene.cladding;
-    let method = match scene.solver.method {
-        SolverMethod::Newton => ThermoMechSolver::Newton,
+    let choice = scene
+        .solver
+        .choose(true, scene.model.geometry.is_plane(), problem.dimension());
+    let method = match choice.method {
         SolverMethod::Jfnk => ThermoMechSolver::Jfnk(scene.solver.jfnk_options()),
+        _ => ThermoMechSolver::Newton,
     };
     let mut solver = ThermoMechSolverState::new(method);
     let newton = scene.solver.newton_options(scene.power.linear_power);
+    // A picked JFNK whose solve fails hands the solve, and the rest of the run, to Newton.
+    let mut fallback: Option<Value> = None;
+    let solve = |x: &mut Vec<f64>,
+                 t: f64,
+                 transient: Option<(&[f64], f64)>,
+                 solver: &mut ThermoMechSolverState,
+                 fallback: &mut Option<Value>|
+     -> Result<(), PhysicsError> {
+        let start = x.clone();
+        match problem.solve(x, t, transient, solver, &newton) {
+            Ok(_) => Ok(()),
+            Err(e) if choice.picked && matches!(solver.method, ThermoMechSolver::Jfnk(_)) => {
+                *fallback = Some(json!({ "time": t, "cause": e.to_string() }));
+                solver.method = ThermoMechSolver::Newton;
+                x.copy_from_slice(&start);
+                problem.solve(x, t, transient, solver, &newton).map(|_| ())
+            }
+            Err(e) => Err(e),
+        }
+    };
     let bodies = problem.heat().bodies();
     let centre = nearest_node(&bodies[0].mesh, Vector3::zeros());
     let t0 = vec![c.outer_temperature; bodies[0].mesh.node_count()];
@@ -635,7 +658,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         }
     };
     let mut watch = LimitWatch::default();
-    if let Err(e) = problem.solve(&mut x, 0.0, None, &mut solver, &newton) {
+    if let Err(e) = solve(&mut x, 0.0, None, &mut solver, &mut fallback) {
         let e = located(
             &problem,
             e,
@@ -676,7 +699,13 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         while time < target {
             let dt = (target - time).min(scene.time.step / f64::powi(2.0, cuts as i32));
             let old = x.clone();
-            match problem.solve(&mut x, time + dt, Some((&old, dt)), &mut solver, &newton) {
+            match solve(
+                &mut x,
+                time + dt,
+                Some((&old, dt)),
+                &mut solver,
+                &mut fallback,
+            ) {
                 Ok(_) => time += dt,
                 Err(e) => {
                     cuts += 1;
@@ -724,7 +753,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // The steady state at full power, and its energy balance.
     let transient_stats = solver.stats;
     let t_steady = time.max(scene.power.ramp_time);
-    if let Err(e) = problem.solve(&mut x, t_steady, None, &mut solver, &newton) {
+    if let Err(e) = solve(&mut x, t_steady, None, &mut solver, &mut fallback) {
         bar.finish_and_clear();
         let e = located(
             &problem,
@@ -802,7 +831,13 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             // The exponential law's onset gap xi (m), below which its pressure rises.
             "contact_onset_gap": onset,
         },
-        "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
+        "method": match solver.method { ThermoMechSolver::Newton => "newton", ThermoMechSolver::Jfnk(_) => "jfnk" },
+        "solver_choice": {
+            "asked": scene.solver.method.name(),
+            "picked": choice.method.name(),
+            "why": choice.reason,
+            "fallback_to_newton": fallback,
+        },
         "center_temperature": last.center,
         "gap": last.gap,
         // When contact engaged (the mean gap fell below xi, or the exact law's pressure

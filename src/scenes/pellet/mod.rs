@@ -1,11 +1,11 @@
-//! The pellet scene of the seed: a fuel pellet (disc, `k = 1 / (A + B T)`) inside its
+//! The pellet scene: a fuel pellet (disc, `k = 1 / (A + B T)`) inside its
 //! cladding (annulus, constant `k`), helium in the gap between them, a power ramp, the
 //! cladding's outer temperature fixed (docs/physics.md, sections 3 and 4). By default it is
 //! thermomechanical ([`run_coupled`]): both bodies expand (thermoelasticity, free to expand
 //! axially: generalized plane strain), the gap narrows until contact engages (below the onset
 //! gap `xi` of the pressure law), the gap conductance follows the mechanical gap and the
 //! contact pressure,
-//! the interface pressure follows the seed's exponential law (or exact contact), the plenum
+//! the interface pressure follows the exponential pressure law (or exact contact), the plenum
 //! pressure follows the gap's volume and temperature (ideal gas), the coolant presses on the
 //! cladding. With `[model] mechanics = false` it is thermal only, the gap held at its
 //! as-built width ([`run_thermal`], checked against the closed form [`closed_form`]).
@@ -68,7 +68,7 @@
 //! end = 30.0                 # s; then a steady solve at full power
 //! snapshots = 4              # VTU files over the transient
 //! [solver]
-//! method = "newton"          # or "jfnk"
+//! method = "auto"            # or "newton", "jfnk"; auto picks and says which and why
 //! relative_tolerance = 1e-10
 //! [mesh]
 //! refinement = 3
@@ -378,7 +378,7 @@ impl Default for TimeData {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactLawName {
-    /// The seed's `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`.
+    /// The exponential pressure law `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`.
     #[default]
     Exponential,
     /// Kuhn-Tucker contact (`g >= 0`, `p >= 0`, `p g = 0`), the plenum pressure beside it.
@@ -520,15 +520,44 @@ impl Default for ModelData {
     }
 }
 
-/// The nonlinear solver: `"newton"` (assembled Jacobian, sparse LU) or `"jfnk"`.
+/// The nonlinear solver: `"auto"` (the default: picked from measurements, see
+/// [`SolverData::choose`]), `"newton"` (assembled Jacobian, sparse LU) or `"jfnk"`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum SolverMethod {
-    /// Newton on the assembled Jacobian.
+    /// Picked by the scene ([`SolverData::choose`]), which says which and why.
     #[default]
+    Auto,
+    /// Newton on the assembled Jacobian.
     Newton,
     /// Jacobian-free Newton-Krylov, preconditioned by the assembled Picard matrix.
     Jfnk,
+}
+
+impl SolverMethod {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Auto => "auto",
+            Self::Newton => "newton",
+            Self::Jfnk => "jfnk",
+        }
+    }
+}
+
+/// The size of a 2D cross-section (unknowns) above which `[solver] method = "auto"` takes
+/// Newton rather than JFNK ([`SolverData::choose`]).
+pub const AUTO_NEWTON_ABOVE_2D: usize = 20_000;
+
+/// The method a run uses, and why ([`SolverData::choose`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SolverChoice {
+    /// The method (Newton or JFNK).
+    pub method: SolverMethod,
+    /// Whether it was picked (`method = "auto"`) rather than given.
+    pub picked: bool,
+    /// Why.
+    pub reason: String,
 }
 
 /// The solver: `[solver]`.
@@ -546,6 +575,51 @@ pub struct SolverData {
 }
 
 impl SolverData {
+    /// The method of a run: the one given, or for `"auto"` the cheapest measured for the
+    /// scene, from the benchmark of every geometry (`examples/bench_pellet.rs`,
+    /// `docs/bench_pellet.json`; JFNK time over Newton's for the same states: 2D 0.37, 0.50,
+    /// 0.82 at 386, 2,730 and 10,206 unknowns; r-z 0.29 to 0.37 at 126 to 798; 3D 0.19 and 0.15 at
+    /// 1,503 and 5,103). The thermomechanical scene (`thermomechanical`) takes JFNK,
+    /// but Newton for a 2D cross-section above [`AUTO_NEWTON_ABOVE_2D`] unknowns, where the
+    /// 2D trend (the ratio rising with the size) crosses 1 (an extrapolation: the largest 2D
+    /// case measured is 10,206 unknowns). A picked JFNK whose solve fails hands it to Newton.
+    /// The heat-only scene takes Newton (not part of the benchmark).
+    pub fn choose(&self, thermomechanical: bool, plane: bool, unknowns: usize) -> SolverChoice {
+        match self.method {
+            SolverMethod::Auto if thermomechanical && plane && unknowns > AUTO_NEWTON_ABOVE_2D => {
+                SolverChoice {
+                    method: SolverMethod::Newton,
+                    picked: true,
+                    reason: format!(
+                        "auto: Newton for a 2D cross-section of {unknowns} unknowns (above \
+                         {AUTO_NEWTON_ABOVE_2D}, JFNK's advantage measured shrinking with the \
+                         size: docs/pellet.md)"
+                    ),
+                }
+            }
+            SolverMethod::Auto if thermomechanical => SolverChoice {
+                method: SolverMethod::Jfnk,
+                picked: true,
+                reason: format!(
+                    "auto: JFNK for {unknowns} unknowns, measured faster than Newton at this \
+                     geometry and size (docs/pellet.md); a failed JFNK solve is retried by Newton"
+                ),
+            },
+            SolverMethod::Auto => SolverChoice {
+                method: SolverMethod::Newton,
+                picked: true,
+                reason: "auto: Newton for the heat-only scene (one field; JFNK not measured \
+                         faster there)"
+                    .into(),
+            },
+            m => SolverChoice {
+                method: m,
+                picked: false,
+                reason: format!("[solver] method = \"{}\"", m.name()),
+            },
+        }
+    }
+
     /// The GMRES settings of JFNK.
     pub fn jfnk_options(&self) -> mortar_physics::nonlinear::JfnkOptions {
         mortar_physics::nonlinear::JfnkOptions {
@@ -570,7 +644,7 @@ impl SolverData {
 impl Default for SolverData {
     fn default() -> Self {
         Self {
-            method: SolverMethod::Newton,
+            method: SolverMethod::Auto,
             relative_tolerance: 1e-10,
             max_iterations: 30,
             gmres_restart: 30,

@@ -170,9 +170,10 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
     .with_multiplier_scale(1.0 / law.reference_resistance)?;
     let setup_seconds = start.elapsed().as_secs_f64();
 
-    let method = match scene.solver.method {
-        SolverMethod::Newton => GapSolver::Newton,
+    let choice = scene.solver.choose(false, true, 0);
+    let method = match choice.method {
         SolverMethod::Jfnk => GapSolver::Jfnk(scene.solver.jfnk_options()),
+        _ => GapSolver::Newton,
     };
     let mut solver = GapSolverState::new(method);
     let newton = scene.solver.newton_options(q);
@@ -236,7 +237,12 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
         "scene": "pellet",
         "status": "ok",
         "models": { "heat": true, "mechanics": false, "gap": "held at its as-built width" },
-        "method": match scene.solver.method { SolverMethod::Newton => "newton", SolverMethod::Jfnk => "jfnk" },
+        "method": choice.method.name(),
+        "solver_choice": {
+            "asked": scene.solver.method.name(),
+            "picked": choice.method.name(),
+            "why": choice.reason,
+        },
         "center_temperature": s[0],
         "pellet_surface_temperature": s[1],
         "cladding_inner_temperature": s[2],

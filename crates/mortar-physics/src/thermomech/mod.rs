@@ -7,7 +7,7 @@
 //!   contact pressure ([`MechanicalGapConductance`](crate::laws::MechanicalGapConductance):
 //!   Ross-Stoute on the gap plus a contact conductance);
 //! - the mechanical law, contact pressure against normal gap, sees the gas pressure
-//!   ([`ExponentialContact`](crate::laws::ExponentialContact), the seed's law, or
+//!   ([`ExponentialContact`](crate::laws::ExponentialContact), the exponential pressure law, or
 //!   [`ContactComplementarity`](crate::laws::ContactComplementarity), Kuhn-Tucker);
 //! - the gas pressure is given or follows a [`Plenum`] (ideal gas, fixed moles, the gap's
 //!   volume and temperature).
