@@ -118,8 +118,10 @@ fn free_expansion_of_the_pellet_matches_the_plane_strain_closed_form() {
 }
 
 /// Generalized plane strain, the default of the coupled pellet: the surface displacement and
-/// the axial strain against the free-ends closed form, second order, within 1e-3 from the
-/// coupled scene's default pellet mesh (refinement 3) on.
+/// the axial strain against the free-ends closed form, second order (measured surface errors
+/// 7.75e-3, 1.79e-3, 7.90e-4, 4.45e-4 and axial strain errors 5.53e-3, 1.38e-3, 6.14e-4,
+/// 3.45e-4 at refinements 1 to 4: error times refinement squared 7.1e-3 to 7.8e-3), within
+/// 1e-3 from the coupled scene's default pellet mesh (refinement 3) on.
 #[test]
 fn free_expansion_of_the_pellet_matches_the_generalized_plane_strain_closed_form() {
     let scene = PelletScene::from_toml("").unwrap();
@@ -131,8 +133,13 @@ fn free_expansion_of_the_pellet_matches_the_generalized_plane_strain_closed_form
         );
         errors.push((e, strain));
     }
-    for w in errors.windows(2) {
-        assert!(w[0].0 / w[1].0 > 1.7, "second order: {errors:?}");
+    // Second order: the error times the refinement squared stays within 20 % of the first's.
+    for (r, e) in errors.iter().enumerate() {
+        let scaled = e.0 * ((r + 1) * (r + 1)) as f64;
+        assert!(
+            (scaled / errors[0].0 - 1.0).abs() < 0.2,
+            "second order: {errors:?}"
+        );
     }
     assert!(errors[2].0 < 1e-3 && errors[2].1 < 1e-3, "{errors:?}");
 }

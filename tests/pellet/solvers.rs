@@ -108,7 +108,10 @@ fn a_failed_jfnk_solve_under_auto_falls_back_to_newton() {
     assert_eq!(rep["method"], "newton");
     let fallback = &rep["solver_choice"]["fallback_to_newton"];
     assert!(fallback["time"].as_f64().is_some(), "{fallback}");
-    assert!(fallback["cause"].as_str().unwrap().contains("Newton"), "{fallback}");
+    assert!(
+        fallback["cause"].as_str().unwrap().contains("Newton"),
+        "{fallback}"
+    );
     s.solver.method = SolverMethod::Newton;
     let newton = run(&s, &dir, false).unwrap();
     let key = |r: &serde_json::Value| r["steady"]["center_temperature"].as_f64().unwrap();
