@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{BorderedLu, LuFactorization, SparseMatrix};
+use mortar_core::linalg::{BorderedLu, LuFactorization, SolverError, SparseMatrix};
 
 use super::{newton, NewtonOptions, NewtonProblem, NewtonReport};
 use crate::error::PhysicsError;
@@ -56,16 +56,7 @@ impl SolverStats {
         lu: &'a mut Option<LuFactorization>,
         a: &SparseMatrix,
     ) -> Result<&'a LuFactorization, PhysicsError> {
-        let reused = match lu {
-            Some(f) => f.refactor(a).is_ok(),
-            None => false,
-        };
-        if !reused {
-            *lu = Some(LuFactorization::try_new(a)?);
-            self.symbolic_analyses += 1;
-        }
-        self.factorizations += 1;
-        Ok(lu.as_ref().expect("factorised above"))
+        self.counted(lu, |f| f.refactor(a), || LuFactorization::try_new(a))
     }
 
     /// [`factorize`](Self::factorize) with the last `border` rows and columns eliminated by
@@ -77,12 +68,20 @@ impl SolverStats {
         a: &SparseMatrix,
         border: usize,
     ) -> Result<&'a BorderedLu, PhysicsError> {
-        let reused = match lu {
-            Some(f) => f.refactor(a).is_ok(),
-            None => false,
-        };
+        self.counted(lu, |f| f.refactor(a), || BorderedLu::try_new(a, border))
+    }
+
+    /// `refactor` the factorisation in `lu` if there is one and it succeeds, else `build` a
+    /// new one (a symbolic analysis); counted.
+    fn counted<'a, F>(
+        &mut self,
+        lu: &'a mut Option<F>,
+        refactor: impl FnOnce(&mut F) -> Result<(), SolverError>,
+        build: impl FnOnce() -> Result<F, SolverError>,
+    ) -> Result<&'a F, PhysicsError> {
+        let reused = lu.as_mut().is_some_and(|f| refactor(f).is_ok());
         if !reused {
-            *lu = Some(BorderedLu::try_new(a, border)?);
+            *lu = Some(build()?);
             self.symbolic_analyses += 1;
         }
         self.factorizations += 1;
