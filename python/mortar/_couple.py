@@ -393,8 +393,8 @@ def couple(
             faces).
         search_radius: how far along the slave normals (both ways) to look for master
             faces, a distance in the points' unit (``mortar couple --search-radius``); None:
-            the library's default (one slave face size, so that a gap of the order of the
-            element size is crossed). Master faces beyond it are not coupled.
+            the library's default (as far as the nearest master surface, within a quarter
+            of the interface's size). Master faces beyond it are not coupled.
 
     Returns:
         A :class:`Coupling`: ``D``, ``M`` (``scipy.sparse.csr_array``), ``T`` (dual

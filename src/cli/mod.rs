@@ -42,8 +42,9 @@ use clap::{Args, Parser, Subcommand, ValueEnum};
 /// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
 /// conductance.
 ///
-/// With no command, runs the built-in pellet scene (a fuel pellet in its cladding, helium gap
-/// conductance, nonlinear heat conduction) into `out/pellet` with a progress bar.
+/// With no command, runs the built-in pellet scene (a fuel pellet in its cladding: heat
+/// conduction with k(T), thermal expansion free axially, helium gap conductance on the
+/// mechanical gap, contact, plenum pressure) into `out/pellet` with a progress bar.
 #[derive(Debug, Parser)]
 #[command(name = "mortar", version, about, long_about, disable_help_flag = true)]
 struct Cli {
@@ -170,8 +171,8 @@ struct CoupleArgs {
     threads: Option<usize>,
 
     /// How far along the slave normals (both ways) to look for master faces, in the mesh's
-    /// units (default: one slave face size, so a gap of the order of the element size is
-    /// crossed). Master faces beyond it are not coupled.
+    /// units (default: as far as the nearest master surface, within a quarter of the
+    /// interface's size). Master faces beyond it are not coupled.
     #[arg(long, value_name = "DISTANCE")]
     search_radius: Option<f64>,
 

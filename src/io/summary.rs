@@ -53,7 +53,8 @@ pub struct CouplingSettings {
     /// Worker threads (`None`: rayon's default).
     pub threads: Option<usize>,
     /// How far along the slave normals to look for master faces, in the coordinates' units
-    /// (`None`: one slave face size).
+    /// (`None`: the default, as far as the nearest master surface within a quarter of the
+    /// interface's size).
     pub search_radius: Option<f64>,
     /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
     /// of warnings.
