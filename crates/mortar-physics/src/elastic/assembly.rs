@@ -1,3 +1,7 @@
+//! Assembly of a body's elasticity: the stiffness `K = int B^T C B`, the load (body force,
+//! tractions, thermal strain) and the thermal load operator `G`, in parallel over fixed chunks
+//! of cells merged in order (the same bits for any thread count).
+
 use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::ModelGeometry;

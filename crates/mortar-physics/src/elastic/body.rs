@@ -1,3 +1,6 @@
+//! An elastic body: its mesh, material, temperature field, displacement conditions per
+//! component and tractions on boundary faces, and the unknowns they fix.
+
 use std::fmt;
 use std::sync::Arc;
 

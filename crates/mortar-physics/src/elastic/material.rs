@@ -1,3 +1,6 @@
+//! The isotropic linear elastic material with thermal expansion, its Lame constants and
+//! stress, and the von Mises equivalent stress.
+
 use crate::error::PhysicsError;
 
 /// An isotropic linear elastic material (constant over a body), with an optional isotropic

@@ -1,3 +1,6 @@
+//! The gas pressure in the gap: given, or an ideal gas of fixed moles in the plenum and the
+//! gap (its volume and temperature).
+
 use crate::error::PhysicsError;
 
 /// The molar gas constant `R` (J/mol/K, exact since the 2019 SI).

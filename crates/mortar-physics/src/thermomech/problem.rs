@@ -1,3 +1,7 @@
+//! The thermomechanical gap problem: the state's blocks, the residual and Jacobian of heat,
+//! elasticity (with the bodies' axial unknowns when their axial direction is free), the
+//! interface laws and the gas pressure.
+
 use std::collections::HashSet;
 
 use mortar_core::element::MAX_FACE_NODES;

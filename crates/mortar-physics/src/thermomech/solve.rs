@@ -1,3 +1,6 @@
+//! The solves of the thermomechanical problem: Newton on the assembled Jacobian (the axial
+//! unknowns as a bordered LU's border) or JFNK with the block lower-triangular preconditioner.
+
 use std::time::Instant;
 
 use mortar_core::linalg::{
