@@ -127,7 +127,7 @@ pub enum IoError {
         group: Option<String>,
     },
     /// A selected element has a type the element registry does not know.
-    #[error("{}, {at}: element {element} is of Gmsh element type {element_type} ({type_name}), which is not supported (supported types: {supported}){}", path.display(), super::gmsh::unsupported_hint(*element_type))]
+    #[error("{}, {at}: element {element} is of Gmsh element type {element_type} ({type_name}), which is not supported (supported types: {supported}){}", path.display(), super::gmsh::element_types::unsupported_hint(*element_type))]
     UnsupportedElement {
         /// The file.
         path: PathBuf,

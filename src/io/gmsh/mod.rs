@@ -25,9 +25,8 @@
 //! only for whole-file selection.
 
 mod cursor;
-mod element_types;
+pub(crate) mod element_types;
 
-pub(crate) use element_types::unsupported_hint;
 mod parse;
 mod volume;
 mod write;

@@ -8,8 +8,7 @@ use std::time::Instant;
 use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
 use mortar_physics::elastic::{
-    recover_stress_with_axial_strain, AxialForce, ComponentSet, ElasticBody, ElasticMaterial,
-    ElasticOptions, StressField,
+    AxialForce, ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
 };
 use mortar_physics::heat::{
     assemble_conduction, Conductivity, HeatBody, HeatMaterial, HeatOptions,
@@ -19,7 +18,7 @@ use mortar_physics::laws::{
     GasConductivity, LawRegistry, MechanicalGapConductance,
 };
 use mortar_physics::thermomech::{
-    GapThermoMechanics, GasPressure, Plenum, StateView, ThermoElasticBody, ThermoMechOptions,
+    GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
     ThermoMechSolver, ThermoMechSolverState,
 };
 use mortar_physics::PhysicsError;
@@ -1035,35 +1034,6 @@ fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)
     })
 }
 
-/// The stress of body `b` (0 pellet, 1 cladding) in the state `f`, with its temperature and,
-/// in 2D generalized plane strain, its axial strain (which the 2D displacement does not hold;
-/// a free end's, in r-z and 3D, it does).
-///
-/// # Errors
-/// [`PelletError::Physics`] if the stresses cannot be recovered.
-pub(super) fn stress_field<TL: ConstraintLaw, ML: ConstraintLaw>(
-    problem: &GapThermoMechanics<TL, ML>,
-    f: &StateView,
-    b: usize,
-) -> Result<StressField, PelletError> {
-    let body = problem.elastic_bodies()[b]
-        .clone()
-        .with_temperature(f.temperature[b].to_vec())?;
-    let options = &problem.options().elastic;
-    let axial_strain = if body.components() == 2 && !options.geometry.is_axisymmetric() {
-        f.axial_strain[b].unwrap_or(0.0)
-    } else {
-        0.0
-    };
-    let u = f.displacement(b);
-    Ok(recover_stress_with_axial_strain(
-        &body,
-        &u,
-        axial_strain,
-        options,
-    )?)
-}
-
 /// The VTU files of the state `x` at `time`: the bodies (temperature, displacement vector,
 /// von Mises stress) in `pellet_NNNN.vtu`, the interface (the pellet's surface: gap, heat
 /// flux, contact and interface pressure) in `interface_NNNN.vtu`.
@@ -1082,7 +1052,7 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
     for b in 0..2 {
         let u = f.displacement(b);
         let dim = elastic[b].components();
-        von_mises.push(stress_field(problem, &f, b)?.von_mises);
+        von_mises.push(super::stress::stress_field(problem, &f, b)?.von_mises);
         displacement.push(
             u.chunks(dim)
                 .flat_map(|c| [c[0], c[1], if dim == 3 { c[2] } else { 0.0 }])

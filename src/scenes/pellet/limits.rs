@@ -299,7 +299,7 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     } else {
         coldest
     };
-    let stress = |b: usize| super::coupled::stress_field(problem, &f, b);
+    let stress = |b: usize| super::stress::stress_field(problem, &f, b);
     let cladding = stress(1)?;
     let von_mises = largest(
         &mut cladding.von_mises.iter().copied().enumerate(),

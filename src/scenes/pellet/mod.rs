@@ -92,6 +92,7 @@ mod coupled;
 pub mod limits;
 mod mesh;
 mod run;
+mod stress;
 
 pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{
