@@ -1,4 +1,4 @@
-//! The built-in pellet scene (docs/physics.md, sections 3 and 3a): a UO2 pellet in its zircaloy
+//! The built-in pellet scene (docs/models.md, sections 3 and 3a): a UO2 pellet in its zircaloy
 //! cladding, helium in the gap, power ramped to 20 kW/m, cladding outer surface at 580 K;
 //! thermal expansion narrows the gap into contact, the pressure law and the plenum act. Solved by Newton
 //! and by JFNK, which must agree; then the thermal-only scene (gap held open) against the

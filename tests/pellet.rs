@@ -1,4 +1,4 @@
-//! The pellet scene: the steady state against the closed form of docs/physics.md section 3 and its
+//! The pellet scene: the steady state against the closed form of docs/models.md section 3 and its
 //! convergence under refinement, Newton against JFNK, the scene file, and the independent 1D
 //! radial reference of the coupled thermomechanical pellet, and the limits of its models.
 

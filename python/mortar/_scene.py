@@ -30,7 +30,7 @@ def run_scene(
 
     Returns:
         The report (``report.json``) as a dict: SI units (m, K, W, Pa, s), as documented
-        for the scene's kind in ``docs/physics.md``.
+        for the scene's kind in ``docs/models.md``.
 
     Raises:
         SceneError: an unknown kind or key, a value out of range, a missing mesh or group

@@ -148,7 +148,7 @@ fn print_coupled(report: &Value, out: &Path) {
     for w in report["coupling_warnings"].as_array().into_iter().flatten() {
         eprintln!("mortar: warning: {}", w.as_str().unwrap_or_default());
     }
-    // The model ranges the run left (docs/physics.md, Limits), one line each.
+    // The model ranges the run left (docs/models.md, section 3b), one line each.
     let limits = pellet::limits::summary_lines(&report["warnings"]);
     if limits.is_empty() {
         say!("{:<28} ok: every state within the models' ranges", "status");

@@ -3,7 +3,7 @@
 //! ([`CouplingOptions::geometry`]) and the bodies ([`HeatOptions::geometry`]).
 //!
 //! Source of the reference (closed form of steady radial conduction, e.g. Incropera and
-//! DeWitt, *Fundamentals of Heat and Mass Transfer*, sections 3.3.2 and 3.5.2; docs/physics.md,
+//! DeWitt, *Fundamentals of Heat and Mass Transfer*, sections 3.3.2 and 3.5.2; docs/models.md,
 //! section 3): a solid cylinder (pellet) `0 <= r <= a` with the uniform source `Q` in a tube
 //! `a <= r <= c` (or `b <= r <= c` across a gap), insulated ends, `T(c) = T_c`. The heat
 //! flux leaving the pellet is `q = Q a / 2` (W/m^2; `q' = Q pi a^2` per unit length);

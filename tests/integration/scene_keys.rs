@@ -2044,7 +2044,7 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
 
 /// Every key of `kind = "pellet"` (src/scenes/pellet/mod.rs), on the base scene of [`PELLET`]
 /// (70 ms a run): each key moves a named figure of `report.json` the way the physics of
-/// docs/physics.md (sections 3 to 6) gives, measured against the base (steady centre 1010 K,
+/// docs/models.md (sections 3 to 6) gives, measured against the base (steady centre 1010 K,
 /// gap 3.83 um, interface pressure 20.3 MPa, plenum 5.21 MPa): a less conductive pellet is
 /// hotter (`conductivity_a` 0.05: 1034 K), a wider as-built gap or a more expanding cladding
 /// stays wider (4.41 um, 8.18 um), a stiffer or more expanding pellet presses harder

@@ -55,7 +55,7 @@ fn default_mesh_within_one_percent_and_converging() {
 /// (1e-11 W/m against conduction terms of 1e4), Newton's relative criterion asked for
 /// round-off of round-off and the line search failed. Source of the reference (closed form):
 /// at zero power the temperature is the outer one everywhere; at low power the steady closed
-/// form of docs/physics.md section 5 (the mesh error scales with the power).
+/// form of docs/models.md section 3 (the mesh error scales with the power).
 #[test]
 fn zero_and_low_power_give_the_outer_temperature_and_the_closed_form() {
     for power in [0.0, 1e-6, 1.0] {

@@ -7,7 +7,7 @@
 //! (`eps_zz = 0`) the surface moves by `u(a) = (1 + nu) (2 alpha / a) I`; with a uniform
 //! `eps_zz` and no axial force (free ends) by `u(a) = 2 alpha I / a`, with
 //! `eps_zz = 2 alpha I / a^2` (the mean temperature's free expansion). The temperature is
-//! the steady closed form of the pellet scene (docs/physics.md, section 5): with
+//! the steady closed form of the pellet scene (docs/models.md, section 3): with
 //! `k = 1 / (A + B T)` and uniform heating `q''' = q' / (pi a^2)`,
 //! `T(r) = ((A + B T_ps) exp(B q''' (a^2 - r^2) / 4) - A) / B`, interpolated at the nodes.
 

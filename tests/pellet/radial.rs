@@ -1,6 +1,6 @@
 //! The independent reference of the coupled pellet: a fine
 //! 1D radial model of the thermomechanical pellet in its cladding, written here from the
-//! equations of docs/physics.md (sections 3 and 3a) without calling the library's heat, elastic,
+//! equations of docs/models.md (sections 3 and 3a) without calling the library's heat, elastic,
 //! contact or law code, so that the 2D cross-section and the r-z model can be checked
 //! against it (centre temperature, gap, contact pressure, plenum pressure through the
 //! ramp). It reads only the thermal defaults of `PelletScene::from_toml("")` (numbers).
@@ -12,7 +12,7 @@
 //! (`k = 1/(A + B T)`, `Q = q'(t) / (pi a^2)`, `q'(t) = q' min(t / t_ramp, 1)`), the same with
 //! `k_c` and no source in the cladding `b <= r <= c`, `T(c) = T_co`, initially `T = T_co`.
 //! Across the gap the heat per unit length `2 pi a q`, `q = U (T_ps - T_ci)` per unit area of
-//! the pellet's (reference) surface, as docs/physics.md section 3 (`T_ps = T_ci + q'/(2 pi a U)`),
+//! the pellet's (reference) surface, as docs/models.md section 3 (`T_ps = T_ci + q'/(2 pi a U)`),
 //!
 //! ```text
 //! U = k_g(T_gap) / (max(g, 0) + 1.5 (R_f + R_c) + j) + h_contact p_contact,
@@ -42,7 +42,7 @@
 //! from equilibrium `sigma_r' + (sigma_r - sigma_theta)/r = 0` with
 //! `sigma = lambda tr(eps - eps_th) + 2 mu (eps - eps_th)`. Pellet: `C2 = 0`, `sigma_r(a) = -P`,
 //! so `u_p(a) = 2 (1 + nu) alpha I_p / a - P a (1 + nu)(1 - 2 nu) / E` (free expansion for
-//! `P = 0`, docs/physics.md section 3a). Cladding (thick-walled cylinder): `sigma_r(b) = -P`,
+//! `P = 0`, docs/models.md section 3a). Cladding (thick-walled cylinder): `sigma_r(b) = -P`,
 //! `sigma_r(c) = -p_cool` fix `C1`, `C2` (Lame's solution when `T = T_ref`).
 //! `P = P_o + p_contact` is the normal pressure on both gap surfaces. The integrals of `T r` are
 //! exact for the piecewise-linear interpolant of the nodal temperatures.
@@ -56,7 +56,7 @@
 //! `P_o pi b^2 - p_cool pi c^2` (the cladding's closed ends): linear in `e`, solved from two
 //! evaluations (`pellet_axial_strain`, `cladding_axial_strain`).
 //!
-//! **Gap, contact, plenum.** `g = (b + u_c(b)) - (a + u_p(a))`. Contact laws (docs/physics.md, section 3a):
+//! **Gap, contact, plenum.** `g = (b + u_c(b)) - (a + u_p(a))`. Contact laws (docs/models.md, section 3a):
 //!
 //! - `Exponential`: `P_c = P_o exp(S_NE (xi - g)^2)` for `g < xi`, else `P_o`; past the maximum
 //!   pressure `P_max = max_pressure_ratio P_o` (reached at `g* = xi - sqrt(ln(ratio)/S_NE)`) the
@@ -151,7 +151,7 @@ impl Thermoelastic {
     }
 }
 
-/// Every input of the 1D radial pellet (docs/physics.md, sections 3 and 3a), SI units.
+/// Every input of the 1D radial pellet (docs/models.md, sections 3 and 3a), SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RadialPellet {
     /// Pellet radius `a` (m).
@@ -224,7 +224,7 @@ pub struct RadialPellet {
 }
 
 impl Default for RadialPellet {
-    /// The thermal data of `PelletScene::from_toml("")` (docs/physics.md, section 3), the mechanical
+    /// The thermal data of `PelletScene::from_toml("")` (docs/models.md, section 3), the mechanical
     /// and gap data of sections 4 and 6, and:
     ///
     /// - `S_NE = 1e12 /m^2` (the exponent is `((xi - g) / 1 um)^2`): in the closing scene the
@@ -1164,7 +1164,7 @@ impl RadialHistory {
 // Verification of the reference itself.
 // ---------------------------------------------------------------------------------------------
 
-/// The steady closed form of docs/physics.md section 3 (open gap held at `b - a`), written again
+/// The steady closed form of docs/models.md section 3 (open gap held at `b - a`), written again
 /// here: `T_ci = T_co + q' ln(c/b) / (2 pi k_c)`, `T_ps = T_ci + q' / (2 pi a U(T_gap))`
 /// (fixed point, `U` at the mean of the two surfaces), `T_0 = ((A + B T_ps) e^{B q'/(4 pi)} - A)/B`.
 fn closed_form(m: &RadialPellet, q: f64) -> [f64; 3] {
@@ -1194,7 +1194,7 @@ fn steady_by_continuation(m: &RadialPellet, q: f64, steps: usize) -> RadialState
     s
 }
 
-/// The defaults are the data tables of docs/physics.md, sections 3 and 3a (the thermal ones read from the
+/// The defaults are the data tables of docs/models.md, sections 3 and 3a (the thermal ones read from the
 /// library's default scene, so a change there shows here).
 #[test]
 fn defaults_follow_physics_md() {
@@ -1239,7 +1239,7 @@ fn defaults_follow_physics_md() {
     assert_eq!(constant.gas_conductivity(900.0), (0.3, 0.0));
 }
 
-/// The exponential law (docs/physics.md, section 3a): `P_o` for `g >= xi`, `P_o exp(S_NE (xi - g)^2)`
+/// The exponential law (docs/models.md, section 3a): `P_o` for `g >= xi`, `P_o exp(S_NE (xi - g)^2)`
 /// below, continued by its tangent past `P_max = ratio P_o` (value and slope continuous there),
 /// finite for any gap; its derivatives against central differences.
 #[test]
@@ -1359,7 +1359,7 @@ fn jacobian_matches_finite_differences() {
 }
 
 /// Mechanics off (rigid bodies, the gap held at `b - a`): the steady state against the closed
-/// form of docs/physics.md section 3, written again above, and the library's
+/// form of docs/models.md section 3, written again above, and the library's
 /// `PelletScene::closed_form()` read as numbers. The finite volumes are exact for the steady
 /// profiles, so the agreement is to rounding on any grid (measured 3.5e-16 against the closed
 /// form written here, 1.1e-14 against the library's, whose fixed point on the gap

@@ -1,4 +1,4 @@
-//! The closed form of docs/physics.md section 5: steady radial heat flow through a pellet with
+//! The closed form of docs/models.md section 3: steady radial heat flow through a pellet with
 //! `k = 1 / (A + B T)`, an open gap of conductance `U(T_gas)` and a cladding of constant
 //! conductivity, the cladding's outer temperature fixed.
 

@@ -1,5 +1,5 @@
 //! The thermomechanical pellet: expansion, contact across the gap, gap conductance on the
-//! mechanical gap, plenum pressure (docs/physics.md, sections 4 and 6).
+//! mechanical gap, plenum pressure (docs/models.md, section 3a).
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -816,7 +816,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let report = json!({
         "scene": "pellet",
         "status": if watch.is_empty() { "ok" } else { "warnings" },
-        // The model ranges the run left, each once (docs/physics.md, Limits).
+        // The model ranges the run left, each once (docs/models.md, section 3b).
         "warnings": watch.to_json(),
         "models": {
             "heat": true,

@@ -1,5 +1,5 @@
 //! The ranges in which the coupled pellet's models hold, and the named warnings of a run that
-//! leaves them (docs/physics.md, "Limits"). A warning is raised once per run, with the first
+//! leaves them (docs/models.md, section 3b). A warning is raised once per run, with the first
 //! state past its bound and the run's extreme value.
 
 use mortar_physics::laws::ConstraintLaw;
@@ -65,7 +65,7 @@ pub const LIMITS: [Limit; 5] = [
         quantity: "pellet temperature furthest outside the range",
         unit: "K",
         bound: (Some(CONDUCTIVITY_RANGE.0), CONDUCTIVITY_RANGE.1),
-        source: "A, B: the lattice term of J.H. Harding and D.G. Martin, J. Nucl. Mater. 166 (1989) 223-226; above 1730 K the electronic term that it leaves out exceeds 5% of it; 300 K: room temperature (docs/physics.md, Limits)",
+        source: "A, B: the lattice term of J.H. Harding and D.G. Martin, J. Nucl. Mater. 166 (1989) 223-226; above 1730 K the electronic term that it leaves out exceeds 5% of it; 300 K: room temperature (docs/models.md, section 3b)",
     },
     Limit {
         name: "cladding_beyond_elastic",

@@ -1,6 +1,6 @@
 //! The pellet scene: a fuel pellet (disc, `k = 1 / (A + B T)`) inside its
 //! cladding (annulus, constant `k`), helium in the gap between them, a power ramp, the
-//! cladding's outer temperature fixed (docs/physics.md, sections 3 and 4). By default it is
+//! cladding's outer temperature fixed (docs/models.md, sections 3 and 3a). By default it is
 //! thermomechanical ([`run_coupled`]): both bodies expand (thermoelasticity, free to expand
 //! axially: generalized plane strain), the gap narrows until contact engages (below the onset
 //! gap `xi` of the pressure law), the gap conductance follows the mechanical gap and the
@@ -17,7 +17,7 @@
 //! on the assembled Jacobian or Jacobian-free (JFNK), as `[solver] method` says; a step that
 //! fails is halved up to [`MAX_STEP_CUTS`] times.
 //!
-//! The scene file (TOML; every key optional, defaults from docs/physics.md, sections 3 and 4,
+//! The scene file (TOML; every key optional, defaults from docs/models.md, sections 3 and 3a,
 //! except the cladding's inner radius, see [`CladdingData`]):
 //!
 //! ```toml
@@ -255,7 +255,7 @@ pub struct CladdingData {
 }
 
 impl Default for CladdingData {
-    /// docs/physics.md, sections 4 and 6, but the inner radius: 4.12 mm (a 20 um as-built
+    /// docs/models.md, section 3a, but the inner radius: 4.12 mm (a 20 um as-built
     /// gap, 40 um diametral) rather than 4.18 mm, so that contact engages during the ramp
     /// at 20 kW/m (with 4.18 mm it does not below about 72 kW/m, the independent radial model
     /// of tests/pellet/radial.rs finds).
@@ -674,7 +674,7 @@ impl Default for MeshData {
     }
 }
 
-/// The pellet scene (the TOML file's tables). Every field has the default of docs/physics.md (section 3).
+/// The pellet scene (the TOML file's tables). Every field has the default of docs/models.md (section 3).
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PelletScene {
@@ -925,7 +925,7 @@ impl PelletScene {
         )?)
     }
 
-    /// The closed-form steady temperatures of this scene (docs/physics.md, section 3).
+    /// The closed-form steady temperatures of this scene (docs/models.md, section 3).
     ///
     /// # Errors
     /// [`PelletError::Law`] for gap parameters out of range.

@@ -16,7 +16,7 @@ use crate::field::cells;
 pub enum Conductivity {
     /// A constant `k`.
     Constant(f64),
-    /// `k(T) = 1 / (a + b T)` (the fuel pellet law of docs/physics.md, section 3: `a` in m K/W, `b`
+    /// `k(T) = 1 / (a + b T)` (the fuel pellet law of docs/models.md, section 3: `a` in m K/W, `b`
     /// in m/W). Temperatures below `-a / (2 b)` are taken as it, so that `k` stays positive
     /// and finite whatever the Newton iterate.
     InverseLinear {

@@ -21,7 +21,7 @@ pub enum GasConductivity {
 }
 
 impl GasConductivity {
-    /// Helium: `k_g(T) = 2.531e-3 T^0.7146` W/m/K (docs/physics.md, section 3).
+    /// Helium: `k_g(T) = 2.531e-3 T^0.7146` W/m/K (docs/models.md, section 3).
     pub const HELIUM: Self = Self::PowerLaw {
         coefficient: 2.531e-3,
         exponent: 0.7146,
@@ -193,7 +193,7 @@ impl ConstraintLaw for GapConductance {
 /// Heat transfer across a gap that moves: the Ross-Stoute conductance on the point's current
 /// mechanical gap `g_n` ([`LawPoint::normal_gap`]) plus a contact term that grows with the
 /// contact pressure `p_c` ([`LawPoint::contact_pressure`]) once the surfaces touch
-/// (docs/physics.md, section 6):
+/// (docs/models.md, section 3a):
 ///
 /// ```text
 /// U = k_g(T) / (max(g_n, 0) + 1.5 (R_f + R_c) + g_f + g_c) + h_contact max(p_c, 0)

@@ -1,5 +1,5 @@
 //! Thermomechanical contact of two bodies across a gap (the fuel pellet in its cladding,
-//! docs/physics.md, sections 4 and 6): transient heat conduction with `k(T)` and small-strain
+//! docs/models.md, section 3a): transient heat conduction with `k(T)` and small-strain
 //! thermoelasticity in both bodies, coupled across a mortar interface by two pointwise
 //! [`ConstraintLaw`](crate::laws::ConstraintLaw)s that see each other's quantities:
 //!

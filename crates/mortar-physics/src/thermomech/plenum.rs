@@ -15,7 +15,7 @@ pub enum GasPressure {
     Plenum(Plenum),
 }
 
-/// A closed amount of ideal gas filling the gap and a plenum (docs/physics.md, section 6):
+/// A closed amount of ideal gas filling the gap and a plenum (docs/models.md, section 3a):
 /// `P_o (V_plenum + V_gap) = n R T_gap`, the moles `n` fixed by the fill,
 /// `P_fill (V_plenum + V_gap0) = n R T_fill`. Volumes per unit length in 2D (m^2 per metre of
 /// rod, the cross-section's areas), volumes in 3D.
