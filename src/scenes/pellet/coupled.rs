@@ -560,16 +560,18 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                  solver: &mut ThermoMechSolverState,
                  fallback: &mut Option<Value>|
      -> Result<(), PhysicsError> {
-        let start = x.clone();
-        match problem.solve(x, t, transient, solver, &newton) {
-            Ok(_) => Ok(()),
-            Err(e) if choice.picked && matches!(solver.method, ThermoMechSolver::Jfnk(_)) => {
+        // The start of the solve, kept only while a fallback can use it.
+        let start = (choice.picked && matches!(solver.method, ThermoMechSolver::Jfnk(_)))
+            .then(|| x.clone());
+        match (problem.solve(x, t, transient, solver, &newton), start) {
+            (Ok(_), _) => Ok(()),
+            (Err(e), Some(start)) => {
                 *fallback = Some(json!({ "time": t, "cause": e.to_string() }));
                 solver.method = ThermoMechSolver::Newton;
                 x.copy_from_slice(&start);
                 problem.solve(x, t, transient, solver, &newton).map(|_| ())
             }
-            Err(e) => Err(e),
+            (Err(e), None) => Err(e),
         }
     };
     let bodies = problem.heat().bodies();
@@ -710,12 +712,12 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                     cuts += 1;
                     if cuts > MAX_STEP_CUTS {
                         bar.finish_and_clear();
-                        let solve = format!(
+                        let what = format!(
                             "time step {k} of {steps} (from t = {time} s, dt = {dt} s after \
                              {MAX_STEP_CUTS} halvings)"
                         );
                         let e =
-                            located(&problem, e, solve, Some(k), time + dt, &x, Some((&old, dt)));
+                            located(&problem, e, what, Some(k), time + dt, &x, Some((&old, dt)));
                         return Err(failure(e, &rows, &watch, outputs, &files));
                     }
                     x = old;

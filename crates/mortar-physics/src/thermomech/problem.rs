@@ -762,7 +762,10 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let o = self.offsets;
         let su = self.row_scale;
         let pu = self.options.pressure_unit;
+        // (row, axial unknown) of each end's axial rows, and (axial unknown, its force's
+        // derivative in the gas pressure) of each end.
         let mut rows: Vec<(usize, usize)> = Vec::new();
+        let mut ends: Vec<(usize, f64)> = Vec::new();
         for b in 0..2 {
             let (Some(ax), Some(ia)) = (&self.axial[b], o.axial[b]) else {
                 continue;
@@ -778,12 +781,12 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 rows.push((gi, ia));
             }
             r[ia] = sum - su * ax.force.at(x[o.gas] * pu);
-            rows.push((ia, ia));
+            ends.push((ia, -su * pu * ax.force.per_gas_pressure));
         }
         let Some(trip) = trip else {
             return;
         };
-        if rows.is_empty() {
+        if ends.is_empty() {
             return;
         }
         // The end's rows move into the axial unknown's row.
@@ -793,22 +796,12 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         }
         trip.map_rows(|row| target[row as usize]);
         for (gi, ia) in rows {
-            if gi == ia {
-                let dgas = -su * pu * self.axial_force(gi).per_gas_pressure;
-                trip.push(ia as u32, o.gas as u32, dgas);
-            } else {
-                trip.push(gi as u32, gi as u32, 1.0);
-                trip.push(gi as u32, ia as u32, -1.0);
-            }
+            trip.push(gi as u32, gi as u32, 1.0);
+            trip.push(gi as u32, ia as u32, -1.0);
         }
-    }
-
-    /// The axial force balanced by the axial unknown `index`.
-    fn axial_force(&self, index: usize) -> AxialForce {
-        (0..2)
-            .find(|&b| self.offsets.axial[b] == Some(index))
-            .and_then(|b| self.axial[b].as_ref())
-            .map_or(AxialForce::FREE, |a| a.force)
+        for (ia, dgas) in ends {
+            trip.push(ia as u32, o.gas as u32, dgas);
+        }
     }
 }
 
