@@ -5,6 +5,7 @@
 mod pellet {
     mod closed_form;
     mod coupled;
+    mod file_mesh;
     mod free_expansion;
     mod limits;
     mod radial;
