@@ -51,8 +51,12 @@ fn the_checks_catch_a_stray_bound() {
     assert!(dual.figure_value(0).unwrap() <= dual.bound);
     let mut tighter = dual.clone();
     tighter.bound = dual.figure_value(0).unwrap() / 2.0;
-    assert!(verification::claims::problems_of(&tighter, true).iter().any(|p| p.contains("above its bound")));
+    assert!(verification::claims::problems_of(&tighter, true)
+        .iter()
+        .any(|p| p.contains("above its bound")));
     let mut looser = claim("contact.patch_p2").clone();
     looser.bound *= 1e3;
-    assert!(verification::claims::problems_of(&looser, false).iter().any(|p| p.contains("100 times")));
+    assert!(verification::claims::problems_of(&looser, false)
+        .iter()
+        .any(|p| p.contains("100 times")));
 }

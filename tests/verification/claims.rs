@@ -116,17 +116,32 @@ fn root() -> PathBuf {
 }
 
 impl Claim {
-    /// The command that runs the guarding test (or the claim's own command).
+    /// The command that runs the guarding test (or the claim's own command): the test binary
+    /// filtered to the test function, or to its file's module when the function is a helper.
     pub fn command(&self) -> String {
         if let Some(c) = &self.command {
             return c.clone();
         }
         let (file, function) = self.test.split_once("::").unwrap_or((&self.test, ""));
-        let binary = file
-            .strip_prefix("tests/")
-            .and_then(|f| f.split(['/', '.']).next())
-            .unwrap_or(file);
-        format!("cargo test --release --test {binary} {function}")
+        let mut parts = file.trim_end_matches(".rs").split('/').skip(1);
+        let binary = parts.next().unwrap_or(file);
+        let module = parts.next().unwrap_or("");
+        let is_test = std::fs::read_to_string(root().join(file)).is_ok_and(|text| {
+            text.split(&format!("fn {function}(")).next().is_some_and(|before| {
+                before
+                    .lines()
+                    .rev()
+                    .map(str::trim)
+                    .find(|l| !l.starts_with("///") && !l.is_empty())
+                    .is_some_and(|l| l == "#[test]")
+            })
+        });
+        let filter = if is_test {
+            format!("{module}::{function}")
+        } else {
+            format!("{module}::")
+        };
+        format!("cargo test --release --test {binary} {filter}")
     }
 
     /// The `k`-th figure as the page prints it.
@@ -192,8 +207,7 @@ fn json_figure(reference: &str) -> Result<(String, f64), String> {
     let (file, pointer) = location
         .split_once('#')
         .ok_or_else(|| format!("json:{reference}: no #POINTER"))?;
-    static CACHE: OnceLock<std::sync::Mutex<BTreeMap<String, serde_json::Value>>> =
-        OnceLock::new();
+    static CACHE: OnceLock<std::sync::Mutex<BTreeMap<String, serde_json::Value>>> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
     if !cache.contains_key(file) {
@@ -246,7 +260,10 @@ fn slot(key: &str) -> Result<Slot<'_>, String> {
     }
     let c = find(key)?;
     if c.figures.len() != 1 {
-        return Err(format!("{{{{{key}}}}}: {} figures, name one as {key}[k]", c.figures.len()));
+        return Err(format!(
+            "{{{{{key}}}}}: {} figures, name one as {key}[k]",
+            c.figures.len()
+        ));
     }
     Ok(Slot::Figure(c, 0))
 }
@@ -320,12 +337,17 @@ fn table() -> Result<String, String> {
         let (file, function) = c.test.split_once("::").unwrap_or((&c.test, ""));
         out.push_str(&format!(
             "| {} | {figures} | {}{kind} | `{file}` `{function}` | `{}` |\n",
-            c.title,
+            cell(&c.title),
             c.bound_text(),
-            c.command()
+            cell(&c.command())
         ));
     }
     Ok(out)
+}
+
+/// Text for a table cell: its pipes escaped.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|")
 }
 
 /// Everything wrong with the claims: a figure above its bound (below it, for a rate), a bound
@@ -344,7 +366,11 @@ pub fn problems() -> Vec<String> {
         match slot(key) {
             Ok(Slot::Figure(c, k)) => {
                 if k >= c.figures.len() {
-                    out.push(format!("{{{{{key}}}}}: {} has {} figures", c.id, c.figures.len()));
+                    out.push(format!(
+                        "{{{{{key}}}}}: {} has {} figures",
+                        c.id,
+                        c.figures.len()
+                    ));
                 }
                 printed.insert((c.id.clone(), Some(k)));
             }
@@ -361,7 +387,10 @@ pub fn problems() -> Vec<String> {
         }
         let states_bound = printed.contains(&(c.id.clone(), None));
         if c.figures.is_empty() && !states_bound {
-            out.push(format!("{}: no figure and the page does not state its bound", c.id));
+            out.push(format!(
+                "{}: no figure and the page does not state its bound",
+                c.id
+            ));
         }
         for k in 0..c.figures.len() {
             if !printed.contains(&(c.id.clone(), Some(k))) {
@@ -393,7 +422,10 @@ pub fn problems_of(c: &Claim, states_bound: bool) -> Vec<String> {
         match c.kind {
             Kind::Relative | Kind::Absolute => {
                 if v > c.bound {
-                    out.push(format!("{}: figure {v:e} above its bound {:e}", c.id, c.bound));
+                    out.push(format!(
+                        "{}: figure {v:e} above its bound {:e}",
+                        c.id, c.bound
+                    ));
                 }
             }
             Kind::Least => {
@@ -427,12 +459,18 @@ pub fn problems_of(c: &Claim, states_bound: bool) -> Vec<String> {
         }
         Kind::Least => {
             if c.tolerance.is_some() {
-                out.push(format!("{}: a tolerance on a claim that is not a rate", c.id));
+                out.push(format!(
+                    "{}: a tolerance on a claim that is not a rate",
+                    c.id
+                ));
             }
         }
         Kind::Relative | Kind::Absolute => {
             if c.tolerance.is_some() {
-                out.push(format!("{}: a tolerance on a claim that is not a rate", c.id));
+                out.push(format!(
+                    "{}: a tolerance on a claim that is not a rate",
+                    c.id
+                ));
             }
             if !c.figures.is_empty() && c.bound > 100.0 * largest && !states_bound {
                 out.push(format!(
@@ -460,14 +498,21 @@ fn check_test(c: &Claim) -> Vec<String> {
         out.push(format!("{}: no fn {function} in {file}", c.id));
     }
     if c.literal && !text.contains(&c.bound_text()) {
-        out.push(format!("{}: {file} does not assert {}", c.id, c.bound_text()));
+        out.push(format!(
+            "{}: {file} does not assert {}",
+            c.id,
+            c.bound_text()
+        ));
     }
     let reads = text.contains(&format!("claim(\"{}\")", c.id));
     if reads == c.literal {
         out.push(if c.literal {
             format!("{}: marked literal, but {file} reads it", c.id)
         } else {
-            format!("{}: {file} does not read its bound (claim(\"{}\"))", c.id, c.id)
+            format!(
+                "{}: {file} does not read its bound (claim(\"{}\"))",
+                c.id, c.id
+            )
         });
     }
     out
