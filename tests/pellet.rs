@@ -2,6 +2,10 @@
 //! convergence under refinement, Newton against JFNK, the scene file, and the independent 1D
 //! radial reference of the coupled thermomechanical pellet, and the limits of its models.
 
+/// The verification claims: the bounds of the figures docs/verification.md states.
+#[path = "verification/claims.rs"]
+mod claims;
+
 mod pellet {
     mod closed_form;
     mod coupled;
