@@ -127,14 +127,16 @@ impl Claim {
         let binary = parts.next().unwrap_or(file);
         let module = parts.next().unwrap_or("");
         let is_test = std::fs::read_to_string(root().join(file)).is_ok_and(|text| {
-            text.split(&format!("fn {function}(")).next().is_some_and(|before| {
-                before
-                    .lines()
-                    .rev()
-                    .map(str::trim)
-                    .find(|l| !l.starts_with("///") && !l.is_empty())
-                    .is_some_and(|l| l == "#[test]")
-            })
+            text.split(&format!("fn {function}("))
+                .next()
+                .is_some_and(|before| {
+                    before
+                        .lines()
+                        .rev()
+                        .map(str::trim)
+                        .find(|l| !l.starts_with("///") && !l.is_empty())
+                        .is_some_and(|l| l == "#[test]")
+                })
         });
         let filter = if is_test {
             format!("{module}::{function}")
