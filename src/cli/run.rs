@@ -101,7 +101,7 @@ fn print_coupled(report: &Value, out: &Path) {
     let onset = m["contact_onset_gap"].as_f64();
     match (report["gap_closure_time"].as_f64(), onset) {
         (Some(t), Some(xi)) => say!(
-            "{:<28} contact engaged at t = {t:.2} s (gap below the onset of the pressure law, \
+            "{:<28} contact engaged at t = {t:.2} s (smallest gap below the onset of the pressure law, \
              xi = {:.2} um)",
             "gap",
             1e6 * xi

@@ -1595,6 +1595,7 @@ fn pellet_full() -> toml::Table {
     };
     s.gap.gas_conductivity = Some(0.3);
     s.model.axial = Some(AxialModel::Generalized);
+    s.mesh.file = Some("pellet_rz.msh".into());
     s.laws.thermal = Some(law(
         "mechanical_gap_conductance",
         "contact_conductance",
@@ -1987,6 +1988,18 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
                 num(&r, "mesh.pellet.cells"),
                 4.0 * num(&f.report, "mesh.pellet.cells")
             );
+        }),
+        ("mesh.file", |f| {
+            // The r-z section from the shipped Gmsh file: its height and radii replace the
+            // scene's, its cells the generated ones.
+            let rz = ("model.geometry", "\"axisymmetric\"");
+            let file = format!(
+                "\"{}/examples/scenes/pellet_rz.msh\"",
+                env!("CARGO_MANIFEST_DIR")
+            );
+            let (a, b) = (f.ok(&[rz]), f.ok(&[rz, ("mesh.file", file.as_str())]));
+            assert_eq!(num(&b, "mesh.file.height"), 4.9e-3);
+            assert_ne!(num(&a, "mesh.pellet.cells"), num(&b, "mesh.pellet.cells"));
         }),
         ("mesh.axial_layers", |f| {
             let rz = ("model.geometry", "\"axisymmetric\"");

@@ -25,7 +25,7 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 use serde_json::{json, Value};
 
-use super::file_mesh::contains;
+use super::file_mesh::{contains, FaceSet, FileGeometry};
 use super::limits::{extremes, LimitWatch, When};
 use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
@@ -111,6 +111,15 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // Meshes, the pellet's cross-section area (the heat source is q'(t) / area), and the
     // axial component (held on the end planes in 3D and r-z: plane strain).
     let (pellet_mesh, cladding_mesh, area, axial) = match geometry {
+        Geometry::Plane | Geometry::PlaneStrain if file.is_some() => {
+            let f = file.as_ref().expect("matched");
+            (
+                f.pellet.clone(),
+                f.cladding.clone(),
+                f.pellet_volume,
+                usize::MAX,
+            )
+        }
         Geometry::Plane | Geometry::PlaneStrain | Geometry::ThreeD => {
             // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not
             // match (they share the four nodes on the axes, which hold the rigid motions). In
@@ -243,8 +252,15 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         pellet_elastic.with_dirichlet_nodes(axis, ComponentSet::One(0), zero)
     } else {
         // Rigid motions: the axis held in x and y, the line through (a, 0) held in y; the
-        // exact field is radial, so none of them loads the body.
-        let (centre, east) = (at(&pellet_mesh, [0.0, 0.0]), at(&pellet_mesh, [a, 0.0]));
+        // exact field is radial, so none of them loads the body. A file's pellet: the node
+        // nearest the axis and the lateral surface's node furthest along x.
+        let (centre, east) = match &file {
+            Some(f) => (
+                vec![nearest_node(&pellet_mesh, Vector3::zeros()) as u32],
+                vec![extreme_node(&pellet_mesh, &f.pellet_outer, |x| x.x)?],
+            ),
+            None => (at(&pellet_mesh, [0.0, 0.0]), at(&pellet_mesh, [a, 0.0])),
+        };
         pellet_elastic
             .with_dirichlet_nodes(centre.clone(), ComponentSet::One(0), zero)
             .with_dirichlet_nodes(centre, ComponentSet::One(1), zero)
@@ -275,9 +291,21 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let cladding_elastic = ends(if geometry == Geometry::Axisymmetric {
         cladding_elastic
     } else {
-        // Rigid motions: the inner lines on the axes held in their tangential direction.
-        let (e, w) = (at(&cladding_mesh, [b, 0.0]), at(&cladding_mesh, [-b, 0.0]));
-        let n = at(&cladding_mesh, [0.0, b]);
+        // Rigid motions: the inner lines on the axes held in their tangential direction (a
+        // file's: the inner surface's nodes furthest along +x, -x and +y).
+        let (e, w, n) = match &file {
+            Some(f) => {
+                let extreme = |along: fn(&Vector3<f64>) -> f64| {
+                    extreme_node(&cladding_mesh, &f.cladding_inner, along).map(|n| vec![n])
+                };
+                (extreme(|x| x.x)?, extreme(|x| -x.x)?, extreme(|x| x.y)?)
+            }
+            None => (
+                at(&cladding_mesh, [b, 0.0]),
+                at(&cladding_mesh, [-b, 0.0]),
+                at(&cladding_mesh, [0.0, b]),
+            ),
+        };
         cladding_elastic
             .with_dirichlet_nodes([e, w].concat(), ComponentSet::One(1), zero)
             .with_dirichlet_nodes(n, ComponentSet::One(0), zero)
@@ -286,8 +314,9 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let slave_surface = pellet_heat.mesh.boundary_surface(slave_face)?;
     let master_surface = cladding_heat.mesh.boundary_surface(master_face)?;
     let gap = c.inner_radius - p.radius;
+    let widest = file.as_ref().map_or(gap, |f| f.widest_gap.max(gap));
     let tolerances = Tolerances {
-        search_radius: SearchRadius::Distance(2.0 * gap),
+        search_radius: SearchRadius::Distance(2.0 * widest),
         ..Tolerances::default()
     };
     let pl = &scene.plenum;
@@ -298,7 +327,10 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let end_voids = file.as_ref().map_or(0.0, |f| f.end_voids());
     let plenum = Plenum::from_fill(
         pl.volume * length + end_voids,
-        PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
+        file.as_ref().map_or(
+            PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
+            |f| f.gap_volume(),
+        ),
         pl.fill_pressure,
         pl.fill_temperature,
     )?;
@@ -310,13 +342,14 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let options = ThermoMechOptions {
         heat: HeatOptions::default().with_geometry(model),
         elastic: ElasticOptions::default().with_geometry(model),
-        nominal_gap: Some(gap),
+        // A file's gap is its meshes' (an eccentric pellet's varies around it).
+        nominal_gap: file.is_none().then_some(gap),
         gas: GasPressure::Plenum(plenum),
         flux_unit: 1.0 / GapConductance::DEFAULT_REFERENCE_RESISTANCE,
         axial: if free_ends {
             // The next pellet bears on the file's land only: the gas presses on the rest
             // of the end (dish and chamfer) as a surface load.
-            axial_forces(scene, file.as_ref().map_or(area, |f| f.land_area))
+            axial_forces(scene, file.as_ref(), area)
         } else {
             [None, None]
         },
@@ -359,7 +392,11 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
 /// surfaces (the polygons of `20 r` edges of the cladding's circles in 2D and 3D, exact
 /// circles in r-z), so that a uniform axial stress balances them exactly; `pellet_area` is
 /// the pellet mesh's.
-fn axial_forces(scene: &PelletScene, pellet_area: f64) -> [Option<AxialForce>; 2] {
+fn axial_forces(
+    scene: &PelletScene,
+    file: Option<&FileGeometry>,
+    pellet_area: f64,
+) -> [Option<AxialForce>; 2] {
     let c = &scene.cladding;
     // The area of a circle of radius 1 as the model sees it.
     let unit = if scene.model.geometry == Geometry::Axisymmetric {
@@ -368,16 +405,51 @@ fn axial_forces(scene: &PelletScene, pellet_area: f64) -> [Option<AxialForce>; 2
         let n = (20 * scene.mesh.refinement) as f64;
         0.5 * n * (2.0 * PI / n).sin()
     };
+    let (pellet, inner, outer) = match file {
+        // In r-z the next pellet bears on the file's land only (the gas presses on the rest
+        // of the end, dish and chamfer, as a surface load); in 2D the areas are the file's.
+        Some(f) if f.axisymmetric => (
+            f.land_area,
+            unit * c.inner_radius.powi(2),
+            unit * c.outer_radius.powi(2),
+        ),
+        Some(f) => (f.pellet_volume, f.enclosed_areas[0], f.enclosed_areas[1]),
+        None => (
+            pellet_area,
+            unit * c.inner_radius.powi(2),
+            unit * c.outer_radius.powi(2),
+        ),
+    };
     [
         Some(AxialForce {
             force: 0.0,
-            per_gas_pressure: -pellet_area,
+            per_gas_pressure: -pellet,
         }),
         Some(AxialForce {
-            force: -c.coolant_pressure * unit * c.outer_radius.powi(2),
-            per_gas_pressure: unit * c.inner_radius.powi(2),
+            force: -c.coolant_pressure * outer,
+            per_gas_pressure: inner,
         }),
     ]
+}
+
+/// The node of the faces `set` of `mesh` furthest along `along`.
+fn extreme_node(
+    mesh: &VolumeMesh,
+    set: &FaceSet,
+    along: impl Fn(&Vector3<f64>) -> f64,
+) -> Result<u32, PelletError> {
+    let x = mesh.coords();
+    let mut best: Option<(f64, u32)> = None;
+    for f in mesh.boundary_faces()?.iter().filter(|f| contains(set, f)) {
+        for &n in &f.nodes {
+            let v = along(&x[n as usize]);
+            if best.is_none_or(|(b, m)| v > b || (v == b && n < m)) {
+                best = Some((v, n));
+            }
+        }
+    }
+    best.map(|(_, n)| n)
+        .ok_or_else(|| PelletError::Invalid("a surface group without faces".into()))
 }
 
 /// Runs the coupled scene (see [`run`](super::run)).
@@ -824,18 +896,25 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         pvd(&interface_files(&files)).into_bytes(),
     ));
 
-    // When contact engages: the exponential law's pressure rises below xi (mean gap, not
-    // zero: the gap is not closed); the exact law's mean contact pressure is positive.
-    // (A millionth of the gas pressure: the round-off of an inactive node's pressure is
-    // far below it.)
+    // When contact engages: the exponential law's pressure rises where the gap falls below
+    // xi (the smallest gap, not zero: the gap is not closed; an off-centre pellet engages on
+    // its near side first); the exact law's mean contact pressure is positive. (A millionth
+    // of the gas pressure: the round-off of an inactive node's pressure is far below it.)
     let touches = |s: &Summary| match onset {
-        Some(xi) => s.gap <= xi,
+        Some(xi) => s.min_gap <= xi,
         None => s.contact_pressure > 1e-6 * s.plenum,
     };
-    let closure = rows.windows(2).find(|w| touches(&w[1].1)).map(|w| {
-        let (t0, s0, t1, s1) = (w[0].0, w[0].1, w[1].0, w[1].1);
+    // Engaged from the initial state (an off-centre pellet touching at once), or between two
+    // rows (interpolated in the exponential law's smallest gap).
+    let closure = rows.iter().position(|r| touches(&r.1)).map(|i| {
+        if i == 0 {
+            return rows[0].0;
+        }
+        let (t0, s0, t1, s1) = (rows[i - 1].0, rows[i - 1].1, rows[i].0, rows[i].1);
         match onset {
-            Some(xi) if s0.gap > s1.gap => t0 + (t1 - t0) * (s0.gap - xi) / (s0.gap - s1.gap),
+            Some(xi) if s0.min_gap > s1.min_gap => {
+                t0 + (t1 - t0) * (s0.min_gap - xi) / (s0.min_gap - s1.min_gap)
+            }
             _ => t1,
         }
     });

@@ -1,14 +1,17 @@
 //! The pellet and cladding of a user's Gmsh file (`[mesh] file`), in place of the generated
-//! section: an r-z section (x = r, y = z) of a pellet segment, a dished and chamfered pellet
-//! say, from a plane of symmetry at `z = 0` to its end at the largest `z`.
+//! section: the rod's 2D cross-section (its axis at the origin; an eccentric pellet, say) or
+//! an r-z section (x = r, y = z) of a pellet segment (a dished and chamfered pellet, say),
+//! from a plane of symmetry at `z = 0` to its end at the largest `z`.
 //!
 //! The file names its parts by physical groups: the cells of [`PELLET`] and [`CLADDING`];
 //! the pellet's lateral surface [`PELLET_OUTER`] (the slave side of the gap) and the
 //! cladding's inner and outer surfaces [`CLADDING_INNER`] (the master side) and
 //! [`CLADDING_OUTER`] (the coolant's); optionally [`PELLET_FREE`], the pellet's other surfaces
-//! the plenum gas presses on (dishes, chamfers). The ends are found by coordinate: each body's
-//! bottom (its smallest `z`) is held axially, its top (its largest `z`: the pellet's land) is
-//! kept plane by the body's axial unknown.
+//! the plenum gas presses on (dishes, chamfers). In r-z the ends are found by coordinate: each
+//! body's bottom (its smallest `z`) is held axially, its top (its largest `z`: the pellet's
+//! land) is kept plane by the body's axial unknown. In 2D the cross-section is whole (the
+//! cladding's surfaces closed curves) and each body is held against rigid motion at two or
+//! three nodes of its surfaces.
 
 use std::collections::HashSet;
 use std::f64::consts::PI;
@@ -57,29 +60,37 @@ pub struct FileGeometry {
     pub cladding_inner: FaceSet,
     /// [`CLADDING_OUTER`]'s faces.
     pub cladding_outer: FaceSet,
+    /// Whether the section is r-z (else the 2D cross-section).
+    pub axisymmetric: bool,
     /// The largest radius of the pellet's lateral surface (m).
     pub pellet_radius: f64,
     /// The smallest radius of the cladding's inner surface (m).
     pub inner_radius: f64,
     /// The largest radius of the cladding's outer surface (m).
     pub outer_radius: f64,
-    /// The axial extent of the cladding (m): the segment's height.
+    /// The widest radial distance between the gap's sides (m): the largest radius of the
+    /// cladding's inner surface less the smallest of the pellet's lateral one.
+    pub widest_gap: f64,
+    /// The axial extent of the cladding (m): the segment's height in r-z, 1 in 2D.
     pub height: f64,
-    /// The pellet's revolved volume (m^3).
+    /// The pellet's volume (m^3: revolved in r-z; its area, m^2, in 2D).
     pub pellet_volume: f64,
     /// The area of the pellet's top end (the land) projected on the plane `z = H` (m^2): the
-    /// area over which the next pellet bears on it.
+    /// area over which the next pellet bears on it (r-z); the pellet's area in 2D.
     pub land_area: f64,
+    /// The areas enclosed by the cladding's inner and outer surfaces (m^2; 2D only, 0 in r-z).
+    pub enclosed_areas: [f64; 2],
 }
 
 impl FileGeometry {
-    /// Reads `path`.
+    /// Reads `path`, an r-z section if `axisymmetric`, else a 2D cross-section.
     ///
     /// # Errors
     /// [`PelletError::Io`] for a file or group that cannot be read (naming the file and the
-    /// group); [`PelletError::Invalid`] for a section that is not an r-z one (a node at
-    /// `r < 0`, 3D cells) or whose radii are not ordered `a < b < c`.
-    pub fn read(path: &Path) -> Result<Self, PelletError> {
+    /// group); [`PelletError::Invalid`] for 3D cells, an r-z section with a node at `r < 0`,
+    /// radii not ordered `a < b < c` (the pellet's largest, the cladding's smallest inner and
+    /// largest outer), or, in 2D, cladding surfaces that are not closed curves.
+    pub fn read(path: &Path, axisymmetric: bool) -> Result<Self, PelletError> {
         let registry = VolumeRegistry::default();
         let pellet = read_gmsh_volume(path, PELLET, &registry)?;
         let cladding = read_gmsh_volume(path, CLADDING, &registry)?;
@@ -91,7 +102,12 @@ impl FileGeometry {
                     body.group.name, body.dimension
                 )));
             }
-            if let Some(x) = body.mesh.coords().iter().find(|x| x.x < -1e-12) {
+            if let Some(x) = body
+                .mesh
+                .coords()
+                .iter()
+                .find(|x| axisymmetric && x.x < -1e-12)
+            {
                 return Err(invalid(format!(
                     "group \"{}\" has a node at r = x = {} < 0: an r-z section lies at x >= 0",
                     body.group.name, x.x
@@ -113,25 +129,54 @@ impl FileGeometry {
         let cladding_inner = faces(&cladding, CLADDING_INNER)?;
         let cladding_outer = faces(&cladding, CLADDING_OUTER)?;
         let (pellet, cladding) = (pellet.mesh, cladding.mesh);
-        // The radii of a group's nodes.
+        // The radii of a group's nodes: x in r-z, the distance from the axis in 2D.
+        let radius = |x: &nalgebra::Vector3<f64>| if axisymmetric { x.x } else { x.xy().norm() };
         let radii = |mesh: &VolumeMesh, set: &FaceSet| -> Result<Vec<f64>, PelletError> {
             Ok(mesh
                 .boundary_faces()?
                 .iter()
                 .filter(|f| contains(set, f))
-                .flat_map(|f| f.nodes.iter().map(|&n| mesh.coords()[n as usize].x))
+                .flat_map(|f| f.nodes.iter().map(|&n| radius(&mesh.coords()[n as usize])))
                 .collect())
         };
-        let max = |v: Vec<f64>| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
-        let min = |v: Vec<f64>| v.into_iter().fold(f64::INFINITY, f64::min);
-        let a = max(radii(&pellet, &pellet_outer)?);
-        let b = min(radii(&cladding, &cladding_inner)?);
-        let c = max(radii(&cladding, &cladding_outer)?);
+        let max = |v: &[f64]| v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+        let (outer, inner) = (
+            radii(&pellet, &pellet_outer)?,
+            radii(&cladding, &cladding_inner)?,
+        );
+        let (a, b) = (max(&outer), min(&inner));
+        let widest_gap = max(&inner) - min(&outer);
+        let c = max(&radii(&cladding, &cladding_outer)?);
         if !(a > 0.0 && a < b && b < c) {
             return Err(invalid(format!(
                 "the radii of \"{PELLET_OUTER}\" (largest {a}), \"{CLADDING_INNER}\" (smallest \
                  {b}) and \"{CLADDING_OUTER}\" (largest {c}) are not ordered 0 < a < b < c"
             )));
+        }
+        if !axisymmetric {
+            let pellet_area = super::run::mesh_area(&pellet).abs();
+            let enclosed_areas = [
+                enclosed_area(&cladding, &cladding_inner, path, CLADDING_INNER)?,
+                enclosed_area(&cladding, &cladding_outer, path, CLADDING_OUTER)?,
+            ];
+            return Ok(Self {
+                pellet,
+                cladding,
+                pellet_outer,
+                pellet_free,
+                cladding_inner,
+                cladding_outer,
+                axisymmetric,
+                pellet_radius: a,
+                inner_radius: b,
+                outer_radius: c,
+                widest_gap,
+                height: 1.0,
+                pellet_volume: pellet_area,
+                land_area: pellet_area,
+                enclosed_areas,
+            });
         }
         let (lo, hi) = cladding
             .coords()
@@ -166,20 +211,66 @@ impl FileGeometry {
             pellet_free,
             cladding_inner,
             cladding_outer,
+            axisymmetric,
             pellet_radius: a,
             inner_radius: b,
             outer_radius: c,
+            widest_gap,
             height,
             pellet_volume,
             land_area,
+            enclosed_areas: [0.0; 2],
         })
     }
 
     /// The volume inside the cladding not taken by the pellet nor by the radial gap between
-    /// `r = a` and `r = b` (m^3): the dishes and chamfers, `pi a^2 H - V_pellet`.
+    /// `r = a` and `r = b` (m^3): the dishes and chamfers, `pi a^2 H - V_pellet` (r-z; 0 in
+    /// 2D, where the gap is all there is).
     pub fn end_voids(&self) -> f64 {
+        if !self.axisymmetric {
+            return 0.0;
+        }
         (PI * self.pellet_radius.powi(2) * self.height - self.pellet_volume).max(0.0)
     }
+
+    /// The gap's volume in the file's geometry (m^3 in r-z: `pi (b^2 - a^2) H`; m^2 per unit
+    /// length in 2D: the area enclosed by the cladding's inner surface less the pellet's).
+    pub fn gap_volume(&self) -> f64 {
+        if self.axisymmetric {
+            PI * (self.inner_radius.powi(2) - self.pellet_radius.powi(2)) * self.height
+        } else {
+            self.enclosed_areas[0] - self.pellet_volume
+        }
+    }
+}
+
+/// The area a closed curve of boundary faces (straight edges of a 2D mesh) encloses: the
+/// shoelace sum over its edges, which must form closed loops (every node on two edges).
+fn enclosed_area(
+    mesh: &VolumeMesh,
+    set: &FaceSet,
+    path: &Path,
+    group: &str,
+) -> Result<f64, PelletError> {
+    let x = mesh.coords();
+    let mut ends = std::collections::HashMap::<u32, usize>::new();
+    let mut twice = 0.0;
+    for f in mesh.boundary_faces()?.iter().filter(|f| contains(set, f)) {
+        let (p, q) = (f.nodes[0], f.nodes[f.nodes.len().min(2) - 1]);
+        *ends.entry(p).or_default() += 1;
+        *ends.entry(q).or_default() += 1;
+        let (p, q) = (x[p as usize], x[q as usize]);
+        twice += p.x * q.y - q.x * p.y;
+    }
+    if let Some((&node, _)) = ends.iter().find(|(_, &n)| n != 2) {
+        return Err(PelletError::Invalid(format!(
+            "{}: group \"{group}\" is not a closed curve (node tag {} ends it): a 2D \
+             cross-section is the whole rod",
+            path.display(),
+            mesh.node_tags()[node as usize]
+        )));
+    }
+    Ok(0.5 * twice.abs())
 }
 
 /// `2 pi int r dA` over the cells of an r-z mesh (Pappus; straight-sided cells, node order

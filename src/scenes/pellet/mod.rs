@@ -658,11 +658,11 @@ impl Default for SolverData {
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MeshData {
-    /// A Gmsh 4.1 file of the r-z section (`geometry = "axisymmetric"`) in place of the
-    /// generated one, its parts named by physical groups ([`file_mesh`]); relative paths are
-    /// resolved against the scene file's folder. The radii and the segment's height are then
-    /// the file's (the `[pellet]` and `[cladding]` radii and `[model] segment_height` are
-    /// replaced by them, and the report gives them).
+    /// A Gmsh 4.1 file of the 2D cross-section or of the r-z section (`geometry =
+    /// "axisymmetric"`) in place of the generated one, its parts named by physical groups
+    /// ([`file_mesh`]); relative paths are resolved against the scene file's folder. The
+    /// radii and the segment's height are then the file's (the `[pellet]` and `[cladding]`
+    /// radii and `[model] segment_height` are replaced by them, and the report gives them).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub file: Option<std::path::PathBuf>,
     /// The refinement level `r >= 1`: the pellet O-grid has `4 r` core cells per side and
@@ -907,10 +907,10 @@ impl PelletScene {
                 m.segment_height
             ));
         }
-        if self.mesh.file.is_some() && (m.geometry != Geometry::Axisymmetric || !m.mechanics) {
+        if self.mesh.file.is_some() && (m.geometry == Geometry::ThreeD || !m.mechanics) {
             return bad(format!(
                 "mesh.file with model.geometry = {:?} and model.mechanics = {}: a mesh file is \
-                 the r-z section of the thermomechanical scene (geometry = \"axisymmetric\")",
+                 the 2D cross-section or the r-z section of the thermomechanical scene",
                 m.geometry, m.mechanics
             ));
         }
@@ -949,12 +949,15 @@ impl PelletScene {
         let Some(path) = &self.mesh.file else {
             return Ok((self.clone(), None));
         };
-        let file = file_mesh::FileGeometry::read(path)?;
+        let file =
+            file_mesh::FileGeometry::read(path, self.model.geometry == Geometry::Axisymmetric)?;
         let mut scene = self.clone();
         scene.pellet.radius = file.pellet_radius;
         scene.cladding.inner_radius = file.inner_radius;
         scene.cladding.outer_radius = file.outer_radius;
-        scene.model.segment_height = file.height;
+        if file.axisymmetric {
+            scene.model.segment_height = file.height;
+        }
         scene.check()?;
         Ok((scene, Some(file)))
     }
