@@ -1,7 +1,7 @@
 //! Tests of the sparse solvers: LU and Cholesky factorisations (solve, refactor with the
 //! symbolic analysis reused, typed errors) and restarted GMRES against the direct solve.
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     gmres, CholeskyFactorization, GmresOptions, IdentityPreconditioner, LinearOperator,
     LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix, Triplets,
 };

@@ -14,7 +14,7 @@ use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 /// `B` when factorised and one per right-hand side after. With `k = 0` it is the LU of `A`.
 ///
 /// ```
-/// use mortar_core::linalg::{BorderedLu, Triplets};
+/// use mortar_fem::linalg::{BorderedLu, Triplets};
 /// // A tridiagonal block bordered by one dense row and column.
 /// let n = 5;
 /// let mut t = Triplets::default();
@@ -37,7 +37,7 @@ use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 /// let lu = BorderedLu::try_new(&a, 1)?;
 /// lu.solve_in_place(&mut b)?;
 /// assert!(b.iter().zip(x).all(|(a, b)| (a - b).abs() < 1e-13));
-/// # Ok::<(), mortar_core::linalg::SolverError>(())
+/// # Ok::<(), mortar_fem::linalg::SolverError>(())
 /// ```
 #[derive(Debug)]
 pub struct BorderedLu {

@@ -208,7 +208,7 @@ fn lu_error(e: LuError) -> SolverError {
 /// square non-singular matrices such as the saddle-point systems of mesh tying.
 ///
 /// ```
-/// use mortar_core::linalg::{LuFactorization, Triplets};
+/// use mortar_fem::linalg::{LuFactorization, Triplets};
 /// let mut t = Triplets::default();
 /// t.push(0, 0, 2.0);
 /// t.push(0, 1, 1.0);

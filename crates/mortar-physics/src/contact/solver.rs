@@ -2,7 +2,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     fill_reducing_ordering, inf_norm, well_conditioned, CholeskyFactorization, LuFactorization,
     SolverError, SparseMatrix, SubstructuredCholesky, Triplets,
 };

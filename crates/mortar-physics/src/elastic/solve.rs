@@ -1,6 +1,6 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
+use mortar_fem::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
 
 use crate::field::free::{free_block, free_numbering, FIXED};
 
@@ -12,7 +12,7 @@ use crate::PhysicsError;
 /// by sparse Cholesky.
 ///
 /// ```
-/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_fem::mesh::VolumeMesh;
 /// use mortar_elements::volume::QUAD4;
 /// use mortar_physics::elastic::{solve_elastic, ComponentSet, ElasticBody, ElasticMaterial};
 /// use nalgebra::Vector3;
@@ -46,7 +46,7 @@ pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
 /// axisymmetric geometry).
 ///
 /// ```
-/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_fem::mesh::VolumeMesh;
 /// use mortar_core::ModelGeometry;
 /// use mortar_elements::volume::QUAD4;
 /// use mortar_physics::elastic::{

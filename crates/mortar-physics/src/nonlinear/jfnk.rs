@@ -3,7 +3,7 @@
 
 use std::cell::RefCell;
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     gmres, GmresOptions, GmresReport, LinearOperator, Preconditioner, SolverError,
 };
 
@@ -155,7 +155,7 @@ pub fn jfnk_solve(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mortar_core::linalg::{LuFactorization, Triplets};
+    use mortar_fem::linalg::{LuFactorization, Triplets};
 
     /// On a linear residual `F(x) = A x - b`, JFNK's solve equals the direct solve.
     #[test]

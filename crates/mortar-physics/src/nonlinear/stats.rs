@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{BorderedLu, LuFactorization, SolverError, SparseMatrix};
+use mortar_fem::linalg::{BorderedLu, LuFactorization, SolverError, SparseMatrix};
 
 use super::{newton, NewtonOptions, NewtonProblem, NewtonReport};
 use crate::error::PhysicsError;

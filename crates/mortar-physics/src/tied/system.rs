@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     CholeskyFactorization, LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix,
     SubstructuredCholesky, Triplets,
 };
@@ -107,7 +107,7 @@ impl Factor {
 ///   free unknowns is symmetric positive definite and solved by sparse Cholesky: by body
 ///   ([`SubstructuredCholesky`]: each body with the interface's unknowns factorised
 ///   on its own thread, the interface's dense Schur complement last) from
-///   [`SUBSTRUCTURED_MIN`](mortar_core::linalg::SUBSTRUCTURED_MIN) unknowns when the
+///   [`SUBSTRUCTURED_MIN`](mortar_fem::linalg::SUBSTRUCTURED_MIN) unknowns when the
 ///   interface has at most `2 sqrt(n)` of them, as one matrix otherwise. The multipliers
 ///   follow from the slave rows:
 ///   `lambda_j = (b - A T)_j / D_jj`.
