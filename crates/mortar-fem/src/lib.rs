@@ -8,18 +8,19 @@
 //! - [`quadrature`]: their quadrature rules;
 //! - [`mesh`]: [`VolumeMesh`], the nodes and cells of a body, whose boundary faces come out as
 //!   outward-oriented [`SurfaceMesh`](mortar_core::SurfaceMesh)es for an interface;
-//! - [`linalg`]: sparse linear algebra: faer's sparse LU and Cholesky (with METIS orderings)
-//!   and a restarted GMRES.
+//! - [`linalg`]: sparse linear algebra behind one solver interface
+//!   ([`SparseSolver`](linalg::SparseSolver), [`Factorization`](linalg::Factorization)),
+//!   implemented by faer's sparse LU and Cholesky (with METIS orderings) and a restarted GMRES.
 //!
 //! Reference domains: triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`; tetrahedron
 //! `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`; hexahedron `[-1, 1]^3`. Node order follows Gmsh.
 //!
 //! ```
-//! use mortar_fem::linalg::{LuFactorization, Triplets};
+//! use mortar_fem::linalg::{FaerSolver, MatrixKind, SparseSolver, Triplets};
 //! let mut t = Triplets::default();
 //! t.push(0, 0, 2.0);
 //! t.push(1, 1, 4.0);
-//! let lu = LuFactorization::try_new(&t.to_csr(2, 2)).unwrap();
+//! let lu = FaerSolver.factor(&t.to_csr(2, 2), MatrixKind::General).unwrap();
 //! assert_eq!(lu.solve(&[2.0, 2.0]).unwrap(), vec![1.0, 0.5]);
 //! ```
 

@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 
+use super::solver::{FactorStats, Factorization};
 use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 
 /// The factorisation of `A = [B C; R D]` with the last `k` rows and columns the border:
@@ -241,6 +242,22 @@ fn dense_solve(a: &[f64], k: usize, b: &mut [f64]) -> Result<(), SolverError> {
         b[col] = (b[col] - s) / m[col * k + col];
     }
     Ok(())
+}
+
+impl Factorization for BorderedLu {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        BorderedLu::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        BorderedLu::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: None,
+            method: "sparse LU with a dense border (its Schur complement)",
+        }
+    }
 }
 
 #[cfg(test)]

@@ -1,5 +1,7 @@
-//! Sparse linear algebra: faer's sparse direct factorisations (faer's API stays inside
-//! `faer_backend.rs`, METIS's inside [`nested_dissection`]) and a restarted GMRES. The matrix type and its assembly from triplets are those of the coupling
+//! Sparse linear algebra behind one solver interface ([`solver`]: [`SparseSolver`],
+//! [`Factorization`]), with faer's sparse direct factorisations as its backend (faer's API
+//! stays inside `faer_backend.rs`, METIS's inside [`nested_dissection`]) and a restarted
+//! GMRES. The matrix type and its assembly from triplets are those of the coupling
 //! ([`SparseMatrix`], [`Triplets`] of `mortar-core`), re-exported here.
 //!
 //! - [`LuFactorization`], [`CholeskyFactorization`]: factorise once, solve many times, and
@@ -18,13 +20,14 @@ mod conditioning;
 mod faer_backend;
 mod gmres;
 pub mod nested_dissection;
+pub mod solver;
 mod substructured;
 
 pub use bordered::BorderedLu;
 pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
 pub use faer_backend::{
-    fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,
-    SaddlePointFactorization, SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
+    fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, FaerSolver,
+    LuFactorization, SaddlePointFactorization, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
 };
 pub use gmres::{
     gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
@@ -32,4 +35,5 @@ pub use gmres::{
 pub use mortar_core::linalg::{
     CompressWorkspace, PartList, RowAccumulator, SparseMatrix, Triplets,
 };
+pub use solver::{FactorStats, Factorization, MatrixKind, SolverError, SparseSolver};
 pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};

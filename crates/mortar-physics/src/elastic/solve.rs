@@ -1,11 +1,11 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_fem::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
+use mortar_fem::linalg::{inf_norm, well_conditioned, MatrixKind, SparseMatrix};
 
 use crate::field::free::{free_block, free_numbering, FIXED};
 
 use super::{assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticOptions};
-use crate::PhysicsError;
+use crate::{PhysicsError, SOLVER};
 
 /// The displacement of `body` (`node * dim + k`) under its loads (body force, tractions,
 /// thermal eigenstrain) with its prescribed components eliminated: `K_ff u_f = f_f - K_fd u_d`
@@ -118,11 +118,13 @@ pub(crate) fn solve_held(
             "{why}: the body is not held against rigid motion by its displacement conditions"
         ),
     };
-    let factor = CholeskyFactorization::try_new(&kff).map_err(|e| {
-        not_held(format!(
-            "the stiffness of the free displacements is not positive definite ({e})"
-        ))
-    })?;
+    let factor = SOLVER
+        .factor(&kff, MatrixKind::SymmetricPositiveDefinite)
+        .map_err(|e| {
+            not_held(format!(
+                "the stiffness of the free displacements is not positive definite ({e})"
+            ))
+        })?;
     let b_norm = inf_norm(&rhs);
     factor.solve_in_place(&mut rhs)?;
     // A singular stiffness whose round-off left a small positive pivot factorises: its

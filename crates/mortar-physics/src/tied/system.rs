@@ -7,8 +7,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use mortar_fem::linalg::{
-    CholeskyFactorization, LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix,
-    SubstructuredCholesky, Triplets,
+    CholeskyFactorization, Factorization, LuFactorization, SaddlePointFactorization, SolverError,
+    SparseMatrix, SubstructuredCholesky, Triplets,
 };
 
 use super::crosspoint::shares;
@@ -70,6 +70,16 @@ impl Factor {
                 Ok(Factor::Lu(Box::new(LuFactorization::try_new(matrix)?)))
             }
             Err(e) => Err(e),
+        }
+    }
+
+    /// The factorisation, through the solver interface.
+    fn factorization(&self) -> &dyn Factorization {
+        match self {
+            Factor::Lu(f) => &**f,
+            Factor::Ldlt(f) => &**f,
+            Factor::Cholesky(f) => f,
+            Factor::Substructured(f) => &**f,
         }
     }
 
@@ -465,12 +475,7 @@ impl TiedSystem {
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
-        match &self.factor {
-            Factor::Lu(f) => f.solve_in_place(&mut x)?,
-            Factor::Ldlt(f) => f.solve_in_place(&mut x)?,
-            Factor::Cholesky(f) => f.solve_in_place(&mut x)?,
-            Factor::Substructured(f) => f.solve_in_place(&mut x)?,
-        }
+        self.factor.factorization().solve_in_place(&mut x)?;
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
