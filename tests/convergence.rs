@@ -4,6 +4,10 @@
 //! (saddle point and dual condensation) agreeing, backward Euler, and deterministic parallel
 //! assembly. Meshes are small so that the binary runs in seconds in the test profile.
 
+/// The verification claims: the bounds of the figures docs/verification.md states.
+#[path = "verification/claims.rs"]
+mod claims;
+
 mod convergence {
     mod axisymmetric_coupling;
     mod axisymmetric_elastic;

@@ -4,6 +4,10 @@
 #[path = "integration/common.rs"]
 mod common;
 
+/// The verification claims: the bounds of the figures docs/verification.md states.
+#[path = "verification/claims.rs"]
+mod claims;
+
 #[path = "integration/gmsh_read.rs"]
 mod gmsh_read;
 

@@ -2,9 +2,14 @@
 //! convergence under refinement, Newton against JFNK, the scene file, and the independent 1D
 //! radial reference of the coupled thermomechanical pellet, and the limits of its models.
 
+/// The verification claims: the bounds of the figures docs/verification.md states.
+#[path = "verification/claims.rs"]
+mod claims;
+
 mod pellet {
     mod closed_form;
     mod coupled;
+    mod file_mesh;
     mod free_expansion;
     mod limits;
     mod radial;

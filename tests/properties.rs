@@ -5,6 +5,10 @@
 //! seconds in the test profile. Failing cases are recorded in `*.proptest-regressions` files
 //! next to the module sources; commit them.
 
+/// The verification claims: the bounds of the figures docs/verification.md states.
+#[path = "verification/claims.rs"]
+mod claims;
+
 mod properties {
     pub mod common;
 

@@ -69,7 +69,7 @@ fn run(
                 Some(d) => (d.to_path_buf(), false),
                 None => (scratch_dir()?, true),
             };
-            let report = pellet::run_from_toml_with(text, &dir, false, &registries.laws)
+            let report = pellet::run_from_toml_with(text, base, &dir, false, &registries.laws)
                 .map_err(|e| scene_error(format!("{}: {e}", path.display())));
             if scratch {
                 // Best effort: a scratch folder left behind is only untidy.

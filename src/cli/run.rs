@@ -191,8 +191,10 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
             if scene_kind(&text, path).map_err(|e| e.to_string())? == "pellet" {
-                let report = pellet::run_from_toml_with(&text, &args.out, !json, &registries.laws)
-                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                let base = path.parent().unwrap_or(Path::new(""));
+                let report =
+                    pellet::run_from_toml_with(&text, base, &args.out, !json, &registries.laws)
+                        .map_err(|e| format!("{}: {e}", path.display()))?;
                 print_pellet(&report, &args.out, json);
                 return Ok(());
             }

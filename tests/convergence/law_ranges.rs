@@ -114,7 +114,8 @@ fn gap_conductance_is_exact_from_1e_minus_12_to_1e12() {
         for dual in [false, true] {
             let (e_t, e_q) = slabs_through_gap_conductance(u, dual);
             assert!(
-                e_t < 1e-13 && e_q < 1e-13,
+                e_t < crate::claims::claim("law.gap_conductance").bound
+                    && e_q < crate::claims::claim("law.gap_conductance").bound,
                 "U = {u:e}, dual {dual}: temperature error {e_t:e}, flux error {e_q:e}"
             );
             worst = (worst.0.max(e_t), worst.1.max(e_q));
@@ -167,7 +168,8 @@ fn the_exponential_contact_penalty_is_exact_over_22_decades_of_stiffness() {
                 .iter()
                 .map(|p| (p - SIGMA).abs() / SIGMA)
                 .fold(0.0f64, f64::max);
-            let gap_tolerance = (1e-8 * delta).max(16.0 * f64::EPSILON * 2.0 * SIGMA / E);
+            let gap_tolerance = (crate::claims::claim("law.penalty_gap").bound * delta)
+                .max(16.0 * f64::EPSILON * 2.0 * SIGMA / E);
             let worst_g = sol
                 .gap
                 .iter()
@@ -180,7 +182,7 @@ fn the_exponential_contact_penalty_is_exact_over_22_decades_of_stiffness() {
             );
             // Measured at most 1.4e-12 (2D) and 6.9e-12 (3D) over the stiffnesses.
             assert!(
-                worst_p < 1e-10,
+                worst_p < crate::claims::claim("law.penalty_pressure").bound,
                 "{dim}D, delta {delta:e}: pressure {worst_p:e}"
             );
             assert!(
@@ -229,7 +231,10 @@ fn the_exact_contact_law_is_exact_for_its_parameter_over_18_decades() {
                  {steps} Newton steps"
             );
             // Measured 1.2e-12 (2D) and 6.5e-12 (3D) for every c.
-            assert!(worst_p < 1e-10, "{dim}D, c = {c:e}: pressure {worst_p:e}");
+            assert!(
+                worst_p < crate::claims::claim("law.exact_pressure").bound,
+                "{dim}D, c = {c:e}: pressure {worst_p:e}"
+            );
             assert!(
                 worst_g <= 16.0 * f64::EPSILON * 2.0 * SIGMA / E,
                 "{dim}D, c = {c:e}: gap {worst_g:e} m"

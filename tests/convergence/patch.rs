@@ -43,8 +43,9 @@ fn linear_fields_are_reproduced_in_2d_and_3d() {
         ] {
             let name = format!("{dim}D {} {formulation:?}", coupling.describe());
             let (err, flux) = patch_error(dim, coupling, formulation);
-            assert!(err < 1e-10, "{name}: max nodal error {err:e}");
-            assert!(flux < 1e-10, "{name}: flux error {flux:e}");
+            let bound = crate::claims::claim("tied.patch").bound;
+            assert!(err < bound, "{name}: max nodal error {err:e}");
+            assert!(flux < bound, "{name}: flux error {flux:e}");
         }
     }
 }

@@ -43,7 +43,10 @@ fn condensed_and_saddle_point_solutions_agree() {
         assert!(auto.formulation.unknowns < saddle.formulation.unknowns);
         for b in 0..2 {
             let d = max_abs_diff(&auto.temperatures[b], &saddle.temperatures[b]);
-            assert!(d < 1e-10, "{name}: temperatures differ by {d:e}");
+            assert!(
+                d < crate::claims::claim("tied.paths").bound,
+                "{name}: temperatures differ by {d:e}"
+            );
         }
         let d = max_abs_diff(&auto.flux, &saddle.flux);
         assert!(d < 1e-9, "{name}: fluxes differ by {d:e}");

@@ -357,6 +357,34 @@ fn no_arguments_runs_the_pellet_scene_into_out_pellet() {
     assert!(dir.join("out/pellet/pellet_0000.vtu").exists());
 }
 
+/// The shipped dished-pellet scene runs from another folder: its `[mesh] file` is found
+/// beside the scene file, and the report gives what was taken from the file.
+#[test]
+fn runs_the_dished_pellet_scene_from_its_gmsh_file() {
+    let dir = TempDir::new("pellet-rz");
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/examples/scenes/pellet_rz.toml"
+    );
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_mortar"))
+        .current_dir(dir.join(""))
+        .args(["run", scene, "--out", "out"])
+        .output()
+        .expect("run the mortar binary");
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("out/report.json")).unwrap()).unwrap();
+    let file = &report["mesh"]["file"];
+    assert_eq!(file["pellet_radius"].as_f64(), Some(4.1e-3), "{file}");
+    assert!(file["end_voids"].as_f64().unwrap() > 4.8e-9, "{file}");
+    assert_eq!(report["models"]["mechanics"], true);
+    assert!(dir.join("out/pellet_0000.vtu").exists());
+}
+
 #[test]
 fn demo_couples_the_built_in_pair() {
     let run = mortar(&["demo"]);

@@ -67,6 +67,36 @@ fn the_default_scene_names_the_ranges_it_leaves() {
     assert!(t0 < 0.5 * UO2_MELTING_POINT, "{t0}");
 }
 
+/// In r-z a warning's radius is the node's `x` (its distance from the axis), not its
+/// distance from the origin of the section. Regression: the radius was `|(x, y)|`, which
+/// put the cracking of the r-z segment's pellet surface outside the pellet.
+#[test]
+fn an_rz_warning_gives_the_distance_from_the_axis() {
+    let dir = out("rz");
+    // The dished pellet: its tension peaks away from the mid-plane.
+    let mut s = PelletScene::default();
+    s.model.geometry = mortar::scenes::pellet::Geometry::Axisymmetric;
+    s.mesh.file = Some(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/pellet_rz.msh"),
+    );
+    let rep = run(&s, &dir, false).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    let cracking = rep["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|w| w["name"] == "pellet_cracking")
+        .expect("the r-z pellet cracks as the cross-section's does");
+    assert!(
+        cracking["where"]["position"][1].as_f64().unwrap() > 0.0,
+        "{cracking}"
+    );
+    let r = cracking["where"]["radius"].as_f64().unwrap();
+    let x = cracking["where"]["position"][0].as_f64().unwrap();
+    assert_eq!(r, x, "{cracking}");
+    assert!(r <= 4.1e-3 * (1.0 + 1e-12), "{r}");
+}
+
 /// At 500 kW/m (a short run: refinement 1, one step), every range is left, fuel_melting
 /// first among them, each once, with the status "warnings".
 #[test]

@@ -21,7 +21,7 @@ fn check_row_sums(pair: &MeshPair, options: &CouplingOptions) -> Result<(), Test
     for (tag, sum) in coupling.slave_nodes.iter().zip(&sums) {
         let area = areas[tag];
         prop_assert!(
-            (sum - area).abs() <= 1e-12 * scale,
+            (sum - area).abs() <= crate::claims::claim("coupling.conservation").bound * scale,
             "{}: row of node {tag}: sum {sum} but nodal area {area} (relative error {:e})",
             coupling.formulation,
             (sum - area).abs() / scale
@@ -38,7 +38,7 @@ fn check_constants(pair: &MeshPair, options: &CouplingOptions) -> Result<(), Tes
     let scale = max_abs(&d1);
     for (j, (a, b)) in d1.iter().zip(&m1).enumerate() {
         prop_assert!(
-            (a - b).abs() <= 1e-12 * scale,
+            (a - b).abs() <= crate::claims::claim("coupling.conservation").bound * scale,
             "{}: row {j} (node {}): D 1 = {a}, M 1 = {b}",
             coupling.formulation,
             coupling.slave_nodes[j]

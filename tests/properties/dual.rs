@@ -13,6 +13,11 @@ use proptest::prelude::*;
 
 use super::common::{config, couple, ok};
 
+/// The bound of the off-diagonal ratio of the dual D (measured up to 5.8e-16).
+fn bound() -> f64 {
+    crate::claims::claim("coupling.dual").bound
+}
+
 /// The largest off-diagonal entry of D relative to the smallest diagonal one.
 fn off_diagonal_ratio(pair: &MeshPair) -> Result<f64, TestCaseError> {
     let (_, coupling) = couple(pair, &CouplingOptions::default().dual())?;
@@ -81,7 +86,7 @@ proptest! {
     #[test]
     fn dual_d_is_diagonal_2d(pair in covered_pair_2d()) {
         let ratio = off_diagonal_ratio(&pair)?;
-        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+        prop_assert!(ratio <= bound(), "off-diagonal / diagonal = {ratio:e}");
     }
 
     #[test]
@@ -92,7 +97,7 @@ proptest! {
         })
     ) {
         let ratio = off_diagonal_ratio(&pair)?;
-        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+        prop_assert!(ratio <= bound(), "off-diagonal / diagonal = {ratio:e}");
     }
 
     /// Unjittered Quad4 slaves are parallelograms, hence affine.
@@ -105,7 +110,7 @@ proptest! {
         })
     ) {
         let ratio = off_diagonal_ratio(&pair)?;
-        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+        prop_assert!(ratio <= bound(), "off-diagonal / diagonal = {ratio:e}");
     }
 
     /// Jittered Quad4 slaves: the basis is biorthogonal on each face (see above), so D must be
@@ -118,7 +123,7 @@ proptest! {
         })
     ) {
         let ratio = off_diagonal_ratio(&pair)?;
-        prop_assert!(ratio <= 1e-13, "off-diagonal / diagonal = {ratio:e}");
+        prop_assert!(ratio <= bound(), "off-diagonal / diagonal = {ratio:e}");
     }
 }
 

@@ -34,7 +34,7 @@ fn check_linear_field(
         .fold(0.0, f64::max);
     let scale = norm_inf(&coupling.d) * max_abs(&fs).max(max_abs(&fm));
     prop_assert!(
-        residual <= 1e-12 * scale,
+        residual <= crate::claims::claim("coupling.patch").bound * scale,
         "{}: |D f_s - M f_m| = {residual:e}, scale {scale:e} (relative {:e})",
         coupling.formulation,
         residual / scale

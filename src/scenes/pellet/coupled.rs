@@ -25,6 +25,7 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 use serde_json::{json, Value};
 
+use super::file_mesh::contains;
 use super::limits::{extremes, LimitWatch, When};
 use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
@@ -99,7 +100,8 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     thermal: TL,
     contact: ML,
 ) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
-    scene.check()?;
+    let (scene, file) = scene.resolved()?;
+    let scene = &scene;
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
     let geometry = scene.model.geometry;
@@ -130,6 +132,17 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             } else {
                 (pm, cm, area, usize::MAX)
             }
+        }
+        Geometry::Axisymmetric if file.is_some() => {
+            // The user's section: the heat source is q'(t) over the mean cross-section
+            // V_pellet / H, so that the segment produces q' H whatever its dishes.
+            let f = file.as_ref().expect("matched");
+            (
+                f.pellet.clone(),
+                f.cladding.clone(),
+                f.pellet_volume / f.height,
+                1,
+            )
         }
         Geometry::Axisymmetric => {
             // The r-z section (x = r, y = z) of a pellet segment: 8 r x 2 cells in the pellet,
@@ -165,6 +178,20 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let radius = move |x: &Vector3<f64>| match geometry {
         Geometry::Axisymmetric => x.x,
         _ => x.xy().norm(),
+    };
+    let mid = 0.5 * (c.inner_radius + c.outer_radius);
+    // The surfaces: the file's groups, or the generated section's faces by position.
+    let coolant = |f: &BoundaryFace| match &file {
+        Some(g) => contains(&g.cladding_outer, f),
+        None => radius(&f.centroid) > mid && lateral(f),
+    };
+    let slave_face = |f: &BoundaryFace| match &file {
+        Some(g) => contains(&g.pellet_outer, f),
+        None => radius(&f.centroid) > 0.5 * a && lateral(f),
+    };
+    let master_face = |f: &BoundaryFace| match &file {
+        Some(g) => contains(&g.cladding_inner, f),
+        None => radius(&f.centroid) < mid && lateral(f),
     };
     let power = scene.power;
     let power = move |t: f64| power.at(t);
@@ -224,16 +251,12 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             .with_dirichlet_nodes(east, ComponentSet::One(1), zero)
     })?;
 
-    let mid = 0.5 * (c.inner_radius + c.outer_radius);
     let cladding_heat = HeatBody::new(
         "cladding",
         cladding_mesh.clone(),
         HeatMaterial::new(c.conductivity, c.heat_capacity),
     )
-    .with_dirichlet_where(
-        |f| radius(&f.centroid) > mid && lateral(f),
-        move |_x, _t| t_co,
-    )?;
+    .with_dirichlet_where(coolant, move |_x, _t| t_co)?;
     let p_cool = c.coolant_pressure;
     let cladding_elastic = ElasticBody::new(
         "cladding",
@@ -241,17 +264,14 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         ElasticMaterial::new(c.youngs_modulus, c.poisson_ratio)
             .with_expansion(c.thermal_expansion, t_ref),
     )
-    .with_traction_where(
-        |f| radius(&f.centroid) > mid && lateral(f),
-        move |x| {
-            // The coolant presses along the inward radius.
-            let r = radius(x);
-            match geometry {
-                Geometry::Axisymmetric => Vector3::new(-p_cool, 0.0, 0.0),
-                _ => Vector3::new(-p_cool * x.x / r, -p_cool * x.y / r, 0.0),
-            }
-        },
-    )?;
+    .with_traction_where(coolant, move |x| {
+        // The coolant presses along the inward radius.
+        let r = radius(x);
+        match geometry {
+            Geometry::Axisymmetric => Vector3::new(-p_cool, 0.0, 0.0),
+            _ => Vector3::new(-p_cool * x.x / r, -p_cool * x.y / r, 0.0),
+        }
+    })?;
     let cladding_elastic = ends(if geometry == Geometry::Axisymmetric {
         cladding_elastic
     } else {
@@ -263,12 +283,8 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             .with_dirichlet_nodes(n, ComponentSet::One(0), zero)
     })?;
 
-    let slave_surface = pellet_heat
-        .mesh
-        .boundary_surface(|f| radius(&f.centroid) > 0.5 * a && lateral(f))?;
-    let master_surface = cladding_heat
-        .mesh
-        .boundary_surface(|f| radius(&f.centroid) < mid && lateral(f))?;
+    let slave_surface = pellet_heat.mesh.boundary_surface(slave_face)?;
+    let master_surface = cladding_heat.mesh.boundary_surface(master_face)?;
     let gap = c.inner_radius - p.radius;
     let tolerances = Tolerances {
         search_radius: SearchRadius::Distance(2.0 * gap),
@@ -277,8 +293,11 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let pl = &scene.plenum;
     // Per unit length in 2D; the segment's share of the plenum in 3D and r-z.
     let length = if geometry.is_plane() { 1.0 } else { height };
+    // The file's dishes and chamfers hold gas at the plenum's pressure: a volume of the
+    // plenum's (held at its as-built size).
+    let end_voids = file.as_ref().map_or(0.0, |f| f.end_voids());
     let plenum = Plenum::from_fill(
-        pl.volume * length,
+        pl.volume * length + end_voids,
         PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
         pl.fill_pressure,
         pl.fill_temperature,
@@ -295,13 +314,15 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         gas: GasPressure::Plenum(plenum),
         flux_unit: 1.0 / GapConductance::DEFAULT_REFERENCE_RESISTANCE,
         axial: if free_ends {
-            axial_forces(scene, area)
+            // The next pellet bears on the file's land only: the gas presses on the rest
+            // of the end (dish and chamfer) as a surface load.
+            axial_forces(scene, file.as_ref().map_or(area, |f| f.land_area))
         } else {
             [None, None]
         },
         ..ThermoMechOptions::default()
     };
-    Ok(GapThermoMechanics::new(
+    let problem = GapThermoMechanics::new(
         ThermoElasticBody {
             heat: pellet_heat,
             conductivity: k_pellet,
@@ -319,7 +340,16 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         thermal,
         contact,
         &options,
-    )?)
+    )?;
+    Ok(match &file {
+        Some(f) if !f.pellet_free.is_empty() => {
+            let free = f
+                .pellet
+                .boundary_surface(|face| contains(&f.pellet_free, face))?;
+            problem.with_gas_on(0, &free)?
+        }
+        _ => problem,
+    })
 }
 
 /// The axial forces `[pellet, cladding]` of free axial expansion: the plenum pressure on the
@@ -540,6 +570,9 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     progress: bool,
 ) -> Result<Value, PelletError> {
     let start = Instant::now();
+    // A mesh file's radii and height replace the scene's everywhere below.
+    let (scene, file) = scene.resolved()?;
+    let scene = &scene;
     let problem = coupled_problem_with(scene, laws.0, laws.1)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let c = &scene.cladding;
@@ -888,6 +921,16 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             },
         },
         "mesh": {
+            "file": file.as_ref().map(|f| json!({
+                "path": scene.mesh.file.as_ref().map(|p| p.display().to_string()),
+                "pellet_radius": f.pellet_radius,
+                "cladding_inner_radius": f.inner_radius,
+                "cladding_outer_radius": f.outer_radius,
+                "height": f.height,
+                "pellet_volume": f.pellet_volume,
+                "land_area": f.land_area,
+                "end_voids": f.end_voids(),
+            })),
             "refinement": scene.mesh.refinement,
             "pellet": mesh(0),
             "cladding": mesh(1),

@@ -98,6 +98,8 @@ pub const LIMITS: [Limit; 5] = [
 pub(super) struct At {
     body: &'static str,
     position: Vector3<f64>,
+    /// The distance from the rod's axis: `x` in r-z, `|(x, y)|` otherwise.
+    radius: f64,
 }
 
 /// A state's values of the limits' quantities (in [`LIMITS`] order), each with its place.
@@ -194,7 +196,7 @@ impl LimitWatch {
                         "where": {
                             "body": w.at.body,
                             "position": [p.x, p.y, p.z],
-                            "radius": p.xy().norm(),
+                            "radius": w.at.radius,
                         },
                         "when": {
                             "first": { "time": w.first.time, "step": w.first.step, "value": w.first_value },
@@ -273,6 +275,16 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     let f = problem.fields(x);
     let elastic = problem.elastic_bodies();
     let coords = |b: usize| elastic[b].mesh.coords();
+    let axisymmetric = problem.options().elastic.geometry.is_axisymmetric();
+    let at = |body, position: Vector3<f64>| At {
+        body,
+        position,
+        radius: if axisymmetric {
+            position.x
+        } else {
+            position.xy().norm()
+        },
+    };
     let largest = |values: &mut dyn Iterator<Item = (usize, f64)>, b: usize, body| {
         let (i, v) =
             values
@@ -281,13 +293,7 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
                     (0, f64::NEG_INFINITY),
                     |m, (i, v)| if v > m.1 { (i, v) } else { m },
                 );
-        (
-            v,
-            At {
-                body,
-                position: coords(b)[i],
-            },
-        )
+        (v, at(body, coords(b)[i]))
     };
     let t = f.temperature[0];
     let hottest = largest(&mut t.iter().copied().enumerate(), 0, "pellet");
@@ -327,12 +333,6 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
         .iter()
         .position(|&tag| tag as usize == node)
         .map_or(Vector3::zeros(), |i| slave.coords()[i]);
-    let interface = (
-        p + f.gas_pressure,
-        At {
-            body: "interface",
-            position,
-        },
-    );
+    let interface = (p + f.gas_pressure, at("interface", position));
     Ok([hottest, outside, von_mises, tension, interface])
 }

@@ -89,6 +89,7 @@
 
 mod closed_form;
 mod coupled;
+pub mod file_mesh;
 pub mod limits;
 mod mesh;
 mod run;
@@ -654,9 +655,16 @@ impl Default for SolverData {
 }
 
 /// The mesh: `[mesh]`.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MeshData {
+    /// A Gmsh 4.1 file of the r-z section (`geometry = "axisymmetric"`) in place of the
+    /// generated one, its parts named by physical groups ([`file_mesh`]); relative paths are
+    /// resolved against the scene file's folder. The radii and the segment's height are then
+    /// the file's (the `[pellet]` and `[cladding]` radii and `[model] segment_height` are
+    /// replaced by them, and the report gives them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<std::path::PathBuf>,
     /// The refinement level `r >= 1`: the pellet O-grid has `4 r` core cells per side and
     /// `2 r` radial layers (`16 r` edges on its circle); the cladding `21 r + 1` cells around
     /// and `2 r` radially.
@@ -668,6 +676,7 @@ pub struct MeshData {
 impl Default for MeshData {
     fn default() -> Self {
         Self {
+            file: None,
             refinement: 3,
             axial_layers: 2,
         }
@@ -898,6 +907,13 @@ impl PelletScene {
                 m.segment_height
             ));
         }
+        if self.mesh.file.is_some() && (m.geometry != Geometry::Axisymmetric || !m.mechanics) {
+            return bad(format!(
+                "mesh.file with model.geometry = {:?} and model.mechanics = {}: a mesh file is \
+                 the r-z section of the thermomechanical scene (geometry = \"axisymmetric\")",
+                m.geometry, m.mechanics
+            ));
+        }
         if self.mesh.axial_layers == 0 || self.mesh.axial_layers > 64 {
             return bad(format!(
                 "mesh.axial_layers = {} is not in 1..=64",
@@ -905,6 +921,42 @@ impl PelletScene {
             ));
         }
         Ok(())
+    }
+
+    /// Parses a scene file whose relative `[mesh] file` is in the folder `base` (the scene
+    /// file's).
+    ///
+    /// # Errors
+    /// As [`from_toml`](Self::from_toml).
+    pub fn from_toml_in(text: &str, base: &std::path::Path) -> Result<Self, PelletError> {
+        let mut scene = Self::from_toml(text)?;
+        if let Some(file) = &mut scene.mesh.file {
+            if file.is_relative() {
+                *file = base.join(&*file);
+            }
+        }
+        Ok(scene)
+    }
+
+    /// The scene checked, with the radii and segment height of its mesh file when it has
+    /// one (and the file's meshes).
+    ///
+    /// # Errors
+    /// [`PelletError::Invalid`] for values out of range; the errors of
+    /// [`FileGeometry::read`](file_mesh::FileGeometry::read).
+    pub(crate) fn resolved(&self) -> Result<(Self, Option<file_mesh::FileGeometry>), PelletError> {
+        self.check()?;
+        let Some(path) = &self.mesh.file else {
+            return Ok((self.clone(), None));
+        };
+        let file = file_mesh::FileGeometry::read(path)?;
+        let mut scene = self.clone();
+        scene.pellet.radius = file.pellet_radius;
+        scene.cladding.inner_radius = file.inner_radius;
+        scene.cladding.outer_radius = file.outer_radius;
+        scene.model.segment_height = file.height;
+        scene.check()?;
+        Ok((scene, Some(file)))
     }
 
     /// The Ross-Stoute gap law of this scene (gap `d_g = b - a`).

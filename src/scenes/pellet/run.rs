@@ -28,19 +28,20 @@ pub fn run_from_toml(text: &str, out: &Path, progress: bool) -> Result<Value, Pe
     run(&PelletScene::from_toml(text)?, out, progress)
 }
 
-/// [`run_from_toml`] with the laws a scene's `[laws]` tables name made by `laws` (the shipped
-/// laws and a program's own; see [`run_with_registry`](super::run_with_registry)).
+/// [`run_from_toml`] of a scene file in the folder `base` (a relative `[mesh] file` is
+/// there), with the laws its `[laws]` tables name made by `laws` (the shipped laws and a
+/// program's own; see [`run_with_registry`](super::run_with_registry)).
 ///
 /// # Errors
 /// As [`run_from_toml`]; [`PelletError::Law`] for a law `laws` cannot make.
 pub fn run_from_toml_with(
     text: &str,
+    base: &Path,
     out: &Path,
     progress: bool,
     laws: &mortar_physics::laws::LawRegistry,
 ) -> Result<Value, PelletError> {
-    let scene = PelletScene::from_toml(text)?;
-    scene.check()?;
+    let scene = PelletScene::from_toml_in(text, base)?;
     if scene.model.mechanics {
         super::run_with_registry(&scene, laws, out, progress)
     } else {

@@ -466,6 +466,36 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         }
     }
 
+    /// The problem with the gas pressure also pressing on `surface`, a further part of body
+    /// `b`'s boundary (0 slave, 1 master; by the body's node tags): a pellet's dishes and
+    /// chamfers, which the gas wets but which face no other body. Its nodal forces are
+    /// `-P_o int N n`, as on the interface.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InterfaceNodeNotInBody`] for a node of `surface` not in the body;
+    /// [`PhysicsError::InvalidInput`] for `b > 1`; the errors of the boundary extraction.
+    pub fn with_gas_on(mut self, b: usize, surface: &SurfaceMesh) -> Result<Self, PhysicsError> {
+        let body = self
+            .elastic
+            .get(b)
+            .ok_or_else(|| PhysicsError::InvalidInput {
+                body: "options".into(),
+                what: format!("body {b} of a two-body problem (0 or 1)"),
+            })?;
+        let side = if b == 0 { Side::Slave } else { Side::Master };
+        let load = surface_load(
+            surface,
+            body,
+            side,
+            body.components(),
+            self.options.elastic.geometry,
+        )?;
+        for (g, l) in self.gas_load[b].iter_mut().zip(load) {
+            *g += l;
+        }
+        Ok(self)
+    }
+
     /// The axial strain of body `b` (0 slave, 1 master) in a state `x`, if its axial direction
     /// is free ([`ThermoMechOptions::axial`]): the uniform strain of generalized plane strain,
     /// or a free end's displacement over the body's axial extent.

@@ -1,0 +1,224 @@
+//! The pellet and cladding of a user's Gmsh file (`[mesh] file`), in place of the generated
+//! section: an r-z section (x = r, y = z) of a pellet segment, a dished and chamfered pellet
+//! say, from a plane of symmetry at `z = 0` to its end at the largest `z`.
+//!
+//! The file names its parts by physical groups: the cells of [`PELLET`] and [`CLADDING`];
+//! the pellet's lateral surface [`PELLET_OUTER`] (the slave side of the gap) and the
+//! cladding's inner and outer surfaces [`CLADDING_INNER`] (the master side) and
+//! [`CLADDING_OUTER`] (the coolant's); optionally [`PELLET_FREE`], the pellet's other surfaces
+//! the plenum gas presses on (dishes, chamfers). The ends are found by coordinate: each body's
+//! bottom (its smallest `z`) is held axially, its top (its largest `z`: the pellet's land) is
+//! kept plane by the body's axial unknown.
+
+use std::collections::HashSet;
+use std::f64::consts::PI;
+use std::path::Path;
+
+use mortar_core::mesh::{BoundaryFace, VolumeMesh};
+use mortar_elements::volume::VolumeRegistry;
+
+use super::PelletError;
+use crate::io::gmsh::{read_gmsh_volume, GmshVolume};
+use crate::io::IoError;
+
+/// The physical group of the pellet's cells.
+pub const PELLET: &str = "pellet";
+/// The physical group of the cladding's cells.
+pub const CLADDING: &str = "cladding";
+/// The pellet's lateral surface facing the cladding (the gap's slave side).
+pub const PELLET_OUTER: &str = "pellet_outer";
+/// The pellet's surfaces wetted by the plenum gas besides [`PELLET_OUTER`] (optional).
+pub const PELLET_FREE: &str = "pellet_free";
+/// The cladding's inner surface (the gap's master side).
+pub const CLADDING_INNER: &str = "cladding_inner";
+/// The cladding's outer surface (coolant temperature and pressure).
+pub const CLADDING_OUTER: &str = "cladding_outer";
+
+/// A set of boundary faces, by cell and local face number.
+pub type FaceSet = HashSet<(u32, u8)>;
+
+/// Whether `face` is in `set`.
+pub fn contains(set: &FaceSet, face: &BoundaryFace) -> bool {
+    set.contains(&(face.cell, face.local_face))
+}
+
+/// The bodies and surfaces of a pellet file, and the measures the scene takes from them.
+#[derive(Debug, Clone)]
+pub struct FileGeometry {
+    /// The pellet's cells.
+    pub pellet: VolumeMesh,
+    /// The cladding's cells.
+    pub cladding: VolumeMesh,
+    /// [`PELLET_OUTER`]'s faces.
+    pub pellet_outer: FaceSet,
+    /// [`PELLET_FREE`]'s faces (empty without the group).
+    pub pellet_free: FaceSet,
+    /// [`CLADDING_INNER`]'s faces.
+    pub cladding_inner: FaceSet,
+    /// [`CLADDING_OUTER`]'s faces.
+    pub cladding_outer: FaceSet,
+    /// The largest radius of the pellet's lateral surface (m).
+    pub pellet_radius: f64,
+    /// The smallest radius of the cladding's inner surface (m).
+    pub inner_radius: f64,
+    /// The largest radius of the cladding's outer surface (m).
+    pub outer_radius: f64,
+    /// The axial extent of the cladding (m): the segment's height.
+    pub height: f64,
+    /// The pellet's revolved volume (m^3).
+    pub pellet_volume: f64,
+    /// The area of the pellet's top end (the land) projected on the plane `z = H` (m^2): the
+    /// area over which the next pellet bears on it.
+    pub land_area: f64,
+}
+
+impl FileGeometry {
+    /// Reads `path`.
+    ///
+    /// # Errors
+    /// [`PelletError::Io`] for a file or group that cannot be read (naming the file and the
+    /// group); [`PelletError::Invalid`] for a section that is not an r-z one (a node at
+    /// `r < 0`, 3D cells) or whose radii are not ordered `a < b < c`.
+    pub fn read(path: &Path) -> Result<Self, PelletError> {
+        let registry = VolumeRegistry::default();
+        let pellet = read_gmsh_volume(path, PELLET, &registry)?;
+        let cladding = read_gmsh_volume(path, CLADDING, &registry)?;
+        let invalid = |what: String| PelletError::Invalid(format!("{}: {what}", path.display()));
+        for body in [&pellet, &cladding] {
+            if body.dimension != 2 {
+                return Err(invalid(format!(
+                    "group \"{}\" has {}D cells: a pellet file is an r-z section (2D cells, x = r, y = z)",
+                    body.group.name, body.dimension
+                )));
+            }
+            if let Some(x) = body.mesh.coords().iter().find(|x| x.x < -1e-12) {
+                return Err(invalid(format!(
+                    "group \"{}\" has a node at r = x = {} < 0: an r-z section lies at x >= 0",
+                    body.group.name, x.x
+                )));
+            }
+        }
+        let faces = |body: &GmshVolume, group: &str| -> Result<FaceSet, IoError> {
+            Ok(body
+                .boundary_faces_in(group)?
+                .iter()
+                .map(|f| (f.cell, f.local_face))
+                .collect())
+        };
+        let pellet_outer = faces(&pellet, PELLET_OUTER)?;
+        let pellet_free = match faces(&pellet, PELLET_FREE) {
+            Err(IoError::GroupNotFound { .. }) => FaceSet::new(),
+            other => other?,
+        };
+        let cladding_inner = faces(&cladding, CLADDING_INNER)?;
+        let cladding_outer = faces(&cladding, CLADDING_OUTER)?;
+        let (pellet, cladding) = (pellet.mesh, cladding.mesh);
+        // The radii of a group's nodes.
+        let radii = |mesh: &VolumeMesh, set: &FaceSet| -> Result<Vec<f64>, PelletError> {
+            Ok(mesh
+                .boundary_faces()?
+                .iter()
+                .filter(|f| contains(set, f))
+                .flat_map(|f| f.nodes.iter().map(|&n| mesh.coords()[n as usize].x))
+                .collect())
+        };
+        let max = |v: Vec<f64>| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
+        let min = |v: Vec<f64>| v.into_iter().fold(f64::INFINITY, f64::min);
+        let a = max(radii(&pellet, &pellet_outer)?);
+        let b = min(radii(&cladding, &cladding_inner)?);
+        let c = max(radii(&cladding, &cladding_outer)?);
+        if !(a > 0.0 && a < b && b < c) {
+            return Err(invalid(format!(
+                "the radii of \"{PELLET_OUTER}\" (largest {a}), \"{CLADDING_INNER}\" (smallest \
+                 {b}) and \"{CLADDING_OUTER}\" (largest {c}) are not ordered 0 < a < b < c"
+            )));
+        }
+        let (lo, hi) = cladding
+            .coords()
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+                (lo.min(x.y), hi.max(x.y))
+            });
+        let height = hi - lo;
+        let pellet_bottom = pellet
+            .coords()
+            .iter()
+            .map(|x| x.y)
+            .fold(f64::INFINITY, f64::min);
+        if lo.abs() > 1e-9 * height || pellet_bottom.abs() > 1e-9 * height {
+            return Err(invalid(format!(
+                "the section starts at z = {pellet_bottom} (pellet) and z = {lo} (cladding): \
+                 both bodies start at the plane of symmetry z = y = 0"
+            )));
+        }
+        let pellet_volume = revolved_volume(&pellet);
+        let land_area = top_area(&pellet)?;
+        if !(height > 0.0 && pellet_volume > 0.0 && land_area > 0.0) {
+            return Err(invalid(format!(
+                "a degenerate section: cladding height {height}, pellet volume {pellet_volume}, \
+                 land area {land_area}"
+            )));
+        }
+        Ok(Self {
+            pellet,
+            cladding,
+            pellet_outer,
+            pellet_free,
+            cladding_inner,
+            cladding_outer,
+            pellet_radius: a,
+            inner_radius: b,
+            outer_radius: c,
+            height,
+            pellet_volume,
+            land_area,
+        })
+    }
+
+    /// The volume inside the cladding not taken by the pellet nor by the radial gap between
+    /// `r = a` and `r = b` (m^3): the dishes and chamfers, `pi a^2 H - V_pellet`.
+    pub fn end_voids(&self) -> f64 {
+        (PI * self.pellet_radius.powi(2) * self.height - self.pellet_volume).max(0.0)
+    }
+}
+
+/// `2 pi int r dA` over the cells of an r-z mesh (Pappus; straight-sided cells, node order
+/// cyclic as Gmsh gives Tri3 and Quad4).
+pub(super) fn revolved_volume(mesh: &VolumeMesh) -> f64 {
+    let x = mesh.coords();
+    let moment: f64 = (0..mesh.cell_count())
+        .map(|c| {
+            let nodes = mesh.cell(c).nodes;
+            let n = nodes.len().min(4);
+            (0..n)
+                .map(|i| {
+                    let (p, q) = (x[nodes[i] as usize], x[nodes[(i + 1) % n] as usize]);
+                    (p.x + q.x) * (p.x * q.y - q.x * p.y)
+                })
+                .sum::<f64>()
+                / 6.0
+        })
+        .sum();
+    2.0 * PI * moment.abs()
+}
+
+/// The area of the boundary faces of an r-z mesh at its largest `z`, revolved and projected
+/// on that plane: `sum pi |r_2^2 - r_1^2|`.
+fn top_area(mesh: &VolumeMesh) -> Result<f64, PelletError> {
+    let x = mesh.coords();
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    let tol = 1e-9 * (hi - lo);
+    Ok(mesh
+        .boundary_faces()?
+        .iter()
+        .filter(|f| f.nodes.iter().all(|&n| x[n as usize].y >= hi - tol))
+        .map(|f| {
+            let (r1, r2) = (x[f.nodes[0] as usize].x, x[f.nodes[1] as usize].x);
+            PI * (r2 * r2 - r1 * r1).abs()
+        })
+        .sum())
+}

@@ -1,0 +1,521 @@
+//! The verification claims: every figure docs/verification.md states, with the bound of the
+//! test that guards it, kept in one file (`claims.toml`, next to this one) that the guarding
+//! tests read their bounds from and the page is generated from, so that a figure and its
+//! guard cannot drift apart.
+//!
+//! The page is `template.md` (its prose and tables) with placeholders:
+//!
+//! - `{{id}}`: the claim's figure (a claim with one), `{{id[k]}}`: its `k`-th figure (from 0);
+//! - `{{id|bound}}`: the bound its test asserts, for a figure stated with its guard or a
+//!   check the page states by its bound;
+//! - `{{json:FILE#/POINTER|FORMAT}}`: a number read from a JSON file under `docs/` (written by
+//!   an example), `FORMAT` `.3` (fixed, 3 decimals) or `e1` (scientific, 1 decimal).
+//!
+//! A figure is a string as the page prints it (`5.8e-16`, `0.04%`) or a JSON reference
+//! (`json:FILE#/POINTER|FORMAT`), so that the page prints the JSON's value and the check
+//! compares that value with the bound. The page ends with a table of every claim, its
+//! figures, its bound, the test that asserts it and the command that runs the test.
+//!
+//! Included by each test binary that reads a bound (`claim("id").bound`), by
+//! `tests/verification.rs` (the consistency checks) and by `examples/verification_doc.rs`
+//! (writes the page).
+
+#![allow(dead_code)]
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use serde::Deserialize;
+
+/// The data file, compiled in so that a test reads its bound without a path.
+const CLAIMS: &str = include_str!("claims.toml");
+/// The page's prose and tables, with placeholders.
+const TEMPLATE: &str = include_str!("template.md");
+
+/// How a claim's figures relate to its bound.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    /// An error relative to a scale the claim names: the figures are at most the bound.
+    Relative,
+    /// An error in the unit the claim names: the figures are at most the bound.
+    Absolute,
+    /// A quantity the test requires to be large (a fall of an error, a rate of convergence):
+    /// the figures are at least the bound.
+    Least,
+    /// A convergence rate: the bound is the least rate the test accepts, and the figures lie
+    /// within `tolerance` above it.
+    Rate,
+}
+
+/// One verified figure (or several measured by one check) and the bound of its guard.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Claim {
+    /// Key the template and the tests name the claim by.
+    pub id: String,
+    /// The page's section it belongs to.
+    pub section: String,
+    /// What is measured, in a few words.
+    pub title: String,
+    /// The reference the figure is measured against (closed form, literature, computation).
+    pub source: String,
+    /// The guarding test as `tests/FILE.rs::function` (or `examples/FILE.rs::function`).
+    pub test: String,
+    /// The command that reproduces the figures, when it is not the test's own command.
+    #[serde(default)]
+    pub command: Option<String>,
+    /// The figures as the page prints them, or JSON references.
+    #[serde(default)]
+    pub figures: Vec<String>,
+    /// The bound the test asserts (the least rate, for a rate).
+    pub bound: f64,
+    /// How the figures relate to the bound.
+    pub kind: Kind,
+    /// For a rate: how far above the bound the figures may lie.
+    #[serde(default)]
+    pub tolerance: Option<f64>,
+    /// The bound is asserted by the test with a literal, not read from here (an example's own
+    /// check, which the test binaries do not compile with this module).
+    #[serde(default)]
+    pub literal: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct File {
+    claim: Vec<Claim>,
+}
+
+/// Every claim, in the data file's order.
+pub fn claims() -> &'static [Claim] {
+    static CELL: OnceLock<Vec<Claim>> = OnceLock::new();
+    CELL.get_or_init(|| {
+        toml::from_str::<File>(CLAIMS)
+            .unwrap_or_else(|e| panic!("tests/verification/claims.toml: {e}"))
+            .claim
+    })
+}
+
+/// The claim `id`.
+///
+/// # Panics
+///
+/// When the data file holds no claim `id`.
+pub fn claim(id: &str) -> &'static Claim {
+    claims()
+        .iter()
+        .find(|c| c.id == id)
+        .unwrap_or_else(|| panic!("no claim {id:?} in tests/verification/claims.toml"))
+}
+
+/// The repository's root (the `mortar` package's folder).
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+impl Claim {
+    /// The command that runs the guarding test (or the claim's own command): the test binary
+    /// filtered to the test function, or to its file's module when the function is a helper.
+    pub fn command(&self) -> String {
+        if let Some(c) = &self.command {
+            return c.clone();
+        }
+        let (file, function) = self.test.split_once("::").unwrap_or((&self.test, ""));
+        let mut parts = file.trim_end_matches(".rs").split('/').skip(1);
+        let binary = parts.next().unwrap_or(file);
+        let module = parts.next().unwrap_or("");
+        let is_test = std::fs::read_to_string(root().join(file)).is_ok_and(|text| {
+            text.split(&format!("fn {function}("))
+                .next()
+                .is_some_and(|before| {
+                    before
+                        .lines()
+                        .rev()
+                        .map(str::trim)
+                        .find(|l| !l.starts_with("///") && !l.is_empty())
+                        .is_some_and(|l| l == "#[test]")
+                })
+        });
+        let filter = if is_test {
+            format!("{module}::{function}")
+        } else {
+            format!("{module}::")
+        };
+        format!("cargo test --release --test {binary} {filter}")
+    }
+
+    /// The `k`-th figure as the page prints it.
+    ///
+    /// # Errors
+    ///
+    /// When a JSON reference does not resolve.
+    pub fn figure_text(&self, k: usize) -> Result<String, String> {
+        let f = self
+            .figures
+            .get(k)
+            .ok_or_else(|| format!("{}: no figure {k}", self.id))?;
+        match f.strip_prefix("json:") {
+            Some(reference) => json_figure(reference).map(|(text, _)| text),
+            None => Ok(f.clone()),
+        }
+    }
+
+    /// The `k`-th figure's value (a percentage as a fraction).
+    ///
+    /// # Errors
+    ///
+    /// When the figure is not a number or a JSON reference does not resolve.
+    pub fn figure_value(&self, k: usize) -> Result<f64, String> {
+        let text = self.figure_text(k)?;
+        let (number, scale) = match text.strip_suffix('%') {
+            Some(n) => (n, 0.01),
+            None => (text.as_str(), 1.0),
+        };
+        number
+            .trim_start_matches('+')
+            .parse::<f64>()
+            .map(|v| v * scale)
+            .map_err(|e| format!("{}: figure {text:?}: {e}", self.id))
+    }
+
+    /// Whether the figures are percentages.
+    fn percent(&self) -> bool {
+        self.figures.iter().any(|f| f.ends_with('%'))
+    }
+
+    /// The bound as the page prints it: a rate as it is, a percentage in percent, anything
+    /// else in scientific notation.
+    pub fn bound_text(&self) -> String {
+        match self.kind {
+            Kind::Rate | Kind::Least => format!("{}", self.bound),
+            _ if self.percent() => format!("{}%", trim(&format!("{:.6}", self.bound * 100.0))),
+            _ => format!("{:e}", self.bound),
+        }
+    }
+}
+
+/// A decimal without its trailing zeros.
+fn trim(s: &str) -> String {
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Reads `FILE#/POINTER|FORMAT` from `docs/FILE`: the number as printed and its value.
+fn json_figure(reference: &str) -> Result<(String, f64), String> {
+    let (location, format) = reference
+        .split_once('|')
+        .ok_or_else(|| format!("json:{reference}: no |FORMAT"))?;
+    let (file, pointer) = location
+        .split_once('#')
+        .ok_or_else(|| format!("json:{reference}: no #POINTER"))?;
+    static CACHE: OnceLock<std::sync::Mutex<BTreeMap<String, serde_json::Value>>> = OnceLock::new();
+    let cache = CACHE.get_or_init(Default::default);
+    let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
+    if !cache.contains_key(file) {
+        let path = root().join("docs").join(file);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("json:{reference}: {}: {e}", path.display()))?;
+        let value = serde_json::from_str(&text)
+            .map_err(|e| format!("json:{reference}: {}: {e}", path.display()))?;
+        cache.insert(file.to_string(), value);
+    }
+    let value = cache[file]
+        .pointer(pointer)
+        .and_then(serde_json::Value::as_f64)
+        .ok_or_else(|| format!("json:{reference}: no number at {pointer}"))?;
+    let text = if let Some(d) = format.strip_prefix('.') {
+        let d: usize = d.parse().map_err(|_| format!("json:{reference}: format"))?;
+        format!("{value:.d$}")
+    } else if let Some(d) = format.strip_prefix('e') {
+        let d: usize = d.parse().map_err(|_| format!("json:{reference}: format"))?;
+        format!("{value:.d$e}")
+    } else {
+        return Err(format!("json:{reference}: format {format:?}"));
+    };
+    Ok((text, value))
+}
+
+/// A placeholder of the template: what it prints.
+enum Slot<'a> {
+    Figure(&'a Claim, usize),
+    Bound(&'a Claim),
+    Json(&'a str),
+}
+
+fn slot(key: &str) -> Result<Slot<'_>, String> {
+    if let Some(reference) = key.strip_prefix("json:") {
+        return Ok(Slot::Json(reference));
+    }
+    let find = |id: &str| {
+        claims()
+            .iter()
+            .find(|c| c.id == id)
+            .ok_or_else(|| format!("{{{{{key}}}}}: no claim {id:?}"))
+    };
+    if let Some(id) = key.strip_suffix("|bound") {
+        return Ok(Slot::Bound(find(id)?));
+    }
+    if let Some((id, k)) = key.strip_suffix(']').and_then(|k| k.split_once('[')) {
+        let k = k.parse().map_err(|_| format!("{{{{{key}}}}}: index"))?;
+        return Ok(Slot::Figure(find(id)?, k));
+    }
+    let c = find(key)?;
+    if c.figures.len() != 1 {
+        return Err(format!(
+            "{{{{{key}}}}}: {} figures, name one as {key}[k]",
+            c.figures.len()
+        ));
+    }
+    Ok(Slot::Figure(c, 0))
+}
+
+/// The template's placeholders, in order.
+fn placeholders() -> Result<Vec<(std::ops::Range<usize>, &'static str)>, String> {
+    let mut out = Vec::new();
+    let mut from = 0;
+    while let Some(start) = TEMPLATE[from..].find("{{") {
+        let start = from + start;
+        let end = TEMPLATE[start..]
+            .find("}}")
+            .map(|e| start + e + 2)
+            .ok_or_else(|| format!("template: unclosed {{{{ at byte {start}"))?;
+        out.push((start..end, &TEMPLATE[start + 2..end - 2]));
+        from = end;
+    }
+    Ok(out)
+}
+
+/// The verification page: the template with its placeholders filled, then the table of
+/// every claim.
+///
+/// # Errors
+///
+/// When a placeholder names no claim or figure, or a JSON reference does not resolve.
+pub fn render() -> Result<String, String> {
+    let mut page = String::new();
+    let mut at = 0;
+    for (range, key) in placeholders()? {
+        page.push_str(&TEMPLATE[at..range.start]);
+        page.push_str(&match slot(key)? {
+            Slot::Figure(c, k) => c.figure_text(k)?,
+            Slot::Bound(c) => c.bound_text(),
+            Slot::Json(reference) => json_figure(reference)?.0,
+        });
+        at = range.end;
+    }
+    page.push_str(&TEMPLATE[at..]);
+    page.push_str(&table()?);
+    Ok(page)
+}
+
+/// The closing table: every claim with its figures, bound, test and command.
+fn table() -> Result<String, String> {
+    let mut out = String::from(
+        "\n## Every figure and its guard\n\n\
+         Generated with the page from `tests/verification/claims.toml`, which the tests read \
+         their bounds from: each claim's figures (as above), the bound its test asserts \
+         (relative or absolute errors at most the bound; for a rate, the least rate \
+         accepted), the test, and the command that runs it. `cargo run --example \
+         verification_doc` writes this page; `cargo test --release --test verification` \
+         fails when it differs from the data, or a bound strays from its figures.\n\n\
+         | claim | figures | bound | test | command |\n| --- | --- | --- | --- | --- |\n",
+    );
+    for c in claims() {
+        let figures = (0..c.figures.len())
+            .map(|k| c.figure_text(k))
+            .collect::<Result<Vec<_>, _>>()?;
+        let figures = if figures.is_empty() {
+            "—".to_string()
+        } else {
+            figures.join(", ")
+        };
+        let kind = match c.kind {
+            Kind::Relative => "",
+            Kind::Absolute => " (absolute)",
+            Kind::Least => " (least)",
+            Kind::Rate => " (least rate)",
+        };
+        let (file, function) = c.test.split_once("::").unwrap_or((&c.test, ""));
+        out.push_str(&format!(
+            "| {} | {figures} | {}{kind} | `{file}` `{function}` | `{}` |\n",
+            cell(&c.title),
+            c.bound_text(),
+            cell(&c.command())
+        ));
+    }
+    Ok(out)
+}
+
+/// Text for a table cell: its pipes escaped.
+fn cell(text: &str) -> String {
+    text.replace('|', "\\|")
+}
+
+/// Everything wrong with the claims: a figure above its bound (below it, for a rate), a bound
+/// more than 100 times its largest figure that the page does not state, a rate further above
+/// its bound than its tolerance, a test that does not exist or does not read its bound from
+/// here, a claim the page does not print, duplicate ids. Empty when all is well.
+pub fn problems() -> Vec<String> {
+    let mut out = Vec::new();
+    let mut ids = BTreeSet::new();
+    let slots = match placeholders() {
+        Ok(p) => p,
+        Err(e) => return vec![e],
+    };
+    let mut printed: BTreeSet<(String, Option<usize>)> = BTreeSet::new();
+    for (_, key) in &slots {
+        match slot(key) {
+            Ok(Slot::Figure(c, k)) => {
+                if k >= c.figures.len() {
+                    out.push(format!(
+                        "{{{{{key}}}}}: {} has {} figures",
+                        c.id,
+                        c.figures.len()
+                    ));
+                }
+                printed.insert((c.id.clone(), Some(k)));
+            }
+            Ok(Slot::Bound(c)) => {
+                printed.insert((c.id.clone(), None));
+            }
+            Ok(Slot::Json(_)) => {}
+            Err(e) => out.push(e),
+        }
+    }
+    for c in claims() {
+        if !ids.insert(c.id.as_str()) {
+            out.push(format!("{}: duplicate id", c.id));
+        }
+        let states_bound = printed.contains(&(c.id.clone(), None));
+        if c.figures.is_empty() && !states_bound {
+            out.push(format!(
+                "{}: no figure and the page does not state its bound",
+                c.id
+            ));
+        }
+        for k in 0..c.figures.len() {
+            if !printed.contains(&(c.id.clone(), Some(k))) {
+                out.push(format!("{}: the page does not print figure {k}", c.id));
+            }
+        }
+        out.extend(problems_of(c, states_bound));
+    }
+    out
+}
+
+/// What is wrong with one claim's figures, bound and test; `states_bound` says whether the
+/// page prints the bound.
+pub fn problems_of(c: &Claim, states_bound: bool) -> Vec<String> {
+    let mut out = check_test(c);
+    if !(c.bound.is_finite() && c.bound > 0.0) {
+        out.push(format!("{}: bound {} not positive", c.id, c.bound));
+    }
+    let mut largest = 0.0f64;
+    for k in 0..c.figures.len() {
+        let v = match c.figure_value(k) {
+            Ok(v) => v.abs(),
+            Err(e) => {
+                out.push(e);
+                continue;
+            }
+        };
+        largest = largest.max(v);
+        match c.kind {
+            Kind::Relative | Kind::Absolute => {
+                if v > c.bound {
+                    out.push(format!(
+                        "{}: figure {v:e} above its bound {:e}",
+                        c.id, c.bound
+                    ));
+                }
+            }
+            Kind::Least => {
+                if v < c.bound {
+                    out.push(format!("{}: figure {v} below its bound {}", c.id, c.bound));
+                }
+                if v > 100.0 * c.bound && !states_bound {
+                    out.push(format!(
+                        "{}: figure {v} more than 100 times its bound {}, and the page \
+                         does not state the bound",
+                        c.id, c.bound
+                    ));
+                }
+            }
+            Kind::Rate => {
+                let tol = c.tolerance.unwrap_or(0.0);
+                if v < c.bound || v > c.bound + tol {
+                    out.push(format!(
+                        "{}: rate {v} not within [{}, {} + {tol}]",
+                        c.id, c.bound, c.bound
+                    ));
+                }
+            }
+        }
+    }
+    match c.kind {
+        Kind::Rate => {
+            if c.tolerance.is_none_or(|t| !(t > 0.0 && t <= 0.2)) {
+                out.push(format!("{}: a rate needs a tolerance in (0, 0.2]", c.id));
+            }
+        }
+        Kind::Least => {
+            if c.tolerance.is_some() {
+                out.push(format!(
+                    "{}: a tolerance on a claim that is not a rate",
+                    c.id
+                ));
+            }
+        }
+        Kind::Relative | Kind::Absolute => {
+            if c.tolerance.is_some() {
+                out.push(format!(
+                    "{}: a tolerance on a claim that is not a rate",
+                    c.id
+                ));
+            }
+            if !c.figures.is_empty() && c.bound > 100.0 * largest && !states_bound {
+                out.push(format!(
+                    "{}: bound {:e} more than 100 times the largest figure {largest:e}, and \
+                     the page does not state it",
+                    c.id, c.bound
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// The claim's test exists, and reads its bound from here unless it is marked literal.
+fn check_test(c: &Claim) -> Vec<String> {
+    let Some((file, function)) = c.test.split_once("::") else {
+        return vec![format!("{}: test {:?} is not FILE::function", c.id, c.test)];
+    };
+    let path: &Path = file.as_ref();
+    let Ok(text) = std::fs::read_to_string(root().join(path)) else {
+        return vec![format!("{}: no file {file}", c.id)];
+    };
+    let mut out = Vec::new();
+    if !text.contains(&format!("fn {function}(")) {
+        out.push(format!("{}: no fn {function} in {file}", c.id));
+    }
+    if c.literal && !text.contains(&c.bound_text()) {
+        out.push(format!(
+            "{}: {file} does not assert {}",
+            c.id,
+            c.bound_text()
+        ));
+    }
+    let reads = text.contains(&format!("claim(\"{}\")", c.id));
+    if reads == c.literal {
+        out.push(if c.literal {
+            format!("{}: marked literal, but {file} reads it", c.id)
+        } else {
+            format!(
+                "{}: {file} does not read its bound (claim(\"{}\"))",
+                c.id, c.id
+            )
+        });
+    }
+    out
+}
