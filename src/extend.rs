@@ -144,15 +144,15 @@
 //! The property-test helpers for one's own elements and laws are in `mortar::testing`
 //! (feature `proptest-support`; documented on docs.rs).
 
-pub use mortar_core::element::volume::VolumeElement;
 pub use mortar_core::element::{ReferenceElement, SurfaceElement};
 pub use mortar_core::integration::IntegrationStrategy;
-pub use mortar_core::linalg::{LinearOperator, Preconditioner};
 pub use mortar_core::multiplier::MultiplierSpace;
 pub use mortar_core::projector::Projector;
 pub use mortar_core::CouplingOptions;
 pub use mortar_elements::volume::VolumeRegistry;
 pub use mortar_elements::ElementRegistry;
+pub use mortar_fem::element::VolumeElement;
+pub use mortar_fem::linalg::{LinearOperator, Preconditioner};
 pub use mortar_physics::laws::{
     check_tangent, ConstraintLaw, DynLaw, Float, LawPoint, LawRegistry, ObjectLaw,
 };

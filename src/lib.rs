@@ -3,8 +3,9 @@
 //! A toolkit for non-conforming interfaces in finite-element simulation: mesh tying and
 //! simple contact by the mortar method, in 2D and 3D.
 //!
-//! This facade re-exports [`mortar_core`] (the operators D and M), [`mortar_elements`] and
-//! [`mortar_physics`], and adds mesh generators, file input/output (Gmsh, Matrix Market,
+//! This facade re-exports [`mortar_core`] (the operators D and M, as [`core`]),
+//! [`mortar_fem`] (volume elements, meshes, quadrature and the sparse solvers, as [`fem`]),
+//! [`mortar_elements`] and [`mortar_physics`], and adds mesh generators, file input/output (Gmsh, Matrix Market,
 //! JSON, VTU) and ready-made [`scenes`].
 //!
 //! ```
@@ -33,9 +34,46 @@ pub mod scenes;
 pub mod testing;
 
 pub use mortar_core::{
-    self as core, assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions,
-    CouplingStats, CouplingWarning, Interface, MortarError, SearchRadius, Side, SpatialDim,
-    SurfaceMesh, Tolerances, VolumeMesh,
+    assemble_coupling, assemble_coupling_reusing, Coupling, CouplingOptions, CouplingStats,
+    CouplingWarning, Interface, MortarError, SearchRadius, Side, SpatialDim, SurfaceMesh,
+    Tolerances,
 };
 pub use mortar_elements as elements;
+pub use mortar_fem as fem;
+pub use mortar_fem::VolumeMesh;
 pub use mortar_physics as physics;
+
+/// The coupling core, [`mortar_core`], with what moved from it to [`mortar_fem`] (volume
+/// elements, volume meshes and quadrature, the sparse solvers) re-exported at its former
+/// paths: `mortar::core::element::volume`, `mortar::core::mesh::VolumeMesh`,
+/// `mortar::core::quadrature::VolumeQuadratureRule`, `mortar::core::linalg::LuFactorization`
+/// and the like keep working. New code names them through [`fem`].
+pub mod core {
+    pub use mortar_core::*;
+    pub use mortar_fem::VolumeMesh;
+
+    /// [`mortar_core::element`], and the volume elements of [`mortar_fem::element`] as
+    /// `volume`.
+    pub mod element {
+        pub use mortar_core::element::*;
+        pub use mortar_fem::element as volume;
+    }
+
+    /// [`mortar_core::mesh`] and [`mortar_fem::mesh`].
+    pub mod mesh {
+        pub use mortar_core::mesh::*;
+        pub use mortar_fem::mesh::*;
+    }
+
+    /// [`mortar_core::quadrature`] and [`mortar_fem::quadrature`].
+    pub mod quadrature {
+        pub use mortar_core::quadrature::*;
+        pub use mortar_fem::quadrature::*;
+    }
+
+    /// [`mortar_fem::linalg`], which re-exports the sparse matrix types of
+    /// [`mortar_core::linalg`].
+    pub mod linalg {
+        pub use mortar_fem::linalg::*;
+    }
+}

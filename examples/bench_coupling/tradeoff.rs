@@ -523,7 +523,7 @@ pub(crate) fn run(out_dir: &Path, repeats: usize) -> Res<()> {
          - `area` = |area - area_ref| / area_ref, area = the sum of the entries of D;\n\
          - `tied` = max_j |u_j - u_ref,j| / max_j |u_ref,j| where u solves D u = M f_m (the \
          tied slave values of the linear field f = 1 + 2x - 3y + z), solved by \
-         `mortar_core::linalg::solve_sparse_lu`.\n\n\
+         `mortar_fem::linalg::solve_sparse_lu`.\n\n\
          The slave quads are flat rectangles, so every option integrates the slave side (D, \
          and the area) to round-off; the error is in M. Element-based degree 1 has one point \
          per slave face, so D has rank at most 2304 (the face count) < 2400 (the slave nodes): \

@@ -1,8 +1,8 @@
 //! An octant of a ball refined towards one point of its sphere: the sphere of a 3D Hertz
 //! contact, cut along its three planes of symmetry (two vertical, and the equator).
 
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::HEX8;
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 use nalgebra::Vector3;
 
 use super::volume::grading_map;
@@ -109,7 +109,7 @@ pub fn ball_octant_mesh(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mortar_core::element::volume::VolumeElement;
+    use mortar_fem::element::VolumeElement;
 
     /// The smallest Jacobian determinant at the corners of any cell, over the cell's
     /// volume (a Hex8 is positively oriented, not folded, if it is positive at every corner).

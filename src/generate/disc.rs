@@ -2,8 +2,8 @@
 //! strain) Hertz contact, cut along its two planes of symmetry; and a quarter of an annulus
 //! (the ring of a shrink fit).
 
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::{QUAD4, TRI3};
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 
 use super::volume::grading_map;
 use super::CellShape;
@@ -416,7 +416,7 @@ mod tests {
             assert_eq!(tri.cell_count(), 2 * m.cell_count());
             // Boundary: n arc faces, nr + (n - na) on x = cx, nr + na on y = cy, nothing else.
             let faces = m.boundary_faces().unwrap();
-            let on_arc = |f: &mortar_core::mesh::BoundaryFace| {
+            let on_arc = |f: &mortar_fem::mesh::BoundaryFace| {
                 f.nodes.iter().all(|&i| {
                     let x = m.coords()[i as usize];
                     ((x.x - C[0]).hypot(x.y - C[1]) - R).abs() < 1e-14 * R

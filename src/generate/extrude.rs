@@ -1,7 +1,7 @@
 //! Extrusion of a 2D mesh along z.
 
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::HEX8;
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 
 /// The 3D mesh swept by the Quad4 mesh `mesh` (in the plane `z = 0`) through the levels
 /// `z_levels` (ascending): one Hex8 per quad and layer, bottom face the quad at the lower

@@ -3,9 +3,9 @@
 
 use std::collections::HashMap;
 
-use mortar_core::element::volume::VolumeElementRef;
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::{HEX8, QUAD4, TRI3};
+use mortar_fem::element::VolumeElementRef;
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 use nalgebra::Vector3;
 
 use super::CellShape;

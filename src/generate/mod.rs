@@ -15,7 +15,7 @@
 //! with [`onto_cylinder`])
 //! number nodes from `first_node_tag` and cells from 1, all cells positively oriented; their
 //! boundary surfaces come from
-//! [`VolumeMesh::boundary_surface`](mortar_core::VolumeMesh::boundary_surface).
+//! [`VolumeMesh::boundary_surface`](mortar_fem::VolumeMesh::boundary_surface).
 
 mod ball_octant;
 mod cylinder;

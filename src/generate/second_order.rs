@@ -5,9 +5,9 @@
 
 use std::collections::HashMap;
 
-use mortar_core::element::volume::VolumeElementRef;
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
+use mortar_fem::element::VolumeElementRef;
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 use nalgebra::Vector3;
 
 /// Which second-order family a mesh is raised to.

@@ -1,8 +1,8 @@
 //! Structured volume meshes: rectangles and boxes of Quad4/Tri3 or Hex8/Tet4 cells, uniform
 //! or graded (`CellShape`, `rectangle_mesh`, `box_mesh`, `graded_points`).
 
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::{HEX8, QUAD4, TET4, TRI3};
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 
 /// The cells of a structured volume mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

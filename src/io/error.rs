@@ -3,8 +3,8 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use mortar_core::mesh::VolumeMeshError;
 use mortar_core::MortarError;
+use mortar_fem::mesh::VolumeMeshError;
 
 /// A place in an input file: a line number (text files) or a byte offset (binary files).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

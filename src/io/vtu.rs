@@ -35,9 +35,9 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
-use mortar_core::element::volume::VolumeDomain;
 use mortar_core::element::{ElementRef, ReferenceDomain};
-use mortar_core::mesh::VolumeMesh;
+use mortar_fem::element::VolumeDomain;
+use mortar_fem::mesh::VolumeMesh;
 
 use super::IoError;
 

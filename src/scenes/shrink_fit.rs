@@ -32,8 +32,8 @@
 use std::time::Instant;
 
 use mortar_core::interface::Interface;
-use mortar_core::mesh::BoundaryFace;
 use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
+use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{
     automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
     NormalGap,

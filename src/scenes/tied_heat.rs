@@ -20,7 +20,8 @@
 
 use std::time::Instant;
 
-use mortar_core::{CouplingOptions, VolumeMesh};
+use mortar_core::CouplingOptions;
+use mortar_fem::VolumeMesh;
 use mortar_physics::heat::{
     error_norms, ErrorNorms, HeatBody, HeatMaterial, HeatOptions, TiedHeat, TiedHeatSolution,
 };

@@ -26,10 +26,8 @@
 //!   [`CouplingOptions::geometry`], the r-z section of a body of revolution (`x = r >= 0`,
 //!   `y = z`): D and M are then integrals over the revolved surface (weight `2 pi r`).
 //!
-//! Beside the interface, the core has what the physics of the bodies needs: volume elements
-//! ([`element::volume`]: trait, reference domains, [`element::volume::CellValues`]), volume
-//! quadrature, [`VolumeMesh`] with outward boundary extraction, and sparse LU and Cholesky
-//! factorisations with reusable symbolic analysis and a restarted GMRES ([`linalg`]).
+//! The core is the coupling alone: it names no solver and builds no C code. The volume
+//! elements, meshes and quadrature of the bodies and the sparse solvers are in `mortar-fem`.
 //!
 //! Elements come from `mortar-elements` (or your own types implementing
 //! [`element::SurfaceElement`]). With them:
@@ -69,5 +67,5 @@ pub use assembly::{
 pub use error::{Inversion, MortarError, RangeLimit, Result, Side};
 pub use geometry::ModelGeometry;
 pub use interface::{Interface, SpatialDim};
-pub use mesh::{SurfaceMesh, VolumeMesh};
+pub use mesh::SurfaceMesh;
 pub use tolerances::{SearchRadius, Tolerances};

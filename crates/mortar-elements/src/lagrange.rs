@@ -19,9 +19,14 @@
 //! assert_eq!(line4.shape_degree(), 3);
 //! ```
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
-use mortar_core::element::{ElementRef, ReferenceDomain, ReferenceElement, SurfaceElement};
-use nalgebra::{DMatrix, Vector2, Vector3};
+use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
+use nalgebra::{DMatrix, Vector2};
+#[cfg(feature = "volume")]
+use {
+    mortar_core::element::ElementRef,
+    mortar_fem::element::{VolumeDomain, VolumeElement},
+    nalgebra::Vector3,
+};
 
 /// Why a set of nodes does not make a Lagrange element.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -240,6 +245,7 @@ impl SurfaceElement for LagrangeFace {
 /// A cell given by its reference nodes and its faces (see the module documentation and
 /// [`VolumeElement::faces`]): triangle `(0,0), (1,0), (0,1)`, quad `[-1, 1]^2`, tetrahedron
 /// `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`, hexahedron `[-1, 1]^3`.
+#[cfg(feature = "volume")]
 #[derive(Debug, Clone)]
 pub struct LagrangeCell {
     name: &'static str,
@@ -251,6 +257,7 @@ pub struct LagrangeCell {
     basis: Basis,
 }
 
+#[cfg(feature = "volume")]
 impl LagrangeCell {
     /// The cell of `name` on `domain` with the reference nodes `nodes`, its boundary faces
     /// `faces` (node positions, outward as [`VolumeElement::faces`] says) of the element
@@ -284,6 +291,7 @@ impl LagrangeCell {
     }
 }
 
+#[cfg(feature = "volume")]
 impl VolumeElement for LagrangeCell {
     fn name(&self) -> &'static str {
         self.name

@@ -5,6 +5,10 @@
 //! element types to them; and, in [`volume`], the cells of the bodies: Tri3, Quad4, Tri6,
 //! Quad8 and Quad9 (2D), Tet4, Hex8, Tet10, Hex20 and Hex27 (3D).
 //!
+//! The cells implement the volume element trait of `mortar-fem` (their faces are the surface
+//! elements here); the feature `volume` (on by default) brings them. Without it the crate
+//! depends on `mortar-core` alone: no solver, no C build.
+//!
 //! Reference domains: line `[-1, 1]`; triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`.
 //! Node order follows Gmsh.
 //!
@@ -71,9 +75,12 @@ mod registry;
 mod shape;
 mod tri3;
 mod tri6;
+#[cfg(feature = "volume")]
 pub mod volume;
 
-pub use lagrange::{LagrangeCell, LagrangeError, LagrangeFace};
+#[cfg(feature = "volume")]
+pub use lagrange::LagrangeCell;
+pub use lagrange::{LagrangeError, LagrangeFace};
 pub use line2::{Line2, LINE2};
 pub use line3::{Line3, LINE3};
 pub use quad4::{Quad4, QUAD4};

@@ -6,6 +6,7 @@
 
 mod unit {
     mod geometry;
+    #[cfg(feature = "volume")]
     mod lagrange;
     mod registry;
     mod shape;

@@ -2,11 +2,11 @@
 //! finite differences, reference measure, outward faces, and boundary extraction of small
 //! meshes. One generic check per property, called once per element type (listed by hand).
 
-use mortar_core::element::volume::{CellValues, VolumeDomain, VolumeElementRef};
 use mortar_core::element::MAX_FACE_NODES;
-use mortar_core::mesh::VolumeMesh;
-use mortar_core::quadrature::VolumeQuadratureRule;
 use mortar_elements::volume::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
+use mortar_fem::element::{CellValues, VolumeDomain, VolumeElementRef};
+use mortar_fem::mesh::VolumeMesh;
+use mortar_fem::quadrature::VolumeQuadratureRule;
 use nalgebra::{Matrix3, Vector2, Vector3};
 
 const ELEMENTS: [VolumeElementRef; 10] = [
@@ -279,7 +279,7 @@ fn volume_quadrature_is_exact_to_its_degree() {
     let fact = |n: u32| (1..=n).map(f64::from).product::<f64>();
     for degree in 1..=10u32 {
         let rule = VolumeQuadratureRule::for_domain(
-            mortar_core::element::volume::VolumeDomain::Tetrahedron,
+            mortar_fem::element::VolumeDomain::Tetrahedron,
             degree,
         )
         .unwrap();
@@ -292,21 +292,16 @@ fn volume_quadrature_is_exact_to_its_degree() {
             }
         }
     }
-    let hex = VolumeQuadratureRule::for_domain(
-        mortar_core::element::volume::VolumeDomain::Hexahedron,
-        11,
-    )
-    .unwrap();
+    let hex = VolumeQuadratureRule::for_domain(mortar_fem::element::VolumeDomain::Hexahedron, 11)
+        .unwrap();
     let q = monomial_integral(&hex, [4, 4, 2]);
     assert!((q - 8.0 / 75.0).abs() < 1e-14);
     // Above the symmetric rules (degree 11), tensor Gauss rules: every monomial of total
     // degree up to 20, against prod 2 / (e + 1) for even exponents, 0 for odd ones.
     for degree in [12u32, 13, 16, 20] {
-        let rule = VolumeQuadratureRule::for_domain(
-            mortar_core::element::volume::VolumeDomain::Hexahedron,
-            degree,
-        )
-        .unwrap();
+        let rule =
+            VolumeQuadratureRule::for_domain(mortar_fem::element::VolumeDomain::Hexahedron, degree)
+                .unwrap();
         for a in 0..=degree {
             for b in 0..=degree - a {
                 let c = degree - a - b;

@@ -1,9 +1,9 @@
 //! The error type of the physics: every failure names the body, cell or node concerned.
 
-use mortar_core::element::volume::NonPositiveJacobian;
-use mortar_core::linalg::SolverError;
-use mortar_core::mesh::VolumeMeshError;
 use mortar_core::{MortarError, Side};
+use mortar_fem::element::NonPositiveJacobian;
+use mortar_fem::linalg::SolverError;
+use mortar_fem::mesh::VolumeMeshError;
 
 use crate::laws::LawError;
 use crate::nonlinear::NewtonFailure;

@@ -56,4 +56,8 @@ pub mod tied;
 pub mod tying;
 
 pub use error::PhysicsError;
+
+/// The backend of the physics' solves through the solver interface of `mortar-fem` (direct
+/// factorisations of a general or a symmetric positive definite matrix, preconditioned GMRES).
+pub(crate) static SOLVER: &dyn mortar_fem::linalg::SparseSolver = &mortar_fem::linalg::FaerSolver;
 pub use tying::{constraint_matrix, dual_condensation, TyingError};

@@ -5,10 +5,10 @@ use std::collections::{HashMap, HashSet};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use mortar_core::element::volume::MAX_CELL_NODES;
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::SurfaceMesh;
 use mortar_elements::volume::VolumeRegistry;
+use mortar_fem::element::MAX_CELL_NODES;
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 
 use super::cursor::{location_of, Cursor, Encoding};
 use super::parse::{self, ElementBlock, MshData};

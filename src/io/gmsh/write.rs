@@ -5,8 +5,8 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use mortar_core::element::ReferenceDomain;
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::SurfaceMesh;
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 
 use crate::io::error::IoError;
 

@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 
 use super::tied_heat::{
     BodySpec, DirichletSpec, InterfaceSpec, NeumannSpec, SideSpec, SolveSpec, TiedHeatSpec,

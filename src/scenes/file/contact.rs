@@ -33,8 +33,8 @@ use std::time::Instant;
 
 use mortar_core::element::ElementRef;
 use mortar_core::linalg::SparseMatrix;
-use mortar_core::mesh::BoundaryFace;
 use mortar_core::Interface;
+use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{
     automatic_complementarity, rigid_motions, solve_contact, ContactOptions, ContactSolution,
     HeldMotions, NormalGap, RigidMotion,

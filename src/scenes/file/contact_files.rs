@@ -8,8 +8,8 @@
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, SurfaceMesh};
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 use mortar_physics::contact::ContactOptions;
 use mortar_physics::elastic::{ComponentSet, ElasticBody, ElasticMaterial};
 use mortar_physics::PhysicsError;

@@ -134,7 +134,7 @@ pub fn scene_kind(text: &str, path: &Path) -> Result<String, SceneError> {
 }
 
 /// The node indices of some faces, ascending, each once.
-pub(crate) fn face_nodes(faces: &[mortar_core::mesh::BoundaryFace]) -> Vec<u32> {
+pub(crate) fn face_nodes(faces: &[mortar_fem::mesh::BoundaryFace]) -> Vec<u32> {
     let mut nodes: Vec<u32> = faces.iter().flat_map(|f| f.nodes.iter().copied()).collect();
     nodes.sort_unstable();
     nodes.dedup();

@@ -46,8 +46,8 @@
 
 use std::time::Instant;
 
-use mortar_core::mesh::BoundaryFace;
 use mortar_core::CouplingOptions;
+use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{ContactOptions, ContactSolution, ContactStep};
 use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;

@@ -5,8 +5,8 @@ use std::f64::consts::PI;
 use std::path::Path;
 use std::time::Instant;
 
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 use mortar_physics::elastic::{
     AxialForce, ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
 };

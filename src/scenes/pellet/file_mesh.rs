@@ -17,8 +17,8 @@ use std::collections::HashSet;
 use std::f64::consts::PI;
 use std::path::Path;
 
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
 use mortar_elements::volume::VolumeRegistry;
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 
 use super::PelletError;
 use crate::io::gmsh::{read_gmsh_volume, GmshVolume};

@@ -1,8 +1,8 @@
 //! The meshes of the pellet cross-section: an O-grid disc (the pellet) and a structured
 //! polar annulus (the cladding), at different resolutions along the interface.
 
-use mortar_core::mesh::{VolumeMesh, VolumeMeshError};
 use mortar_elements::volume::QUAD4;
+use mortar_fem::mesh::{VolumeMesh, VolumeMeshError};
 
 use crate::generate::{ball_mesh, Inclusion};
 

@@ -103,7 +103,7 @@ pub use coupled::{
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use run::{run, run_builtin, run_from_toml, run_from_toml_with, run_thermal};
 
-use mortar_core::mesh::VolumeMeshError;
+use mortar_fem::mesh::VolumeMeshError;
 use mortar_physics::laws::{GapConductance, GasConductivity, LawError};
 use mortar_physics::PhysicsError;
 use serde::{Deserialize, Serialize};

@@ -4,8 +4,8 @@ use std::io::IsTerminal;
 use std::path::Path;
 use std::time::Instant;
 
-use mortar_core::mesh::VolumeMesh;
 use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
+use mortar_fem::mesh::VolumeMesh;
 use mortar_physics::heat::{
     Conductivity, GapHeat, GapSolver, GapSolverState, HeatBody, HeatMaterial,
 };

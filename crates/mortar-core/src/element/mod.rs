@@ -3,11 +3,11 @@
 //!
 //! A new element is one type implementing [`ReferenceElement`] and [`SurfaceElement`]; the
 //! search, segmentation, integration and assembly code never changes. See the
-//! `mortar-elements` crate for `Line2`, `Tri3` and `Quad4`.
+//! `mortar-elements` crate for `Line2`, `Tri3` and `Quad4`. (The volume elements of the bodies
+//! are in `mortar-fem`.)
 
 mod reference;
 mod surface;
-pub mod volume;
 
 pub use reference::{ReferenceDomain, ReferenceElement, MAX_FACE_NODES};
 pub use surface::{ElementRef, SurfaceElement};

@@ -1,37 +1,9 @@
-//! Sparse linear algebra: the matrix type of D and M (sprs CSR), deterministic triplet
-//! assembly, sparse direct factorisations (faer's API stays inside `faer_backend.rs`) and a
-//! restarted GMRES.
-//!
-//! - [`LuFactorization`], [`CholeskyFactorization`]: factorise once, solve many times, and
-//!   [`refactor`](LuFactorization::refactor) a new matrix of the same pattern reusing the
-//!   symbolic analysis (Newton steps, new time step sizes).
-//! - [`BorderedLu`]: the LU of a sparse matrix bordered by a few dense rows and columns,
-//!   the border eliminated by its Schur complement outside the sparse factorisation.
-//! - [`SubstructuredCholesky`]: the same for two domains coupled through a small separator
-//!   (two tied bodies), the domains factorised in parallel.
-//! - [`gmres`]: right-preconditioned restarted GMRES(m) on any [`LinearOperator`] (an
-//!   assembled matrix or a matrix-free product), with any [`Preconditioner`] (the
-//!   factorisations above, or [`IdentityPreconditioner`]).
+//! The sparse result of the coupling: the matrix type of D and M (sprs CSR) and its
+//! deterministic assembly from triplets. (The solvers are in `mortar-fem`.)
 
-mod bordered;
-mod conditioning;
 pub(crate) mod csr;
-mod faer_backend;
-mod gmres;
-pub mod nested_dissection;
-mod substructured;
 mod triplets;
 
-pub use bordered::BorderedLu;
-pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
-pub use faer_backend::{
-    fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, LuFactorization,
-    SaddlePointFactorization, SolverError, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,
-};
-pub use gmres::{
-    gmres, GmresOptions, GmresReport, IdentityPreconditioner, LinearOperator, Preconditioner,
-};
-pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};
 pub(crate) use triplets::sort_short_by_key;
 pub use triplets::{CompressWorkspace, PartList, RowAccumulator, Triplets};
 

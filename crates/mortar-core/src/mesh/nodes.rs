@@ -1,5 +1,5 @@
 //! `NodeSet`: the coordinates and tags of a mesh's nodes and the index of each tag, shared by
-//! the surface and volume meshes.
+//! the surface meshes here and the volume meshes of `mortar-fem`.
 
 use std::collections::hash_map::Entry;
 
@@ -7,10 +7,10 @@ use nalgebra::Vector3;
 use rustc_hash::FxHashMap;
 
 /// The nodes of a mesh: coordinates and tags in insertion order, and the index of each tag.
-/// Shared by [`SurfaceMesh`](super::SurfaceMesh) and [`VolumeMesh`](super::VolumeMesh), which
+/// Shared by [`SurfaceMesh`](super::SurfaceMesh) and the volume mesh of `mortar-fem`, which
 /// report its refusals with their own error types.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct NodeSet {
+pub struct NodeSet {
     pub(crate) coords: Vec<Vector3<f64>>,
     pub(crate) tags: Vec<u64>,
     index: TagIndex,
@@ -38,7 +38,7 @@ impl Default for TagIndex {
 
 /// Why a node was refused.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) enum NodeRefusal {
+pub enum NodeRefusal {
     /// A NaN or infinite coordinate.
     NonFinite,
     /// The tag is already used.
@@ -47,7 +47,7 @@ pub(crate) enum NodeRefusal {
 
 impl NodeSet {
     /// Room for `n` nodes.
-    pub(crate) fn reserve(&mut self, n: usize) {
+    pub fn reserve(&mut self, n: usize) {
         self.coords.reserve(n);
         self.tags.reserve(n);
         if let TagIndex::Map(map) = &mut self.index {
@@ -57,7 +57,7 @@ impl NodeSet {
 
     /// Adds a node and returns its index; a non-finite coordinate or a used tag is refused and
     /// leaves the set unchanged.
-    pub(crate) fn add(&mut self, tag: u64, coords: [f64; 3]) -> Result<u32, NodeRefusal> {
+    pub fn add(&mut self, tag: u64, coords: [f64; 3]) -> Result<u32, NodeRefusal> {
         if coords.iter().any(|c| !c.is_finite()) {
             return Err(NodeRefusal::NonFinite);
         }
@@ -88,9 +88,27 @@ impl NodeSet {
         Ok(index)
     }
 
+    /// The coordinates, in insertion order.
+    #[inline]
+    pub fn coords(&self) -> &[Vector3<f64>] {
+        &self.coords
+    }
+
+    /// The coordinates, to move the nodes (the tags and their index stay).
+    #[inline]
+    pub fn coords_mut(&mut self) -> &mut [Vector3<f64>] {
+        &mut self.coords
+    }
+
+    /// The tags, in insertion order.
+    #[inline]
+    pub fn tags(&self) -> &[u64] {
+        &self.tags
+    }
+
     /// The index of the node with tag `tag`.
     #[inline]
-    pub(crate) fn index_of(&self, tag: u64) -> Option<u32> {
+    pub fn index_of(&self, tag: u64) -> Option<u32> {
         match &self.index {
             TagIndex::Consecutive { first } => tag
                 .checked_sub(*first)
@@ -101,7 +119,7 @@ impl NodeSet {
     }
 
     /// The heap memory held, in bytes (arrays at their capacity, an estimate for the lookup).
-    pub(crate) fn memory_bytes(&self) -> usize {
+    pub fn memory_bytes(&self) -> usize {
         use std::mem::size_of;
         self.coords.capacity() * size_of::<Vector3<f64>>()
             + self.tags.capacity() * size_of::<u64>()

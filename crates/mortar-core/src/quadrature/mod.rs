@@ -2,11 +2,9 @@
 //!
 //! Triangle and quadrilateral rules are the symmetric, positive-weight Witherden-Vincent rules
 //! (through the `fenris-quadrature` crate, mapped onto this toolkit's reference triangle
-//! `(0,0), (1,0), (0,1)`); line rules are Gauss-Legendre. Volume elements have their own rules,
-//! [`VolumeQuadratureRule`] (tetrahedra and hexahedra too).
+//! `(0,0), (1,0), (0,1)`); line rules are Gauss-Legendre. (The rules of volume elements are in
+//! `mortar-fem`.)
 
 mod rule;
-mod volume;
 
 pub use rule::{Quadrature, QuadratureRule};
-pub use volume::{max_volume_degree, VolumeQuadratureRule};

@@ -1,7 +1,7 @@
 //! The twenty-node serendipity hexahedron `Hex20` (Gmsh type 17) and its `Quad8` faces.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::Vector3;
 
 use crate::shape::serendipity;

@@ -1,7 +1,7 @@
 //! The twenty-seven-node triquadratic hexahedron `Hex27` (Gmsh type 12) and its `Quad9` faces.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::Vector3;
 
 use super::hex20::HEX20_NODES;

@@ -1,7 +1,7 @@
 //! The eight-node trilinear hexahedron `Hex8` (Gmsh type 5) and its `Quad4` faces.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::Vector3;
 
 /// Eight-node trilinear hexahedron on `[-1, 1]^3`, Gmsh node order: the bottom face

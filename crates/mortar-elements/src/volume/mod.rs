@@ -5,14 +5,14 @@
 //! Reference domains: triangle `(0,0), (1,0), (0,1)`; quad `[-1, 1]^2`; tetrahedron
 //! `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`; hexahedron `[-1, 1]^3`. Node order follows Gmsh, and
 //! each element's faces are listed with outward normals (see
-//! [`VolumeElement::faces`](mortar_core::element::volume::VolumeElement::faces)).
+//! [`VolumeElement::faces`](mortar_fem::element::VolumeElement::faces)).
 //!
 //! The names repeat those of the surface elements of the crate root (a 2D body's triangle is
 //! a `volume::Tri3`, an interface triangle in 3D a [`crate::Tri3`]); the 2D cells reuse the
 //! surface elements' shape functions.
 //!
 //! ```
-//! use mortar_core::element::volume::VolumeElement;
+//! use mortar_fem::element::VolumeElement;
 //! use mortar_elements::volume::HEX8;
 //! let mut n = [0.0; 8];
 //! HEX8.shape_values_into(&nalgebra::Vector3::new(0.2, -0.4, 0.9), &mut n);

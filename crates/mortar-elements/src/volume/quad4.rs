@@ -1,7 +1,7 @@
 //! The four-node bilinear quadrilateral cell of a 2D body (Gmsh type 3) and its `Line2` edges.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ElementRef, ReferenceElement};
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::{Vector2, Vector3};
 
 /// Four-node bilinear quadrilateral cell of a 2D body on `[-1, 1]^2`, nodes counter-clockwise

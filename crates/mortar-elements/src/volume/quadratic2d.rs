@@ -2,8 +2,8 @@
 //! of the surface elements of the same names (as [`super::Tri3`] and [`super::Quad4`] reuse
 //! theirs) and three-node edges ([`crate::Line3`]).
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ElementRef, ReferenceElement, MAX_FACE_NODES};
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::{Vector2, Vector3};
 
 /// Implements a 2D cell by the surface element `$surface` of the same shape.

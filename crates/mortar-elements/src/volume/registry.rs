@@ -1,7 +1,7 @@
 //! `VolumeRegistry`: volume elements by Gmsh type number (per reference dimension) and by
 //! name, the built-in cells first, user cells added with `register`.
 
-use mortar_core::element::volume::{VolumeElement, VolumeElementRef};
+use mortar_fem::element::{VolumeElement, VolumeElementRef};
 
 use super::{HEX20, HEX27, HEX8, QUAD4, QUAD8, QUAD9, TET10, TET4, TRI3, TRI6};
 

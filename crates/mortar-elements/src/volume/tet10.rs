@@ -1,7 +1,7 @@
 //! The ten-node quadratic tetrahedron `Tet10` (Gmsh type 11) and its `Tri6` faces.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::Vector3;
 
 use crate::shape::barycentric;

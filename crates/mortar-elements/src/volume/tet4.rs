@@ -1,7 +1,7 @@
 //! The four-node linear tetrahedron `Tet4` (Gmsh type 4) and its `Tri3` faces.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::ElementRef;
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::Vector3;
 
 /// Four-node linear tetrahedron on `(0,0,0), (1,0,0), (0,1,0), (0,0,1)`:

@@ -1,7 +1,7 @@
 //! The three-node triangle cell of a 2D body (Gmsh type 2) and its `Line2` edges.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ElementRef, ReferenceElement};
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::{Vector2, Vector3};
 
 /// Three-node triangle cell of a 2D body on `(0,0), (1,0), (0,1)`: `N_1 = 1 - xi - eta`,

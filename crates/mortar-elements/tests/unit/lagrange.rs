@@ -1,10 +1,10 @@
 //! Lagrange elements from their nodes: with the nodes of a shipped element they are that
 //! element (values and gradients at sample points), and bad node sets get typed errors.
 
-use mortar_core::element::volume::{VolumeDomain, VolumeElement};
 use mortar_core::element::{ReferenceDomain, ReferenceElement};
 use mortar_elements::volume::{HEX27, TET10, TRI6 as TRI6_CELL};
 use mortar_elements::{LagrangeCell, LagrangeError, LagrangeFace, LINE3, QUAD9, TRI6};
+use mortar_fem::element::{VolumeDomain, VolumeElement};
 use nalgebra::{Vector2, Vector3};
 
 fn leak2(e: &dyn ReferenceElement) -> &'static [[f64; 2]] {

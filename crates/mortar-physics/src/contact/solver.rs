@@ -2,8 +2,8 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{
-    fill_reducing_ordering, inf_norm, well_conditioned, CholeskyFactorization, LuFactorization,
+use mortar_fem::linalg::{
+    fill_reducing_ordering, inf_norm, well_conditioned, CholeskyFactorization, MatrixKind,
     SolverError, SparseMatrix, SubstructuredCholesky, Triplets,
 };
 
@@ -12,6 +12,7 @@ use crate::error::PhysicsError;
 use crate::field::free::{free_block, free_numbering, FIXED};
 use crate::laws::{evaluate, ConstraintLaw, LawPoint};
 use crate::tied::Tie;
+use crate::SOLVER;
 
 /// Settings of [`solve_contact`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -574,7 +575,9 @@ fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverE
         rhs[nfree + j] = -lin.c[j];
     }
     let jac = t.to_csr(size, size);
-    LuFactorization::try_new(&jac)?.solve_in_place(&mut rhs)?;
+    SOLVER
+        .factor(&jac, MatrixKind::General)?
+        .solve_in_place(&mut rhs)?;
     let dp = rhs.split_off(nfree);
     Ok((rhs, dp, false))
 }
@@ -595,7 +598,9 @@ fn solve_symmetric(
     }
     match CholeskyFactorization::try_new_ordered(a, &perm(a)?) {
         Ok(f) => f.solve_in_place(b),
-        Err(_) => LuFactorization::try_new(a).and_then(|f| f.solve_in_place(b)),
+        Err(_) => SOLVER
+            .factor(a, MatrixKind::General)
+            .and_then(|f| f.solve_in_place(b)),
     }
     .map(|()| false)
 }

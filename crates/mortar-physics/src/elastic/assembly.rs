@@ -2,9 +2,9 @@
 //! tractions, thermal strain) and the thermal load operator `G`, in parallel over fixed chunks
 //! of cells merged in order (the same bits for any thread count).
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::ModelGeometry;
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

@@ -3,8 +3,8 @@
 //! zero (plane strain). The operators that border the plane stiffness, and the static solve
 //! of one body with them.
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -155,7 +155,7 @@ impl GeneralizedPlaneStrain {
 /// ([`GeneralizedPlaneStrain`]) is solved by sparse Cholesky on the free unknowns.
 ///
 /// ```
-/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_fem::mesh::VolumeMesh;
 /// use mortar_elements::volume::QUAD4;
 /// use mortar_physics::elastic::{
 ///     solve_generalized_plane_strain, AxialForce, ComponentSet, ElasticBody, ElasticMaterial,

@@ -1,18 +1,18 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_core::linalg::{inf_norm, well_conditioned, CholeskyFactorization, SparseMatrix};
+use mortar_fem::linalg::{inf_norm, well_conditioned, MatrixKind, SparseMatrix};
 
 use crate::field::free::{free_block, free_numbering, FIXED};
 
 use super::{assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticOptions};
-use crate::PhysicsError;
+use crate::{PhysicsError, SOLVER};
 
 /// The displacement of `body` (`node * dim + k`) under its loads (body force, tractions,
 /// thermal eigenstrain) with its prescribed components eliminated: `K_ff u_f = f_f - K_fd u_d`
 /// by sparse Cholesky.
 ///
 /// ```
-/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_fem::mesh::VolumeMesh;
 /// use mortar_elements::volume::QUAD4;
 /// use mortar_physics::elastic::{solve_elastic, ComponentSet, ElasticBody, ElasticMaterial};
 /// use nalgebra::Vector3;
@@ -46,7 +46,7 @@ pub fn solve_elastic(body: &ElasticBody) -> Result<Vec<f64>, PhysicsError> {
 /// axisymmetric geometry).
 ///
 /// ```
-/// use mortar_core::mesh::VolumeMesh;
+/// use mortar_fem::mesh::VolumeMesh;
 /// use mortar_core::ModelGeometry;
 /// use mortar_elements::volume::QUAD4;
 /// use mortar_physics::elastic::{
@@ -118,11 +118,13 @@ pub(crate) fn solve_held(
             "{why}: the body is not held against rigid motion by its displacement conditions"
         ),
     };
-    let factor = CholeskyFactorization::try_new(&kff).map_err(|e| {
-        not_held(format!(
-            "the stiffness of the free displacements is not positive definite ({e})"
-        ))
-    })?;
+    let factor = SOLVER
+        .factor(&kff, MatrixKind::SymmetricPositiveDefinite)
+        .map_err(|e| {
+            not_held(format!(
+                "the stiffness of the free displacements is not positive definite ({e})"
+            ))
+        })?;
     let b_norm = inf_norm(&rhs);
     factor.solve_in_place(&mut rhs)?;
     // A singular stiffness whose round-off left a small positive pivot factorises: its

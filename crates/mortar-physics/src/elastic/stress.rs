@@ -1,7 +1,7 @@
 //! Stress recovery: the Cauchy stress per cell and averaged at the nodes, with the von Mises
 //! stress; in 2D plane strain, generalized plane strain (an axial strain) or r-z.
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

@@ -6,10 +6,10 @@
 //! irregular (general quadrilaterals and hexahedra, not parallelograms). Systems are solved
 //! densely after eliminating the Dirichlet unknowns.
 
-use mortar_core::element::volume::VolumeElementRef;
 use mortar_core::linalg::SparseMatrix;
-use mortar_core::mesh::VolumeMesh;
 use mortar_elements::volume::{HEX8, QUAD4, TET4, TRI3};
+use mortar_fem::element::VolumeElementRef;
+use mortar_fem::mesh::VolumeMesh;
 use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 use super::*;
@@ -204,7 +204,7 @@ fn hooke(a: &Matrix3<f64>, material: &ElasticMaterial) -> [f64; 6] {
     ]
 }
 
-fn on_plane(d: usize, v: f64) -> impl Fn(&mortar_core::mesh::BoundaryFace) -> bool {
+fn on_plane(d: usize, v: f64) -> impl Fn(&mortar_fem::mesh::BoundaryFace) -> bool {
     move |f| (f.centroid[d] - v).abs() < 1e-12
 }
 

@@ -1,12 +1,11 @@
 //! Cell set-up shared by the assemblies of every field (heat, elasticity).
 
-use mortar_core::element::volume::{CellValues, VolumeDomain, MAX_CELL_NODES};
 use mortar_core::element::MAX_FACE_NODES;
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
-use mortar_core::quadrature::{
-    max_volume_degree, Quadrature, QuadratureRule, VolumeQuadratureRule,
-};
+use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{ModelGeometry, MortarError};
+use mortar_fem::element::{CellValues, VolumeDomain, MAX_CELL_NODES};
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
+use mortar_fem::quadrature::{max_volume_degree, VolumeQuadratureRule};
 use nalgebra::{Vector2, Vector3};
 
 use crate::error::PhysicsError;
@@ -170,7 +169,7 @@ pub(crate) fn for_each_face_point(
 pub(crate) fn boundary_faces_where(
     mesh: &VolumeMesh,
     select: impl Fn(&BoundaryFace) -> bool,
-) -> Result<Vec<BoundaryFace>, mortar_core::mesh::VolumeMeshError> {
+) -> Result<Vec<BoundaryFace>, mortar_fem::mesh::VolumeMeshError> {
     Ok(mesh
         .boundary_faces()?
         .into_iter()

@@ -1,9 +1,9 @@
 //! Assembly of one body's heat conduction matrices (stiffness, capacity) and loads (source,
 //! Neumann flux), with `HeatOptions` for the quadrature degree and the model geometry.
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_core::ModelGeometry;
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

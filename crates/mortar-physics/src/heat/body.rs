@@ -4,7 +4,7 @@
 use std::fmt;
 use std::sync::Arc;
 
-use mortar_core::mesh::{BoundaryFace, VolumeMesh};
+use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 use nalgebra::Vector3;
 
 use crate::error::PhysicsError;

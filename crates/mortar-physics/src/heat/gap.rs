@@ -4,9 +4,9 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{LuFactorization, SparseMatrix, Triplets};
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::{assemble_coupling, CouplingOptions, Interface, Tolerances};
+use mortar_fem::linalg::{LuFactorization, SparseMatrix, Triplets};
 
 use super::assembly::{assemble_heat_load, assemble_heat_matrices, HeatOptions};
 use super::body::HeatBody;

@@ -1,8 +1,8 @@
 //! Heat conduction with a temperature-dependent conductivity `k(T)`: the internal heat flow
 //! `f_a(T) = int k(T) grad T . grad N_a` of a body and its linearisations.
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
 use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
 

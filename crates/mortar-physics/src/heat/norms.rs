@@ -1,9 +1,9 @@
 //! L2, H1-seminorm and largest nodal errors of a discrete temperature against an exact
 //! solution (`error_norms`), for convergence studies.
 
-use mortar_core::element::volume::{CellValues, MAX_CELL_NODES};
-use mortar_core::mesh::VolumeMesh;
-use mortar_core::quadrature::VolumeQuadratureRule;
+use mortar_fem::element::{CellValues, MAX_CELL_NODES};
+use mortar_fem::mesh::VolumeMesh;
+use mortar_fem::quadrature::VolumeQuadratureRule;
 use nalgebra::Vector3;
 use rayon::prelude::*;
 
@@ -54,7 +54,7 @@ pub fn error_norms(
             for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                 let cell = mesh.cell(c);
                 let domain = cell.element.domain();
-                let max = mortar_core::quadrature::max_volume_degree(domain);
+                let max = mortar_fem::quadrature::max_volume_degree(domain);
                 let deg = degree
                     .unwrap_or(2 * cell.element.shape_degree() + 3)
                     .min(max);

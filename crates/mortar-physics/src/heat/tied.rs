@@ -142,7 +142,7 @@ fn check_contrast(slave: &HeatBody, master: &HeatBody) -> Result<(), PhysicsErro
 impl TiedHeat {
     /// Assembles both bodies and couples them along `slave_surface` (faces of the slave
     /// body's boundary) and `master_surface` (of the master body's), whose node tags are the
-    /// bodies' node tags (as [`boundary_surface`](mortar_core::VolumeMesh::boundary_surface)
+    /// bodies' node tags (as [`boundary_surface`](mortar_fem::VolumeMesh::boundary_surface)
     /// gives them).
     ///
     /// The coupling and the assembly must use the same geometry

@@ -3,11 +3,10 @@
 
 use std::cell::RefCell;
 
-use mortar_core::linalg::{
-    gmres, GmresOptions, GmresReport, LinearOperator, Preconditioner, SolverError,
-};
+use mortar_fem::linalg::{GmresOptions, GmresReport, LinearOperator, Preconditioner, SolverError};
 
 use crate::error::PhysicsError;
+use crate::SOLVER;
 
 /// A residual function `r <- F(x)`.
 type Residual<'a> = &'a dyn Fn(&[f64], &mut [f64]) -> Result<(), PhysicsError>;
@@ -116,7 +115,7 @@ impl LinearOperator for FiniteDifferenceJacobian<'_> {
 /// residuals much below the square root of the precision of `F`.
 ///
 /// # Errors
-/// The first error of a residual evaluation, and the errors of [`gmres`] (a failing
+/// The first error of a residual evaluation, and the errors of [`gmres`](mortar_fem::linalg::gmres) (a failing
 /// preconditioner, no reduction at all within `options.max_iterations`) as
 /// [`PhysicsError::Solver`].
 pub fn jfnk_solve(
@@ -134,7 +133,7 @@ pub fn jfnk_solve(
         max_iterations: options.max_iterations,
         relative_tolerance: forcing,
     };
-    let out = gmres(&op, preconditioner, r, dx, &gm);
+    let out = SOLVER.solve_preconditioned(&op, preconditioner, r, dx, &gm);
     if let Some(e) = op.take_error() {
         return Err(e);
     }
@@ -155,7 +154,7 @@ pub fn jfnk_solve(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use mortar_core::linalg::{LuFactorization, Triplets};
+    use mortar_fem::linalg::{LuFactorization, Triplets};
 
     /// On a linear residual `F(x) = A x - b`, JFNK's solve equals the direct solve.
     #[test]

@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{BorderedLu, LuFactorization, SolverError, SparseMatrix};
+use mortar_fem::linalg::{BorderedLu, Factorization, LuFactorization, SolverError, SparseMatrix};
 
 use super::{newton, NewtonOptions, NewtonProblem, NewtonReport};
 use crate::error::PhysicsError;
@@ -56,7 +56,7 @@ impl SolverStats {
         lu: &'a mut Option<LuFactorization>,
         a: &SparseMatrix,
     ) -> Result<&'a LuFactorization, PhysicsError> {
-        self.counted(lu, |f| f.refactor(a), || LuFactorization::try_new(a))
+        self.counted(lu, a, || LuFactorization::try_new(a))
     }
 
     /// [`factorize`](Self::factorize) with the last `border` rows and columns eliminated by
@@ -68,18 +68,18 @@ impl SolverStats {
         a: &SparseMatrix,
         border: usize,
     ) -> Result<&'a BorderedLu, PhysicsError> {
-        self.counted(lu, |f| f.refactor(a), || BorderedLu::try_new(a, border))
+        self.counted(lu, a, || BorderedLu::try_new(a, border))
     }
 
-    /// `refactor` the factorisation in `lu` if there is one and it succeeds, else `build` a
-    /// new one (a symbolic analysis); counted.
-    fn counted<'a, F>(
+    /// Refactors the factorisation in `lu` with `a` if there is one and that succeeds, else
+    /// `build`s a new one (a symbolic analysis); counted.
+    fn counted<'a, F: Factorization>(
         &mut self,
         lu: &'a mut Option<F>,
-        refactor: impl FnOnce(&mut F) -> Result<(), SolverError>,
+        a: &SparseMatrix,
         build: impl FnOnce() -> Result<F, SolverError>,
     ) -> Result<&'a F, PhysicsError> {
-        let reused = lu.as_mut().is_some_and(|f| refactor(f).is_ok());
+        let reused = lu.as_mut().is_some_and(|f| f.refactor(a).is_ok());
         if !reused {
             *lu = Some(build()?);
             self.symbolic_analyses += 1;

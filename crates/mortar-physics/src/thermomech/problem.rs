@@ -886,7 +886,7 @@ fn axial_freedom(
 /// `int N_a n` over the faces of `surface` (a surface of `body`'s mesh, by node tags), `n`
 /// the unit normal pointing out of the body, numbered `node * dim + k`; over the revolved
 /// surface (weight `2 pi r`) in the axisymmetric geometry. The faces integrated are the
-/// body's own boundary faces ([`VolumeMesh::boundary_faces`](mortar_core::mesh::VolumeMesh::boundary_faces),
+/// body's own boundary faces ([`VolumeMesh::boundary_faces`](mortar_fem::mesh::VolumeMesh::boundary_faces),
 /// outward by construction) whose nodes are those of a face of `surface`, so the orientation
 /// the interface was given does not matter.
 fn surface_load(

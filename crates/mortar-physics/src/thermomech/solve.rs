@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     BorderedLu, LuFactorization, Preconditioner, SolverError, SparseMatrix, Triplets,
 };
 

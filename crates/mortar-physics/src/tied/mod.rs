@@ -18,6 +18,6 @@ pub use crosspoint::{slave_dirichlet_shares, SlaveDirichletShares};
 pub use formulation::{
     Formulation, FormulationChoice, FormulationReport, SlaveDirichlet, TiedOptions,
 };
-pub use mortar_core::linalg::SUBSTRUCTURED_MIN;
+pub use mortar_fem::linalg::SUBSTRUCTURED_MIN;
 pub use system::{SystemSeconds, TiedFields, TiedSystem};
 pub use tie::{kron_identity, Interpolated, Tie};

@@ -6,9 +6,9 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use mortar_core::linalg::{
-    CholeskyFactorization, LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix,
-    SubstructuredCholesky, Triplets,
+use mortar_fem::linalg::{
+    CholeskyFactorization, Factorization, LuFactorization, SaddlePointFactorization, SolverError,
+    SparseMatrix, SubstructuredCholesky, Triplets,
 };
 
 use super::crosspoint::shares;
@@ -73,6 +73,16 @@ impl Factor {
         }
     }
 
+    /// The factorisation, through the solver interface.
+    fn factorization(&self) -> &dyn Factorization {
+        match self {
+            Factor::Lu(f) => &**f,
+            Factor::Ldlt(f) => &**f,
+            Factor::Cholesky(f) => f,
+            Factor::Substructured(f) => &**f,
+        }
+    }
+
     /// What factorises the system, for the report.
     fn name(&self) -> &'static str {
         match self {
@@ -107,7 +117,7 @@ impl Factor {
 ///   free unknowns is symmetric positive definite and solved by sparse Cholesky: by body
 ///   ([`SubstructuredCholesky`]: each body with the interface's unknowns factorised
 ///   on its own thread, the interface's dense Schur complement last) from
-///   [`SUBSTRUCTURED_MIN`](mortar_core::linalg::SUBSTRUCTURED_MIN) unknowns when the
+///   [`SUBSTRUCTURED_MIN`](mortar_fem::linalg::SUBSTRUCTURED_MIN) unknowns when the
 ///   interface has at most `2 sqrt(n)` of them, as one matrix otherwise. The multipliers
 ///   follow from the slave rows:
 ///   `lambda_j = (b - A T)_j / D_jj`.
@@ -465,12 +475,7 @@ impl TiedSystem {
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
-        match &self.factor {
-            Factor::Lu(f) => f.solve_in_place(&mut x)?,
-            Factor::Ldlt(f) => f.solve_in_place(&mut x)?,
-            Factor::Cholesky(f) => f.solve_in_place(&mut x)?,
-            Factor::Substructured(f) => f.solve_in_place(&mut x)?,
-        }
+        self.factor.factorization().solve_in_place(&mut x)?;
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }

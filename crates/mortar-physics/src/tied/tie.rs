@@ -2,9 +2,10 @@
 //! volume meshes, for fields of any number of components (`D (x) I_c`, `M (x) I_c`).
 
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_core::mesh::{SurfaceMesh, VolumeMesh};
+use mortar_core::mesh::SurfaceMesh;
 use mortar_core::multiplier::{LinearMultipliers, MultiplierSpace};
 use mortar_core::{assemble_coupling, Coupling, CouplingOptions, Interface, Side};
+use mortar_fem::mesh::VolumeMesh;
 
 use crate::error::PhysicsError;
 

@@ -6,6 +6,7 @@
 
 use std::borrow::Cow;
 
+use super::solver::{FactorStats, Factorization};
 use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 
 /// The factorisation of `A = [B C; R D]` with the last `k` rows and columns the border:
@@ -14,7 +15,7 @@ use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 /// `B` when factorised and one per right-hand side after. With `k = 0` it is the LU of `A`.
 ///
 /// ```
-/// use mortar_core::linalg::{BorderedLu, Triplets};
+/// use mortar_fem::linalg::{BorderedLu, Triplets};
 /// // A tridiagonal block bordered by one dense row and column.
 /// let n = 5;
 /// let mut t = Triplets::default();
@@ -37,7 +38,7 @@ use super::{LuFactorization, SolverError, SparseMatrix, Triplets};
 /// let lu = BorderedLu::try_new(&a, 1)?;
 /// lu.solve_in_place(&mut b)?;
 /// assert!(b.iter().zip(x).all(|(a, b)| (a - b).abs() < 1e-13));
-/// # Ok::<(), mortar_core::linalg::SolverError>(())
+/// # Ok::<(), mortar_fem::linalg::SolverError>(())
 /// ```
 #[derive(Debug)]
 pub struct BorderedLu {
@@ -241,6 +242,22 @@ fn dense_solve(a: &[f64], k: usize, b: &mut [f64]) -> Result<(), SolverError> {
         b[col] = (b[col] - s) / m[col * k + col];
     }
     Ok(())
+}
+
+impl Factorization for BorderedLu {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        BorderedLu::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        BorderedLu::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: None,
+            method: "sparse LU with a dense border (its Schur complement)",
+        }
+    }
 }
 
 #[cfg(test)]

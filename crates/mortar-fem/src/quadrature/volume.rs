@@ -2,11 +2,11 @@
 
 use nalgebra::Vector3;
 
-use super::QuadratureRule;
-use crate::element::volume::VolumeDomain;
-use crate::element::ReferenceDomain;
-use crate::error::{MortarError, Result};
-use crate::quadrature::Quadrature;
+use mortar_core::element::ReferenceDomain;
+use mortar_core::quadrature::{Quadrature, QuadratureRule};
+use mortar_core::{MortarError, Result};
+
+use crate::element::VolumeDomain;
 
 /// A quadrature rule on a volume element's reference domain (see
 /// [`VolumeDomain`]): triangle and quadrilateral rules are those of [`QuadratureRule`] with a

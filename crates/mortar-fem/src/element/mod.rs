@@ -12,10 +12,10 @@
 //! Reference points are `Vector3` throughout; 2D elements ignore (and write zero for) the third
 //! coordinate. Node order follows Gmsh. Each element lists its boundary faces as local node
 //! lists ordered so that the face normal of the face's surface element (see
-//! [`SurfaceElement`](super::SurfaceElement): `(t_y, -t_x)` for a line, `t1 x t2` for a face)
+//! [`SurfaceElement`](mortar_core::element::SurfaceElement): `(t_y, -t_x)` for a line, `t1 x t2` for a face)
 //! points out of the cell when the cell is positively oriented (positive Jacobian
 //! determinant). Extracting a body's boundary therefore gives an outward-oriented surface that
-//! can be handed to an [`Interface`](crate::Interface) directly.
+//! can be handed to an [`Interface`](mortar_core::Interface) directly.
 //!
 //! [`CellValues`] caches what assembly loops need at the quadrature points of one cell (shape
 //! values, physical gradients, weights times Jacobian determinant, points), in the manner of
@@ -27,7 +27,7 @@ pub use cell_values::{CellValues, NonPositiveJacobian};
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::ElementRef;
+use mortar_core::element::ElementRef;
 
 /// The largest node count of a volume element (Hex27).
 pub const MAX_CELL_NODES: usize = 27;

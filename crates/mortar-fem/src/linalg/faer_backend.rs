@@ -24,58 +24,9 @@ use faer::sparse::linalg::LuError;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Side};
 
-use super::SparseMatrix;
-
-/// Why a sparse factorisation or solve failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[non_exhaustive]
-pub enum SolverError {
-    /// The matrix is not square, or a vector, an ordering or a constraint count does not match
-    /// its size.
-    #[error("dimension mismatch: {what}: expected {expected}, found {found}")]
-    DimensionMismatch {
-        /// The size expected (the matrix's number of rows, or at most that many constraints).
-        expected: usize,
-        /// The size found.
-        found: usize,
-        /// What has the wrong size (`"columns of a square matrix"`, `"entries of the
-        /// right-hand side"`, ...).
-        what: &'static str,
-    },
-    /// The matrix is singular: no pivot could be found at `pivot`, or the solve produced
-    /// non-finite values (`pivot` is then `None`).
-    #[error("the matrix is singular{}", match .pivot { Some(p) => format!(" (no pivot at step {p})"), None => " (the solve produced non-finite values)".to_string() })]
-    Singular {
-        /// The elimination step without a pivot, when known.
-        pivot: Option<usize>,
-    },
-    /// The Cholesky factorisation met a non-positive pivot: the matrix is not symmetric
-    /// positive definite (a floating body, a missing Dirichlet condition, a wrong sign).
-    #[error("the matrix is not positive definite (non-positive pivot at step {pivot})")]
-    NotPositiveDefinite {
-        /// The elimination step (in the fill-reducing order).
-        pivot: usize,
-    },
-    /// [`refactor`](LuFactorization::refactor) was given a matrix whose sparsity pattern
-    /// differs from the one analysed.
-    #[error("the sparsity pattern differs from the analysed one: {0}")]
-    PatternMismatch(String),
-    /// An iterative solver did not reach its tolerance.
-    #[error("{method} did not converge: relative residual {residual:e} after {iterations} iterations (tolerance {tolerance:e})")]
-    NotConverged {
-        /// The method, e.g. `"GMRES(30)"`.
-        method: String,
-        /// Iterations made.
-        iterations: usize,
-        /// The final relative residual.
-        residual: f64,
-        /// The requested relative tolerance.
-        tolerance: f64,
-    },
-    /// Any other failure of the backend (out of memory, index overflow).
-    #[error("sparse solver backend: {0}")]
-    Backend(String),
-}
+use super::solver::{FactorStats, Factorization, MatrixKind, SparseSolver};
+use super::{gmres, GmresOptions, GmresReport, LinearOperator, Preconditioner};
+use super::{SolverError, SparseMatrix};
 
 /// The former name of [`SolverError`].
 pub type FaerError = SolverError;
@@ -208,7 +159,7 @@ fn lu_error(e: LuError) -> SolverError {
 /// square non-singular matrices such as the saddle-point systems of mesh tying.
 ///
 /// ```
-/// use mortar_core::linalg::{LuFactorization, Triplets};
+/// use mortar_fem::linalg::{LuFactorization, Triplets};
 /// let mut t = Triplets::default();
 /// t.push(0, 0, 2.0);
 /// t.push(0, 1, 1.0);
@@ -1033,5 +984,83 @@ impl SaddlePointFactorization {
         let mut x = b.to_vec();
         self.solve_in_place(&mut x)?;
         Ok(x)
+    }
+}
+
+/// The faer backend of the solver interface: [`LuFactorization`] for
+/// [`MatrixKind::General`], [`CholeskyFactorization`] (its fill-reducing ordering chosen by
+/// size) for [`MatrixKind::SymmetricPositiveDefinite`], and the restarted [`gmres`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FaerSolver;
+
+impl SparseSolver for FaerSolver {
+    fn factor(
+        &self,
+        a: &SparseMatrix,
+        kind: MatrixKind,
+    ) -> Result<Box<dyn Factorization>, SolverError> {
+        Ok(match kind {
+            MatrixKind::General => Box::new(LuFactorization::try_new(a)?),
+            MatrixKind::SymmetricPositiveDefinite => Box::new(CholeskyFactorization::try_new(a)?),
+        })
+    }
+
+    fn solve_preconditioned(
+        &self,
+        a: &dyn LinearOperator,
+        preconditioner: &dyn Preconditioner,
+        b: &[f64],
+        x: &mut [f64],
+        options: &GmresOptions,
+    ) -> Result<GmresReport, SolverError> {
+        gmres(a, preconditioner, b, x, options)
+    }
+}
+
+impl Factorization for LuFactorization {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        LuFactorization::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        LuFactorization::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: None,
+            method: "sparse LU (partial pivoting)",
+        }
+    }
+}
+
+impl Factorization for CholeskyFactorization {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        CholeskyFactorization::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        CholeskyFactorization::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: Some(self.factor_entries()),
+            method: "sparse Cholesky",
+        }
+    }
+}
+
+impl Factorization for SaddlePointFactorization {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        SaddlePointFactorization::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        SaddlePointFactorization::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: Some(self.factor_entries()),
+            method: "sparse LDL^T (saddle point)",
+        }
     }
 }

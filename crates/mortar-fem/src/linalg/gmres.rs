@@ -7,7 +7,7 @@
 //! finite-difference Jacobian-vector product and an assembled approximate Jacobian's
 //! factorisation as the preconditioner.
 
-use super::{CholeskyFactorization, LuFactorization, SolverError, SparseMatrix};
+use super::{SolverError, SparseMatrix};
 
 /// A square linear operator `y = A x`.
 pub trait LinearOperator {
@@ -54,18 +54,6 @@ pub struct IdentityPreconditioner;
 impl Preconditioner for IdentityPreconditioner {
     fn apply_in_place(&self, _x: &mut [f64]) -> Result<(), SolverError> {
         Ok(())
-    }
-}
-
-impl Preconditioner for LuFactorization {
-    fn apply_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
-        self.solve_in_place(x)
-    }
-}
-
-impl Preconditioner for CholeskyFactorization {
-    fn apply_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
-        self.solve_in_place(x)
     }
 }
 

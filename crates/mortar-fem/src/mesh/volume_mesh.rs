@@ -4,11 +4,11 @@
 use arrayvec::ArrayVec;
 use nalgebra::Vector3;
 
-use super::nodes::{NodeRefusal, NodeSet};
-use crate::element::volume::{VolumeElementRef, MAX_CELL_NODES};
-use crate::element::{ElementRef, MAX_FACE_NODES};
-use crate::error::MortarError;
-use crate::mesh::SurfaceMesh;
+use mortar_core::element::{ElementRef, MAX_FACE_NODES};
+use mortar_core::mesh::{NodeRefusal, NodeSet, SurfaceMesh};
+use mortar_core::MortarError;
+
+use crate::element::{VolumeElementRef, MAX_CELL_NODES};
 
 /// Errors of a [`VolumeMesh`]: bad input when it is built, or a broken mesh found when its
 /// boundary is extracted. Each names the node or cell (by tag).
@@ -206,10 +206,10 @@ impl VolumeMesh {
                 .nodes
                 .index_of(t)
                 .ok_or(VolumeMeshError::UnknownNode { cell: tag, node: t })?;
-            if element.dim() == 2 && self.nodes.coords[n as usize].z != 0.0 {
+            if element.dim() == 2 && self.nodes.coords()[n as usize].z != 0.0 {
                 return Err(VolumeMeshError::OffPlane {
                     tag: t,
-                    z: self.nodes.coords[n as usize].z,
+                    z: self.nodes.coords()[n as usize].z,
                 });
             }
             idx.push(n);
@@ -228,7 +228,7 @@ impl VolumeMesh {
 
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
-        self.nodes.coords.len()
+        self.nodes.coords().len()
     }
 
     /// Number of cells.
@@ -238,7 +238,7 @@ impl VolumeMesh {
 
     /// All node coordinates.
     pub fn coords(&self) -> &[Vector3<f64>] {
-        &self.nodes.coords
+        self.nodes.coords()
     }
 
     /// Moves every node by `f` (a rigid motion, a scaling, a distortion of the mesh inside a
@@ -252,20 +252,20 @@ impl VolumeMesh {
         &mut self,
         f: impl Fn(Vector3<f64>) -> Vector3<f64>,
     ) -> Result<(), VolumeMeshError> {
-        let moved: Vec<Vector3<f64>> = self.nodes.coords.iter().map(|&x| f(x)).collect();
+        let moved: Vec<Vector3<f64>> = self.nodes.coords().iter().map(|&x| f(x)).collect();
         if let Some(i) = moved.iter().position(|x| x.iter().any(|c| !c.is_finite())) {
             return Err(VolumeMeshError::NonFiniteCoordinate {
-                tag: self.nodes.tags[i],
+                tag: self.nodes.tags()[i],
                 coords: moved[i].into(),
             });
         }
-        self.nodes.coords = moved;
+        self.nodes.coords_mut().copy_from_slice(&moved);
         Ok(())
     }
 
     /// All node tags.
     pub fn node_tags(&self) -> &[u64] {
-        &self.nodes.tags
+        self.nodes.tags()
     }
 
     /// The index of the node with tag `tag`.
@@ -296,7 +296,7 @@ impl VolumeMesh {
     pub fn cell_coords_into(&self, cell: usize, out: &mut [Vector3<f64>; MAX_CELL_NODES]) -> usize {
         let view = self.cell(cell);
         for (o, &n) in out.iter_mut().zip(view.nodes) {
-            *o = self.nodes.coords[n as usize];
+            *o = self.nodes.coords()[n as usize];
         }
         view.nodes.len()
     }
@@ -367,15 +367,17 @@ impl VolumeMesh {
                     2 => continue,
                     n => {
                         return Err(VolumeMeshError::NonManifoldFace {
-                            nodes: local.iter().map(|&i| self.nodes.tags[i as usize]).collect(),
+                            nodes: local
+                                .iter()
+                                .map(|&i| self.nodes.tags()[i as usize])
+                                .collect(),
                             cells: n as usize,
                         })
                     }
                 }
-                let centroid = local
-                    .iter()
-                    .fold(Vector3::zeros(), |s, &i| s + self.nodes.coords[i as usize])
-                    / local.len() as f64;
+                let centroid = local.iter().fold(Vector3::zeros(), |s, &i| {
+                    s + self.nodes.coords()[i as usize]
+                }) / local.len() as f64;
                 out.push(BoundaryFace {
                     cell: c as u32,
                     local_face: lf as u8,
@@ -458,12 +460,12 @@ impl VolumeMesh {
         let count = used.iter().filter(|u| **u).count();
         let mut mesh = SurfaceMesh::with_capacity(count, faces.len());
         for (i, _) in used.iter().enumerate().filter(|(_, u)| **u) {
-            mesh.add_node(self.nodes.tags[i], self.nodes.coords[i].into())?;
+            mesh.add_node(self.nodes.tags()[i], self.nodes.coords()[i].into())?;
         }
         let mut tags = ArrayVec::<u64, MAX_FACE_NODES>::new();
         for (k, f) in faces.iter().enumerate() {
             tags.clear();
-            tags.extend(f.nodes.iter().map(|&n| self.nodes.tags[n as usize]));
+            tags.extend(f.nodes.iter().map(|&n| self.nodes.tags()[n as usize]));
             mesh.add_face_with_tag(k as u64 + 1, f.element, &tags)?;
         }
         Ok(mesh)

@@ -30,6 +30,7 @@
 use rayon::prelude::*;
 
 use super::faer_backend::{check_square, dense_cholesky, dense_gram, fill_reducing_ordering};
+use super::solver::{FactorStats, Factorization};
 use super::{CholeskyFactorization, SolverError, SparseMatrix};
 
 /// The number of unknowns from which [`SubstructuredCholesky::try_new_if_worthwhile`]
@@ -496,6 +497,22 @@ fn lower_transpose_solve(l: &[f64], k: usize, x: &mut [f64]) {
         let col = &l[j * k..(j + 1) * k];
         let dot: f64 = (j + 1..k).map(|i| col[i] * x[i]).sum();
         x[j] = (x[j] - dot) / col[j];
+    }
+}
+
+impl Factorization for SubstructuredCholesky {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        SubstructuredCholesky::solve_in_place(self, x)
+    }
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        SubstructuredCholesky::refactor(self, a)
+    }
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.dim(),
+            factor_entries: Some(self.factor_entries()),
+            method: "sparse Cholesky by domain (the separator last)",
+        }
     }
 }
 

@@ -1,7 +1,8 @@
 //! Tests of the sparse solvers: LU and Cholesky factorisations (solve, refactor with the
-//! symbolic analysis reused, typed errors) and restarted GMRES against the direct solve.
+//! symbolic analysis reused, typed errors), restarted GMRES against the direct solve, and the
+//! solver interface (`SparseSolver`, `Factorization`) against the factorisations it wraps.
 
-use mortar_core::linalg::{
+use mortar_fem::linalg::{
     gmres, CholeskyFactorization, GmresOptions, IdentityPreconditioner, LinearOperator,
     LuFactorization, SaddlePointFactorization, SolverError, SparseMatrix, Triplets,
 };
@@ -403,4 +404,52 @@ fn saddle_point_ldlt_solves_a_floating_body_with_one_unknown_last() {
     for (p, q) in x.iter().zip(&lu) {
         assert!((p - q).abs() < 1e-10 * (1.0 + q.abs()), "{p} vs {q}");
     }
+}
+
+/// The solver interface of the faer backend gives the very numbers of the factorisation it
+/// wraps (LU for a general matrix, Cholesky for an SPD one), refactors as they do, reports
+/// their size and entries, and preconditions GMRES as a boxed factorisation.
+#[test]
+fn the_solver_interface_solves_as_the_factorisations_it_wraps() {
+    use mortar_fem::linalg::{Factorization, FaerSolver, MatrixKind, SparseSolver};
+    let solver: &dyn SparseSolver = &FaerSolver;
+    let general = convection_diffusion(12, 0.4, 1.0);
+    let spd = convection_diffusion(12, 0.0, 1.0);
+    let b = rhs(general.rows());
+
+    let mut lu = solver.factor(&general, MatrixKind::General).unwrap();
+    let direct = LuFactorization::try_new(&general)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    assert_eq!(lu.solve(&b).unwrap(), direct);
+    let stats = lu.stats();
+    assert_eq!((stats.dim, stats.factor_entries), (general.rows(), None));
+
+    let mut llt = solver
+        .factor(&spd, MatrixKind::SymmetricPositiveDefinite)
+        .unwrap();
+    let chol = CholeskyFactorization::try_new(&spd).unwrap();
+    let mut x = b.clone();
+    llt.solve_in_place(&mut x).unwrap();
+    assert_eq!(x, chol.solve(&b).unwrap());
+    assert_eq!(llt.stats().factor_entries, Some(chol.factor_entries()));
+
+    // Refactor with new values of the same pattern; another pattern is refused.
+    let scaled = convection_diffusion(12, 0.0, 0.25);
+    llt.refactor(&scaled).unwrap();
+    let mut again = CholeskyFactorization::try_new(&spd).unwrap();
+    again.refactor(&scaled).unwrap();
+    assert_eq!(llt.solve(&b).unwrap(), again.solve(&b).unwrap());
+    assert!(matches!(
+        lu.refactor(&convection_diffusion(11, 0.4, 1.0)),
+        Err(SolverError::PatternMismatch(_))
+    ));
+
+    // A boxed factorisation is a preconditioner: exact, GMRES converges at once.
+    let mut y = vec![0.0; b.len()];
+    let report = solver
+        .solve_preconditioned(&general, &lu, &b, &mut y, &GmresOptions::default())
+        .unwrap();
+    assert!(report.iterations <= 1 && residual(&general, &y, &b) < 1e-12);
 }

@@ -20,7 +20,7 @@ pub fn inf_norm(x: &[f64]) -> f64 {
 /// pressures the bound mixes units.
 ///
 /// ```
-/// use mortar_core::linalg::{well_conditioned, Triplets};
+/// use mortar_fem::linalg::{well_conditioned, Triplets};
 /// let mut t = Triplets::default();
 /// t.push(0, 0, 2.0);
 /// t.push(1, 1, 1e-20); // a round-off pivot
