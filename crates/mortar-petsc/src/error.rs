@@ -50,4 +50,20 @@ pub enum PetscError {
         /// The preconditioner that ran.
         pc_type: String,
     },
+    /// A direct solve (`preonly`) finished, but its solution misses the tolerance: the
+    /// matrix is singular or too ill-conditioned for the factorisation.
+    #[error(
+        "{ksp_type}+{pc_type} gave |b - Ax|/|b| = {relative_residual:.3e}, above the tolerance \
+         {tolerance:.1e}: the matrix is singular or too ill-conditioned"
+    )]
+    Inaccurate {
+        /// `|b - A x| / |b|` of the solution found.
+        relative_residual: f64,
+        /// The tolerance it missed (`rtol`).
+        tolerance: f64,
+        /// The Krylov method that ran.
+        ksp_type: String,
+        /// The preconditioner that ran.
+        pc_type: String,
+    },
 }

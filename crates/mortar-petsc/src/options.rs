@@ -111,6 +111,10 @@ pub struct SolveOptions {
     pub atol: f64,
     /// The most iterations.
     pub max_it: usize,
+    /// Unknowns per node, interleaved (1 for a scalar field, 2 or 3 for displacements):
+    /// the matrix's block size, which GAMG aggregates by. `near_null_space` sets it to its
+    /// `dim`.
+    pub block_size: usize,
     /// Rigid body modes for GAMG (and the matrix's block size, `dim`).
     pub near_null_space: Option<RigidBodyModes>,
     /// Further PETSc options, as on PETSc's command line (`-ksp_monitor -pc_gamg_threshold
@@ -128,6 +132,7 @@ impl Default for SolveOptions {
             rtol: 1e-8,
             atol: 1e-50,
             max_it: 10_000,
+            block_size: 1,
             near_null_space: None,
             petsc_options: String::new(),
         }
@@ -142,6 +147,13 @@ impl SolveOptions {
             preconditioner,
             ..Self::default()
         }
+    }
+
+    /// The matrix's block size: `near_null_space`'s `dim` if given, `block_size` otherwise.
+    pub fn effective_block_size(&self) -> usize {
+        self.near_null_space
+            .as_ref()
+            .map_or(self.block_size.max(1), |modes| modes.dim)
     }
 
     /// The options that complete the preconditioner's choice, then `petsc_options`: what

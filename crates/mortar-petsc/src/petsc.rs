@@ -16,7 +16,7 @@ use std::time::Instant;
 
 use crate::csr::CsrParts;
 use crate::error::PetscError;
-use crate::options::{Preconditioner, SolveOptions};
+use crate::options::{KrylovMethod, Preconditioner, SolveOptions};
 use crate::report::{ConvergedReason, SolveReport};
 
 /// The bindings bindgen made from PETSc's headers (see build.rs).
@@ -418,7 +418,7 @@ pub(crate) fn solve(
         let option_text = options.options_string();
         // Declared first, dropped last: every object below is destroyed while it is pushed.
         let _pushed = PushedOptions::push(&option_text)?;
-        let bs = options.near_null_space.as_ref().map_or(1, |r| r.dim);
+        let bs = options.effective_block_size();
         let mat = matrix(a, bs)?;
         if let Some(modes) = &options.near_null_space {
             let coords = Vector::from_slice(&modes.coordinates, modes.dim)?;
@@ -488,29 +488,44 @@ pub(crate) fn solve(
         // The KSP's PC after the options were read (an option may have replaced it).
         call!(KSPGetPC(ksp.0, &mut pc))?;
         call!(PCGetType(pc, &mut pc_type))?;
-        let report = SolveReport {
-            backend: version.to_owned(),
-            ksp_type: type_name(ksp_type),
-            pc_type: type_name(pc_type),
-            near_null_space: options.near_null_space.is_some(),
-            options: option_text.clone(),
-            iterations: usize::try_from(iterations).unwrap_or(0),
-            residual_norm,
-            reason: ConvergedReason::from_code(reason),
-            setup_seconds,
-            solve_seconds,
-        };
-        if !report.reason.is_converged() {
+        let (ksp_type, pc_type) = (type_name(ksp_type), type_name(pc_type));
+        let reason = ConvergedReason::from_code(reason);
+        let iterations = usize::try_from(iterations).unwrap_or(0);
+        if !reason.is_converged() {
             return Err(PetscError::NotConverged {
-                reason: report.reason,
-                iterations: report.iterations,
+                reason,
+                iterations,
                 residual_norm,
-                ksp_type: report.ksp_type,
-                pc_type: report.pc_type,
+                ksp_type,
+                pc_type,
             });
         }
         let mut solution = vec![0.0; b.len()];
         x.with_values(|v| solution.copy_from_slice(v))?;
+        let relative_residual = a.relative_residual(&solution, b);
+        // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
+        // with a meaningless solution, which only the residual shows.
+        if options.method == KrylovMethod::PreOnly && !(relative_residual <= options.rtol) {
+            return Err(PetscError::Inaccurate {
+                relative_residual,
+                tolerance: options.rtol,
+                ksp_type,
+                pc_type,
+            });
+        }
+        let report = SolveReport {
+            backend: version.to_owned(),
+            ksp_type,
+            pc_type,
+            near_null_space: options.near_null_space.is_some(),
+            options: option_text,
+            iterations,
+            residual_norm,
+            reason,
+            relative_residual,
+            setup_seconds,
+            solve_seconds,
+        };
         Ok((solution, report))
     })
 }

@@ -108,6 +108,9 @@ pub struct SolveReport {
     pub residual_norm: f64,
     /// Why PETSc stopped.
     pub reason: ConvergedReason,
+    /// `|b - A x| / |b|` of the returned solution, measured after the solve (PETSc's own
+    /// norm is the preconditioned one for CG and GMRES, and none for `preonly`).
+    pub relative_residual: f64,
     /// Seconds to build the preconditioner (`KSPSetUp`: AMG hierarchy, factorisation).
     pub setup_seconds: f64,
     /// Seconds of the Krylov iterations (`KSPSolve`).
@@ -119,13 +122,15 @@ impl fmt::Display for SolveReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} {}+{}{}: {} iterations, residual {:.2e}, {} (setup {:.3} s, solve {:.3} s)",
+            "{} {}+{}{}: {} iterations, residual {:.2e} (|b - Ax|/|b| {:.1e}), {} (setup {:.3} s, \
+             solve {:.3} s)",
             self.backend,
             self.ksp_type,
             self.pc_type,
             if self.near_null_space { " (rigid body modes)" } else { "" },
             self.iterations,
             self.residual_norm,
+            self.relative_residual,
             self.reason,
             self.setup_seconds,
             self.solve_seconds
