@@ -186,11 +186,13 @@ mod tests {
         let err = solver.solve(&identity(3), &[1.0, 2.0]).unwrap_err();
         assert!(matches!(err, PetscError::InvalidInput(_)), "{err}");
 
-        let mut options = SolveOptions::default();
-        options.near_null_space = Some(RigidBodyModes {
-            dim: 2,
-            coordinates: vec![0.0; 4],
-        });
+        let options = SolveOptions {
+            near_null_space: Some(RigidBodyModes {
+                dim: 2,
+                coordinates: vec![0.0; 4],
+            }),
+            ..SolveOptions::default()
+        };
         let err = PetscSolver::new(options).solve(&identity(3), &[0.0; 3]);
         assert!(matches!(err, Err(PetscError::InvalidInput(_))));
 

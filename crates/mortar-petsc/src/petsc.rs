@@ -101,7 +101,9 @@ fn generic_message(code: PetscErrorCode) -> String {
         format!("PETSc error {code}")
     } else {
         // SAFETY: a NUL-terminated static string of PETSc's.
-        unsafe { CStr::from_ptr(text) }.to_string_lossy().into_owned()
+        unsafe { CStr::from_ptr(text) }
+            .to_string_lossy()
+            .into_owned()
     }
 }
 
@@ -302,7 +304,11 @@ impl Vector {
     /// A sequential vector with the values of `values` (block size `bs`).
     fn from_slice(values: &[f64], bs: usize) -> Result<Self, PetscError> {
         let mut v = Vector(ptr::null_mut());
-        call!(VecCreateSeq(comm_self(), petsc_int(values.len())?, &mut v.0))?;
+        call!(VecCreateSeq(
+            comm_self(),
+            petsc_int(values.len())?,
+            &mut v.0
+        ))?;
         if bs > 1 {
             call!(VecSetBlockSize(v.0, petsc_int(bs)?))?;
         }
@@ -505,7 +511,9 @@ pub(crate) fn solve(
         let relative_residual = a.relative_residual(&solution, b);
         // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
         // with a meaningless solution, which only the residual shows.
-        if options.method == KrylovMethod::PreOnly && !(relative_residual <= options.rtol) {
+        if options.method == KrylovMethod::PreOnly
+            && (relative_residual.is_nan() || relative_residual > options.rtol)
+        {
             return Err(PetscError::Inaccurate {
                 relative_residual,
                 tolerance: options.rtol,

@@ -62,7 +62,11 @@ impl ConvergedReason {
     pub fn is_converged(self) -> bool {
         matches!(
             self,
-            Self::Rtol | Self::Atol | Self::Iterations | Self::HappyBreakdown | Self::OtherConverged(_)
+            Self::Rtol
+                | Self::Atol
+                | Self::Iterations
+                | Self::HappyBreakdown
+                | Self::OtherConverged(_)
         )
     }
 }
@@ -127,7 +131,11 @@ impl fmt::Display for SolveReport {
             self.backend,
             self.ksp_type,
             self.pc_type,
-            if self.near_null_space { " (rigid body modes)" } else { "" },
+            if self.near_null_space {
+                " (rigid body modes)"
+            } else {
+                ""
+            },
             self.iterations,
             self.residual_norm,
             self.relative_residual,

@@ -38,7 +38,11 @@ fn iterations(m: usize) -> [usize; 3] {
             Hint::Nothing => {}
         }
         let solved = PetscSolver::new(options).solve(&a, &b).unwrap();
-        println!("elasticity {m}x{m} ({} unknowns), {hint:?}: {}", a.rows(), solved.report);
+        println!(
+            "elasticity {m}x{m} ({} unknowns), {hint:?}: {}",
+            a.rows(),
+            solved.report
+        );
         if let Some(reference) = &reference {
             let err = relative_error(&solved.x, reference);
             assert!(err < 1e-5, "error {err:.2e}");
@@ -51,7 +55,9 @@ fn iterations(m: usize) -> [usize; 3] {
 fn rigid_body_modes_help_gamg_on_elasticity() {
     let sizes = [16, 32, 64];
     let its: Vec<[usize; 3]> = sizes.iter().map(|&m| iterations(m)).collect();
-    println!("CG+GAMG iterations at m = {sizes:?} (rigid body modes, block size 2, nothing): {its:?}");
+    println!(
+        "CG+GAMG iterations at m = {sizes:?} (rigid body modes, block size 2, nothing): {its:?}"
+    );
     let [modes, block, nothing] = its[2];
     assert!(modes < block && modes < nothing, "{its:?}");
     assert!(modes as f64 <= 1.5 * its[0][0] as f64 + 2.0, "{its:?}");

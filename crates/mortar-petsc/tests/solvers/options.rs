@@ -21,7 +21,13 @@ fn petsc_options_override_the_typed_ones_for_one_solve() {
     let solved = PetscSolver::new(SolveOptions::new(KrylovMethod::Cg, Preconditioner::Gamg))
         .solve(&a, &b)
         .unwrap();
-    assert_eq!((solved.report.ksp_type.as_str(), solved.report.pc_type.as_str()), ("cg", "gamg"));
+    assert_eq!(
+        (
+            solved.report.ksp_type.as_str(),
+            solved.report.pc_type.as_str()
+        ),
+        ("cg", "gamg")
+    );
 }
 
 #[test]
@@ -32,7 +38,11 @@ fn a_petsc_tolerance_option_changes_the_iterations() {
         let mut options = SolveOptions::new(KrylovMethod::Cg, Preconditioner::Jacobi);
         options.rtol = 1e-10;
         options.petsc_options = extra.into();
-        PetscSolver::new(options).solve(&a, &b).unwrap().report.iterations
+        PetscSolver::new(options)
+            .solve(&a, &b)
+            .unwrap()
+            .report
+            .iterations
     };
     let (tight, loose) = (run(""), run("-ksp_rtol 1e-3"));
     assert!(loose < tight, "{loose} vs {tight}");
@@ -41,12 +51,16 @@ fn a_petsc_tolerance_option_changes_the_iterations() {
 #[test]
 fn an_unknown_type_is_petscs_typed_error() {
     let a = poisson_2d(4);
-    let mut options = SolveOptions::default();
-    options.petsc_options = "-ksp_type no_such_method".into();
+    let options = SolveOptions {
+        petsc_options: "-ksp_type no_such_method".into(),
+        ..SolveOptions::default()
+    };
     let err = PetscSolver::new(options).solve(&a, &rhs(16)).unwrap_err();
     println!("{err}");
     match &err {
-        PetscError::Call { function, message, .. } => {
+        PetscError::Call {
+            function, message, ..
+        } => {
             assert_eq!(*function, "KSPSetFromOptions");
             assert!(message.contains("no_such_method"), "{message}");
         }

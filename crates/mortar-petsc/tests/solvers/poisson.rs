@@ -35,15 +35,21 @@ fn iterative_and_mumps_solves_match_a_direct_solve() {
 #[test]
 fn the_report_names_what_ran() {
     let a = poisson_2d(8);
-    let solved = PetscSolver::new(SolveOptions::new(KrylovMethod::Cg, Preconditioner::BoomerAmg))
-        .solve(&a, &rhs(64))
-        .unwrap();
+    let solved = PetscSolver::new(SolveOptions::new(
+        KrylovMethod::Cg,
+        Preconditioner::BoomerAmg,
+    ))
+    .solve(&a, &rhs(64))
+    .unwrap();
     let r = &solved.report;
     assert!(r.backend.starts_with("PETSc 3."), "{}", r.backend);
     assert_eq!((r.ksp_type.as_str(), r.pc_type.as_str()), ("cg", "hypre"));
     assert_eq!(r.options, "-pc_hypre_type boomeramg");
     assert!(r.iterations > 0 && r.residual_norm > 0.0);
-    assert!(matches!(r.reason, ConvergedReason::Rtol | ConvergedReason::Atol));
+    assert!(matches!(
+        r.reason,
+        ConvergedReason::Rtol | ConvergedReason::Atol
+    ));
 }
 
 /// CG iterations at m = 32, 64, 128 (1 024 to 16 384 unknowns) with each preconditioner.
@@ -66,7 +72,9 @@ fn amg_iterations_grow_slowly_with_the_size() {
     let jacobi = iterations(Preconditioner::Jacobi);
     let gamg = iterations(Preconditioner::Gamg);
     let boomer = iterations(Preconditioner::BoomerAmg);
-    println!("CG iterations at m = 32, 64, 128: jacobi {jacobi:?}, gamg {gamg:?}, boomeramg {boomer:?}");
+    println!(
+        "CG iterations at m = 32, 64, 128: jacobi {jacobi:?}, gamg {gamg:?}, boomeramg {boomer:?}"
+    );
     // Jacobi: about doubling per halving of h.
     assert!(jacobi[2] as f64 > 3.0 * jacobi[0] as f64, "{jacobi:?}");
     for its in [&gamg, &boomer] {
