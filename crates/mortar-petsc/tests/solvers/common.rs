@@ -147,3 +147,49 @@ pub fn tied_poisson(m: usize) -> (SparseMatrix, usize) {
     }
     (t.to_csr(), n)
 }
+
+/// The vector Laplacian (3 uncoupled components, each the 7-point Laplacian) on the `m^3`
+/// interior nodes of the unit cube, unknowns node by node with the components interleaved,
+/// and the nodes' coordinates (x, y, z per node): an SPD system with block size 3 whose
+/// near null space contains the rigid body modes' translations.
+pub fn vector_laplacian_3d(m: usize) -> (SparseMatrix, Vec<f64>) {
+    let nodes = m * m * m;
+    let id = |i: usize, j: usize, k: usize| (i * m + j) * m + k;
+    let mut t = TriMat::new((3 * nodes, 3 * nodes));
+    let mut coords = Vec::with_capacity(3 * nodes);
+    let h = 1.0 / (m + 1) as f64;
+    for i in 0..m {
+        for j in 0..m {
+            for k in 0..m {
+                let r = id(i, j, k);
+                coords.extend([(i + 1) as f64 * h, (j + 1) as f64 * h, (k + 1) as f64 * h]);
+                let mut neighbours = Vec::new();
+                if i > 0 {
+                    neighbours.push(id(i - 1, j, k));
+                }
+                if i + 1 < m {
+                    neighbours.push(id(i + 1, j, k));
+                }
+                if j > 0 {
+                    neighbours.push(id(i, j - 1, k));
+                }
+                if j + 1 < m {
+                    neighbours.push(id(i, j + 1, k));
+                }
+                if k > 0 {
+                    neighbours.push(id(i, j, k - 1));
+                }
+                if k + 1 < m {
+                    neighbours.push(id(i, j, k + 1));
+                }
+                for c in 0..3 {
+                    t.add_triplet(3 * r + c, 3 * r + c, 6.0);
+                    for &q in &neighbours {
+                        t.add_triplet(3 * r + c, 3 * q + c, -1.0);
+                    }
+                }
+            }
+        }
+    }
+    (t.to_csr(), coords)
+}

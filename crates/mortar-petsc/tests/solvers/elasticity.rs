@@ -6,7 +6,7 @@
 use mortar_core::linalg::solve_sparse_lu;
 use mortar_petsc::{KrylovMethod, PetscSolver, Preconditioner, RigidBodyModes, SolveOptions};
 
-use super::common::{elasticity_2d, relative_error, rhs};
+use super::common::{elasticity_2d, relative_error, rhs, vector_laplacian_3d};
 
 /// How GAMG sees the unknowns.
 #[derive(Clone, Copy, Debug)]
@@ -61,4 +61,21 @@ fn rigid_body_modes_help_gamg_on_elasticity() {
     let [modes, block, nothing] = its[2];
     assert!(modes < block && modes < nothing, "{its:?}");
     assert!(modes as f64 <= 1.5 * its[0][0] as f64 + 2.0, "{its:?}");
+}
+
+#[test]
+fn three_dimensional_rigid_body_modes_reach_gamg() {
+    let (a, coords) = vector_laplacian_3d(10);
+    let b = rhs(a.rows());
+    let reference = solve_sparse_lu(&a, &b).unwrap();
+    let mut options = SolveOptions::new(KrylovMethod::Cg, Preconditioner::Gamg);
+    options.rtol = 1e-10;
+    options.near_null_space = Some(RigidBodyModes {
+        dim: 3,
+        coordinates: coords,
+    });
+    let solved = PetscSolver::new(options).solve(&a, &b).unwrap();
+    println!("vector laplacian 10^3 x 3: {}", solved.report);
+    assert!(solved.report.near_null_space);
+    assert!(relative_error(&solved.x, &reference) < 1e-7);
 }
