@@ -10,9 +10,8 @@
 //! PETSc starts at the first solve of the process (MPI with it, on one process, unless the
 //! program started MPI itself) and stays up; [`finalize`] stops it for good. Solves from
 //! several threads run one at a time. Each solve's options (the typed ones, then the
-//! free-form [`SolveOptions::petsc_options`]) are PETSc's options database for that solve
-//! only; the options of PETSc's environment (`PETSC_OPTIONS`) are read once, at the start,
-//! and stay beneath.
+//! `PETSC_OPTIONS` environment variable, then the free-form [`SolveOptions::petsc_options`],
+//! a later one overriding an earlier one) are PETSc's options database for that solve only.
 //!
 //! ```no_run
 //! use mortar_core::linalg::SparseMatrix;
@@ -146,6 +145,10 @@ fn check_input(a: &SparseMatrix, b: &[f64], options: &SolveOptions) -> Result<()
             "the right-hand side has {} entries for {nrows} unknowns",
             b.len()
         ));
+    }
+    let bs = options.effective_block_size();
+    if nrows % bs != 0 {
+        return invalid(format!("{nrows} unknowns are not blocks of {bs}"));
     }
     if let Some(modes) = &options.near_null_space {
         if !(modes.dim == 2 || modes.dim == 3) {

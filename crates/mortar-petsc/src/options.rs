@@ -156,10 +156,17 @@ impl SolveOptions {
             .map_or(self.block_size.max(1), |modes| modes.dim)
     }
 
-    /// The options that complete the preconditioner's choice, then `petsc_options`: what
-    /// PETSc's options database holds during the solve. The method, the preconditioner's type
-    /// and the tolerances are set through PETSc's functions before it reads these.
+    /// The options that complete the preconditioner's choice, then `petsc_options`. The
+    /// method, the preconditioner's type and the tolerances are set through PETSc's
+    /// functions before it reads these.
     pub fn options_string(&self) -> String {
+        self.options_string_with_environment(None)
+    }
+
+    /// What PETSc's options database holds during a solve: the options that complete the
+    /// preconditioner's choice, then `environment` (the `PETSC_OPTIONS` variable, read at
+    /// each solve), then `petsc_options`; a later option overrides an earlier one.
+    pub fn options_string_with_environment(&self, environment: Option<&str>) -> String {
         let mut s = String::new();
         match &self.preconditioner {
             Preconditioner::BoomerAmg => s.push_str("-pc_hypre_type boomeramg"),
@@ -180,12 +187,14 @@ impl SolveOptions {
             }
             Preconditioner::Gamg | Preconditioner::Jacobi => {}
         }
-        let extra = self.petsc_options.trim();
-        if !extra.is_empty() {
-            if !s.is_empty() {
-                s.push(' ');
+        for extra in [environment.unwrap_or(""), &self.petsc_options] {
+            let extra = extra.trim();
+            if !extra.is_empty() {
+                if !s.is_empty() {
+                    s.push(' ');
+                }
+                s.push_str(extra);
             }
-            s.push_str(extra);
         }
         s
     }
@@ -204,6 +213,10 @@ mod tests {
             "-pc_factor_mat_solver_type mumps -pc_factor_mat_solver_type superlu"
         );
         assert_eq!(SolveOptions::default().options_string(), "");
+        assert_eq!(
+            o.options_string_with_environment(Some("-ksp_monitor")),
+            "-pc_factor_mat_solver_type mumps -ksp_monitor -pc_factor_mat_solver_type superlu"
+        );
     }
 
     #[test]

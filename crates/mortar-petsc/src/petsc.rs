@@ -204,6 +204,9 @@ fn start() -> Result<(String, bool), (i32, String)> {
 
 /// Runs `f` with PETSc started (at the first call in the process) and locked; `f` gets
 /// PETSc's version.
+///
+/// The options database PETSc read at its start (`PETSC_OPTIONS`, `~/.petscrc`) is hidden
+/// while a solve's own is pushed; `solve` reads `PETSC_OPTIONS` again into each solve's.
 fn with_petsc<T>(f: impl FnOnce(&str) -> Result<T, PetscError>) -> Result<T, PetscError> {
     let mut state = lock_state();
     if let State::Uninitialized = *state {
@@ -215,6 +218,8 @@ fn with_petsc<T>(f: impl FnOnce(&str) -> Result<T, PetscError>) -> Result<T, Pet
     match &*state {
         State::Ready { version, .. } => {
             let version = version.clone();
+            // A message left by an error PETSc handled itself must not name a later one.
+            *LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner()) = None;
             f(&version)
         }
         State::Failed { code, message } => Err(PetscError::Initialize {
@@ -421,7 +426,8 @@ pub(crate) fn solve(
     options: &SolveOptions,
 ) -> Result<(Vec<f64>, SolveReport), PetscError> {
     with_petsc(|version| {
-        let option_text = options.options_string();
+        let environment = std::env::var("PETSC_OPTIONS").ok();
+        let option_text = options.options_string_with_environment(environment.as_deref());
         // Declared first, dropped last: every object below is destroyed while it is pushed.
         let _pushed = PushedOptions::push(&option_text)?;
         let bs = options.effective_block_size();
