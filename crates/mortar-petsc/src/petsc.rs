@@ -256,8 +256,6 @@ pub(crate) fn finalize() -> Result<(), PetscError> {
                 });
             }
         }
-    } else if let State::Uninitialized = *state {
-        *state = State::Finalized;
     }
     Ok(())
 }
@@ -321,7 +319,7 @@ impl Vector {
         Ok(v)
     }
 
-    /// Runs `f` on the vector's values, `len` of them.
+    /// Runs `f` on all the vector's values.
     fn with_values(&mut self, f: impl FnOnce(&mut [f64])) -> Result<(), PetscError> {
         let mut data: *mut f64 = ptr::null_mut();
         let mut n: PetscInt = 0;
