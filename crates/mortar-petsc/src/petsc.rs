@@ -1,0 +1,543 @@
+//! The one module that calls PETSc: its bindings, its start (once per process), its objects
+//! owned and destroyed in Rust, and every call's error code turned into a [`PetscError`].
+//!
+//! PETSc is not thread-safe: every use holds the lock on [`STATE`], so solves from several
+//! threads run one after another. MPI is started with `MPI_THREAD_SERIALIZED` (any thread,
+//! one at a time) unless the program started it itself. PETSc's signal handler is switched
+//! off (`-no_signal_handler`), so that Rust's own (stack overflow) stays in place, and its
+//! error handler records the innermost message for the typed error instead of printing a
+//! traceback.
+#![allow(unsafe_code)]
+
+use std::ffi::{c_char, c_int, c_void, CStr, CString};
+use std::ptr;
+use std::sync::{Mutex, MutexGuard};
+use std::time::Instant;
+
+use crate::csr::CsrParts;
+use crate::error::PetscError;
+use crate::options::{KrylovMethod, Preconditioner, SolveOptions};
+use crate::report::{ConvergedReason, SolveReport};
+
+/// The bindings bindgen made from PETSc's headers (see build.rs).
+#[allow(
+    non_upper_case_globals,
+    non_camel_case_types,
+    non_snake_case,
+    dead_code,
+    missing_docs,
+    clippy::all
+)]
+mod sys {
+    include!(concat!(env!("OUT_DIR"), "/petsc_bindings.rs"));
+}
+
+use sys::{PetscErrorCode, PetscInt};
+
+/// Where PETSc is in this process.
+enum State {
+    /// Not started.
+    Uninitialized,
+    /// Started; `version` as PETSc names itself, `began_mpi` if we started MPI too.
+    Ready { version: String, began_mpi: bool },
+    /// Could not start; every later use gets the same error.
+    Failed { code: i32, message: String },
+    /// Finalised: it cannot start again.
+    Finalized,
+}
+
+/// PETSc's state, locked for every use of PETSc.
+static STATE: Mutex<State> = Mutex::new(State::Uninitialized);
+
+/// The innermost message of the last PETSc error, written by [`record_error`].
+static LAST_ERROR: Mutex<Option<String>> = Mutex::new(None);
+
+/// PETSc's state, locked (a panic elsewhere while it was held leaves PETSc's own state
+/// sound: every object is destroyed by its owner's `Drop`).
+fn lock_state() -> MutexGuard<'static, State> {
+    STATE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// PETSc's error handler: records the message of an error where it arises (the first of its
+/// calls for that error), and returns the code so that the caller sees it.
+unsafe extern "C" fn record_error(
+    _comm: sys::MPI_Comm,
+    _line: c_int,
+    func: *const c_char,
+    _file: *const c_char,
+    code: PetscErrorCode,
+    kind: sys::PetscErrorType,
+    message: *const c_char,
+    _ctx: *mut c_void,
+) -> PetscErrorCode {
+    if kind == sys::PetscErrorType_PETSC_ERROR_INITIAL {
+        // SAFETY: PETSc passes NUL-terminated strings or null.
+        let text = |p: *const c_char| {
+            if p.is_null() {
+                String::new()
+            } else {
+                unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
+            }
+        };
+        let (message, func) = (text(message), text(func));
+        let full = match (message.trim().is_empty(), func.is_empty()) {
+            (true, _) => generic_message(code),
+            (false, true) => message.trim().to_owned(),
+            (false, false) => format!("{} (in {func})", message.trim()),
+        };
+        if let Ok(mut last) = LAST_ERROR.try_lock() {
+            *last = Some(full);
+        }
+    }
+    code
+}
+
+/// PETSc's generic text for an error code.
+fn generic_message(code: PetscErrorCode) -> String {
+    let mut text: *const c_char = ptr::null();
+    // SAFETY: PetscErrorMessage writes a pointer to a static string (or null) into `text`.
+    let rc = unsafe { sys::PetscErrorMessage(code, &mut text, ptr::null_mut()) };
+    if rc != 0 || text.is_null() {
+        format!("PETSc error {code}")
+    } else {
+        // SAFETY: a NUL-terminated static string of PETSc's.
+        unsafe { CStr::from_ptr(text) }
+            .to_string_lossy()
+            .into_owned()
+    }
+}
+
+/// `Ok` for PETSc's success code, the typed error with PETSc's message otherwise.
+fn check(code: PetscErrorCode, function: &'static str) -> Result<(), PetscError> {
+    if code == 0 {
+        return Ok(());
+    }
+    let recorded = LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner()).take();
+    Err(PetscError::Call {
+        function,
+        code,
+        message: recorded.unwrap_or_else(|| generic_message(code)),
+    })
+}
+
+/// Calls the PETSc function `f` (a name in [`sys`]) and checks its error code, naming `f`.
+macro_rules! call {
+    ($f:ident ( $($arg:expr),* $(,)? )) => {{
+        // SAFETY: the arguments are live PETSc objects owned by this module's wrappers, or
+        // pointers to Rust values and buffers that outlive the call, of the lengths the
+        // function reads; PETSc is started and the state lock is held (`with_petsc`).
+        let code = unsafe { sys::$f($($arg),*) };
+        check(code, stringify!($f))
+    }};
+}
+
+/// The self communicator (one process): every object here is sequential.
+fn comm_self() -> sys::MPI_Comm {
+    // SAFETY: returns a constant of the MPI library's.
+    unsafe { sys::mortar_petsc_comm_self() }
+}
+
+/// Starts MPI (unless the program did) and PETSc, and returns PETSc's version.
+fn start() -> Result<(String, bool), (i32, String)> {
+    let mut mpi_started: c_int = 0;
+    // SAFETY: MPI_Initialized may be called at any time and writes a flag.
+    unsafe { sys::MPI_Initialized(&mut mpi_started) };
+    let mut began_mpi = false;
+    if mpi_started == 0 {
+        let mut finalized: c_int = 0;
+        // SAFETY: as MPI_Initialized.
+        unsafe { sys::MPI_Finalized(&mut finalized) };
+        if finalized != 0 {
+            return Err((-1, "MPI was finalised in this process".into()));
+        }
+        let mut provided: c_int = 0;
+        // SAFETY: MPI allows null argc and argv; MPI is not started (checked above).
+        let rc = unsafe {
+            sys::MPI_Init_thread(
+                ptr::null_mut(),
+                ptr::null_mut(),
+                sys::mortar_petsc_thread_serialized(),
+                &mut provided,
+            )
+        };
+        if rc != 0 {
+            return Err((rc, "MPI_Init_thread failed".into()));
+        }
+        began_mpi = true;
+    }
+    // PETSc keeps argv for the life of the process: leaked on purpose, once.
+    let args: Vec<*mut c_char> = ["mortar", "-no_signal_handler"]
+        .iter()
+        .map(|a| CString::new(*a).expect("no NUL").into_raw())
+        .chain(std::iter::once(ptr::null_mut()))
+        .collect();
+    let argv: &'static mut [*mut c_char] = Box::leak(args.into_boxed_slice());
+    let mut argc: c_int = (argv.len() - 1) as c_int;
+    let mut argv_ptr: *mut *mut c_char = argv.as_mut_ptr();
+    // SAFETY: argc and argv describe NUL-terminated strings, null-terminated, alive for the
+    // process; no options file, no help text.
+    let rc = unsafe { sys::PetscInitialize(&mut argc, &mut argv_ptr, ptr::null(), ptr::null()) };
+    if rc != 0 {
+        return Err((rc, "PetscInitialize failed".into()));
+    }
+    // SAFETY: `record_error` has the handler's signature and needs no context.
+    let rc = unsafe { sys::PetscPushErrorHandler(Some(record_error), ptr::null_mut()) };
+    if rc != 0 {
+        return Err((rc, "PetscPushErrorHandler failed".into()));
+    }
+    let mut buf = [0 as c_char; 256];
+    // SAFETY: writes a NUL-terminated string of at most `buf.len()` bytes.
+    let rc = unsafe { sys::PetscGetVersion(buf.as_mut_ptr(), buf.len()) };
+    let version = if rc == 0 {
+        // SAFETY: NUL-terminated within `buf`.
+        let v = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy();
+        // "Petsc Release Version 3.18.5, Mar 04, 2023 " -> "PETSc 3.18.5"
+        v.split(',')
+            .next()
+            .and_then(|s| s.rsplit(' ').next())
+            .map_or_else(|| v.trim().to_owned(), |n| format!("PETSc {n}"))
+    } else {
+        "PETSc".to_owned()
+    };
+    Ok((version, began_mpi))
+}
+
+/// Runs `f` with PETSc started (at the first call in the process) and locked; `f` gets
+/// PETSc's version.
+///
+/// The options database PETSc read at its start (`PETSC_OPTIONS`, `~/.petscrc`) is hidden
+/// while a solve's own is pushed; `solve` reads `PETSC_OPTIONS` again into each solve's.
+fn with_petsc<T>(f: impl FnOnce(&str) -> Result<T, PetscError>) -> Result<T, PetscError> {
+    let mut state = lock_state();
+    if let State::Uninitialized = *state {
+        *state = match start() {
+            Ok((version, began_mpi)) => State::Ready { version, began_mpi },
+            Err((code, message)) => State::Failed { code, message },
+        };
+    }
+    match &*state {
+        State::Ready { version, .. } => {
+            let version = version.clone();
+            // A message left by an error PETSc handled itself must not name a later one.
+            *LAST_ERROR.lock().unwrap_or_else(|e| e.into_inner()) = None;
+            f(&version)
+        }
+        State::Failed { code, message } => Err(PetscError::Initialize {
+            code: *code,
+            message: message.clone(),
+        }),
+        State::Finalized => Err(PetscError::Finalized),
+        State::Uninitialized => unreachable!("started above"),
+    }
+}
+
+/// Whether PETSc can start in this process (starting it if not yet started).
+pub(crate) fn ensure_started() -> Result<String, PetscError> {
+    with_petsc(|version| Ok(version.to_owned()))
+}
+
+/// Finalises PETSc (and MPI, if we started it); later solves answer
+/// [`PetscError::Finalized`]. Nothing to do if PETSc never started or is finalised.
+pub(crate) fn finalize() -> Result<(), PetscError> {
+    let mut state = lock_state();
+    if let State::Ready { began_mpi, .. } = *state {
+        *state = State::Finalized;
+        // SAFETY: PETSc is started; every object of ours is destroyed (each solve destroys
+        // its own before it releases the lock).
+        check(unsafe { sys::PetscFinalize() }, "PetscFinalize")?;
+        if began_mpi {
+            // SAFETY: we started MPI, and PETSc, its only user here, has finished.
+            let rc = unsafe { sys::MPI_Finalize() };
+            if rc != 0 {
+                return Err(PetscError::Call {
+                    function: "MPI_Finalize",
+                    code: rc,
+                    message: "MPI_Finalize failed".into(),
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// `n` as PETSc's index type, or the error that it does not fit.
+fn petsc_int(n: usize) -> Result<PetscInt, PetscError> {
+    PetscInt::try_from(n).map_err(|_| {
+        PetscError::InvalidInput(format!(
+            "{n} does not fit PETSc's {}-bit indices",
+            8 * std::mem::size_of::<PetscInt>()
+        ))
+    })
+}
+
+/// `v` as PETSc's index type, each entry checked.
+fn petsc_ints(v: &[usize]) -> Result<Vec<PetscInt>, PetscError> {
+    v.iter().map(|&i| petsc_int(i)).collect()
+}
+
+/// A PETSc string (type name) as Rust's.
+fn type_name(p: *const c_char) -> String {
+    if p.is_null() {
+        String::new()
+    } else {
+        // SAFETY: PETSc's type names are NUL-terminated strings it owns.
+        unsafe { CStr::from_ptr(p) }.to_string_lossy().into_owned()
+    }
+}
+
+/// A PETSc `Mat`, destroyed on drop.
+struct Mat(sys::Mat);
+impl Drop for Mat {
+    fn drop(&mut self) {
+        // SAFETY: `self.0` is a live matrix of ours or null, which MatDestroy accepts.
+        unsafe { sys::MatDestroy(&mut self.0) };
+    }
+}
+
+/// A PETSc `Vec`, destroyed on drop.
+struct Vector(sys::Vec);
+impl Drop for Vector {
+    fn drop(&mut self) {
+        // SAFETY: as for `Mat`.
+        unsafe { sys::VecDestroy(&mut self.0) };
+    }
+}
+
+impl Vector {
+    /// A sequential vector with the values of `values` (block size `bs`).
+    fn from_slice(values: &[f64], bs: usize) -> Result<Self, PetscError> {
+        let mut v = Vector(ptr::null_mut());
+        call!(VecCreateSeq(
+            comm_self(),
+            petsc_int(values.len())?,
+            &mut v.0
+        ))?;
+        if bs > 1 {
+            call!(VecSetBlockSize(v.0, petsc_int(bs)?))?;
+        }
+        v.with_values(|x| x.copy_from_slice(values))?;
+        Ok(v)
+    }
+
+    /// Runs `f` on all the vector's values.
+    fn with_values(&mut self, f: impl FnOnce(&mut [f64])) -> Result<(), PetscError> {
+        let mut data: *mut f64 = ptr::null_mut();
+        let mut n: PetscInt = 0;
+        call!(VecGetLocalSize(self.0, &mut n))?;
+        call!(VecGetArray(self.0, &mut data))?;
+        if n > 0 {
+            // SAFETY: VecGetArray gives the vector's `n` contiguous values, ours until
+            // VecRestoreArray.
+            f(unsafe { std::slice::from_raw_parts_mut(data, n as usize) });
+        }
+        call!(VecRestoreArray(self.0, &mut data))
+    }
+}
+
+/// A PETSc `IS` (index set), destroyed on drop.
+struct IndexSet(sys::IS);
+impl Drop for IndexSet {
+    fn drop(&mut self) {
+        // SAFETY: as for `Mat`.
+        unsafe { sys::ISDestroy(&mut self.0) };
+    }
+}
+
+/// A PETSc `MatNullSpace`, destroyed on drop.
+struct NullSpace(sys::MatNullSpace);
+impl Drop for NullSpace {
+    fn drop(&mut self) {
+        // SAFETY: as for `Mat`.
+        unsafe { sys::MatNullSpaceDestroy(&mut self.0) };
+    }
+}
+
+/// A PETSc `KSP`, destroyed on drop.
+struct Ksp(sys::KSP);
+impl Drop for Ksp {
+    fn drop(&mut self) {
+        // SAFETY: as for `Mat`.
+        unsafe { sys::KSPDestroy(&mut self.0) };
+    }
+}
+
+/// An options database pushed as PETSc's default for the life of this value, then popped
+/// and destroyed: a solve's options do not leak into the next.
+struct PushedOptions(sys::PetscOptions);
+impl PushedOptions {
+    fn push(options: &str) -> Result<Self, PetscError> {
+        let text = CString::new(options)
+            .map_err(|_| PetscError::InvalidInput("PETSc options contain a NUL byte".into()))?;
+        let mut o: sys::PetscOptions = ptr::null_mut();
+        call!(PetscOptionsCreate(&mut o))?;
+        if let Err(e) = call!(PetscOptionsInsertString(o, text.as_ptr())) {
+            // SAFETY: `o` is ours and not pushed.
+            unsafe { sys::PetscOptionsDestroy(&mut o) };
+            return Err(e);
+        }
+        if let Err(e) = call!(PetscOptionsPush(o)) {
+            // SAFETY: as above.
+            unsafe { sys::PetscOptionsDestroy(&mut o) };
+            return Err(e);
+        }
+        Ok(Self(o))
+    }
+}
+impl Drop for PushedOptions {
+    fn drop(&mut self) {
+        // SAFETY: `self.0` is the database on top of PETSc's stack (pushed by `push`, every
+        // later push popped by its own drop first).
+        unsafe {
+            sys::PetscOptionsPop();
+            sys::PetscOptionsDestroy(&mut self.0);
+        }
+    }
+}
+
+/// The matrix of `a` (sequential AIJ, block size `bs`).
+fn matrix(a: &CsrParts<'_>, bs: usize) -> Result<Mat, PetscError> {
+    let n = petsc_int(a.nrows)?;
+    let m = petsc_int(a.ncols)?;
+    let indptr = petsc_ints(&a.indptr)?;
+    let indices = petsc_ints(&a.indices)?;
+    let mut mat = Mat(ptr::null_mut());
+    call!(MatCreate(comm_self(), &mut mat.0))?;
+    call!(MatSetSizes(mat.0, n, m, n, m))?;
+    call!(MatSetType(mat.0, c"seqaij".as_ptr()))?;
+    if bs > 1 {
+        call!(MatSetBlockSize(mat.0, petsc_int(bs)?))?;
+    }
+    // Copies the arrays into PETSc's storage and assembles the matrix.
+    call!(MatSeqAIJSetPreallocationCSR(
+        mat.0,
+        indptr.as_ptr(),
+        indices.as_ptr(),
+        a.data.as_ptr()
+    ))?;
+    Ok(mat)
+}
+
+/// Solves `a x = b` with `options`; the caller checked the sizes.
+pub(crate) fn solve(
+    a: &CsrParts<'_>,
+    b: &[f64],
+    options: &SolveOptions,
+) -> Result<(Vec<f64>, SolveReport), PetscError> {
+    with_petsc(|version| {
+        let environment = std::env::var("PETSC_OPTIONS").ok();
+        let option_text = options.options_string_with_environment(environment.as_deref());
+        // Declared first, dropped last: every object below is destroyed while it is pushed.
+        let _pushed = PushedOptions::push(&option_text)?;
+        let bs = options.effective_block_size();
+        let mat = matrix(a, bs)?;
+        if let Some(modes) = &options.near_null_space {
+            let coords = Vector::from_slice(&modes.coordinates, modes.dim)?;
+            let mut nsp = NullSpace(ptr::null_mut());
+            call!(MatNullSpaceCreateRigidBody(coords.0, &mut nsp.0))?;
+            call!(MatSetNearNullSpace(mat.0, nsp.0))?;
+        }
+        let rhs = Vector::from_slice(b, 1)?;
+        let mut x = Vector::from_slice(&vec![0.0; b.len()], 1)?;
+
+        let mut ksp = Ksp(ptr::null_mut());
+        call!(KSPCreate(comm_self(), &mut ksp.0))?;
+        call!(KSPSetOperators(ksp.0, mat.0, mat.0))?;
+        let method = CString::new(options.method.petsc_name()).expect("no NUL");
+        call!(KSPSetType(ksp.0, method.as_ptr()))?;
+        call!(KSPSetTolerances(
+            ksp.0,
+            options.rtol,
+            options.atol,
+            sys::PETSC_DEFAULT as f64,
+            petsc_int(options.max_it)?
+        ))?;
+        let mut pc: sys::PC = ptr::null_mut();
+        call!(KSPGetPC(ksp.0, &mut pc))?;
+        let pc_name = CString::new(options.preconditioner.petsc_name()).expect("no NUL");
+        call!(PCSetType(pc, pc_name.as_ptr()))?;
+        // The index sets live until the KSP is destroyed (declared after it, dropped before
+        // it; PETSc keeps its own references).
+        let mut splits = Vec::new();
+        if let Preconditioner::FieldSplitSchur(split) = &options.preconditioner {
+            let mut in_first = vec![false; b.len()];
+            for &i in &split.first {
+                in_first[i] = true;
+            }
+            let second: Vec<usize> = (0..b.len()).filter(|&i| !in_first[i]).collect();
+            for (name, field) in [(c"0", &split.first), (c"1", &second)] {
+                let idx = petsc_ints(field)?;
+                let mut is = IndexSet(ptr::null_mut());
+                call!(ISCreateGeneral(
+                    comm_self(),
+                    petsc_int(idx.len())?,
+                    idx.as_ptr(),
+                    sys::PetscCopyMode_PETSC_COPY_VALUES,
+                    &mut is.0
+                ))?;
+                call!(PCFieldSplitSetIS(pc, name.as_ptr(), is.0))?;
+                splits.push(is);
+            }
+        }
+        call!(KSPSetFromOptions(ksp.0))?;
+        let t0 = Instant::now();
+        call!(KSPSetUp(ksp.0))?;
+        let setup_seconds = t0.elapsed().as_secs_f64();
+        let t1 = Instant::now();
+        call!(KSPSolve(ksp.0, rhs.0, x.0))?;
+        let solve_seconds = t1.elapsed().as_secs_f64();
+
+        let mut reason: sys::KSPConvergedReason::Type = 0;
+        let mut iterations: PetscInt = 0;
+        let mut residual_norm = 0.0;
+        let mut ksp_type: *const c_char = ptr::null();
+        let mut pc_type: *const c_char = ptr::null();
+        call!(KSPGetConvergedReason(ksp.0, &mut reason))?;
+        call!(KSPGetIterationNumber(ksp.0, &mut iterations))?;
+        call!(KSPGetResidualNorm(ksp.0, &mut residual_norm))?;
+        call!(KSPGetType(ksp.0, &mut ksp_type))?;
+        // The KSP's PC after the options were read (an option may have replaced it).
+        call!(KSPGetPC(ksp.0, &mut pc))?;
+        call!(PCGetType(pc, &mut pc_type))?;
+        let (ksp_type, pc_type) = (type_name(ksp_type), type_name(pc_type));
+        let reason = ConvergedReason::from_code(reason);
+        let iterations = usize::try_from(iterations).unwrap_or(0);
+        if !reason.is_converged() {
+            return Err(PetscError::NotConverged {
+                reason,
+                iterations,
+                residual_norm,
+                ksp_type,
+                pc_type,
+            });
+        }
+        let mut solution = vec![0.0; b.len()];
+        x.with_values(|v| solution.copy_from_slice(v))?;
+        let relative_residual = a.relative_residual(&solution, b);
+        // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
+        // with a meaningless solution, which only the residual shows.
+        if options.method == KrylovMethod::PreOnly
+            && (relative_residual.is_nan() || relative_residual > options.rtol)
+        {
+            return Err(PetscError::Inaccurate {
+                relative_residual,
+                tolerance: options.rtol,
+                ksp_type,
+                pc_type,
+            });
+        }
+        let report = SolveReport {
+            backend: version.to_owned(),
+            ksp_type,
+            pc_type,
+            near_null_space: options.near_null_space.is_some(),
+            options: option_text,
+            iterations,
+            residual_norm,
+            reason,
+            relative_residual,
+            setup_seconds,
+            solve_seconds,
+        };
+        Ok((solution, report))
+    })
+}
