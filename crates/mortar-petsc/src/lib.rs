@@ -27,6 +27,7 @@
 //! # Ok::<(), mortar_petsc::PetscError>(())
 //! ```
 
+mod backend;
 mod csr;
 mod error;
 mod options;
@@ -34,6 +35,7 @@ mod options;
 mod petsc;
 mod report;
 
+pub use backend::PetscBackend;
 pub use error::PetscError;
 pub use options::{FieldSplit, KrylovMethod, Preconditioner, RigidBodyModes, SolveOptions};
 pub use report::{ConvergedReason, SolveReport};

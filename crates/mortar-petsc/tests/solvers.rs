@@ -7,6 +7,7 @@ mod solvers {
     pub mod common;
     mod elasticity;
     mod errors;
+    mod interface;
     mod options;
     mod poisson;
     mod saddle;

@@ -3,7 +3,7 @@
 //! iterations, which hardly grow with the size, than with the two translations its block
 //! size alone gives it, or with a scalar problem's constant.
 
-use mortar_core::linalg::solve_sparse_lu;
+use mortar_fem::linalg::solve_sparse_lu;
 use mortar_petsc::{KrylovMethod, PetscSolver, Preconditioner, RigidBodyModes, SolveOptions};
 
 use super::common::{elasticity_2d, relative_error, rhs, vector_laplacian_3d};

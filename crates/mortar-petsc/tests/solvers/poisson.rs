@@ -3,7 +3,7 @@
 //! with the size, where Jacobi's double with each halving of h (CG's iterations grow as the
 //! square root of the condition number, here as m).
 
-use mortar_core::linalg::solve_sparse_lu;
+use mortar_fem::linalg::solve_sparse_lu;
 use mortar_petsc::{ConvergedReason, KrylovMethod, PetscSolver, Preconditioner, SolveOptions};
 
 use super::common::{poisson_2d, relative_error, relative_residual, rhs};

@@ -2,7 +2,7 @@
 //! the Schur-complement fieldsplit (full factorisation), and MINRES with its symmetric
 //! positive definite diagonal form, match a direct solve; MUMPS's LU solves it in one step.
 
-use mortar_core::linalg::solve_sparse_lu;
+use mortar_fem::linalg::solve_sparse_lu;
 use mortar_petsc::{FieldSplit, KrylovMethod, PetscSolver, Preconditioner, SolveOptions};
 
 use super::common::{relative_error, rhs, tied_poisson};

@@ -1,0 +1,177 @@
+//! PETSc as a backend of the finite-element code's solver interface
+//! ([`mortar_fem::linalg::SparseSolver`]): "factorising" a matrix sets up PETSc's Krylov
+//! method and preconditioner for it, each solve is a Krylov solve to the options' tolerance
+//! (an inexact inverse, where the direct backend's is exact to rounding), and every solve's
+//! report is kept for the caller to read ([`PetscBackend::reports`]).
+//!
+//! A solve builds PETSc's preconditioner again (the AMG hierarchy, say): the set-up is not
+//! kept between the solves of one matrix. Matrix-free iterative solves
+//! ([`SparseSolver::solve_preconditioned`]) with the caller's preconditioner run the
+//! finite-element crate's own GMRES: PETSc sees assembled matrices only.
+
+use std::sync::{Arc, Mutex};
+
+use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_fem::linalg::{
+    gmres, FactorStats, Factorization, GmresOptions, GmresReport, LinearOperator, MatrixKind,
+    Preconditioner, SolverError, SparseSolver,
+};
+
+use crate::{PetscError, PetscSolver, SolveOptions, SolveReport};
+
+/// PETSc behind the solver interface, with the solve options it applies to every system.
+#[derive(Debug, Clone)]
+pub struct PetscBackend {
+    solver: PetscSolver,
+    reports: Arc<Mutex<Vec<SolveReport>>>,
+}
+
+impl PetscBackend {
+    /// A backend solving with `options`.
+    pub fn new(options: SolveOptions) -> Self {
+        Self {
+            solver: PetscSolver::new(options),
+            reports: Arc::default(),
+        }
+    }
+
+    /// The reports of the solves made through this backend (and its clones), in order.
+    pub fn reports(&self) -> Vec<SolveReport> {
+        self.reports.lock().map(|r| r.clone()).unwrap_or_default()
+    }
+}
+
+/// A system set up for PETSc's solves.
+#[derive(Debug)]
+struct PetscSystem {
+    a: SparseMatrix,
+    kind: MatrixKind,
+    solver: PetscSolver,
+    reports: Arc<Mutex<Vec<SolveReport>>>,
+}
+
+/// `a` as PETSc takes it: a symmetric positive definite matrix given by its upper triangle
+/// (the solver interface reads only that one) mirrored into the full matrix.
+fn full(a: &SparseMatrix, kind: MatrixKind) -> SparseMatrix {
+    match kind {
+        MatrixKind::SymmetricPositiveDefinite => {
+            let mut t = Triplets::default();
+            for (&v, (i, j)) in a.iter() {
+                if i <= j {
+                    t.push(i as u32, j as u32, v);
+                    if i < j {
+                        t.push(j as u32, i as u32, v);
+                    }
+                }
+            }
+            t.to_csr(a.rows(), a.cols())
+        }
+        _ => a.to_csr(),
+    }
+}
+
+/// A PETSc failure as the solver interface's error.
+fn solver_error(e: PetscError, rtol: f64) -> SolverError {
+    match e {
+        PetscError::NotConverged {
+            reason,
+            iterations,
+            residual_norm,
+            ksp_type,
+            pc_type,
+        } => SolverError::NotConverged {
+            method: format!("PETSc {ksp_type}+{pc_type} ({reason})"),
+            iterations,
+            residual: residual_norm,
+            tolerance: rtol,
+        },
+        PetscError::InvalidInput(what) => SolverError::Backend(format!("PETSc: {what}")),
+        e => SolverError::Backend(e.to_string()),
+    }
+}
+
+impl Factorization for PetscSystem {
+    fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
+        if x.len() != self.a.rows() {
+            return Err(SolverError::DimensionMismatch {
+                expected: self.a.rows(),
+                found: x.len(),
+                what: "entries of the right-hand side",
+            });
+        }
+        let solved = self
+            .solver
+            .solve(&self.a, x)
+            .map_err(|e| solver_error(e, self.solver.options().rtol))?;
+        if solved.x.iter().any(|v| !v.is_finite()) {
+            return Err(SolverError::Singular { pivot: None });
+        }
+        x.copy_from_slice(&solved.x);
+        if let Ok(mut reports) = self.reports.lock() {
+            reports.push(solved.report);
+        }
+        Ok(())
+    }
+
+    fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
+        let a = full(a, self.kind);
+        if a.shape() != self.a.shape()
+            || a.indptr().raw_storage() != self.a.indptr().raw_storage()
+            || a.indices() != self.a.indices()
+        {
+            return Err(SolverError::PatternMismatch(format!(
+                "{} entries of a {:?} matrix against {} analysed",
+                a.nnz(),
+                a.shape(),
+                self.a.nnz()
+            )));
+        }
+        self.a = a;
+        Ok(())
+    }
+
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            dim: self.a.rows(),
+            factor_entries: None,
+            method: "PETSc Krylov solve (its reports say which method)",
+        }
+    }
+}
+
+impl SparseSolver for PetscBackend {
+    fn factor(
+        &self,
+        a: &SparseMatrix,
+        kind: MatrixKind,
+    ) -> Result<Box<dyn Factorization>, SolverError> {
+        let (rows, cols) = a.shape();
+        if rows != cols {
+            return Err(SolverError::DimensionMismatch {
+                expected: rows,
+                found: cols,
+                what: "columns of a square matrix",
+            });
+        }
+        if !crate::is_built() {
+            return Err(solver_error(PetscError::NotBuilt, 0.0));
+        }
+        Ok(Box::new(PetscSystem {
+            a: full(a, kind),
+            kind,
+            solver: self.solver.clone(),
+            reports: Arc::clone(&self.reports),
+        }))
+    }
+
+    fn solve_preconditioned(
+        &self,
+        a: &dyn LinearOperator,
+        preconditioner: &dyn Preconditioner,
+        b: &[f64],
+        x: &mut [f64],
+        options: &GmresOptions,
+    ) -> Result<GmresReport, SolverError> {
+        gmres(a, preconditioner, b, x, options)
+    }
+}

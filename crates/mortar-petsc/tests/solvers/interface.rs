@@ -1,0 +1,93 @@
+//! PETSc behind the finite-element code's solver interface (`PetscBackend` as a
+//! `SparseSolver`): the same calls as the direct backend (`FaerSolver`) give the same
+//! solutions to the Krylov tolerance; a symmetric positive definite matrix given by its upper
+//! triangle alone (all the interface promises to read) is solved as the full one; a new matrix
+//! of the same pattern refactors; another pattern, or a solve that cannot converge, is a typed
+//! error; each solve's report is kept.
+
+use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_fem::linalg::{FaerSolver, MatrixKind, SolverError, SparseSolver};
+use mortar_petsc::{KrylovMethod, PetscBackend, Preconditioner, SolveOptions};
+
+use super::common::{poisson_2d, relative_error, rhs};
+
+/// The upper triangle of `a`.
+fn upper(a: &SparseMatrix) -> SparseMatrix {
+    let mut t = Triplets::default();
+    for (&v, (i, j)) in a.iter() {
+        if i <= j {
+            t.push(i as u32, j as u32, v);
+        }
+    }
+    t.to_csr(a.rows(), a.cols())
+}
+
+fn backend(method: KrylovMethod, pc: Preconditioner) -> PetscBackend {
+    let mut options = SolveOptions::new(method, pc);
+    options.rtol = 1e-11;
+    PetscBackend::new(options)
+}
+
+#[test]
+fn petsc_answers_the_solver_interface_as_the_direct_backend_does() {
+    let a = poisson_2d(32);
+    let b = rhs(a.rows());
+    let direct: &dyn SparseSolver = &FaerSolver;
+    let reference = direct
+        .factor(&a, MatrixKind::General)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let petsc = backend(KrylovMethod::Cg, Preconditioner::Gamg);
+    let solver: &dyn SparseSolver = &petsc;
+    // The full matrix as a general one, and its upper triangle as an SPD one.
+    for (matrix, kind) in [
+        (a.clone(), MatrixKind::General),
+        (upper(&a), MatrixKind::SymmetricPositiveDefinite),
+    ] {
+        let x = solver.factor(&matrix, kind).unwrap().solve(&b).unwrap();
+        let err = relative_error(&x, &reference);
+        println!("{kind:?}: error against the direct solve {err:.2e}");
+        assert!(err < 1e-10, "{kind:?}: {err:e}");
+    }
+    let reports = petsc.reports();
+    assert_eq!(reports.len(), 2);
+    assert!(reports
+        .iter()
+        .all(|r| r.reason.is_converged() && r.ksp_type == "cg"));
+
+    // A new matrix of the same pattern (twice the old one): half the solution.
+    let mut f = solver.factor(&a, MatrixKind::General).unwrap();
+    f.refactor(&a.map(|v| 2.0 * v)).unwrap();
+    let x = f.solve(&b).unwrap();
+    let half: Vec<f64> = reference.iter().map(|v| 0.5 * v).collect();
+    assert!(relative_error(&x, &half) < 1e-10);
+    assert_eq!(f.stats().dim, a.rows());
+    // Another pattern.
+    let err = f.refactor(&poisson_2d(8)).unwrap_err();
+    assert!(matches!(err, SolverError::PatternMismatch(_)), "{err}");
+}
+
+#[test]
+fn a_solve_that_cannot_converge_is_the_interfaces_error() {
+    let a = poisson_2d(16);
+    let mut options = SolveOptions::new(KrylovMethod::Cg, Preconditioner::Jacobi);
+    options.max_it = 3;
+    let petsc = PetscBackend::new(options);
+    let f = petsc.factor(&a, MatrixKind::General).unwrap();
+    let err = f.solve(&rhs(a.rows())).unwrap_err();
+    match &err {
+        SolverError::NotConverged {
+            iterations, method, ..
+        } => {
+            assert_eq!(*iterations, 3, "{err}");
+            assert!(method.contains("cg+jacobi"), "{err}");
+        }
+        e => panic!("{e}"),
+    }
+    let mut x = vec![0.0; 3];
+    assert!(matches!(
+        f.solve_in_place(&mut x),
+        Err(SolverError::DimensionMismatch { .. })
+    ));
+}
