@@ -6,6 +6,7 @@
 //! `mortar-elements` crate for `Line2`, `Tri3` and `Quad4`. (The volume elements of the bodies
 //! are in `mortar-fem`.)
 
+pub(crate) mod flat;
 mod reference;
 mod surface;
 

@@ -27,7 +27,8 @@ use nalgebra::{Matrix2, Vector2};
 use super::closed_form::{ClosedForm, ClosedFormScratch};
 use super::segments_3d::SlavePlane;
 use super::{default_degree, PairedRule, SegmentContext};
-use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
+use crate::element::flat::FlatShape;
+use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::Result;
 use crate::geometry::{PlanarMap, Polygon, MAX_POLYGON_VERTICES};
 use crate::interface::FaceGeometry;
@@ -70,80 +71,24 @@ const PRODUCT: [[usize; P2]; P2] = {
 /// xi eta` (a triangle's coefficient of `xi eta` is zero).
 const SLAVE_TERMS: [usize; 4] = [0, 1, 2, 4];
 
-/// The face shapes integrated here: whose shape functions lie in `P2` of their reference
-/// coordinates, bit for bit as their element types compute them.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum FlatShape {
-    /// The linear triangle ([`is_linear_triangle`](super::closed_form::is_linear_triangle)).
-    Triangle,
-    /// The bilinear quad ([`is_bilinear_quad`]).
-    Quad,
-}
-
-impl FlatShape {
-    /// The shape of `element`, if it is one of these.
-    pub(crate) fn of(element: ElementRef) -> Option<Self> {
-        if super::closed_form::is_linear_triangle(element) {
-            Some(Self::Triangle)
-        } else if is_bilinear_quad(element) {
-            Some(Self::Quad)
-        } else {
-            None
+/// The shape functions of `element` (of this shape), node by node, in `P2` of its
+/// reference coordinates.
+fn shape_polynomials(shape: FlatShape, element: ElementRef) -> [Poly; 4] {
+    match shape {
+        FlatShape::Triangle => [
+            [1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+            [0.0; P2],
+        ],
+        FlatShape::Quad => {
+            let c = element.node_reference_coords();
+            std::array::from_fn(|k| {
+                let (x, y) = (c[k][0], c[k][1]);
+                [0.25, 0.25 * x, 0.25 * y, 0.0, 0.25 * x * y, 0.0]
+            })
         }
     }
-
-    /// The shape functions of `element` (of this shape), node by node, in `P2` of its
-    /// reference coordinates.
-    fn polynomials(self, element: ElementRef) -> [Poly; 4] {
-        match self {
-            Self::Triangle => [
-                [1.0, -1.0, -1.0, 0.0, 0.0, 0.0],
-                [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
-                [0.0, 0.0, 1.0, 0.0, 0.0, 0.0],
-                [0.0; P2],
-            ],
-            Self::Quad => {
-                let c = element.node_reference_coords();
-                std::array::from_fn(|k| {
-                    let (x, y) = (c[k][0], c[k][1]);
-                    [0.25, 0.25 * x, 0.25 * y, 0.0, 0.25 * x * y, 0.0]
-                })
-            }
-        }
-    }
-}
-
-/// Whether `element` is the four-node quad with bilinear shape functions: corners at
-/// `(+-1, +-1)` and `N_k = (1 + xi_k xi)(1 + eta_k eta) / 4`, checked at sample points to
-/// four ulps.
-pub(crate) fn is_bilinear_quad(element: ElementRef) -> bool {
-    if element.node_count() != 4
-        || element.corner_count() != 4
-        || element.domain() != ReferenceDomain::Quadrilateral
-        || element.shape_degree() != 2
-    {
-        return false;
-    }
-    let nodes = element.node_reference_coords();
-    if nodes.len() != 4 || nodes.iter().any(|c| c[0].abs() != 1.0 || c[1].abs() != 1.0) {
-        return false;
-    }
-    let mut n = [0.0; 4];
-    [
-        [0.0, 0.0],
-        [0.3, -0.7],
-        [-0.45, 0.125],
-        [1.0, 1.0],
-        [-0.9, 0.6],
-    ]
-    .iter()
-    .all(|&[x, y]| {
-        element.shape_values_into(&Vector2::new(x, y), &mut n);
-        nodes.iter().zip(&n).all(|(c, v)| {
-            let want = 0.25 * (1.0 + c[0] * x) * (1.0 + c[1] * y);
-            (v - want).abs() <= 4.0 * f64::EPSILON
-        })
-    })
 }
 
 /// `p(c + B r)` as a polynomial of `r`, for `p` in `P2` of `s`.
@@ -359,7 +304,7 @@ pub(crate) fn affine_moments_into(
     // Plane area per reference area, times the face's area element per the plane's.
     let scale = jac.determinant() * setup.measure;
     let ks = slave.node_count();
-    let ns = slave_shape.polynomials(slave.element);
+    let ns = shape_polynomials(slave_shape, slave.element);
     let phi: [Poly; 4] = if basis.identity {
         ns
     } else {
@@ -418,7 +363,7 @@ pub(crate) fn affine_moments_into(
         let b = minv * jac;
         let s0 = mc + minv * (p0 - mx);
         let mut nm = [[0.0; P2]; 4];
-        for (n, poly) in nm.iter_mut().zip(mshape.polynomials(mel)).take(km) {
+        for (n, poly) in nm.iter_mut().zip(shape_polynomials(mshape, mel)).take(km) {
             *n = compose(&poly, &s0, &b);
         }
         let mut uv = [Vector2::zeros(); MAX_POLYGON_VERTICES];
@@ -471,6 +416,7 @@ pub(crate) fn affine_moments_into(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::element::ReferenceDomain;
     use crate::quadrature::{Quadrature, QuadratureRule};
 
     /// The moments of the unit square `[0, 1]^2` from two fan triangles: `int x^a y^b =

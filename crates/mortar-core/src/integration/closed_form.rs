@@ -23,10 +23,10 @@
 
 use nalgebra::Vector2;
 
-use super::affine_moments::FlatShape;
 use super::segments_3d::SlavePlane;
 use super::{default_degree, PairedRule, PolygonSegments, SegmentContext};
-use crate::element::{ElementRef, ReferenceDomain, MAX_FACE_NODES};
+use crate::element::flat::FlatShape;
+use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::Result;
 use crate::geometry::Polygon;
 use crate::interface::{FaceGeometry, Interface, SpatialDim};
@@ -41,34 +41,6 @@ pub(crate) struct ClosedFormScratch {
     pub masters: MasterCornersCache,
     /// The last slave face's set-up (its clip buffers reused).
     pub plane: Option<SlavePlane>,
-}
-
-/// Whether `element` is the three-node triangle with linear shape functions, bit for bit:
-/// nodes at `(0, 0)`, `(1, 0)`, `(0, 1)` and `N = (1 - xi - eta, xi, eta)`, so that each
-/// shape function of a face is the barycentric coordinate of its node.
-pub(crate) fn is_linear_triangle(element: ElementRef) -> bool {
-    if element.node_count() != 3
-        || element.corner_count() != 3
-        || element.domain() != ReferenceDomain::Triangle
-        || !element.is_affine()
-        || element.shape_degree() != 1
-        || element.node_reference_coords() != [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
-    {
-        return false;
-    }
-    let mut n = [0.0; 3];
-    [
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [0.0, 1.0],
-        [0.25, 0.5],
-        [0.6, 0.125],
-    ]
-    .iter()
-    .all(|&[x, y]| {
-        element.shape_values_into(&Vector2::new(x, y), &mut n);
-        n == [1.0 - x - y, x, y]
-    })
 }
 
 /// How the coupling integrates clip polygons in closed form.

@@ -29,9 +29,8 @@
 //! [`Tolerances::search_inflation`]: crate::tolerances::Tolerances::search_inflation
 //! [`CouplingStats::slave_box_inflation`]: crate::CouplingStats::slave_box_inflation
 
+use crate::element::flat::{is_bilinear_quad, is_linear_triangle};
 use crate::element::ElementRef;
-use crate::integration::affine_moments::is_bilinear_quad;
-use crate::integration::closed_form::is_linear_triangle;
 use crate::integration::segments_2d::is_linear_line;
 use crate::interface::Interface;
 use crate::projector::Projector;
