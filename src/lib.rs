@@ -41,6 +41,7 @@ pub use mortar_core::{
 pub use mortar_elements as elements;
 pub use mortar_fem as fem;
 pub use mortar_fem::VolumeMesh;
+pub use mortar_petsc as petsc;
 pub use mortar_physics as physics;
 
 /// The coupling core, [`mortar_core`], with what moved from it to [`mortar_fem`] (volume

@@ -203,7 +203,7 @@ pub fn solve_generalized_plane_strain(
     f.push(axial.at(0.0) + ht);
     let bordered = border(&k, &gps.coupling, gps.stiffness);
     let (fixed, values) = body.dirichlet_dofs();
-    let mut x = solve_held(body, &bordered, &f, &fixed, &values)?;
+    let mut x = solve_held(body, &bordered, &f, &fixed, &values, crate::SOLVER)?;
     let e = x[n];
     x.truncate(n);
     Ok((x, e))

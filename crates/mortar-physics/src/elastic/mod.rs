@@ -43,5 +43,5 @@ pub use assembly::{
 pub use axial::{solve_generalized_plane_strain, AxialForce, GeneralizedPlaneStrain};
 pub use body::{DisplacementCondition, ElasticBody, TractionCondition, VectorField};
 pub use material::{von_mises, ElasticMaterial};
-pub use solve::{solve_elastic, solve_elastic_with};
+pub use solve::{solve_elastic, solve_elastic_on, solve_elastic_with};
 pub use stress::{recover_stress, recover_stress_with_axial_strain, StressField};

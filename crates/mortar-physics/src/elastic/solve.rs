@@ -1,6 +1,8 @@
 //! The static solve of one elastic body held by its own displacement conditions.
 
-use mortar_fem::linalg::{inf_norm, well_conditioned, MatrixKind, SparseMatrix};
+use mortar_fem::linalg::{
+    inf_norm, well_conditioned, MatrixKind, SolverError, SparseMatrix, SparseSolver,
+};
 
 use crate::field::free::{free_block, free_numbering, FIXED};
 
@@ -79,20 +81,37 @@ pub fn solve_elastic_with(
     body: &ElasticBody,
     options: &ElasticOptions,
 ) -> Result<Vec<f64>, PhysicsError> {
+    solve_elastic_on(body, options, SOLVER)
+}
+
+/// [`solve_elastic_with`] by the sparse solver `solver` (the direct backend
+/// [`FaerSolver`](mortar_fem::linalg::FaerSolver) by default; an iterative one, PETSc's say,
+/// solves to its own tolerance): `K_ff` is handed over as a symmetric positive definite
+/// matrix.
+///
+/// # Errors
+/// As [`solve_elastic`], and the solver's errors (an iterative solve that does not
+/// converge).
+pub fn solve_elastic_on(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+    solver: &dyn SparseSolver,
+) -> Result<Vec<f64>, PhysicsError> {
     let k = assemble_elastic_stiffness(body, options)?;
     let f = assemble_elastic_load(body, options)?;
     let (fixed, values) = body.dirichlet_dofs();
-    solve_held(body, &k, &f, &fixed, &values)
+    solve_held(body, &k, &f, &fixed, &values, solver)
 }
 
-/// Solves `k u = f` for the unknowns not in `fixed` (held at `values`) by sparse Cholesky:
-/// `K_ff u_f = f_f - K_fd u_d`. `body` names the errors.
+/// Solves `k u = f` for the unknowns not in `fixed` (held at `values`) by `solver`
+/// (symmetric positive definite): `K_ff u_f = f_f - K_fd u_d`. `body` names the errors.
 pub(crate) fn solve_held(
     body: &ElasticBody,
     k: &SparseMatrix,
     f: &[f64],
     fixed: &[u32],
     values: &[f64],
+    solver: &dyn SparseSolver,
 ) -> Result<Vec<f64>, PhysicsError> {
     let (free, m) = free_numbering(f.len(), fixed);
     let mut u = vec![0.0; f.len()];
@@ -118,12 +137,13 @@ pub(crate) fn solve_held(
             "{why}: the body is not held against rigid motion by its displacement conditions"
         ),
     };
-    let factor = SOLVER
+    let factor = solver
         .factor(&kff, MatrixKind::SymmetricPositiveDefinite)
-        .map_err(|e| {
-            not_held(format!(
-                "the stiffness of the free displacements is not positive definite ({e})"
-            ))
+        .map_err(|e| match e {
+            SolverError::NotPositiveDefinite { .. } | SolverError::Singular { .. } => not_held(
+                format!("the stiffness of the free displacements is not positive definite ({e})"),
+            ),
+            e => e.into(),
         })?;
     let b_norm = inf_norm(&rhs);
     factor.solve_in_place(&mut rhs)?;
