@@ -154,56 +154,18 @@ impl FileGeometry {
                  {b}) and \"{CLADDING_OUTER}\" (largest {c}) are not ordered 0 < a < b < c"
             )));
         }
-        if !axisymmetric {
-            let pellet_area = super::run::mesh_area(&pellet).abs();
-            let enclosed_areas = [
+        // The measures: per unit length in 2D, over the segment in r-z.
+        let (height, pellet_volume, land_area, enclosed_areas) = if axisymmetric {
+            let (height, pellet_volume, land_area) = rz_measures(&pellet, &cladding, path)?;
+            (height, pellet_volume, land_area, [0.0; 2])
+        } else {
+            let area = super::run::mesh_area(&pellet).abs();
+            let enclosed = [
                 enclosed_area(&cladding, &cladding_inner, path, CLADDING_INNER)?,
                 enclosed_area(&cladding, &cladding_outer, path, CLADDING_OUTER)?,
             ];
-            return Ok(Self {
-                pellet,
-                cladding,
-                pellet_outer,
-                pellet_free,
-                cladding_inner,
-                cladding_outer,
-                axisymmetric,
-                pellet_radius: a,
-                inner_radius: b,
-                outer_radius: c,
-                widest_gap,
-                height: 1.0,
-                pellet_volume: pellet_area,
-                land_area: pellet_area,
-                enclosed_areas,
-            });
-        }
-        let (lo, hi) = cladding
-            .coords()
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-                (lo.min(x.y), hi.max(x.y))
-            });
-        let height = hi - lo;
-        let pellet_bottom = pellet
-            .coords()
-            .iter()
-            .map(|x| x.y)
-            .fold(f64::INFINITY, f64::min);
-        if lo.abs() > 1e-9 * height || pellet_bottom.abs() > 1e-9 * height {
-            return Err(invalid(format!(
-                "the section starts at z = {pellet_bottom} (pellet) and z = {lo} (cladding): \
-                 both bodies start at the plane of symmetry z = y = 0"
-            )));
-        }
-        let pellet_volume = revolved_volume(&pellet);
-        let land_area = top_area(&pellet)?;
-        if !(height > 0.0 && pellet_volume > 0.0 && land_area > 0.0) {
-            return Err(invalid(format!(
-                "a degenerate section: cladding height {height}, pellet volume {pellet_volume}, \
-                 land area {land_area}"
-            )));
-        }
+            (1.0, area, area, enclosed)
+        };
         Ok(Self {
             pellet,
             cladding,
@@ -219,7 +181,7 @@ impl FileGeometry {
             height,
             pellet_volume,
             land_area,
-            enclosed_areas: [0.0; 2],
+            enclosed_areas,
         })
     }
 
@@ -242,6 +204,43 @@ impl FileGeometry {
             self.enclosed_areas[0] - self.pellet_volume
         }
     }
+}
+
+/// An r-z section's height (the cladding's axial extent), the pellet's revolved volume and
+/// its land's area; both bodies must start at `z = 0`.
+fn rz_measures(
+    pellet: &VolumeMesh,
+    cladding: &VolumeMesh,
+    path: &Path,
+) -> Result<(f64, f64, f64), PelletError> {
+    let invalid = |what: String| PelletError::Invalid(format!("{}: {what}", path.display()));
+    let (lo, hi) = cladding
+        .coords()
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x.y), hi.max(x.y))
+        });
+    let height = hi - lo;
+    let pellet_bottom = pellet
+        .coords()
+        .iter()
+        .map(|x| x.y)
+        .fold(f64::INFINITY, f64::min);
+    if lo.abs() > 1e-9 * height || pellet_bottom.abs() > 1e-9 * height {
+        return Err(invalid(format!(
+            "the section starts at z = {pellet_bottom} (pellet) and z = {lo} (cladding): \
+             both bodies start at the plane of symmetry z = y = 0"
+        )));
+    }
+    let pellet_volume = revolved_volume(pellet);
+    let land_area = top_area(pellet)?;
+    if !(height > 0.0 && pellet_volume > 0.0 && land_area > 0.0) {
+        return Err(invalid(format!(
+            "a degenerate section: cladding height {height}, pellet volume {pellet_volume}, \
+             land area {land_area}"
+        )));
+    }
+    Ok((height, pellet_volume, land_area))
 }
 
 /// The area a closed curve of boundary faces (straight edges of a 2D mesh) encloses: the
