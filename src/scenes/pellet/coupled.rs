@@ -405,19 +405,25 @@ fn axial_forces(
         let n = (20 * scene.mesh.refinement) as f64;
         0.5 * n * (2.0 * PI / n).sin()
     };
-    let (pellet, inner, outer) = match file {
+    // The coolant's force on the closed ends, `-P_coolant A_outer`.
+    let coolant = -c.coolant_pressure;
+    let (pellet, inner, outer_force) = match file {
         // In r-z the next pellet bears on the file's land only (the gas presses on the rest
         // of the end, dish and chamfer, as a surface load); in 2D the areas are the file's.
         Some(f) if f.axisymmetric => (
             f.land_area,
             unit * c.inner_radius.powi(2),
-            unit * c.outer_radius.powi(2),
+            coolant * unit * c.outer_radius.powi(2),
         ),
-        Some(f) => (f.pellet_volume, f.enclosed_areas[0], f.enclosed_areas[1]),
+        Some(f) => (
+            f.pellet_volume,
+            f.enclosed_areas[0],
+            coolant * f.enclosed_areas[1],
+        ),
         None => (
             pellet_area,
             unit * c.inner_radius.powi(2),
-            unit * c.outer_radius.powi(2),
+            coolant * unit * c.outer_radius.powi(2),
         ),
     };
     [
@@ -426,7 +432,7 @@ fn axial_forces(
             per_gas_pressure: -pellet,
         }),
         Some(AxialForce {
-            force: -c.coolant_pressure * outer,
+            force: outer_force,
             per_gas_pressure: inner,
         }),
     ]
