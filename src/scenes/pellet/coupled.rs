@@ -101,7 +101,17 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     contact: ML,
 ) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
     let (scene, file) = scene.resolved()?;
-    let scene = &scene;
+    problem_of(&scene, file.as_ref(), thermal, contact)
+}
+
+/// [`coupled_problem_with`] of a scene already [`resolved`](PelletScene::resolved), with its
+/// mesh file's geometry if it has one.
+fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
+    scene: &PelletScene,
+    file: Option<&FileGeometry>,
+    thermal: TL,
+    contact: ML,
+) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
     let geometry = scene.model.geometry;
@@ -110,17 +120,22 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let tol = 1e-9 * c.outer_radius;
     // Meshes, the pellet's cross-section area (the heat source is q'(t) / area), and the
     // axial component (held on the end planes in 3D and r-z: plane strain).
-    let (pellet_mesh, cladding_mesh, area, axial) = match geometry {
-        Geometry::Plane | Geometry::PlaneStrain if file.is_some() => {
-            let f = file.as_ref().expect("matched");
-            (
-                f.pellet.clone(),
-                f.cladding.clone(),
-                f.pellet_volume,
-                usize::MAX,
-            )
-        }
-        Geometry::Plane | Geometry::PlaneStrain | Geometry::ThreeD => {
+    let (pellet_mesh, cladding_mesh, area, axial) = match (geometry, file) {
+        (Geometry::Plane | Geometry::PlaneStrain, Some(f)) => (
+            f.pellet.clone(),
+            f.cladding.clone(),
+            f.pellet_volume,
+            usize::MAX,
+        ),
+        // The user's section: the heat source is q'(t) over the mean cross-section
+        // V_pellet / H, so that the segment produces q' H whatever its dishes.
+        (Geometry::Axisymmetric, Some(f)) => (
+            f.pellet.clone(),
+            f.cladding.clone(),
+            f.pellet_volume / f.height,
+            1,
+        ),
+        (Geometry::Plane | Geometry::PlaneStrain | Geometry::ThreeD, _) => {
             // The pellet's circle has 16 r edges, the cladding's 20 r: the interface does not
             // match (they share the four nodes on the axes, which hold the rigid motions). In
             // 3D both cross-sections are swept along z through `axial_layers` layers of Hex8.
@@ -142,18 +157,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                 (pm, cm, area, usize::MAX)
             }
         }
-        Geometry::Axisymmetric if file.is_some() => {
-            // The user's section: the heat source is q'(t) over the mean cross-section
-            // V_pellet / H, so that the segment produces q' H whatever its dishes.
-            let f = file.as_ref().expect("matched");
-            (
-                f.pellet.clone(),
-                f.cladding.clone(),
-                f.pellet_volume / f.height,
-                1,
-            )
-        }
-        Geometry::Axisymmetric => {
+        (Geometry::Axisymmetric, None) => {
             // The r-z section (x = r, y = z) of a pellet segment: 8 r x 2 cells in the pellet,
             // 2 r x 3 in the cladding, so that the interface r = a does not match; the revolved
             // pellet is exactly pi a^2 H.
@@ -190,15 +194,15 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     };
     let mid = 0.5 * (c.inner_radius + c.outer_radius);
     // The surfaces: the file's groups, or the generated section's faces by position.
-    let coolant = |f: &BoundaryFace| match &file {
+    let coolant = |f: &BoundaryFace| match file {
         Some(g) => contains(&g.cladding_outer, f),
         None => radius(&f.centroid) > mid && lateral(f),
     };
-    let slave_face = |f: &BoundaryFace| match &file {
+    let slave_face = |f: &BoundaryFace| match file {
         Some(g) => contains(&g.pellet_outer, f),
         None => radius(&f.centroid) > 0.5 * a && lateral(f),
     };
-    let master_face = |f: &BoundaryFace| match &file {
+    let master_face = |f: &BoundaryFace| match file {
         Some(g) => contains(&g.cladding_inner, f),
         None => radius(&f.centroid) < mid && lateral(f),
     };
@@ -254,7 +258,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         // Rigid motions: the axis held in x and y, the line through (a, 0) held in y; the
         // exact field is radial, so none of them loads the body. A file's pellet: the node
         // nearest the axis and the lateral surface's node furthest along x.
-        let (centre, east) = match &file {
+        let (centre, east) = match file {
             Some(f) => (
                 vec![nearest_node(&pellet_mesh, Vector3::zeros()) as u32],
                 vec![extreme_node(&pellet_mesh, &f.pellet_outer, |x| x.x)?],
@@ -293,7 +297,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     } else {
         // Rigid motions: the inner lines on the axes held in their tangential direction (a
         // file's: the inner surface's nodes furthest along +x, -x and +y).
-        let (e, w, n) = match &file {
+        let (e, w, n) = match file {
             Some(f) => {
                 let extreme = |along: fn(&Vector3<f64>) -> f64| {
                     extreme_node(&cladding_mesh, &f.cladding_inner, along).map(|n| vec![n])
@@ -314,7 +318,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let slave_surface = pellet_heat.mesh.boundary_surface(slave_face)?;
     let master_surface = cladding_heat.mesh.boundary_surface(master_face)?;
     let gap = c.inner_radius - p.radius;
-    let widest = file.as_ref().map_or(gap, |f| f.widest_gap.max(gap));
+    let widest = file.map_or(gap, |f| f.widest_gap.max(gap));
     let tolerances = Tolerances {
         search_radius: SearchRadius::Distance(2.0 * widest),
         ..Tolerances::default()
@@ -324,10 +328,10 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     let length = if geometry.is_plane() { 1.0 } else { height };
     // The file's dishes and chamfers hold gas at the plenum's pressure: a volume of the
     // plenum's (held at its as-built size).
-    let end_voids = file.as_ref().map_or(0.0, |f| f.end_voids());
+    let end_voids = file.map_or(0.0, |f| f.end_voids());
     let plenum = Plenum::from_fill(
         pl.volume * length + end_voids,
-        file.as_ref().map_or(
+        file.map_or(
             PI * (c.inner_radius.powi(2) - p.radius.powi(2)) * length,
             |f| f.gap_volume(),
         ),
@@ -349,7 +353,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         axial: if free_ends {
             // The next pellet bears on the file's land only: the gas presses on the rest
             // of the end (dish and chamfer) as a surface load.
-            axial_forces(scene, file.as_ref(), area)
+            axial_forces(scene, file, area)
         } else {
             [None, None]
         },
@@ -374,7 +378,7 @@ pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
         contact,
         &options,
     )?;
-    Ok(match &file {
+    Ok(match file {
         Some(f) if !f.pellet_free.is_empty() => {
             let free = f
                 .pellet
@@ -651,7 +655,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // A mesh file's radii and height replace the scene's everywhere below.
     let (scene, file) = scene.resolved()?;
     let scene = &scene;
-    let problem = coupled_problem_with(scene, laws.0, laws.1)?;
+    let problem = problem_of(scene, file.as_ref(), laws.0, laws.1)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let c = &scene.cladding;
     let choice = scene
