@@ -7,15 +7,13 @@
 //! A solve builds PETSc's preconditioner again (the AMG hierarchy, say): the set-up is not
 //! kept between the solves of one matrix. Matrix-free iterative solves
 //! ([`SparseSolver::solve_preconditioned`]) with the caller's preconditioner run the
-//! finite-element crate's own GMRES: PETSc sees assembled matrices only.
+//! interface's default, the finite-element crate's own GMRES: PETSc sees assembled matrices
+//! only.
 
 use std::sync::{Arc, Mutex};
 
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_fem::linalg::{
-    gmres, FactorStats, Factorization, GmresOptions, GmresReport, LinearOperator, MatrixKind,
-    Preconditioner, SolverError, SparseSolver,
-};
+use mortar_fem::linalg::{FactorStats, Factorization, MatrixKind, SolverError, SparseSolver};
 
 use crate::{PetscError, PetscSolver, SolveOptions, SolveReport};
 
@@ -162,16 +160,5 @@ impl SparseSolver for PetscBackend {
             solver: self.solver.clone(),
             reports: Arc::clone(&self.reports),
         }))
-    }
-
-    fn solve_preconditioned(
-        &self,
-        a: &dyn LinearOperator,
-        preconditioner: &dyn Preconditioner,
-        b: &[f64],
-        x: &mut [f64],
-        options: &GmresOptions,
-    ) -> Result<GmresReport, SolverError> {
-        gmres(a, preconditioner, b, x, options)
     }
 }

@@ -25,7 +25,6 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Side};
 
 use super::solver::{FactorStats, Factorization, MatrixKind, SparseSolver};
-use super::{gmres, GmresOptions, GmresReport, LinearOperator, Preconditioner};
 use super::{SolverError, SparseMatrix};
 
 /// The former name of [`SolverError`].
@@ -989,7 +988,8 @@ impl SaddlePointFactorization {
 
 /// The faer backend of the solver interface: [`LuFactorization`] for
 /// [`MatrixKind::General`], [`CholeskyFactorization`] (its fill-reducing ordering chosen by
-/// size) for [`MatrixKind::SymmetricPositiveDefinite`], and the restarted [`gmres`].
+/// size) for [`MatrixKind::SymmetricPositiveDefinite`], and the restarted
+/// [`gmres`](super::gmres) (the interface's default).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct FaerSolver;
 
@@ -1003,17 +1003,6 @@ impl SparseSolver for FaerSolver {
             MatrixKind::General => Box::new(LuFactorization::try_new(a)?),
             MatrixKind::SymmetricPositiveDefinite => Box::new(CholeskyFactorization::try_new(a)?),
         })
-    }
-
-    fn solve_preconditioned(
-        &self,
-        a: &dyn LinearOperator,
-        preconditioner: &dyn Preconditioner,
-        b: &[f64],
-        x: &mut [f64],
-        options: &GmresOptions,
-    ) -> Result<GmresReport, SolverError> {
-        gmres(a, preconditioner, b, x, options)
     }
 }
 

@@ -164,7 +164,8 @@ pub trait SparseSolver: Send + Sync + Debug {
     ) -> Result<Box<dyn Factorization>, SolverError>;
 
     /// Solves `A x = b` iteratively, right-preconditioned by `preconditioner`, from the `x`
-    /// given; `a` is an assembled matrix or a matrix-free product.
+    /// given; `a` is an assembled matrix or a matrix-free product. By default this crate's
+    /// restarted [`gmres`](super::gmres), which any backend may keep.
     ///
     /// # Errors
     /// [`SolverError::DimensionMismatch`] if the sizes disagree, [`SolverError::NotConverged`]
@@ -176,5 +177,7 @@ pub trait SparseSolver: Send + Sync + Debug {
         b: &[f64],
         x: &mut [f64],
         options: &GmresOptions,
-    ) -> Result<GmresReport, SolverError>;
+    ) -> Result<GmresReport, SolverError> {
+        super::gmres(a, preconditioner, b, x, options)
+    }
 }
