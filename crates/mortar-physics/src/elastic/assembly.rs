@@ -134,6 +134,9 @@ pub fn assemble_elastic_stiffness(
 ///   (`3 K = E / (1 - 2 nu)`; in plane strain the constrained `eps_zz` makes the in-plane
 ///   free expansion `(1 + nu) alpha dT`; in the axisymmetric geometry the radial component
 ///   gains the hoop term, `int 3 K alpha (T - T_ref) (dN_a/dr + N_a / r)`);
+/// - the body's eigenstrain `eps*` ([`ElasticBody::eigenstrain`]),
+///   `f[(a,i)] += int (C eps*)_ij dN_a/dx_j` (in the axisymmetric geometry the radial
+///   component gains `int (C eps*)_tt N_a / r`);
 /// - the tractions, `f[(a,i)] += int_faces t_i N_a` (per unit length in 2D; per unit area of
 ///   the revolved surface, with the weight `2 pi r`, in the axisymmetric geometry).
 ///
@@ -158,7 +161,11 @@ pub fn assemble_elastic_load(
     let t_ref = body.material.reference_temperature;
     let thermal = body.temperature.as_deref().filter(|_| beta != 0.0);
     let axi = options.geometry.is_axisymmetric();
-    if body.body_force.is_some() || thermal.is_some() {
+    // The eigenstress C eps* as a tensor (the hoop component apart in r-z).
+    let eigen = body
+        .eigenstrain
+        .map(|e| voigt_tensor(&body.material.stress(&e, 0.0)));
+    if body.body_force.is_some() || thermal.is_some() || eigen.is_some() {
         let cells = mesh.cell_count();
         let chunks: Vec<Result<Vec<(u32, f64)>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
             .into_par_iter()
@@ -199,6 +206,26 @@ pub fn assemble_elastic_load(
                                 let inv_r = hoop_factor(&cv, q, axi);
                                 for a in 0..nn {
                                     fe[a * dim] += s * n[a] * inv_r;
+                                }
+                            }
+                        }
+                        if let Some(sigma) = &eigen {
+                            // int sigma*_ij dN_a/dx_j, and sigma*_tt N_a / r on the radial
+                            // rows in r-z (the hoop stress is in the zz slot there).
+                            let g = cv.gradients(q);
+                            for a in 0..nn {
+                                for i in 0..dim {
+                                    let mut v = 0.0;
+                                    for j in 0..dim {
+                                        v += sigma[i][j] * g[a][j];
+                                    }
+                                    fe[a * dim + i] += v * w;
+                                }
+                            }
+                            if axi {
+                                let inv_r = hoop_factor(&cv, q, axi);
+                                for a in 0..nn {
+                                    fe[a * dim] += sigma[2][2] * n[a] * inv_r * w;
                                 }
                             }
                         }
@@ -338,6 +365,11 @@ fn assemble_cell_matrix(
     }
     let n = mesh.node_count();
     Ok(Triplets::to_csr_from_parts(parts, n * rc, n * cc))
+}
+
+/// The symmetric tensor of a stress in Voigt order `[xx, yy, zz, yz, xz, xy]`.
+pub(crate) fn voigt_tensor(s: &[f64; 6]) -> [[f64; 3]; 3] {
+    [[s[0], s[5], s[4]], [s[5], s[1], s[3]], [s[4], s[3], s[2]]]
 }
 
 /// `1 / r` at point `q` of `cv` in the axisymmetric geometry (the factor of the hoop strain

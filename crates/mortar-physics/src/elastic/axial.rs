@@ -46,7 +46,7 @@ impl AxialForce {
 /// `eps_zz = e`, the in-plane equilibrium gains `coupling e` and the axial balance reads
 ///
 /// ```text
-/// int sigma_zz dA = coupling . u + stiffness e - thermal . (T - T_ref) = F
+/// int sigma_zz dA = coupling . u + stiffness e - thermal . (T - T_ref) - eigenstress = F
 /// ```
 ///
 /// so the bordered system `[K c; c^T k] [u; e] = [f; F + h . (T - T_ref)]` is symmetric
@@ -61,6 +61,9 @@ pub struct GeneralizedPlaneStrain {
     pub thermal: Vec<f64>,
     /// The cross-section's area `A` (m^2).
     pub area: f64,
+    /// `(C eps*)_zz A` of the body's eigenstrain ([`ElasticBody::eigenstrain`]; zero
+    /// without).
+    pub eigenstress: f64,
 }
 
 impl GeneralizedPlaneStrain {
@@ -131,20 +134,25 @@ impl GeneralizedPlaneStrain {
                 c += 1;
             }
         }
+        let eigenstress = body
+            .eigenstrain
+            .map_or(0.0, |e| body.material.stress(&e, 0.0)[2] * area);
         Ok(Self {
             coupling,
             stiffness: (lambda + 2.0 * mu) * area,
             thermal,
             area,
+            eigenstress,
         })
     }
 
     /// `int sigma_zz dA` (N) of the displacement `u`, the axial strain `e` and the
-    /// temperature change `dt = T - T_ref` per node.
+    /// temperature change `dt = T - T_ref` per node (less the eigenstrain's
+    /// [`eigenstress`](Self::eigenstress)).
     pub fn axial_force(&self, u: &[f64], e: f64, dt: &[f64]) -> f64 {
         let cu: f64 = self.coupling.iter().zip(u).map(|(c, u)| c * u).sum();
         let ht: f64 = self.thermal.iter().zip(dt).map(|(h, t)| h * t).sum();
-        cu + self.stiffness * e - ht
+        cu + self.stiffness * e - ht - self.eigenstress
     }
 }
 
@@ -200,7 +208,7 @@ pub fn solve_generalized_plane_strain(
             .sum(),
         None => 0.0,
     };
-    f.push(axial.at(0.0) + ht);
+    f.push(axial.at(0.0) + ht + gps.eigenstress);
     let bordered = border(&k, &gps.coupling, gps.stiffness);
     let (fixed, values) = body.dirichlet_dofs();
     let mut x = solve_held(body, &bordered, &f, &fixed, &values, crate::SOLVER)?;

@@ -67,6 +67,12 @@ pub struct ElasticBody {
     /// The nodal temperature (K), one value per mesh node, if any: the thermal strain is
     /// `alpha (T - T_ref) I` with `T` interpolated by the shape functions.
     pub temperature: Option<Vec<f64>>,
+    /// A uniform eigenstrain (stress-free strain) `eps*` over the body, if any, in the Voigt
+    /// order of [`ElasticMaterial::stress`] (`[xx, yy, zz, yz, xz, xy]`, engineering shear
+    /// strains; in the axisymmetric geometry `[rr, zz, tt, 0, 0, rz]`, the hoop strain in the
+    /// `zz` slot): the stress is `C : (eps - eps_th - eps*)`. A cracked fuel pellet's
+    /// relocation is one (an outward strain in the plane across its axis).
+    pub eigenstrain: Option<[f64; 6]>,
 }
 
 impl fmt::Debug for ElasticBody {
@@ -86,6 +92,7 @@ impl fmt::Debug for ElasticBody {
                 &self.tractions.iter().map(|t| t.faces.len()).sum::<usize>(),
             )
             .field("temperature", &self.temperature.is_some())
+            .field("eigenstrain", &self.eigenstrain)
             .finish()
     }
 }
@@ -101,6 +108,7 @@ impl ElasticBody {
             dirichlet: Vec::new(),
             tractions: Vec::new(),
             temperature: None,
+            eigenstrain: None,
         }
     }
 
@@ -147,6 +155,23 @@ impl ElasticBody {
             )));
         }
         self.temperature = Some(temperature);
+        Ok(self)
+    }
+
+    /// Sets the uniform eigenstrain `eps*` ([`ElasticBody::eigenstrain`]): the body's loads
+    /// gain `int B^T C eps*`, its recovered stress loses `C eps*`, and in generalized plane
+    /// strain its axial balance loses `(C eps*)_zz A`.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for a non-finite component.
+    pub fn with_eigenstrain(mut self, eigenstrain: [f64; 6]) -> Result<Self, PhysicsError> {
+        if let Some(i) = eigenstrain.iter().position(|e| !e.is_finite()) {
+            return Err(self.invalid(format!(
+                "eigenstrain component {i} ({}) is not finite",
+                eigenstrain[i]
+            )));
+        }
+        self.eigenstrain = Some(eigenstrain);
         Ok(self)
     }
 

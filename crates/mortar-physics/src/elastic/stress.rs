@@ -32,7 +32,8 @@ pub struct StressField {
 /// Recovers the stress of the displacement `displacement` (numbered by the body's
 /// [`layout`](ElasticBody::layout)):
 /// `sigma = lambda tr(eps) I + 2 mu eps - 3 K alpha (T - T_ref) I` at every quadrature point
-/// of every cell, with `eps = sym(grad u)` and `T` the body's temperature field
+/// of every cell, with `eps = sym(grad u)` less the body's eigenstrain
+/// ([`ElasticBody::eigenstrain`], if any) and `T` the body's temperature field
 /// interpolated (no thermal term without one). In 2D (plane strain) `eps_zz = 0`, so
 /// `sigma_zz = lambda (eps_xx + eps_yy) - 3 K alpha (T - T_ref)` and
 /// `sigma_xz = sigma_yz = 0`. In the axisymmetric geometry ([`ElasticOptions::geometry`]) the
@@ -145,7 +146,7 @@ pub fn recover_stress_with_axial_strain(
                             .sum();
                         h[2][2] = ur * hoop_factor(&cv, q, axi);
                     }
-                    let strain = [
+                    let mut strain = [
                         h[0][0],
                         h[1][1],
                         h[2][2],
@@ -153,6 +154,11 @@ pub fn recover_stress_with_axial_strain(
                         h[0][2] + h[2][0],
                         h[0][1] + h[1][0],
                     ];
+                    if let Some(e) = &body.eigenstrain {
+                        for (s, e) in strain.iter_mut().zip(e) {
+                            *s -= e;
+                        }
+                    }
                     let s = material.stress(&strain, cv.value(q, &dt[..nn]));
                     for (acc, v) in sum.iter_mut().zip(s) {
                         *acc += v * w;
