@@ -13,6 +13,7 @@ mod pellet {
     mod free_expansion;
     mod limits;
     mod radial;
+    mod relocation;
     mod scene_file;
     mod solvers;
 }

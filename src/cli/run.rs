@@ -96,6 +96,14 @@ fn print_coupled(report: &Value, out: &Path) {
         "{:<28} mechanical gap, {law} contact law, plenum pressure (ideal gas)",
         ""
     );
+    if let Some(model) = m["relocation"].as_str().filter(|&r| r != "none") {
+        say!(
+            "{:<28} {model} relocation at {} MWd/kgU: strain {:.3e} at full power",
+            "",
+            f(&m["burnup"]),
+            f(&report["steady"]["relocation_strain"])
+        );
+    }
     // The exponential law engages below its onset gap xi, with the gap still open; the
     // exact law engages at a closed gap.
     let onset = m["contact_onset_gap"].as_f64();

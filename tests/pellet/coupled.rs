@@ -14,7 +14,7 @@ use mortar::scenes::pellet::{
 };
 use serde_json::Value;
 
-use super::radial::RadialPellet;
+use super::radial::{RadialHistory, RadialPellet};
 
 fn out(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!(
@@ -24,7 +24,7 @@ fn out(name: &str) -> std::path::PathBuf {
 }
 
 /// Runs `scene`, removes its outputs, returns the report.
-fn run_scene(scene: &PelletScene, name: &str) -> Value {
+pub(super) fn run_scene(scene: &PelletScene, name: &str) -> Value {
     let dir = out(name);
     let rep = run(scene, &dir, false).unwrap_or_else(|e| panic!("{name}: {e}"));
     // The coupling's warnings are reported (none: the pellet covers the cladding's inside).
@@ -152,57 +152,16 @@ fn the_cross_section_and_the_rz_model_agree_with_the_radial_model() {
         s.model.geometry = geometry;
         s.model.axial = Some(axial);
         let law = (geometry, axial, law);
-        let rep = run_scene(
+        let (rep, radial, worst, peak) = against_radial(
             &s,
+            RadialPellet::from_scene(&s),
             &format!("radial-{law:?}").replace(['(', ')', ' ', ','], ""),
         );
         assert_eq!(rep["models"]["axial"], serde_json::to_value(axial).unwrap());
-        let radial = RadialPellet::from_scene(&s).simulate().unwrap();
-        let t2d = series(&rep, "time");
-        assert_eq!(t2d.len(), radial.rows.len());
-        let peak = radial
-            .rows
-            .iter()
-            .map(|r| r.contact_pressure)
-            .fold(0.0, f64::max);
         assert!(
             peak > 1e6,
             "{law:?}: the contact pressure rises ({peak} Pa)"
         );
-        let mut worst = [0.0f64; 5];
-        for (k, r) in radial.rows.iter().enumerate() {
-            assert!((t2d[k] - r.time).abs() < 1e-12);
-            let pairs = [
-                (
-                    series(&rep, "center_temperature")[k],
-                    r.center_temperature,
-                    r.center_temperature,
-                ),
-                (
-                    series(&rep, "gap")[k],
-                    r.gap,
-                    r.gap.abs().max(s.contact.onset_gap),
-                ),
-                (
-                    series(&rep, "interface_pressure")[k],
-                    r.interface_pressure,
-                    r.interface_pressure,
-                ),
-                (
-                    series(&rep, "plenum_pressure")[k],
-                    r.plenum_pressure,
-                    r.plenum_pressure,
-                ),
-                (
-                    series(&rep, "interface_pressure")[k] - series(&rep, "plenum_pressure")[k],
-                    r.contact_pressure,
-                    peak,
-                ),
-            ];
-            for (w, (a, b, scale)) in worst.iter_mut().zip(pairs) {
-                *w = w.max((a - b).abs() / scale.abs());
-            }
-        }
         eprintln!(
             "{law:?}: largest relative differences to the radial model (centre, gap, P_c, P_o, \
              p_contact/peak): {worst:?}; closure {} (model) vs {:?} (radial)",
@@ -238,6 +197,62 @@ fn the_cross_section_and_the_rz_model_agree_with_the_radial_model() {
             "{law:?}: energy imbalance {imbalance:e}"
         );
     }
+}
+
+/// Runs `s` and the radial model `model` (of its data); the largest differences at the steps, relative
+/// (centre temperature, mean gap relative to the larger of itself and `xi`, interface pressure
+/// `P_c`, plenum pressure `P_o`, contact pressure `P_c - P_o` relative to the larger of its
+/// peak and 1 MPa), with the report, the radial history and the radial model's peak contact
+/// pressure.
+pub(super) fn against_radial(
+    s: &PelletScene,
+    model: RadialPellet,
+    name: &str,
+) -> (Value, RadialHistory, [f64; 5], f64) {
+    let rep = run_scene(s, name);
+    let radial = model.simulate().unwrap();
+    let t2d = series(&rep, "time");
+    assert_eq!(t2d.len(), radial.rows.len());
+    let peak = radial
+        .rows
+        .iter()
+        .map(|r| r.contact_pressure)
+        .fold(0.0, f64::max);
+    let mut worst = [0.0f64; 5];
+    for (k, r) in radial.rows.iter().enumerate() {
+        assert!((t2d[k] - r.time).abs() < 1e-12);
+        let pairs = [
+            (
+                series(&rep, "center_temperature")[k],
+                r.center_temperature,
+                r.center_temperature,
+            ),
+            (
+                series(&rep, "gap")[k],
+                r.gap,
+                r.gap.abs().max(s.contact.onset_gap),
+            ),
+            (
+                series(&rep, "interface_pressure")[k],
+                r.interface_pressure,
+                r.interface_pressure,
+            ),
+            (
+                series(&rep, "plenum_pressure")[k],
+                r.plenum_pressure,
+                r.plenum_pressure,
+            ),
+            (
+                series(&rep, "interface_pressure")[k] - series(&rep, "plenum_pressure")[k],
+                r.contact_pressure,
+                peak.max(1e6),
+            ),
+        ];
+        for (w, (a, b, scale)) in worst.iter_mut().zip(pairs) {
+            *w = w.max((a - b).abs() / scale.abs());
+        }
+    }
+    (rep, radial, worst, peak)
 }
 
 /// The largest difference between the assembled Jacobian and central finite differences of

@@ -3,6 +3,7 @@
 
 use std::f64::consts::PI;
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 use mortar_core::{CouplingOptions, ModelGeometry, SearchRadius, Tolerances};
@@ -15,7 +16,7 @@ use mortar_physics::heat::{
 };
 use mortar_physics::laws::{
     ConstraintLaw, ContactComplementarity, DynLaw, ExponentialContact, GapConductance,
-    GasConductivity, LawRegistry, MechanicalGapConductance,
+    GasConductivity, LawRegistry, MechanicalGapConductance, RelocationInput, RelocationModel,
 };
 use mortar_physics::thermomech::{
     GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
@@ -91,17 +92,56 @@ pub fn coupled_problem<ML: ConstraintLaw>(
 
 /// Builds the coupled problem of `scene` with any thermal law `thermal` (heat flux against
 /// temperature jump; it sees the mechanical gap, contact and gas pressures of each point) and
-/// contact law `contact` (contact pressure in excess of the gas pressure against the gap).
+/// contact law `contact` (contact pressure in excess of the gas pressure against the gap);
+/// the relocation model `[model] relocation` is a shipped one
+/// ([`LawRegistry::with_shipped`]).
 ///
 /// # Errors
-/// As [`coupled_problem`].
+/// As [`coupled_problem`]; [`PelletError::Law`] for an unknown relocation model.
 pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     scene: &PelletScene,
     thermal: TL,
     contact: ML,
 ) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
+    let relocation = LawRegistry::with_shipped().relocation(&scene.model.relocation)?;
     let (scene, file) = scene.resolved()?;
-    problem_of(&scene, file.as_ref(), thermal, contact)
+    problem_of(&scene, file.as_ref(), thermal, contact, &relocation)
+}
+
+/// An eigenstrain that follows time: its unit and its factor at a time.
+type RelocationLoad = ([f64; 6], Box<dyn Fn(f64) -> f64 + Send + Sync>);
+
+/// The relocation of `scene` as the pellet's eigenstrain that follows time: `unit` across
+/// the axis (`[1, 1, 0, ...]` in 2D and 3D, `eps_rr = eps_tt` in r-z) times `model`'s strain
+/// at the largest linear power reached by `t` (the ramp never falls, so `q'(t)`), the scene's
+/// burnup and its cold gap `b - a`; `None` for the model `none`.
+fn relocation_load(
+    scene: &PelletScene,
+    model: &Arc<dyn RelocationModel>,
+) -> Option<RelocationLoad> {
+    if model.name() == "none" {
+        return None;
+    }
+    let unit = match scene.model.geometry {
+        Geometry::Axisymmetric => [1.0, 0.0, 1.0, 0.0, 0.0, 0.0],
+        _ => [1.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+    };
+    let (power, model) = (scene.power, Arc::clone(model));
+    let rod = RelocationInput {
+        linear_power: 0.0,
+        burnup: scene.model.burnup,
+        cold_gap: scene.cladding.inner_radius - scene.pellet.radius,
+        pellet_radius: scene.pellet.radius,
+    };
+    Some((
+        unit,
+        Box::new(move |t| {
+            model.strain(&RelocationInput {
+                linear_power: power.at(t),
+                ..rod
+            })
+        }),
+    ))
 }
 
 /// [`coupled_problem_with`] of a scene already [`resolved`](PelletScene::resolved), with its
@@ -111,6 +151,7 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
     file: Option<&FileGeometry>,
     thermal: TL,
     contact: ML,
+    relocation: &Arc<dyn RelocationModel>,
 ) -> Result<GapThermoMechanics<TL, ML>, PelletError> {
     let (p, c) = (&scene.pellet, &scene.cladding);
     let r = scene.mesh.refinement;
@@ -378,7 +419,7 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
         contact,
         &options,
     )?;
-    Ok(match file {
+    let problem = match file {
         Some(f) if !f.pellet_free.is_empty() => {
             let free = f
                 .pellet
@@ -386,6 +427,10 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
             problem.with_gas_on(0, &free)?
         }
         _ => problem,
+    };
+    Ok(match relocation_load(scene, relocation) {
+        Some((unit, strain)) => problem.with_eigenstrain(0, unit, strain)?,
+        None => problem,
     })
 }
 
@@ -467,9 +512,11 @@ fn extreme_node(
 /// # Errors
 /// As [`run`](super::run).
 pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
+    let registry = LawRegistry::with_shipped();
     if scene.laws.thermal.is_some() || scene.laws.contact.is_some() {
-        return run_with_registry(scene, &LawRegistry::with_shipped(), out, progress);
+        return run_with_registry(scene, &registry, out, progress);
     }
+    let relocation = registry.relocation(&scene.model.relocation)?;
     match scene.contact.law {
         ContactLawName::Exponential => {
             let law = exponential_contact_law(scene)?;
@@ -483,6 +530,7 @@ pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
                 (thermal_law(scene)?, law),
                 names,
                 Some(onset),
+                &relocation,
                 out,
                 progress,
             )
@@ -498,6 +546,7 @@ pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
                 (thermal_law(scene)?, law),
                 names,
                 None,
+                &relocation,
                 out,
                 progress,
             )
@@ -550,11 +599,13 @@ pub fn run_with_registry(
         }
     };
     let names = (thermal.name().to_string(), contact.name().to_string());
+    let relocation = registry.relocation(&scene.model.relocation)?;
     run_with(
         scene,
         (thermal, contact),
         (&names.0, &names.1),
         onset,
+        &relocation,
         out,
         progress,
     )
@@ -576,7 +627,16 @@ pub fn run_coupled_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     progress: bool,
 ) -> Result<Value, PelletError> {
     let names = (std::any::type_name::<TL>(), std::any::type_name::<ML>());
-    run_with(scene, (thermal, contact), names, None, out, progress)
+    let relocation = LawRegistry::with_shipped().relocation(&scene.model.relocation)?;
+    run_with(
+        scene,
+        (thermal, contact),
+        names,
+        None,
+        &relocation,
+        out,
+        progress,
+    )
 }
 
 /// The quantities of one state, for the history.
@@ -648,6 +708,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     laws: (TL, ML),
     names: (&str, &str),
     onset: Option<f64>,
+    relocation: &Arc<dyn RelocationModel>,
     out: &Path,
     progress: bool,
 ) -> Result<Value, PelletError> {
@@ -655,7 +716,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
     // A mesh file's radii and height replace the scene's everywhere below.
     let (scene, file) = scene.resolved()?;
     let scene = &scene;
-    let problem = problem_of(scene, file.as_ref(), laws.0, laws.1)?;
+    let problem = problem_of(scene, file.as_ref(), laws.0, laws.1, relocation)?;
     let setup_seconds = start.elapsed().as_secs_f64();
     let c = &scene.cladding;
     let choice = scene
@@ -791,7 +852,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             time: 0.0,
             step: json!("initial"),
         },
-        &extremes(&problem, &x)?,
+        &extremes(&problem, &x, 0.0)?,
     );
     let rep0 = solver.stats;
     rows.push((
@@ -847,7 +908,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
                 time,
                 step: json!(k),
             },
-            &extremes(&problem, &x)?,
+            &extremes(&problem, &x, time)?,
         );
         rows.push((
             time,
@@ -887,7 +948,7 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             time: t_steady,
             step: json!("steady"),
         },
-        &extremes(&problem, &x)?,
+        &extremes(&problem, &x, t_steady)?,
     );
     bar.inc(1);
     bar.finish_and_clear();
@@ -950,6 +1011,9 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "contact_law": names.1,
             "gap_conductance": names.0,
             "plenum": "ideal gas, fixed moles",
+            // The pellet's relocation model, and the burnup it sees (MWd/kgU).
+            "relocation": relocation.name(),
+            "burnup": scene.model.burnup,
             "contact_engaged": closure.is_some(),
             // The exponential law's onset gap xi (m), below which its pressure rises.
             "contact_onset_gap": onset,
@@ -986,6 +1050,8 @@ fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
             "interface_pressure": steady.interface_pressure,
             "plenum_pressure": steady.plenum,
             "pellet_surface_displacement": steady.displacement,
+            // The pellet's relocation strain across its axis (0 without relocation).
+            "relocation_strain": problem.eigenstrain_at(0, t_steady)?.map_or(0.0, |e| e[0]),
             // The bodies' axial strains (null where the axial direction is held).
             "axial_strain": {
                 "pellet": problem.fields(&x).axial_strain[0],
@@ -1186,7 +1252,7 @@ fn write_snapshot<TL: ConstraintLaw, ML: ConstraintLaw>(
     for b in 0..2 {
         let u = f.displacement(b);
         let dim = elastic[b].components();
-        von_mises.push(super::stress::stress_field(problem, &f, b)?.von_mises);
+        von_mises.push(super::stress::stress_field(problem, &f, b, time)?.von_mises);
         displacement.push(
             u.chunks(dim)
                 .flat_map(|c| [c[0], c[1], if dim == 3 { c[2] } else { 0.0 }])

@@ -260,7 +260,7 @@ fn largest_principal(s: &[f64; 6]) -> f64 {
     m.symmetric_eigenvalues().max()
 }
 
-/// The limits' quantities at the state `x` (in [`LIMITS`] order): the pellet's largest
+/// The limits' quantities at the state `x` of time `time` (in [`LIMITS`] order): the pellet's largest
 /// temperature, the pellet temperature furthest outside [`CONDUCTIVITY_RANGE`], the
 /// cladding's largest von Mises stress and the pellet's largest principal stress (of the
 /// nodal stresses, averaged from the cells), and the largest interface pressure (contact plus
@@ -271,6 +271,7 @@ fn largest_principal(s: &[f64; 6]) -> f64 {
 pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     problem: &GapThermoMechanics<TL, ML>,
     x: &[f64],
+    time: f64,
 ) -> Result<Extremes, PelletError> {
     let f = problem.fields(x);
     let elastic = problem.elastic_bodies();
@@ -305,7 +306,7 @@ pub(super) fn extremes<TL: ConstraintLaw, ML: ConstraintLaw>(
     } else {
         coldest
     };
-    let stress = |b: usize| super::stress::stress_field(problem, &f, b);
+    let stress = |b: usize| super::stress::stress_field(problem, &f, b, time);
     let cladding = stress(1)?;
     let von_mises = largest(
         &mut cladding.von_mises.iter().copied().enumerate(),

@@ -60,6 +60,8 @@
 //! axial = "generalized"      # free axial expansion; or "plane_strain" (no axial strain)
 //! reference_temperature = 293.0
 //! segment_height = 1e-3      # m, the r-z and 3D segment (its plenum share: volume x height)
+//! relocation = "none"        # or "frapcon": the cracked pellet's outward relocation (FRAPCON's model)
+//! burnup = 0.0               # MWd/kgU, held: what the relocation model sees
 //! [power]
 //! linear_power = 20e3        # W/m
 //! ramp_time = 10.0           # s, from zero
@@ -480,7 +482,7 @@ pub enum AxialModel {
 }
 
 /// What is modelled: `[model]`.
-#[derive(Debug, Clone, Copy, PartialEq, Deserialize, Serialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ModelData {
     /// Thermal expansion, contact and plenum pressure; `false`: heat only, the
@@ -496,6 +498,16 @@ pub struct ModelData {
     pub reference_temperature: f64,
     /// The height of the pellet segment of the r-z and 3D models (m).
     pub segment_height: f64,
+    /// The pellet's relocation model, by name: `"none"` (the default), `"frapcon"`
+    /// (FRAPCON's default model, [`FrapconRelocation`](mortar_physics::laws::FrapconRelocation))
+    /// or one a program registered
+    /// ([`LawRegistry::register_relocation`](mortar_physics::laws::LawRegistry::register_relocation)).
+    /// Applied as an outward strain of the pellet across its axis at the largest linear
+    /// power reached so far, the burnup below and the cold gap `b - a`.
+    pub relocation: String,
+    /// The rod's burnup (MWd/kgU), held over the run: what the relocation model sees (given
+    /// with `relocation = "none"`, it is refused: it would change nothing).
+    pub burnup: f64,
 }
 
 impl ModelData {
@@ -518,6 +530,8 @@ impl Default for ModelData {
             axial: None,
             reference_temperature: 293.0,
             segment_height: 1e-3,
+            relocation: "none".to_string(),
+            burnup: 0.0,
         }
     }
 }
@@ -871,6 +885,27 @@ impl PelletScene {
             return bad(format!(
                 "contact.onset_gap = {} is not finite",
                 ct.onset_gap
+            ));
+        }
+        if !(m.burnup >= 0.0 && m.burnup.is_finite()) {
+            return bad(format!(
+                "model.burnup = {} is not non-negative and finite (MWd/kgU)",
+                m.burnup
+            ));
+        }
+        if m.burnup != 0.0 && m.relocation == "none" {
+            return bad(format!(
+                "model.burnup = {} has no effect with model.relocation = \"none\": the \
+                 burnup is what the relocation model sees (give model.relocation = \
+                 \"frapcon\", say)",
+                m.burnup
+            ));
+        }
+        if m.relocation != "none" && !m.mechanics {
+            return bad(format!(
+                "model.relocation = {:?} with model.mechanics = false: relocation moves the \
+                 pellet, which the heat-only scene holds",
+                m.relocation
             ));
         }
         if m.geometry == Geometry::PlaneStrain && m.axial == Some(AxialModel::Generalized) {

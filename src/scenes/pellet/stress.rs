@@ -7,9 +7,10 @@ use mortar_physics::thermomech::{GapThermoMechanics, StateView};
 
 use super::PelletError;
 
-/// The stress of body `b` (0 pellet, 1 cladding) in the state `f`, with its temperature and,
-/// in 2D generalized plane strain, its axial strain (which the 2D displacement does not hold;
-/// a free end's, in r-z and 3D, it does).
+/// The stress of body `b` (0 pellet, 1 cladding) in the state `f` at time `time` (s), with
+/// its temperature, its eigenstrain at that time (the pellet's relocation) and, in 2D
+/// generalized plane strain, its axial strain (which the 2D displacement does not hold; a
+/// free end's, in r-z and 3D, it does).
 ///
 /// # Errors
 /// [`PelletError::Physics`] if the stresses cannot be recovered.
@@ -17,10 +18,12 @@ pub(super) fn stress_field<TL: ConstraintLaw, ML: ConstraintLaw>(
     problem: &GapThermoMechanics<TL, ML>,
     f: &StateView,
     b: usize,
+    time: f64,
 ) -> Result<StressField, PelletError> {
-    let body = problem.elastic_bodies()[b]
+    let mut body = problem.elastic_bodies()[b]
         .clone()
         .with_temperature(f.temperature[b].to_vec())?;
+    body.eigenstrain = problem.eigenstrain_at(b, time)?;
     let options = &problem.options().elastic;
     let axial_strain = if body.components() == 2 && !options.geometry.is_axisymmetric() {
         f.axial_strain[b].unwrap_or(0.0)

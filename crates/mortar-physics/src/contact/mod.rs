@@ -32,10 +32,12 @@
 //! (standard multipliers) the displacements and pressures are solved together (sparse LU).
 //! [`ContactSolution::formulation`] says which.
 
+mod curvature;
 mod held;
 mod normal;
 mod solver;
 
+pub use curvature::{slave_surface_measures, SlaveSurfaceMeasures};
 pub use held::{rigid_motions, HeldMotions, RigidMotion, FREE_MOTION_TOLERANCE};
 pub use normal::NormalGap;
 pub use solver::{

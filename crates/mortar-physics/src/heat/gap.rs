@@ -96,6 +96,8 @@ pub(crate) struct StepData {
     /// Dirichlet values per body, in the order of `dirichlet`.
     values: [Vec<f64>; 2],
     inv_dt: f64,
+    /// The time the solve reaches (s).
+    pub(crate) time: f64,
 }
 
 impl<L: ConstraintLaw> GapHeat<L> {
@@ -297,6 +299,7 @@ impl<L: ConstraintLaw> GapHeat<L> {
             load,
             values,
             inv_dt,
+            time: t,
         })
     }
 

@@ -9,7 +9,8 @@ use num_traits::Float;
 
 use super::{
     cst, ConstraintLaw, ContactComplementarity, Dual, ExponentialContact, ExponentialPressure,
-    GapConductance, GasConductivity, LawError, LawPoint, MechanicalGapConductance, Tying,
+    FrapconRelocation, GapConductance, GasConductivity, LawError, LawPoint,
+    MechanicalGapConductance, NoRelocation, RelocationModel, Tying,
 };
 
 /// The object-safe face of a [`ConstraintLaw`]: its residual at `f64` and in the dual numbers
@@ -111,11 +112,15 @@ type Maker = Arc<dyn Fn(&LawParameters) -> Result<DynLaw, LawError> + Send + Syn
 #[derive(Clone, Default)]
 pub struct LawRegistry {
     makers: BTreeMap<String, Maker>,
+    relocation: BTreeMap<String, Arc<dyn RelocationModel>>,
 }
 
 impl fmt::Debug for LawRegistry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_list().entries(self.makers.keys()).finish()
+        f.debug_struct("LawRegistry")
+            .field("laws", &self.makers.keys().collect::<Vec<_>>())
+            .field("relocation", &self.relocation.keys().collect::<Vec<_>>())
+            .finish()
     }
 }
 
@@ -169,9 +174,12 @@ impl LawRegistry {
     /// - `exponential_contact`: `stiffness`, `onset`;
     /// - `contact_complementarity`: `c`.
     ///
-    /// A parameter a law does not take is refused, naming it.
+    /// A parameter a law does not take is refused, naming it. The relocation models:
+    /// `none` ([`NoRelocation`]) and `frapcon` ([`FrapconRelocation`]).
     pub fn with_shipped() -> Self {
         let mut r = Self::new();
+        r.register_relocation(NoRelocation);
+        r.register_relocation(FrapconRelocation);
         r.register("tying", |p| {
             only("tying", p, &[])?;
             Ok(DynLaw::new("tying", Tying))
@@ -262,6 +270,50 @@ impl LawRegistry {
     ) -> &mut Self {
         self.makers.insert(name.into(), Arc::new(make));
         self
+    }
+
+    /// Registers (or replaces) a relocation model under its [`name`](RelocationModel::name),
+    /// for scene files to name (`[model] relocation` of the pellet).
+    ///
+    /// ```
+    /// use mortar_physics::laws::{LawRegistry, RelocationInput, RelocationModel};
+    /// #[derive(Debug)]
+    /// struct Half;
+    /// impl RelocationModel for Half {
+    ///     fn name(&self) -> &str { "half" }
+    ///     fn strain(&self, rod: &RelocationInput) -> f64 { 0.5 * rod.cold_gap / rod.pellet_radius }
+    /// }
+    /// let mut registry = LawRegistry::with_shipped();
+    /// registry.register_relocation(Half);
+    /// assert_eq!(registry.relocation_names(), ["frapcon", "half", "none"]);
+    /// assert!(registry.relocation("half").is_ok() && registry.relocation("escore").is_err());
+    /// ```
+    pub fn register_relocation(&mut self, model: impl RelocationModel + 'static) -> &mut Self {
+        self.relocation
+            .insert(model.name().to_string(), Arc::new(model));
+        self
+    }
+
+    /// The names of the relocation models, sorted.
+    pub fn relocation_names(&self) -> Vec<&str> {
+        self.relocation.keys().map(String::as_str).collect()
+    }
+
+    /// The relocation model `name`.
+    ///
+    /// # Errors
+    /// [`LawError::InvalidParameter`] for an unknown name, listing the known ones.
+    pub fn relocation(&self, name: &str) -> Result<Arc<dyn RelocationModel>, LawError> {
+        self.relocation
+            .get(name)
+            .cloned()
+            .ok_or_else(|| LawError::InvalidParameter {
+                law: "relocation",
+                what: format!(
+                    "no relocation model named {name:?} (known: {:?})",
+                    self.relocation_names()
+                ),
+            })
     }
 
     /// The names, sorted.

@@ -22,7 +22,8 @@
 //! - [`ContactComplementarity`]: `C = lambda - max(0, lambda - c g)` (semi-smooth Newton).
 //!
 //! [`DynLaw`] is any law behind one type, chosen at run time; a [`LawRegistry`] makes the
-//! shipped laws (and a program's own) by name from their parameters.
+//! shipped laws (and a program's own) by name from their parameters, and holds the fuel's
+//! relocation models ([`RelocationModel`]: [`NoRelocation`], [`FrapconRelocation`]) by name.
 //!
 //! [`evaluate`] is the checked evaluation: value and partial derivatives, or a [`LawError`]
 //! for NaN input or a non-finite result; [`check_tangent`] compares that tangent with finite
@@ -55,6 +56,7 @@ mod dual;
 mod dynamic;
 mod gap;
 mod pressure;
+mod relocation;
 
 pub use check::{check_tangent, TangentCheck};
 pub use complementarity::ContactComplementarity;
@@ -62,6 +64,7 @@ pub use dual::Dual;
 pub use dynamic::{DynLaw, LawParameters, LawRegistry, ObjectLaw};
 pub use gap::{GapConductance, GasConductivity, MechanicalGapConductance};
 pub use pressure::{ExponentialContact, ExponentialPressure};
+pub use relocation::{FrapconRelocation, NoRelocation, RelocationInput, RelocationModel};
 
 /// The scalar trait of [`ConstraintLaw::residual`], re-exported so that a law of one's own
 /// needs no direct dependency on `num-traits`.

@@ -11,6 +11,9 @@
 //!   [`ContactComplementarity`](crate::laws::ContactComplementarity), Kuhn-Tucker);
 //! - the gas pressure is given or follows a [`Plenum`] (ideal gas, fixed moles, the gap's
 //!   volume and temperature).
+//! - a pellet's relocation is a [`RelocationModel`](crate::laws::RelocationModel)
+//!   ([`FrapconRelocation`](crate::laws::FrapconRelocation), FRAPCON's default), applied as an eigenstrain that follows time
+//!   ([`GapThermoMechanics::with_eigenstrain`]).
 //!
 //! The whole residual (temperatures, displacements, fluxes, contact pressures, gas pressure)
 //! is one [`NewtonProblem`](crate::nonlinear::NewtonProblem), solved by Newton on the
