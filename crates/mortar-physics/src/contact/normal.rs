@@ -55,6 +55,24 @@ impl NormalGap {
         slave_nodes: usize,
         master_nodes: usize,
     ) -> Result<Self, PhysicsError> {
+        let offsets = [0, slave_nodes * dim];
+        Self::with_offsets(tie, dim, offsets, (slave_nodes + master_nodes) * dim)
+    }
+
+    /// [`new`](Self::new) with the columns of the slave body's displacements starting at
+    /// `offsets[0]` and the master body's at `offsets[1]` in a vector of `columns`
+    /// displacement unknowns: both sides in one body (the lands of two pellets of one
+    /// body, say) take the same offset.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new), and [`PhysicsError::InvalidInput`] for a node whose columns
+    /// would lie beyond `columns`.
+    pub fn with_offsets(
+        tie: &Tie,
+        dim: usize,
+        offsets: [usize; 2],
+        columns: usize,
+    ) -> Result<Self, PhysicsError> {
         let invalid = |what: String| PhysicsError::InvalidInput {
             body: "contact".into(),
             what,
@@ -80,7 +98,17 @@ impl NormalGap {
         let mut weights = vec![0.0; rows];
         let mut diagonal = true;
         let mut t = Triplets::default();
-        let offset = slave_nodes * dim;
+        let beyond = |nodes: &[u32], offset: usize| {
+            nodes
+                .iter()
+                .any(|&n| offset + (n as usize + 1) * dim > columns)
+        };
+        if beyond(tie.slave_nodes(), offsets[0]) || beyond(tie.master_nodes(), offsets[1]) {
+            return Err(invalid(format!(
+                "a node's displacement lies beyond the {columns} columns of the gap"
+            )));
+        }
+        let offset = offsets[1];
         for (j, w) in weights.iter_mut().enumerate() {
             let n = c.slave_normals[j];
             if !carries[j] {
@@ -95,7 +123,7 @@ impl NormalGap {
                     *w += v;
                     let node = tie.slave_nodes()[k] as usize;
                     for a in 0..dim {
-                        t.push(j as u32, (node * dim + a) as u32, v * n[a]);
+                        t.push(j as u32, (offsets[0] + node * dim + a) as u32, v * n[a]);
                     }
                 }
             }
@@ -117,9 +145,8 @@ impl NormalGap {
                 )));
             }
         }
-        let cols = (slave_nodes + master_nodes) * dim;
         Ok(Self {
-            matrix: t.to_csr(rows, cols),
+            matrix: t.to_csr(rows, columns),
             initial,
             weights,
             roundoff,

@@ -31,20 +31,31 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let data = self.heat.step_data(t, transient)?;
         let mut r = vec![0.0; self.dimension()];
         self.evaluate(x, &data, &mut r, None)?;
-        let o = self.offsets;
-        let ranges = [
-            o.t[0]..o.u[0],
-            o.u[0]..o.flux,
-            o.flux..o.pressure,
-            o.pressure..o.gas,
-            o.gas..o.gas + 1,
-            o.gas + 1..o.len,
-        ];
-        let norm =
-            |range: std::ops::Range<usize>| r[range].iter().map(|v| v * v).sum::<f64>().sqrt();
+        let o = &self.offsets;
+        // Each row's block: the fluxes and pressures of the gap and of the contact pairs
+        // together.
+        let block = |i: usize| {
+            if i < o.u[0] {
+                0
+            } else if i < o.flux {
+                1
+            } else if o.is_flux(i) {
+                2
+            } else if o.is_pressure(i) {
+                3
+            } else if i == o.gas {
+                4
+            } else {
+                5
+            }
+        };
+        let mut squares = [0.0; 6];
+        for (i, v) in r.iter().enumerate() {
+            squares[block(i)] += v * v;
+        }
         let mut out = [("", 0.0); 6];
-        for ((slot, name), range) in out.iter_mut().zip(RESIDUAL_BLOCKS).zip(ranges) {
-            *slot = (name, norm(range));
+        for ((slot, name), sq) in out.iter_mut().zip(RESIDUAL_BLOCKS).zip(squares) {
+            *slot = (name, sq.sqrt());
         }
         Ok(out)
     }

@@ -21,6 +21,7 @@
 //! ([`ThermoMechSolver`]); any pair of laws goes through the same solver.
 
 mod blocks;
+mod interface;
 mod plenum;
 mod problem;
 mod solve;

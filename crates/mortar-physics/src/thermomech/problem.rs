@@ -12,6 +12,7 @@ use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{CouplingOptions, ModelGeometry, Side, Tolerances};
 use nalgebra::Vector3;
 
+use super::interface::{nodal_gaps, ContactPair, GasSums};
 use super::plenum::GasPressure;
 use crate::contact::{slave_surface_measures, NormalGap, SlaveSurfaceMeasures};
 use crate::elastic::{
@@ -20,7 +21,7 @@ use crate::elastic::{
 };
 use crate::error::PhysicsError;
 use crate::heat::{Conductivity, GapHeat, HeatBody, HeatOptions, Linearization, StepData};
-use crate::laws::{evaluate, ConstraintLaw, LawPoint};
+use crate::laws::ConstraintLaw;
 
 /// One body of a thermomechanical problem: its heat conduction (mesh, capacity, source,
 /// temperature conditions, `k(T)`) and its elasticity (the same mesh, material with thermal
@@ -88,7 +89,7 @@ impl Default for ThermoMechOptions {
 }
 
 /// The offsets of the blocks of the state vector.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct Offsets {
     /// Temperatures: slave, master.
     pub t: [usize; 3],
@@ -98,12 +99,44 @@ pub(crate) struct Offsets {
     pub flux: usize,
     /// Contact pressures, one per slave interface node.
     pub pressure: usize,
+    /// Per contact pair ([`GapThermoMechanics::with_contact_pair`]), its first flux and
+    /// pressure unknowns (after the gap's, before the gas pressure).
+    pub pairs: Vec<[usize; 2]>,
     /// The gas pressure.
     pub gas: usize,
     /// Per body, its axial unknown (after the gas pressure), if it has one.
     pub axial: [Option<usize>; 2],
     /// The size.
     pub len: usize,
+}
+
+impl Offsets {
+    /// Adds a contact pair of `rows` slave nodes: its fluxes and pressures before the gas
+    /// pressure, which and the axial unknowns move up.
+    pub(crate) fn add_pair(&mut self, rows: usize) {
+        self.pairs.push([self.gas, self.gas + rows]);
+        self.gas += 2 * rows;
+        for a in self.axial.iter_mut().flatten() {
+            *a += 2 * rows;
+        }
+        self.len += 2 * rows;
+    }
+
+    /// Whether unknown `i` is a heat flux (of the gap or of a contact pair).
+    pub(crate) fn is_flux(&self, i: usize) -> bool {
+        (self.flux..self.pressure).contains(&i)
+            || self.pairs.iter().any(|&[f, p]| (f..p).contains(&i))
+    }
+
+    /// Whether unknown `i` is a contact pressure (of the gap or of a contact pair).
+    pub(crate) fn is_pressure(&self, i: usize) -> bool {
+        let gap = self.pressure..self.pressure + (self.pressure - self.flux);
+        gap.contains(&i)
+            || self
+                .pairs
+                .iter()
+                .any(|&[f, p]| (p..p + (p - f)).contains(&i))
+    }
 }
 
 /// The state unit of the axial strain of generalized plane strain (a microstrain).
@@ -219,6 +252,8 @@ pub struct GapThermoMechanics<TL, ML> {
     pub(crate) axial: [Option<Axial>; 2],
     /// The eigenstrains that follow time ([`with_eigenstrain`](Self::with_eigenstrain)).
     pub(crate) eigenstrains: Vec<TimedEigenstrain>,
+    /// The contact pairs besides the gap ([`with_contact_pair`](Self::with_contact_pair)).
+    pub(crate) pairs: Vec<ContactPair<TL, ML>>,
 }
 
 impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
@@ -331,15 +366,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let (ns, nm) = (es.mesh.node_count(), em.mesh.node_count());
         let mut gap = NormalGap::new(heat.tie(), dim, ns, nm)?;
         let interface = heat.tie().interface();
-        // The gap volume is per as-built length (the plenum's is held): the surface's
-        // stretch along the rod's axis (y in r-z, z in 3D) is not counted.
-        let axis = if coupling.geometry.is_axisymmetric() {
-            Some(1)
-        } else if dim == 3 {
-            Some(2)
-        } else {
-            None
-        };
+        let axis = rod_axis(coupling.geometry, dim);
         let surface = slave_surface_measures(
             interface,
             heat.tie().coupling(),
@@ -402,6 +429,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             u,
             flux: u[2],
             pressure: u[2] + rows,
+            pairs: Vec::new(),
             gas: gas_index,
             axial: axial_index,
             len,
@@ -449,7 +477,14 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             offsets,
             axial,
             eigenstrains: Vec::new(),
+            pairs: Vec::new(),
         })
+    }
+
+    /// The component along the rod's axis (y in r-z, z in 3D; none in 2D), whose stretch the
+    /// gap volumes do not count: they are per as-built length (the plenum's is held).
+    pub(crate) fn axis(&self) -> Option<usize> {
+        rod_axis(self.options.heat.geometry, self.elastic[0].components())
     }
 
     /// The number of unknowns.
@@ -522,7 +557,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             displacement_unit: self.options.displacement_unit,
             flux: &x[o.flux..o.pressure],
             flux_unit: self.options.flux_unit,
-            contact_pressure: &x[o.pressure..o.gas],
+            contact_pressure: &x[o.pressure..o.pressure + (o.pressure - o.flux)],
             pressure_unit: self.options.pressure_unit,
             gas_pressure: x[o.gas] * self.options.pressure_unit,
             axial_strain: [0, 1].map(|b| self.axial_strain(x, b)),
@@ -651,19 +686,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
     /// The nodal gaps `g_j` (m) of a state, one per slave interface node.
     pub fn gaps(&self, x: &[f64]) -> Vec<f64> {
         let o = &self.offsets;
-        let u: Vec<f64> = x[o.u[0]..o.u[2]]
-            .iter()
-            .map(|v| v * self.options.displacement_unit)
-            .collect();
-        self.gap
-            .matrix
-            .outer_iterator()
-            .enumerate()
-            .map(|(j, row)| {
-                let nu: f64 = row.iter().map(|(k, v)| v * u[k]).sum();
-                (self.gap.initial[j] - nu) / self.gap.weights[j]
-            })
-            .collect()
+        nodal_gaps(
+            &self.gap,
+            &x[o.u[0]..o.u[2]],
+            self.options.displacement_unit,
+        )
     }
 
     /// The gap's volume `sum_j W_j(u) g_j (1 + kappa_j g_j / 2)` over the open nodes (m^2
@@ -699,7 +726,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         r: &mut [f64],
         lin: Option<Linearization>,
     ) -> Result<Option<SparseMatrix>, PhysicsError> {
-        let o = self.offsets;
+        let o = &self.offsets;
         let n = o.len;
         if x.len() != n || r.len() != n {
             return Err(PhysicsError::WrongLength {
@@ -708,11 +735,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 got: x.len().min(r.len()),
             });
         }
-        let (uu, pu, fu) = (
-            self.options.displacement_unit,
-            self.options.pressure_unit,
-            self.options.flux_unit,
-        );
+        let (uu, pu) = (self.options.displacement_unit, self.options.pressure_unit);
         let su = self.row_scale;
         let mut trip = Triplets::default();
         // Heat conduction in the bodies.
@@ -792,134 +815,19 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 }
             }
         }
-        // The interface.
-        let tie = self.heat.tie();
-        let c = tie.coupling();
-        let (sn, mn) = (tie.slave_nodes(), tie.master_nodes());
-        let weights = self.heat.weights();
-        let (ts, tm) = (&x[o.t[0]..o.t[1]], &x[o.t[1]..o.t[2]]);
-        let u = &x[o.u[0]..o.u[2]];
+        // The interfaces: the gap, then the contact pairs.
         let gas = x[o.gas] * pu;
-        let mut length = 0.0;
-        let mut volume = 0.0;
-        let mut t_sum = 0.0;
-        // d(volume)/du, d(t_sum)/dT: sparse rows of the gas equation.
-        let mut dvolume: Vec<(usize, f64)> = Vec::new();
-        let mut dtemp: Vec<(usize, f64)> = Vec::new();
-        let areas = self.moved_areas(x);
-        for (j, ((drow, mrow), nrow)) in
-            c.d.outer_iterator()
-                .zip(c.m.outer_iterator())
-                .zip(self.gap.matrix.outer_iterator())
-                .enumerate()
-        {
-            let w = weights[j];
-            let gs: f64 = drow.iter().map(|(k, v)| v * ts[sn[k] as usize]).sum();
-            let gm: f64 = mrow.iter().map(|(l, v)| v * tm[mn[l] as usize]).sum();
-            let nu: f64 = nrow.iter().map(|(k, v)| v * u[k]).sum::<f64>() * uu;
-            let g = (self.gap.initial[j] - nu) / w;
-            let (dt, tbar) = ((gs - gm) / w, 0.5 * (gs + gm) / w);
-            let q = fu * x[o.flux + j];
-            let p = pu * x[o.pressure + j];
-            let point = LawPoint::new(dt, q, tbar).with_mechanics(g, p, gas);
-            let th = evaluate(self.heat.law(), point)?;
-            let mpoint = LawPoint::new(g, p, tbar).with_mechanics(g, p, gas);
-            let me = evaluate(&self.contact_law, mpoint)?;
-            let (rq, rp) = (o.flux + j, o.pressure + j);
-            r[rq] = w * th.value;
-            r[rp] = su * w * me.value;
-            // Heat flux into the bodies, pressure onto the surfaces.
-            for (k, v) in drow.iter() {
-                r[o.t[0] + sn[k] as usize] += v * q;
-            }
-            for (l, v) in mrow.iter() {
-                r[o.t[1] + mn[l] as usize] -= v * q;
-            }
-            // The contact pressure is an interaction: -p n on the slave, +p n on the master.
-            for (k, v) in nrow.iter() {
-                r[o.u[0] + k] += su * v * p;
-            }
-            length += w;
-            t_sum += w * tbar;
-            let kappa = self.surface.curvature[j];
-            volume += gap_column(areas[j], g, kappa);
-            if lin.is_none() {
-                continue;
-            }
-            let push_t = |trip: &mut Triplets, row: usize, dg: f64, dtb: f64| {
-                for (k, v) in drow.iter() {
-                    trip.push(
-                        row as u32,
-                        (o.t[0] + sn[k] as usize) as u32,
-                        (dg + 0.5 * dtb) * v,
-                    );
-                }
-                for (l, v) in mrow.iter() {
-                    trip.push(
-                        row as u32,
-                        (o.t[1] + mn[l] as usize) as u32,
-                        (-dg + 0.5 * dtb) * v,
-                    );
-                }
-            };
-            // Flux row.
-            push_t(&mut trip, rq, th.d_gap, th.d_temperature);
-            trip.push(rq as u32, rq as u32, w * th.d_multiplier * fu);
-            for (k, v) in nrow.iter() {
-                trip.push(rq as u32, (o.u[0] + k) as u32, -th.d_normal_gap * v * uu);
-            }
-            trip.push(rq as u32, rp as u32, w * th.d_contact_pressure * pu);
-            trip.push(rq as u32, o.gas as u32, w * th.d_gas_pressure * pu);
-            // Pressure row.
-            let dg = me.d_gap + me.d_normal_gap;
-            let dp = me.d_multiplier + me.d_contact_pressure;
-            push_t(&mut trip, rp, 0.0, su * me.d_temperature);
-            for (k, v) in nrow.iter() {
-                trip.push(rp as u32, (o.u[0] + k) as u32, -su * dg * v * uu);
-            }
-            trip.push(rp as u32, rp as u32, su * w * dp * pu);
-            trip.push(rp as u32, o.gas as u32, su * w * me.d_gas_pressure * pu);
-            // The heat rows' flux columns, the equilibrium rows' pressure columns.
-            for (k, v) in drow.iter() {
-                let gi = o.t[0] + sn[k] as usize;
-                if !self.heat.is_dirichlet(gi) {
-                    trip.push(gi as u32, rq as u32, v * fu);
-                }
-            }
-            for (l, v) in mrow.iter() {
-                let gi = o.t[1] + mn[l] as usize;
-                if !self.heat.is_dirichlet(gi) {
-                    trip.push(gi as u32, rq as u32, -v * fu);
-                }
-            }
-            for (k, v) in nrow.iter() {
-                if !self.pinned[k] {
-                    let gi = (o.u[0] + k) as u32;
-                    trip.push(gi, rp as u32, su * v * pu);
-                }
-            }
-            // The gas equation's derivatives.
-            // (Zero entries where the gap is closed: the pattern stays the same.)
-            // dV_j = (A du)_j G(g_j) + W_j G'(g_j) dg_j, G(g) = g (1 + kappa g / 2).
-            let open = if g > 0.0 {
-                areas[j] / w * (1.0 + kappa * g)
-            } else {
-                0.0
-            };
-            dvolume.extend(nrow.iter().map(|(k, v)| (o.u[0] + k, -open * v * uu)));
-            let column = gap_column(1.0, g, kappa);
-            if column != 0.0 {
-                if let Some(arow) = self.surface.area_change.outer_view(j) {
-                    dvolume.extend(arow.iter().map(|(k, v)| (o.u[0] + k, column * v * uu)));
-                }
-            }
-            for (k, v) in drow.iter() {
-                dtemp.push((o.t[0] + sn[k] as usize, 0.5 * v));
-            }
-            for (l, v) in mrow.iter() {
-                dtemp.push((o.t[1] + mn[l] as usize, 0.5 * v));
-            }
+        let mut sums = GasSums::default();
+        for view in self.interface_views() {
+            self.interface_terms(&view, x, r, lin.is_some(), &mut trip, &mut sums)?;
         }
+        let GasSums {
+            length,
+            volume,
+            t_sum,
+            dvolume,
+            dtemp,
+        } = sums;
         // The gas pressure.
         let rg = o.gas;
         match self.options.gas {
@@ -963,7 +871,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
     /// unknown's row, the balance of the end's axial force, `sum_d r_d - s_u F(P_o)`; each of
     /// those rows becomes `x_d - w` (the end stays plane, moving by `w`).
     fn plane_end_terms(&self, x: &[f64], r: &mut [f64], trip: Option<&mut Triplets>) {
-        let o = self.offsets;
+        let o = &self.offsets;
         let su = self.row_scale;
         let pu = self.options.pressure_unit;
         // (row, axial unknown) of each end's axial rows, and (axial unknown, its force's
@@ -1112,9 +1020,21 @@ fn surface_load(
     Ok(f)
 }
 
+/// The component along a rod's axis in `geometry` with `dim` displacement components: y
+/// (1) in r-z, z (2) in 3D, none in 2D.
+fn rod_axis(geometry: ModelGeometry, dim: usize) -> Option<usize> {
+    if geometry.is_axisymmetric() {
+        Some(1)
+    } else if dim == 3 {
+        Some(2)
+    } else {
+        None
+    }
+}
+
 /// The gas volume over a slave node of weight `w`, nodal gap `g` and curvature `kappa`:
 /// `w g (1 + kappa g / 2)` where open, zero where closed.
-fn gap_column(w: f64, g: f64, kappa: f64) -> f64 {
+pub(crate) fn gap_column(w: f64, g: f64, kappa: f64) -> f64 {
     if g > 0.0 {
         w * g * (1.0 + 0.5 * kappa * g)
     } else {

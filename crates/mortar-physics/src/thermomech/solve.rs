@@ -210,10 +210,8 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
 
     /// Whether each unknown is thermal (temperature, flux) rather than mechanical.
     fn thermal_unknowns(&self) -> Vec<bool> {
-        let o: Offsets = self.offsets;
-        (0..o.len)
-            .map(|i| i < o.u[0] || (o.flux..o.pressure).contains(&i))
-            .collect()
+        let o: &Offsets = &self.offsets;
+        (0..o.len).map(|i| i < o.u[0] || o.is_flux(i)).collect()
     }
 }
 
