@@ -13,8 +13,9 @@ use mortar::physics::laws::{
 };
 use mortar::scenes::pellet::{exponential_contact_law, run_coupled_with, thermal_law, PelletScene};
 
-// ---- the user's code: the law (18 lines as rustfmt lays them out, comments and blank lines not counted) ----
+// ---- the user's code: the law (19 lines as rustfmt lays them out, comments and blank lines not counted) ----
 /// Ross-Stoute on the mechanical gap plus grey-body radiation of emissivity `eps`.
+#[derive(Clone)]
 struct RadiatingGap {
     gas: MechanicalGapConductance,
     emissivity: f64,

@@ -10,6 +10,7 @@
 //! | [`IntegrationStrategy`] | how a slave face is integrated against its partners | [`CouplingOptions::integration`] |
 //! | [`Projector`] | the projection direction field | [`CouplingOptions::projector`] |
 //! | [`ConstraintLaw`] | a pointwise interface law (tying, gap conductance, contact) | the heat, contact and thermomechanical problems; [`DynLaw`] and [`LawRegistry`] for run-time choice and scene files |
+//! | [`RelocationModel`] | a fuel pellet's relocation strain | the pellet scene's `[model] relocation`, through [`LawRegistry::register_relocation`] |
 //! | [`NewtonProblem`] | a nonlinear problem for [`newton`](crate::physics::nonlinear::newton) | the solvers (Newton, JFNK) |
 //! | [`Preconditioner`], [`LinearOperator`] | a preconditioner or operator for GMRES | [`gmres`](crate::core::linalg::gmres), JFNK |
 //!
@@ -155,6 +156,7 @@ pub use mortar_fem::element::VolumeElement;
 pub use mortar_fem::linalg::{LinearOperator, Preconditioner};
 pub use mortar_physics::laws::{
     check_tangent, ConstraintLaw, DynLaw, Float, LawPoint, LawRegistry, ObjectLaw,
+    RelocationInput, RelocationModel,
 };
 pub use mortar_physics::nonlinear::NewtonProblem;
 

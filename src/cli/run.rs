@@ -141,6 +141,20 @@ fn print_coupled(report: &Value, out: &Path) {
         "peak contact pressure",
         1e-6 * f(&report["peak_interface_pressure"])
     );
+    // A stack's lands: the pellets bearing on each other.
+    if let (Some(gap), Some(p)) = (
+        h["land_min_gap"].as_array(),
+        h["land_peak_contact_pressure"].as_array(),
+    ) {
+        let smallest = gap.iter().map(f).fold(f64::INFINITY, f64::min);
+        let peak = p.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
+        say!(
+            "{:<28} smallest gap {:.3} um, peak contact pressure {:.3} MPa",
+            "pellet lands",
+            1e6 * smallest,
+            1e-6 * peak
+        );
+    }
     say!(
         "{:<28} {:.4} MPa",
         "plenum pressure",

@@ -257,7 +257,12 @@ pub(super) fn against_radial(
 
 /// The largest difference between the assembled Jacobian and central finite differences of
 /// the residual, over `dirs` directions, relative to the largest product.
-fn jacobian_error(j: &SparseMatrix, f: impl Fn(&[f64]) -> Vec<f64>, x: &[f64], dirs: usize) -> f64 {
+pub(super) fn jacobian_error(
+    j: &SparseMatrix,
+    f: impl Fn(&[f64]) -> Vec<f64>,
+    x: &[f64],
+    dirs: usize,
+) -> f64 {
     let n = x.len();
     let mut worst = 0.0f64;
     for d in 0..dirs {

@@ -83,7 +83,7 @@ fn complementarity(scene: &PelletScene) -> f64 {
 /// # Errors
 /// [`PelletError::Mesh`] / [`PelletError::Physics`] for meshes or a problem that cannot be
 /// built.
-pub fn coupled_problem<ML: ConstraintLaw>(
+pub fn coupled_problem<ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     law: ML,
 ) -> Result<GapThermoMechanics<MechanicalGapConductance, ML>, PelletError> {
@@ -98,7 +98,7 @@ pub fn coupled_problem<ML: ConstraintLaw>(
 ///
 /// # Errors
 /// As [`coupled_problem`]; [`PelletError::Law`] for an unknown relocation model.
-pub fn coupled_problem_with<TL: ConstraintLaw, ML: ConstraintLaw>(
+pub fn coupled_problem_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     thermal: TL,
     contact: ML,
@@ -146,7 +146,7 @@ fn relocation_load(
 
 /// [`coupled_problem_with`] of a scene already [`resolved`](PelletScene::resolved), with its
 /// mesh file's geometry if it has one.
-fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
+fn problem_of<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     file: Option<&FileGeometry>,
     thermal: TL,
@@ -400,6 +400,8 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
         },
         ..ThermoMechOptions::default()
     };
+    let coupling = CouplingOptions::default().dual().with_geometry(model);
+    let laws = (thermal.clone(), contact.clone());
     let problem = GapThermoMechanics::new(
         ThermoElasticBody {
             heat: pellet_heat,
@@ -413,7 +415,7 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
         },
         slave_surface,
         master_surface,
-        &CouplingOptions::default().dual().with_geometry(model),
+        &coupling,
         tolerances,
         thermal,
         contact,
@@ -427,6 +429,25 @@ fn problem_of<TL: ConstraintLaw, ML: ConstraintLaw>(
             problem.with_gas_on(0, &free)?
         }
         _ => problem,
+    };
+    // A stack's pellets bear on each other at their lands: a contact pair of the pellet
+    // body with itself, under the gap's laws.
+    let problem = match file.and_then(|f| f.lands.as_ref().map(|l| (f, l))) {
+        Some((f, [lower, upper])) => {
+            let lower = f.pellet.boundary_surface(|face| contains(lower, face))?;
+            let upper = f.pellet.boundary_surface(|face| contains(upper, face))?;
+            let (thermal, contact) = laws;
+            problem.with_contact_pair(
+                lower,
+                upper,
+                [0, 0],
+                &coupling,
+                tolerances,
+                thermal,
+                contact,
+            )?
+        }
+        None => problem,
     };
     Ok(match relocation_load(scene, relocation) {
         Some((unit, strain)) => problem.with_eigenstrain(0, unit, strain)?,
@@ -619,7 +640,7 @@ pub fn run_with_registry(
 ///
 /// # Errors
 /// As [`run`](super::run).
-pub fn run_coupled_with<TL: ConstraintLaw, ML: ConstraintLaw>(
+pub fn run_coupled_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     thermal: TL,
     contact: ML,
@@ -652,6 +673,10 @@ struct Summary {
     contact_pressure: f64,
     plenum: f64,
     displacement: f64,
+    /// A stack's lands (its contact pairs): the smallest gap and the largest contact
+    /// pressure (NaN without).
+    land_min_gap: f64,
+    land_peak_pressure: f64,
 }
 
 fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
@@ -698,12 +723,20 @@ fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
         contact_pressure: mean(&p),
         plenum: f.gas_pressure,
         displacement: radial,
+        land_min_gap: (0..problem.contact_pairs())
+            .flat_map(|k| problem.pair_gaps(k, x))
+            .reduce(f64::min)
+            .unwrap_or(f64::NAN),
+        land_peak_pressure: (0..problem.contact_pairs())
+            .flat_map(|k| problem.pair_contact_pressures(k, x))
+            .reduce(f64::max)
+            .unwrap_or(f64::NAN),
     }
 }
 
 /// The time stepping, reports and outputs of the coupled scene with contact law `law`
 /// (`onset`: the exponential law's `xi`, for the time contact engages).
-fn run_with<TL: ConstraintLaw, ML: ConstraintLaw>(
+fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     laws: (TL, ML),
     names: (&str, &str),
@@ -1216,7 +1249,7 @@ fn interface_files(files: &[(String, f64)]) -> Vec<(String, f64)> {
 /// The history as arrays over the time steps.
 fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)]) -> Value {
     let col = |f: &dyn Fn(&Summary) -> f64| rows.iter().map(|r| f(&r.1)).collect::<Vec<_>>();
-    json!({
+    let mut history = json!({
         "time": rows.iter().map(|r| r.0).collect::<Vec<_>>(),
         "linear_power": rows.iter().map(|r| scene.power.at(r.0)).collect::<Vec<_>>(),
         "center_temperature": col(&|s| s.center),
@@ -1231,7 +1264,13 @@ fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)
         "newton_iterations": rows.iter().map(|r| r.2).collect::<Vec<_>>(),
         "linear_iterations": rows.iter().map(|r| r.3).collect::<Vec<_>>(),
         "step_cuts": rows.iter().map(|r| r.4).collect::<Vec<_>>(),
-    })
+    });
+    // A stack's lands, where it has them.
+    if rows.first().is_some_and(|r| !r.1.land_min_gap.is_nan()) {
+        history["land_min_gap"] = json!(col(&|s| s.land_min_gap));
+        history["land_peak_contact_pressure"] = json!(col(&|s| s.land_peak_pressure));
+    }
+    history
 }
 
 /// The VTU files of the state `x` at `time`: the bodies (temperature, displacement vector,

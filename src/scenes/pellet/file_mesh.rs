@@ -7,9 +7,13 @@
 //! the pellet's lateral surface [`PELLET_OUTER`] (the slave side of the gap) and the
 //! cladding's inner and outer surfaces [`CLADDING_INNER`] (the master side) and
 //! [`CLADDING_OUTER`] (the coolant's); optionally [`PELLET_FREE`], the pellet's other surfaces
-//! the plenum gas presses on (dishes, chamfers). In r-z the ends are found by coordinate: each
-//! body's bottom (its smallest `z`) is held axially, its top (its largest `z`: the pellet's
-//! land) is kept plane by the body's axial unknown. In 2D the cross-section is whole (the
+//! the plenum gas presses on (dishes, chamfers). A stack of pellets is one pellet body of
+//! several parts whose lands bear on each other: in r-z, [`PELLET_LANDS_LOWER`] and
+//! [`PELLET_LANDS_UPPER`] (both or neither) name the lower lands of the pellets above another
+//! and the upper lands of those below (the slave and master sides of the pellet-pellet
+//! contact). In r-z the ends are found by coordinate: each body's bottom (its smallest `z`) is
+//! held axially, its top (its largest `z`: the pellet's land, or the mid-plane of the top
+//! pellet of a stack) is kept plane by the body's axial unknown. In 2D the cross-section is whole (the
 //! cladding's surfaces closed curves) and each body is held against rigid motion at two or
 //! three nodes of its surfaces.
 
@@ -32,6 +36,11 @@ pub const CLADDING: &str = "cladding";
 pub const PELLET_OUTER: &str = "pellet_outer";
 /// The pellet's surfaces wetted by the plenum gas besides [`PELLET_OUTER`] (optional).
 pub const PELLET_FREE: &str = "pellet_free";
+/// The lower lands of the pellets of a stack that rest on another (the slave side of the
+/// pellet-pellet contact; optional, with [`PELLET_LANDS_UPPER`]).
+pub const PELLET_LANDS_LOWER: &str = "pellet_lands_lower";
+/// The upper lands of the pellets of a stack that another rests on (the master side).
+pub const PELLET_LANDS_UPPER: &str = "pellet_lands_upper";
 /// The cladding's inner surface (the gap's master side).
 pub const CLADDING_INNER: &str = "cladding_inner";
 /// The cladding's outer surface (coolant temperature and pressure).
@@ -60,6 +69,9 @@ pub struct FileGeometry {
     pub cladding_inner: FaceSet,
     /// [`CLADDING_OUTER`]'s faces.
     pub cladding_outer: FaceSet,
+    /// A stack's lands, [`PELLET_LANDS_LOWER`]'s and [`PELLET_LANDS_UPPER`]'s faces (`None`
+    /// without the groups).
+    pub lands: Option<[FaceSet; 2]>,
     /// Whether the section is r-z (else the 2D cross-section).
     pub axisymmetric: bool,
     /// The largest radius of the pellet's lateral surface (m).
@@ -128,6 +140,26 @@ impl FileGeometry {
         };
         let cladding_inner = faces(&cladding, CLADDING_INNER)?;
         let cladding_outer = faces(&cladding, CLADDING_OUTER)?;
+        let optional = |group: &str| match faces(&pellet, group) {
+            Err(IoError::GroupNotFound { .. }) => Ok(None),
+            other => other.map(Some),
+        };
+        let lands = match (optional(PELLET_LANDS_LOWER)?, optional(PELLET_LANDS_UPPER)?) {
+            (Some(lower), Some(upper)) if axisymmetric => Some([lower, upper]),
+            (None, None) => None,
+            (Some(_), Some(_)) => {
+                return Err(invalid(format!(
+                    "groups \"{PELLET_LANDS_LOWER}\" and \"{PELLET_LANDS_UPPER}\" (a stack's \
+                     lands) in a 2D cross-section: a stack is an r-z section"
+                )))
+            }
+            _ => {
+                return Err(invalid(format!(
+                    "one of the groups \"{PELLET_LANDS_LOWER}\" and \"{PELLET_LANDS_UPPER}\" \
+                     without the other: a stack's lands are given in pairs"
+                )))
+            }
+        };
         let (pellet, cladding) = (pellet.mesh, cladding.mesh);
         // The radii of a group's nodes: x in r-z, the distance from the axis in 2D.
         let radius = |x: &nalgebra::Vector3<f64>| if axisymmetric { x.x } else { x.xy().norm() };
@@ -173,6 +205,7 @@ impl FileGeometry {
             pellet_free,
             cladding_inner,
             cladding_outer,
+            lands,
             axisymmetric,
             pellet_radius: a,
             inner_radius: b,

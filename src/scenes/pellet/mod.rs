@@ -994,6 +994,26 @@ impl PelletScene {
             scene.model.segment_height = file.height;
         }
         scene.check()?;
+        // A stack's pellets are held axially by their lands' contact only: under the exact
+        // law an open land carries nothing, and the pellets above it would slide freely.
+        let exact = self
+            .laws
+            .contact
+            .as_ref()
+            .map_or(self.contact.law == ContactLawName::Exact, |l| {
+                l.name == "contact_complementarity"
+            });
+        if file.lands.is_some() && exact {
+            return Err(PelletError::Invalid(format!(
+                "{}: a stack of pellets (groups \"{}\" and \"{}\") under the exact contact \
+                 law: its pellets are held axially only where their lands touch, and as built \
+                 they do not; use the exponential law ([contact] law = \"exponential\"), whose \
+                 pressure acts below its onset gap",
+                path.display(),
+                file_mesh::PELLET_LANDS_LOWER,
+                file_mesh::PELLET_LANDS_UPPER
+            )));
+        }
         Ok((scene, Some(file)))
     }
 
