@@ -155,8 +155,8 @@ pub use mortar_elements::ElementRegistry;
 pub use mortar_fem::element::VolumeElement;
 pub use mortar_fem::linalg::{LinearOperator, Preconditioner};
 pub use mortar_physics::laws::{
-    check_tangent, ConstraintLaw, DynLaw, Float, LawPoint, LawRegistry, ObjectLaw,
-    RelocationInput, RelocationModel,
+    check_tangent, ConstraintLaw, DynLaw, Float, LawPoint, LawRegistry, ObjectLaw, RelocationInput,
+    RelocationModel,
 };
 pub use mortar_physics::nonlinear::NewtonProblem;
 

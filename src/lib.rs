@@ -29,6 +29,7 @@ pub mod generate;
 pub mod interrupt;
 pub mod io;
 pub mod scenes;
+pub mod settings;
 #[cfg(feature = "proptest-support")]
 #[cfg_attr(docsrs, doc(cfg(feature = "proptest-support")))]
 pub mod testing;

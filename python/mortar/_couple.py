@@ -338,8 +338,8 @@ def couple(
     slave: SurfaceLike,
     master: SurfaceLike,
     *,
-    multipliers: str = "standard",
-    integration: str = "segment",
+    multipliers: Optional[str] = None,
+    integration: Optional[str] = None,
     degree: Optional[int] = None,
     threads: Optional[int] = None,
     orient: bool = True,
@@ -371,10 +371,11 @@ def couple(
             Points no face uses are ignored.
         multipliers: ``"standard"`` (Phi = N), ``"dual"`` (biorthogonal: D diagonal) or
             ``"linear"`` (second-order faces: first-order functions on the corner nodes
-            only, the rows of the other nodes empty; standard on first-order faces).
-        integration: ``"segment"`` (clipped overlaps: exact on affine faces) or
-            ``"element"`` (slave quadrature points projected: cheaper, inexact where master
-            edges cross a slave face).
+            only, the rows of the other nodes empty; standard on first-order faces); None:
+            the default of ``mortar couple`` and the scene files, ``"dual"``.
+        integration: ``"segment"`` (clipped overlaps: exact on affine faces; the default
+            for None) or ``"element"`` (slave quadrature points projected: cheaper,
+            inexact where master edges cross a slave face).
         degree: quadrature degree; None picks the lowest exact one (in ``stats``).
         threads: worker threads; None uses all cores (or ``RAYON_NUM_THREADS``). D and M
             are bit-for-bit the same for any count.

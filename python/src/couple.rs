@@ -5,7 +5,7 @@ use std::time::Instant;
 use mortar::core::element::ElementRef;
 use mortar::core::mesh::orient::{face_each_other, OrientationReport};
 use mortar::elements::{LINE2, LINE3, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
-use mortar::io::{CouplingSettings, Integration, Multipliers};
+use mortar::settings::{parse_or_default, CouplingSettings, Integration, Multipliers};
 use mortar::{
     assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SpatialDim, SurfaceMesh,
     Tolerances,
@@ -196,33 +196,22 @@ struct SegmentDials {
 /// default is the library's.
 #[allow(clippy::too_many_arguments)]
 fn options(
-    multipliers: &str,
-    integration: &str,
+    multipliers: Option<&str>,
+    integration: Option<&str>,
     degree: Option<u32>,
     dials: SegmentDials,
     threads: Option<usize>,
     search_radius: Option<f64>,
     require_full_coverage: bool,
 ) -> Result<(CouplingOptions, Tolerances), Failure> {
-    let multipliers = match multipliers {
-        "standard" => Multipliers::Standard,
-        "dual" => Multipliers::Dual,
-        "linear" => Multipliers::Linear,
-        other => {
-            return Err(Failure::Input(format!(
-                "multipliers=\"{other}\": give \"standard\", \"dual\" or \"linear\""
-            )))
-        }
+    // Names as the scene files spell them; None is the vocabulary's default.
+    let named = |what: &str, given: Option<&str>, e: String| {
+        Failure::Input(format!("{what}={:?}: {e}", given.unwrap_or_default()))
     };
-    let integration = match integration {
-        "segment" => Integration::Segment,
-        "element" => Integration::Element,
-        other => {
-            return Err(Failure::Input(format!(
-                "integration=\"{other}\": give \"segment\" or \"element\""
-            )))
-        }
-    };
+    let multipliers: Multipliers =
+        parse_or_default(multipliers).map_err(|e| named("multipliers", multipliers, e))?;
+    let integration: Integration =
+        parse_or_default(integration).map_err(|e| named("integration", integration, e))?;
     if threads == Some(0) {
         return Err(Failure::Input(
             "threads=0: give at least one thread, or None for all cores".into(),
@@ -346,7 +335,7 @@ pub(crate) fn csr<'py>(
 #[pyfunction]
 #[pyo3(signature = (
     slave_points, slave_blocks, master_points, master_blocks,
-    *, multipliers = "standard", integration = "segment", degree = None, threads = None,
+    *, multipliers = None, integration = None, degree = None, threads = None,
     orient = true, require_full_coverage = false, curved_tolerance = None, subdivision = None,
     quad_subdivision = None, search_radius = None
 ))]
@@ -357,8 +346,8 @@ pub(crate) fn couple_arrays<'py>(
     slave_blocks: Vec<(String, PyReadonlyArray2<'py, i64>)>,
     master_points: PyReadonlyArray2<'py, f64>,
     master_blocks: Vec<(String, PyReadonlyArray2<'py, i64>)>,
-    multipliers: &str,
-    integration: &str,
+    multipliers: Option<&str>,
+    integration: Option<&str>,
     degree: Option<u32>,
     threads: Option<usize>,
     orient: bool,

@@ -36,8 +36,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use crate::extend::Registries;
-use crate::io::{CouplingSettings, Integration, Multipliers};
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use crate::settings::{parse_name, CouplingSettings, Integration, Multipliers};
+use clap::{Args, Parser, Subcommand};
 
 /// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
 /// conductance.
@@ -138,13 +138,17 @@ struct CoupleArgs {
     #[arg(short, long, value_name = "DIR")]
     out: PathBuf,
 
-    /// Lagrange-multiplier space.
-    #[arg(long, value_enum, default_value_t = Lm::Standard)]
-    lm: Lm,
+    /// Lagrange-multiplier space: standard, dual (D diagonal; the default, as in scene files
+    /// and Python) or linear (second-order faces: corner nodes only).
+    #[arg(long, value_name = "SPACE", value_parser = parse_name::<Multipliers>,
+          default_value_t = Multipliers::default())]
+    lm: Multipliers,
 
-    /// Integration strategy: exact segmentation, or slave quadrature points projected.
-    #[arg(long, value_enum, default_value_t = IntegrationArg::Segment)]
-    integration: IntegrationArg,
+    /// Integration strategy: segment (exact segmentation, the default) or element (slave
+    /// quadrature points projected).
+    #[arg(long, value_name = "STRATEGY", value_parser = parse_name::<Integration>,
+          default_value_t = Integration::default())]
+    integration: Integration,
 
     /// Quadrature degree (1 to 20; default: automatic, exact on flat faces).
     #[arg(long, value_name = "N")]
@@ -188,37 +192,11 @@ struct CoupleArgs {
     keep_orientation: bool,
 }
 
-#[derive(Debug, Clone, Copy, ValueEnum)]
-enum Lm {
-    /// Standard multipliers (slave shape functions).
-    Standard,
-    /// Dual (biorthogonal) multipliers: D is diagonal.
-    Dual,
-    /// Linear multipliers on second-order faces (corner nodes only; rows of the other
-    /// nodes empty).
-    Linear,
-}
-
-#[derive(Debug, Clone, Copy, ValueEnum)]
-enum IntegrationArg {
-    /// Segment-based: exact clipping of each slave-master pair.
-    Segment,
-    /// Element-based: cheaper, inexact where slave faces span master edges.
-    Element,
-}
-
 impl CoupleArgs {
     fn settings(&self) -> CouplingSettings {
         CouplingSettings {
-            multipliers: match self.lm {
-                Lm::Standard => Multipliers::Standard,
-                Lm::Dual => Multipliers::Dual,
-                Lm::Linear => Multipliers::Linear,
-            },
-            integration: match self.integration {
-                IntegrationArg::Segment => Integration::Segment,
-                IntegrationArg::Element => Integration::Element,
-            },
+            multipliers: self.lm,
+            integration: self.integration,
             degree: self.degree,
             curved_tolerance: self.curved_tolerance,
             subdivision: self.subdivision,

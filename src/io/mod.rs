@@ -44,6 +44,8 @@ pub mod plot;
 mod summary;
 pub mod vtu;
 
+/// The coupling vocabulary, at its former path: its home is [`crate::settings`].
+pub use crate::settings::{CouplingSettings, Integration, Multipliers};
 pub use error::{IoError, Location};
 pub use gmsh::{
     msh41_bytes, msh41_volume_bytes, parse_gmsh_surface, parse_gmsh_volume, read_gmsh_surface,
@@ -54,7 +56,6 @@ pub use gmsh::{
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
 pub use output::{remove_stale_outputs, write_coupling, write_outputs};
 pub use summary::{
-    warning_text, CouplingSettings, CouplingSummary, GapSummary, Integration, Multipliers,
-    OrientationMethod, OrientationSummary, PhaseSummary, SideOrientation, ThreadSecondsSummary,
-    WarningSummary, RECOMBINATION_FILE,
+    warning_text, CouplingSummary, GapSummary, OrientationMethod, OrientationSummary, PhaseSummary,
+    SideOrientation, ThreadSecondsSummary, WarningSummary, RECOMBINATION_FILE,
 };

@@ -2,36 +2,10 @@
 
 use std::fmt;
 
-use mortar_core::integration::SegmentBased;
-use mortar_core::{
-    Coupling, CouplingOptions, Interface, MortarError, SearchRadius, SpatialDim, Tolerances,
-};
+use mortar_core::{Coupling, Interface, SearchRadius, SpatialDim};
 use serde::{Deserialize, Serialize};
 
-/// The Lagrange-multiplier space.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Multipliers {
-    /// Standard multipliers (the slave shape functions).
-    #[default]
-    Standard,
-    /// Dual (biorthogonal) multipliers: D is diagonal.
-    Dual,
-    /// Linear multipliers on second-order faces (on the corner nodes only; standard on
-    /// first-order faces): see [`mortar_core::multiplier::LinearMultipliers`].
-    Linear,
-}
-
-/// The integration strategy.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Integration {
-    /// Exact segmentation of each slave-master pair.
-    #[default]
-    Segment,
-    /// Quadrature points of the slave face projected onto the master.
-    Element,
-}
+use crate::settings::{CouplingSettings, Integration, Multipliers};
 
 /// The file `T` of a coupling in the recombined slave basis is written to, beside `D.mtx`.
 pub const RECOMBINATION_FILE: &str = "T.mtx";
@@ -39,132 +13,6 @@ pub const RECOMBINATION_FILE: &str = "T.mtx";
 /// `"nodal"`: the slave basis of a summary that does not name one.
 fn nodal() -> String {
     "nodal".to_string()
-}
-
-/// The choices of a coupling run, as a user states them.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct CouplingSettings {
-    /// The multiplier space.
-    pub multipliers: Multipliers,
-    /// The integration strategy.
-    pub integration: Integration,
-    /// The quadrature degree (`None`: automatic, exact on affine faces for segment-based).
-    pub degree: Option<u32>,
-    /// Worker threads (`None`: rayon's default).
-    pub threads: Option<usize>,
-    /// How far along the slave normals to look for master faces, in the coordinates' units
-    /// (`None`: the default, as far as the nearest master surface within a quarter of the
-    /// interface's size).
-    pub search_radius: Option<f64>,
-    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
-    /// of warnings.
-    #[serde(default)]
-    pub require_full_coverage: bool,
-    /// Segment-based, curved second-order faces in 3D: the subdivision tolerance (`None`:
-    /// [`DEFAULT_CURVED_TOLERANCE`](mortar_core::integration::curved_3d::DEFAULT_CURVED_TOLERANCE));
-    /// see [`SegmentBased::with_curved_tolerance`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub curved_tolerance: Option<f64>,
-    /// Segment-based, curved second-order faces in 3D: a fixed subdivision level instead of
-    /// the tolerance's; see [`SegmentBased::with_subdivision`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub subdivision: Option<u32>,
-    /// Segment-based, slave quads that are not parallelograms: each clip triangle cut into
-    /// `m^2`; see [`SegmentBased::with_quad_subdivision`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub quad_subdivision: Option<u32>,
-}
-
-impl CouplingSettings {
-    /// The core's options for these settings.
-    ///
-    /// # Errors
-    /// [`MortarError::InvalidOption`] for a degree out of range, zero threads, a dial of the
-    /// segment-based integration out of its range, or given with element-based integration.
-    pub fn options(&self) -> Result<CouplingOptions, MortarError> {
-        if self.threads == Some(0) {
-            return Err(MortarError::InvalidOption {
-                option: "threads",
-                value: "0".into(),
-                reason: "at least 1".into(),
-            });
-        }
-        let mut o = CouplingOptions::default();
-        o = match self.multipliers {
-            Multipliers::Standard => o.standard(),
-            Multipliers::Dual => o.dual(),
-            Multipliers::Linear => o.linear(),
-        };
-        o = match self.integration {
-            Integration::Segment => {
-                let mut s = SegmentBased::new(self.degree)?;
-                if let Some(t) = self.curved_tolerance {
-                    s = s.with_curved_tolerance(t)?;
-                }
-                if let Some(l) = self.subdivision {
-                    s = s.with_subdivision(l)?;
-                }
-                if let Some(m) = self.quad_subdivision {
-                    s = s.with_quad_subdivision(m)?;
-                }
-                o.integration = std::sync::Arc::new(s);
-                o
-            }
-            Integration::Element => {
-                let dials = [
-                    (
-                        "curved tolerance",
-                        self.curved_tolerance.map(|t| t.to_string()),
-                    ),
-                    ("subdivision level", self.subdivision.map(|l| l.to_string())),
-                    (
-                        "quad subdivision",
-                        self.quad_subdivision.map(|m| m.to_string()),
-                    ),
-                ];
-                if let Some((option, Some(value))) = dials.into_iter().find(|d| d.1.is_some()) {
-                    return Err(MortarError::InvalidOption {
-                        option,
-                        value,
-                        reason: "a dial of segment-based integration, not element-based".into(),
-                    });
-                }
-                o.element_based(self.degree)?
-            }
-        };
-        if let Some(t) = self.threads {
-            o = o.threads(t);
-        }
-        Ok(o.require_full_coverage(self.require_full_coverage))
-    }
-
-    /// What widens the search, as `mortar couple` takes it: `--search-radius DISTANCE`
-    /// (larger than the one in use, when one was given).
-    pub fn widen_search_hint(&self) -> String {
-        match self.search_radius {
-            Some(r) => format!("--search-radius above {r}"),
-            None => "--search-radius DISTANCE".to_string(),
-        }
-    }
-
-    /// The tolerances for these settings (the search radius).
-    ///
-    /// # Errors
-    /// [`MortarError::InvalidOption`] for a negative or non-finite search radius.
-    pub fn tolerances(&self) -> Result<Tolerances, MortarError> {
-        let mut t = Tolerances::default();
-        if let Some(r) = self.search_radius {
-            t.search_radius = SearchRadius::Distance(r);
-            if !t.search_radius.is_valid() {
-                return Err(MortarError::InvalidOption {
-                    option: "search radius",
-                    value: r.to_string(),
-                    reason: "not a non-negative finite distance".into(),
-                });
-            }
-        }
-        Ok(t)
-    }
 }
 
 /// Seconds per phase (see [`mortar_core::assembly::PhaseSeconds`]): wall-clock, with the

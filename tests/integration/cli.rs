@@ -182,7 +182,8 @@ fn couples_a_3d_interface_from_an_ascii_group_and_a_binary_file() {
     let (d, m_mat, summary) =
         couple_and_check(&out, &["--slave", &slave_arg, "--master", &master_arg]);
     assert_eq!(summary["dimension"], 3);
-    assert_eq!(summary["multipliers"], "standard");
+    // The vocabulary's defaults, as scene files and Python take them.
+    assert_eq!(summary["multipliers"], "dual");
     assert_eq!(summary["integration"], "segment");
     assert_eq!(summary["slave_faces"], 32);
     assert_eq!(summary["master_faces"], 25);
@@ -202,7 +203,7 @@ fn couples_a_3d_interface_from_an_ascii_group_and_a_binary_file() {
         read_surface(&m, None, &registry).unwrap(),
     )
     .unwrap();
-    let coupling = assemble_coupling(&interface, &CouplingOptions::default()).unwrap();
+    let coupling = assemble_coupling(&interface, &CouplingOptions::default().dual()).unwrap();
     for (v, (r, c)) in coupling.d.iter() {
         assert_eq!(v.to_bits(), d[r][c].to_bits(), "D[{r},{c}]");
     }
@@ -402,13 +403,20 @@ fn demo_couples_the_built_in_pair() {
         "segments",
         "area",
         "time",
-        "standard multipliers",
-        "1.0000000000",
+        "dual multipliers",
         // Tri3 against flat Quad4: the closed form (the clip polygons' moments).
         "path     the closed form for 1152 of 1152 slave faces",
     ] {
         assert!(text.contains(needle), "no {needle:?} in\n{text}");
     }
+    // The area, the sum of D: the unit square to rounding.
+    let area: f64 = text
+        .lines()
+        .find_map(|l| l.strip_prefix("area"))
+        .and_then(|l| l.split_whitespace().next())
+        .and_then(|v| v.parse().ok())
+        .expect("an area line");
+    assert!((area - 1.0).abs() < 1e-12, "area {area}");
     let run = mortar(&["--json", "demo"]);
     assert!(run.status.success());
     let summary: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();

@@ -52,7 +52,7 @@ use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
-use super::{coupling_of, dual, face_nodes, widen_hint};
+use super::{coupling_of, face_nodes, widen_hint};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 use crate::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
@@ -179,8 +179,8 @@ pub struct ContactInterfaceSpec {
     /// `xi` of the exponential law.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub onset: Option<f64>,
-    /// The multiplier space.
-    #[serde(default = "dual")]
+    /// The multiplier space (default dual, the vocabulary's: [`Multipliers::default`]).
+    #[serde(default)]
     pub multipliers: Multipliers,
     /// The integration strategy.
     #[serde(default)]

@@ -188,8 +188,3 @@ pub(crate) fn widen_hint(section: &str, radius: Option<f64>) -> String {
         None => format!("[{section}] search_radius (a distance)"),
     }
 }
-
-/// The default multiplier space of scene files: dual.
-pub(crate) fn dual() -> crate::io::Multipliers {
-    crate::io::Multipliers::Dual
-}

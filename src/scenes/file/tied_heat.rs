@@ -43,7 +43,7 @@ use mortar_physics::heat::{
 use mortar_physics::tied::{FormulationChoice, TiedOptions};
 use serde::{Deserialize, Serialize};
 
-use super::{coupling_of, dual, face_nodes, widen_hint};
+use super::{coupling_of, face_nodes, widen_hint};
 use super::{SceneError, SceneOutput, SceneSource};
 use crate::extend::Registries;
 
@@ -143,8 +143,8 @@ pub struct InterfaceSpec {
     pub slave: SideSpec,
     /// The master side.
     pub master: SideSpec,
-    /// The multiplier space.
-    #[serde(default = "dual")]
+    /// The multiplier space (default dual, the vocabulary's: [`Multipliers::default`]).
+    #[serde(default)]
     pub multipliers: Multipliers,
     /// The integration strategy.
     #[serde(default)]
