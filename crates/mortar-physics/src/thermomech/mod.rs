@@ -22,6 +22,7 @@
 
 mod blocks;
 mod interface;
+mod pair;
 mod plenum;
 mod problem;
 mod solve;

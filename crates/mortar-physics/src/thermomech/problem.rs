@@ -12,7 +12,7 @@ use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{CouplingOptions, ModelGeometry, Side, Tolerances};
 use nalgebra::Vector3;
 
-use super::interface::{nodal_gaps, ContactPair, GasSums};
+use super::pair::{gap_column, nodal_gaps, ContactPair, GasSums};
 use super::plenum::GasPressure;
 use crate::contact::{slave_surface_measures, NormalGap, SlaveSurfaceMeasures};
 use crate::elastic::{
@@ -1029,16 +1029,6 @@ fn rod_axis(geometry: ModelGeometry, dim: usize) -> Option<usize> {
         Some(2)
     } else {
         None
-    }
-}
-
-/// The gas volume over a slave node of weight `w`, nodal gap `g` and curvature `kappa`:
-/// `w g (1 + kappa g / 2)` where open, zero where closed.
-pub(crate) fn gap_column(w: f64, g: f64, kappa: f64) -> f64 {
-    if g > 0.0 {
-        w * g * (1.0 + 0.5 * kappa * g)
-    } else {
-        0.0
     }
 }
 
