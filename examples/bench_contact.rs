@@ -13,7 +13,7 @@
 //!   out), the exact law with automatic `c`. Phases: meshes, assembly (stiffness and loads),
 //!   coupling (D, M), then per Newton step the linear solve (building the condensed system,
 //!   Cholesky, solve) and the rest (residuals, law).
-//! - `hertz2d`: the 2D Hertz scene (`mortar::scenes::hertz`) with `n` arc cells; its build
+//! - `hertz2d`: the 2D Hertz scene (`mortar_scenes::hertz`) with `n` arc cells; its build
 //!   (meshes, coupling, assembly) is timed as one phase.
 //!
 //! Prints one JSON record per case and size, and a table.
@@ -34,8 +34,8 @@ use mortar::physics::elastic::{
 };
 use mortar::physics::laws::ContactComplementarity;
 use mortar::physics::tied::Tie;
-use mortar::scenes::hertz::HertzScene;
 use mortar::CouplingOptions;
+use mortar_scenes::hertz::HertzScene;
 use nalgebra::Vector3;
 use serde_json::{json, Value};
 

@@ -17,7 +17,7 @@
 use std::path::PathBuf;
 
 use clap::Parser;
-use mortar::scenes::pellet::{run, Geometry, PelletScene, SolverMethod};
+use mortar_scenes::pellet::{run, Geometry, PelletScene, SolverMethod};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;

@@ -9,7 +9,7 @@
 //! cargo run --release --example bench_tied_heat -- --n 256            # a smaller problem
 //! ```
 //!
-//! The scene is `mortar::scenes::tied_heat`'s straight 2D one: the unit square cut at
+//! The scene is `mortar_scenes::tied_heat`'s straight 2D one: the unit square cut at
 //! x = 1/2, a left body of `n/2 x n` Quad4 (master) and a right body of `3n/4 x 3n/2` squares
 //! cut into Tri3 (slave), a 2:3 size ratio; u = sin(pi x) sin(pi y) with its source and
 //! Dirichlet data on the outer boundary; dual multipliers, segment-based integration. The
@@ -33,7 +33,7 @@ use mortar::physics::heat::{
     assemble_heat_load, assemble_heat_stiffness, HeatBody, HeatMaterial, HeatOptions,
 };
 use mortar::physics::tied::{FormulationChoice, Tie, TiedOptions, TiedSystem};
-use mortar::scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
+use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;

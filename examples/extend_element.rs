@@ -6,8 +6,8 @@
 //! Gmsh reader, tied by `Interface` and the coupling and checked by `mortar::testing`'s patch
 //! test (sum(D) = the interface's length, D 1 = M 1, D x = M x, row sums against nodal areas,
 //! D diagonal for dual multipliers), then coupled again by `mortar couple` and solved as a
-//! tied-heat scene file by `mortar run`, both from `mortar::cli::run_from` with the program's
-//! registries (a program's `main` would be `mortar::cli::main_with(registries)`).
+//! tied-heat scene file by `mortar run`, both from `mortar_app::cli::run_from` with the program's
+//! registries (a program's `main` would be `mortar_app::cli::main_with(registries)`).
 //!
 //! ```sh
 //! cargo run --release --example extend_element [OUT_DIR]
@@ -97,7 +97,10 @@ pub fn run(out: &std::path::Path) -> Res<()> {
         format!("mortar run {o}/scene.toml --out {o}/scene"),
     ] {
         let args: Vec<&str> = command.split_whitespace().collect();
-        assert_eq!(mortar::cli::run_from(&args, &registries), ExitCode::SUCCESS);
+        assert_eq!(
+            mortar_app::cli::run_from(&args, &registries),
+            ExitCode::SUCCESS
+        );
     }
     // ---- end of the user's code ----
     check_scene(out, &registries)
@@ -106,7 +109,7 @@ pub fn run(out: &std::path::Path) -> Res<()> {
 /// Solves the scene file through the library with the same registries and checks the
 /// temperature against the exact one.
 fn check_scene(out: &std::path::Path, registries: &Registries) -> Res<()> {
-    use mortar::scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
     let path = out.join("scene.toml");
     let text = SCENE.replace("MESH", MESH);
     let solved =

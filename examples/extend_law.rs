@@ -11,7 +11,7 @@
 use mortar::physics::laws::{
     check_tangent, ConstraintLaw, Float, LawPoint, MechanicalGapConductance,
 };
-use mortar::scenes::pellet::{exponential_contact_law, run_coupled_with, thermal_law, PelletScene};
+use mortar_scenes::pellet::{exponential_contact_law, run_coupled_with, thermal_law, PelletScene};
 
 // ---- the user's code: the law (19 lines as rustfmt lays them out, comments and blank lines not counted) ----
 /// Ross-Stoute on the mechanical gap plus grey-body radiation of emissivity `eps`.

@@ -7,7 +7,7 @@
 //! cargo run --release --example hertz2d -- --json hertz2d.json --n 24 --levels 3 --profile
 //! ```
 //!
-//! The scene is `mortar::scenes::hertz` (its documentation has the model): the symmetric half,
+//! The scene is `mortar_scenes::hertz` (its documentation has the model): the symmetric half,
 //! a quarter disc (slave, `R = 1`, centre `(0, R)`) on the block `[0, 8R] x [-8R, 0]`
 //! (master), both refined towards the contact point, `E = 200 GPa`, `nu = 0.3`; the disc's top
 //! moved down by the approach `d` (free to slide), `u_x = 0` on `x = 0`, the block's bottom
@@ -33,8 +33,8 @@ use std::path::PathBuf;
 
 use clap::Parser;
 use mortar::physics::elastic::ElasticMaterial;
-use mortar::scenes::hertz::{HertzRun, HertzScene, DEFAULT_ARC_CELLS};
-use mortar::scenes::tied_heat::rate;
+use mortar_scenes::hertz::{HertzRun, HertzScene, DEFAULT_ARC_CELLS};
+use mortar_scenes::tied_heat::rate;
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;

@@ -7,7 +7,7 @@
 //! cargo run --release --example hertz3d -- --json hertz3d.json --n 10 --levels 2 --profile
 //! ```
 //!
-//! The scene is `mortar::scenes::hertz::sphere` (its documentation has the model): the
+//! The scene is `mortar_scenes::hertz::sphere` (its documentation has the model): the
 //! symmetric quarter, the lower octant of a ball (slave, `R = 1`, centre `(0, 0, R)`, Hex8) on
 //! the block `[0, 8R]^2 x [-8R, 0]` (master, Hex8), both refined towards the contact point,
 //! `E = 200 GPa`, `nu = 0.3`; the sphere's equator moved down by the approach `d` (free to
@@ -37,7 +37,7 @@ use std::path::PathBuf;
 
 use clap::Parser;
 use mortar::physics::elastic::ElasticMaterial;
-use mortar::scenes::hertz::{HertzSphereRun, HertzSphereScene, DEFAULT_SPHERE_CELLS};
+use mortar_scenes::hertz::{HertzSphereRun, HertzSphereScene, DEFAULT_SPHERE_CELLS};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -223,12 +223,12 @@ pub fn run(args: Args) -> Res<()> {
     Ok(())
 }
 
-fn closed_json(c: &mortar::scenes::hertz::HertzContact) -> Value {
+fn closed_json(c: &mortar_scenes::hertz::HertzContact) -> Value {
     json!({ "a": c.radius, "p0": c.peak, "P": c.load, "d": c.approach })
 }
 
 fn level_json(r: &HertzSphereRun, profile: bool) -> Value {
-    let bracket = |h: &mortar::scenes::hertz::HalfWidth| {
+    let bracket = |h: &mortar_scenes::hertz::HalfWidth| {
         json!({
             "estimate": h.estimate,
             "last_in_contact": h.last_in_contact,

@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use mortar::scenes::pellet::{run as run_scene, PelletScene, SolverMethod};
+use mortar_scenes::pellet::{run as run_scene, PelletScene, SolverMethod};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     run(&std::env::args().skip(1).collect::<Vec<_>>())

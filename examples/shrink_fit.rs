@@ -2,7 +2,7 @@
 //! a ring `b <= r <= c`, same material, frictionless mortar contact with dual multipliers and
 //! the exact complementarity law (automatic `c`), against Lamé's closed form
 //! `p = E delta (c^2 - b^2) / (2 b c^2 (1 - nu^2))` (Timoshenko and Goodier, *Theory of
-//! Elasticity*, sec. 33). The model is `mortar::scenes::shrink_fit` (quarter model, `b = 1`,
+//! Elasticity*, sec. 33). The model is `mortar_scenes::shrink_fit` (quarter model, `b = 1`,
 //! `c = 2`, `delta = 1e-3`, `E = 200 GPa`, `nu = 0.3`).
 //!
 //! ```text
@@ -23,7 +23,7 @@
 //! (`delta / b`) ambiguity of the small-strain closed form, reported as
 //! `relative_error_mean_at_ring_radius`.
 
-use mortar::scenes::shrink_fit::ShrinkFitScene;
+use mortar_scenes::shrink_fit::ShrinkFitScene;
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;

@@ -8,7 +8,7 @@
 //! cargo run --release --example tied_heat -- --dim 2 --quick          # a smoke run (seconds)
 //! ```
 //!
-//! Scenes (see `mortar::scenes::tied_heat`): the unit square (cube) cut at x = 0.5 into a left
+//! Scenes (see `mortar_scenes::tied_heat`): the unit square (cube) cut at x = 0.5 into a left
 //! body of Quad4 (Hex8) cells, n per unit length, and a right body of Tri3 (Tet4) cells, 3n/2
 //! per unit length; and a curved variant, a disc (ball) of radius 0.3 inside the rest of the
 //! square (cube), both O-grids with the same 2:3 ratio. Exact solution
@@ -35,8 +35,8 @@ use clap::Parser;
 use mortar::generate::SecondOrder;
 use mortar::io::vtu::{write_vtu, VtuPiece};
 use mortar::physics::tied::{FormulationChoice, TiedOptions};
-use mortar::scenes::tied_heat::{rate, Exact, Geometry, TiedHeatRun, TiedHeatScene};
 use mortar::CouplingOptions;
+use mortar_scenes::tied_heat::{rate, Exact, Geometry, TiedHeatRun, TiedHeatScene};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;

@@ -1,7 +1,7 @@
 //! Writes the two Gmsh meshes of `examples/scenes/tied_square.toml` (ASCII Gmsh 4.1):
 //! `tied_square_left.msh` and `tied_square_right.msh`, a unit square cut at x = 1/2 into two
 //! bodies meshed independently with a 2:3 size ratio (see
-//! `mortar::scenes::file::tied_block`).
+//! `mortar_scenes::file::tied_block`).
 //!
 //! ```text
 //! cargo run --example write_scene_meshes [-- DIR]     # default DIR: examples/scenes
@@ -11,7 +11,7 @@
 use std::path::PathBuf;
 
 use mortar::io::MshFormat;
-use mortar::scenes::file::tied_block;
+use mortar_scenes::file::tied_block;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     run(&std::env::args().skip(1).collect::<Vec<_>>())

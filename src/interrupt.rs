@@ -1,36 +1,10 @@
-//! Cooperative interruption (Ctrl-C): long runs (the pellet's time steps, a transient tied-heat
-//! scene) check [`requested`] between steps and stop cleanly, saying how far they got, instead
-//! of dying mid-write. The command-line program installs the handler ([`install_handler`]);
-//! a program of one's own may call [`request`] from its own handler or thread.
-//!
-//! The one module that knows the `ctrlc` crate.
-//!
-//! ```
-//! use mortar::interrupt;
-//! assert!(!interrupt::requested());
-//! interrupt::request();
-//! assert!(interrupt::requested());
-//! interrupt::clear();
-//! ```
+//! Ctrl-C for the `mortar` command: the handler that turns SIGINT (and SIGTERM) into a
+//! request to stop at the next step ([`mortar_scenes::interrupt`]). The one module that knows
+//! the `ctrlc` crate.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-static REQUESTED: AtomicBool = AtomicBool::new(false);
-
-/// Asks the running computation to stop at its next step.
-pub fn request() {
-    REQUESTED.store(true, Ordering::SeqCst);
-}
-
-/// Whether a stop was asked for.
-pub fn requested() -> bool {
-    REQUESTED.load(Ordering::SeqCst)
-}
-
-/// Withdraws a request (before a new run).
-pub fn clear() {
-    REQUESTED.store(false, Ordering::SeqCst);
-}
+use mortar_scenes::interrupt::{request, requested};
 
 /// Whether [`install_handler`] has installed the handler in this process.
 static INSTALLED: AtomicBool = AtomicBool::new(false);

@@ -1,5 +1,5 @@
-//! `mortar`: the command-line program of the mortar toolkit, [`mortar::cli::main`] with the
-//! shipped elements and laws (a program of one's own calls [`mortar::cli::main_with`]).
+//! `mortar`: the command-line program of the mortar toolkit, [`mortar_app::cli::main`] with the
+//! shipped elements and laws (a program of one's own calls [`mortar_app::cli::main_with`]).
 //!
 //! - `mortar` (no arguments): runs the built-in thermomechanical pellet scene into
 //!   `out/pellet` with a progress bar and prints what it modelled and its results;
@@ -14,5 +14,5 @@
 //! run stopped by Ctrl-C, 141 when the reader of the output has gone).
 
 fn main() -> std::process::ExitCode {
-    mortar::cli::main()
+    mortar_app::cli::main()
 }

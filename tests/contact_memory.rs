@@ -12,8 +12,8 @@
 
 use std::path::Path;
 
-use mortar::scenes::file::contact::ContactSpec;
-use mortar::scenes::file::FileSystem;
+use mortar_scenes::file::contact::ContactSpec;
+use mortar_scenes::file::FileSystem;
 
 /// The peak resident size of this process (`VmHWM` of `/proc/self/status`), in bytes.
 #[cfg(target_os = "linux")]

@@ -7,8 +7,8 @@ use plotters::prelude::*;
 use crate::tradeoff::{Case, Row};
 use crate::Res;
 
-/// DejaVu Sans (Bitstream Vera licence, see `examples/assets/DejaVuSans-LICENSE.txt`).
-const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+/// DejaVu Sans (Bitstream Vera licence, see `crates/mortar-scenes/assets/DejaVuSans-LICENSE.txt`).
+const FONT: &[u8] = include_bytes!("../../crates/mortar-scenes/assets/DejaVuSans.ttf");
 /// Errors below this are drawn at this value.
 const FLOOR: f64 = 1e-16;
 const COLOURS: [RGBColor; 4] = [

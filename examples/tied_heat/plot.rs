@@ -6,8 +6,8 @@ use plotters::prelude::*;
 
 use super::Res;
 
-/// DejaVu Sans (Bitstream Vera licence, see `examples/assets/DejaVuSans-LICENSE.txt`).
-const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+/// DejaVu Sans (Bitstream Vera licence, see `crates/mortar-scenes/assets/DejaVuSans-LICENSE.txt`).
+const FONT: &[u8] = include_bytes!("../../crates/mortar-scenes/assets/DejaVuSans.ttf");
 const COLOURS: [RGBColor; 4] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),

@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 
 use mortar::extend::Registries;
 use mortar::io::write_outputs;
-use mortar::scenes::file::{
+use mortar_scenes::file::{
     contact::ContactSpec, scene_kind, tied_heat::TiedHeatSpec, FileSystem, SceneOutput,
 };
-use mortar::scenes::pellet;
+use mortar_scenes::pellet;
 use pyo3::prelude::*;
 
 use crate::errors::{self, Kind};

@@ -1,12 +1,12 @@
 //! `mortar couple`: two Gmsh surfaces in, D, M and a summary out.
 
-use crate::core::mesh::orient::face_each_other;
-use crate::extend::Registries;
-use crate::io::{
+use mortar::core::mesh::orient::face_each_other;
+use mortar::extend::Registries;
+use mortar::io::{
     parse_interface_arg, read_gmsh_surface, write_coupling, CouplingSummary, GmshSurface,
     OrientationMethod, OrientationSummary, SideOrientation,
 };
-use crate::{assemble_coupling, Interface};
+use mortar::{assemble_coupling, Interface};
 
 use super::report::{core_error, print_summary, print_warnings};
 use super::CoupleArgs;
@@ -65,7 +65,7 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
 /// Orients both surfaces: outward from the cells of their files where every face bounds one
 /// cell, otherwise consistent piece by piece and turned to face each other.
 fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<OrientationSummary, String> {
-    let flip_error = |e: crate::MortarError| e.to_string();
+    let flip_error = |e: mortar::MortarError| e.to_string();
     let s = slave.orient_outward().map_err(flip_error)?;
     let m = master.orient_outward().map_err(flip_error)?;
     if let (Some(fs), Some(fm)) = (s, m) {
@@ -89,7 +89,7 @@ fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<Orientati
         m.is_some(),
     )
     .map_err(|e| core_error(&e, Some((slave, master))))?;
-    let side = |from_cells: Option<usize>, r: &crate::core::mesh::orient::OrientationReport| {
+    let side = |from_cells: Option<usize>, r: &mortar::core::mesh::orient::OrientationReport| {
         SideOrientation {
             method: if from_cells.is_some() {
                 OrientationMethod::Cells

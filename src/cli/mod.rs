@@ -6,7 +6,7 @@
 //!
 //! fn main() -> std::process::ExitCode {
 //!     let registries = Registries::default(); // ... plus the program's own elements and laws
-//!     mortar::cli::main_with(registries)
+//!     mortar_app::cli::main_with(registries)
 //! }
 //! ```
 //!
@@ -35,9 +35,9 @@ use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use crate::extend::Registries;
-use crate::settings::{parse_name, CouplingSettings, Integration, Multipliers};
 use clap::{Args, Parser, Subcommand};
+use mortar::extend::Registries;
+use mortar::settings::{parse_name, CouplingSettings, Integration, Multipliers};
 
 /// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
 /// conductance.
@@ -241,6 +241,7 @@ where
     if let Err(e) = crate::interrupt::install_handler() {
         eprintln!("mortar: warning: {e}; Ctrl-C will end the run without its outputs");
     }
+    crate::progress::install();
     let result = match &cli.command {
         None => run::default_job(std::path::Path::new("out/pellet"), cli.json),
         Some(Command::Demo) => scene::run(cli.json),
@@ -255,7 +256,7 @@ where
                 .map(|c| if c == '\n' || c == '\r' { ' ' } else { c })
                 .collect();
             eprintln!("mortar: error: {line}");
-            if crate::interrupt::requested() {
+            if mortar_scenes::interrupt::requested() {
                 // 128 + SIGINT, as a shell reports an interrupted command.
                 ExitCode::from(130)
             } else {

@@ -1,7 +1,7 @@
 //! Messages and summaries for the user.
 
-use crate::io::{CouplingSummary, GmshSurface};
-use crate::{MortarError, Side};
+use mortar::io::{CouplingSummary, GmshSurface};
+use mortar::{MortarError, Side};
 
 /// A core error with the file, group and line of the face it names, or the two surfaces.
 pub(super) fn core_error(
@@ -57,9 +57,9 @@ pub(super) fn core_error(
 
 /// Prints each coupling warning on one line of stderr: `mortar: warning: NAME: ...`, an
 /// uncovered area's with `widen`, what widens the search.
-pub(super) fn print_warnings(warnings: &[crate::CouplingWarning], widen: &str) {
+pub(super) fn print_warnings(warnings: &[mortar::CouplingWarning], widen: &str) {
     for w in warnings {
-        eprintln!("mortar: warning: {}", crate::io::warning_text(w, widen));
+        eprintln!("mortar: warning: {}", mortar::io::warning_text(w, widen));
     }
 }
 

@@ -4,14 +4,14 @@
 
 use std::path::Path;
 
-use crate::io::write_outputs;
-use crate::scenes::file::{
+use mortar::io::write_outputs;
+use mortar_scenes::file::{
     builtin_scene, contact::ContactSpec, run_builtin_contact, scene_kind, tied_heat::TiedHeatSpec,
     FileSystem, InMemory, SceneOutput, SceneSource, BUILTIN_CONTACT_SCENES,
 };
 
-use crate::extend::Registries;
-use crate::scenes::pellet;
+use mortar::extend::Registries;
+use mortar_scenes::pellet;
 use serde_json::Value;
 
 use super::RunArgs;

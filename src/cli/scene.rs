@@ -1,8 +1,8 @@
 //! The built-in default scene: tying two non-matching meshes of the unit square.
 
-use crate::generate::{square_quads, square_triangles, Diagonal};
-use crate::io::{CouplingSettings, CouplingSummary};
-use crate::{assemble_coupling, Interface};
+use mortar::generate::{square_quads, square_triangles, Diagonal};
+use mortar::io::{CouplingSettings, CouplingSummary};
+use mortar::{assemble_coupling, Interface};
 
 use super::report::{core_error, print_summary};
 

@@ -9,7 +9,7 @@
 use mortar::physics::tied::{
     kron_identity, Formulation, FormulationChoice, TiedOptions, TiedSystem,
 };
-use mortar::scenes::tied_heat::{Geometry, TiedHeatScene};
+use mortar_scenes::tied_heat::{Geometry, TiedHeatScene};
 use nalgebra::Vector3;
 
 /// The exact field: component `k` is `a_k . x + b_k`.

@@ -124,7 +124,7 @@ fn contact_patch_test_3d() {
 }
 
 /// The 2D Hertz contact (plane strain) at the default coarse mesh of
-/// [`mortar::scenes::hertz`]: a quarter cylinder of radius `R = 1` (slave) pressed onto the
+/// [`mortar_scenes::hertz`]: a quarter cylinder of radius `R = 1` (slave) pressed onto the
 /// block `[0, 8R] x [-8R, 0]` (master) by moving its top down, both of steel-like
 /// `E = 200 GPa`, `nu = 0.3`, frictionless, dual multipliers, segment-based integration, the
 /// exact complementarity law with automatic `c`.
@@ -139,7 +139,7 @@ fn contact_patch_test_3d() {
 /// block's bottom and the force on the cylinder's top to 1e-8.
 #[test]
 fn hertz_cylinder_on_block_2d() {
-    use mortar::scenes::hertz::HertzScene;
+    use mortar_scenes::hertz::HertzScene;
 
     let run = HertzScene::default().run().unwrap();
     let a = run.a_exact;
@@ -175,7 +175,7 @@ fn hertz_cylinder_on_block_2d() {
 /// unknowns in contact last); the same criteria hold.
 #[test]
 fn hertz_2d_newton_systems_by_body() {
-    use mortar::scenes::hertz::HertzScene;
+    use mortar_scenes::hertz::HertzScene;
 
     let run = HertzScene::new(96).run().unwrap();
     assert!(run.unknowns >= mortar::core::linalg::SUBSTRUCTURED_MIN);
@@ -187,7 +187,7 @@ fn hertz_2d_newton_systems_by_body() {
 /// is the one intended (a about 0.1 R, a few slave nodes across it, contiguous), the peak
 /// within 2 %, the half-width within one spacing of the nodes that carry the pressure and
 /// bracketed, equilibrium to 1e-8, at most 10 Newton steps per load step.
-fn hertz_2d_criteria(run: &mortar::scenes::hertz::HertzRun, what: &str) {
+fn hertz_2d_criteria(run: &mortar_scenes::hertz::HertzRun, what: &str) {
     let a = run.a_exact;
     assert!((a - 0.1).abs() < 0.005, "{what}: a = {a}");
     assert!(
@@ -226,7 +226,7 @@ fn hertz_2d_criteria(run: &mortar::scenes::hertz::HertzRun, what: &str) {
     );
 }
 
-/// The 3D Hertz contact of [`mortar::scenes::hertz::sphere`] on a mesh a little coarser than
+/// The 3D Hertz contact of [`mortar_scenes::hertz::sphere`] on a mesh a little coarser than
 /// its default (for time): the lower octant of a sphere of radius `R = 1` (slave, 12 Hex8
 /// cells per direction, `0.023 R = a / 4.3` at the pole, `0.041 R` where the contact zone
 /// ends) pressed onto the block `[0, 8R]^2 x [-8R, 0]` (master, Hex8) by moving its
@@ -250,7 +250,7 @@ fn hertz_2d_criteria(run: &mortar::scenes::hertz::HertzRun, what: &str) {
 /// equator to 1e-8. At most 10 Newton steps per load step.
 #[test]
 fn hertz_sphere_on_block_3d() {
-    use mortar::scenes::hertz::HertzSphereScene;
+    use mortar_scenes::hertz::HertzSphereScene;
 
     let run = HertzSphereScene::new(12).run().unwrap();
     let (at_d, at_p) = (run.at_approach, run.at_load);
@@ -343,8 +343,8 @@ fn hertz_sphere_on_block_3d() {
 /// one step after it settles must reach the solution.
 #[test]
 fn the_newton_solve_is_exact_once_the_active_set_settles() {
-    use mortar::scenes::hertz::HertzScene;
     use mortar::CouplingOptions;
+    use mortar_scenes::hertz::HertzScene;
 
     let mut scene = HertzScene::new(48);
     scene.coupling = CouplingOptions::default();
@@ -369,7 +369,7 @@ fn the_newton_solve_is_exact_once_the_active_set_settles() {
 #[test]
 fn hertz_cylinder_on_block_2d_second_order() {
     use mortar::generate::SecondOrder;
-    use mortar::scenes::hertz::HertzScene;
+    use mortar_scenes::hertz::HertzScene;
 
     for coupling in [
         HertzScene::default().coupling,
@@ -483,7 +483,7 @@ fn contact_patch_test_second_order() {
 fn a_disc_in_a_ring_is_free_to_spin() {
     use mortar::physics::contact::{rigid_motions, NormalGap};
     use mortar::physics::tied::Tie;
-    use mortar::scenes::pellet::{annulus_mesh, pellet_mesh};
+    use mortar_scenes::pellet::{annulus_mesh, pellet_mesh};
     let (a, c) = (1.0, 1.5);
     let disc = pellet_mesh(a, 8, 3).unwrap();
     let ring = annulus_mesh(a, c, 40, 2, 0.1).unwrap();

@@ -158,7 +158,7 @@ fn shuffled_files_give_the_operators_of_sorted_ones() {
 #[test]
 fn tied_solutions_are_bit_identical_across_thread_counts() {
     use mortar::physics::tied::TiedOptions;
-    use mortar::scenes::tied_heat::{Geometry, TiedHeatScene};
+    use mortar_scenes::tied_heat::{Geometry, TiedHeatScene};
     for (dim, n) in [(2, 64), (3, 8)] {
         let problem = TiedHeatScene::new(dim, Geometry::Straight, n)
             .build()

@@ -7,8 +7,8 @@ use mortar::elements::volume::{QUAD4, TRI3};
 use mortar::generate::{rectangle_mesh, CellShape};
 use mortar::physics::heat::{error_norms, HeatBody, HeatMaterial, HeatOptions, TiedHeat};
 use mortar::physics::tied::{Formulation, FormulationChoice, TiedOptions};
-use mortar::scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
 use mortar::CouplingOptions;
+use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
 use nalgebra::Vector3;
 
 const LINEAR: Exact = Exact::Linear {

@@ -2,8 +2,8 @@
 
 use mortar::physics::tied::{Formulation, FormulationChoice, SlaveDirichlet, TiedOptions};
 use mortar::physics::{PhysicsError, TyingError};
-use mortar::scenes::tied_heat::{Geometry, TiedHeatScene};
 use mortar::CouplingOptions;
+use mortar_scenes::tied_heat::{Geometry, TiedHeatScene};
 
 fn max_abs_diff(a: &[f64], b: &[f64]) -> f64 {
     a.iter()

@@ -1,8 +1,8 @@
 //! Measured convergence rates over two refinements (h halved), never hard-coded errors:
 //! linear elements must give L2 error O(h^2) and H1 error O(h).
 
-use mortar::scenes::tied_heat::{rate, Geometry, TiedHeatRun, TiedHeatScene};
 use mortar::CouplingOptions;
+use mortar_scenes::tied_heat::{rate, Geometry, TiedHeatRun, TiedHeatScene};
 
 fn rates(scene: impl Fn(usize) -> TiedHeatScene, levels: [usize; 2]) -> (f64, f64, f64) {
     let runs: Vec<TiedHeatRun> = levels

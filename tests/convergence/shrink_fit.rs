@@ -1,7 +1,7 @@
 //! The shrink fit (plane strain): a disc of radius `b + delta` pressed into a ring of inner
 //! radius `b` and outer radius `c`, same material (`E = 200 GPa`, `nu = 0.3`), `b = 1`,
 //! `c = 2`, `delta = 1e-3`, quarter model (`u_x = 0` on `x = 0`, `u_y = 0` on `y = 0`, both
-//! bodies), the scene [`mortar::scenes::shrink_fit`]. Slave: the disc's arc
+//! bodies), the scene [`mortar_scenes::shrink_fit`]. Slave: the disc's arc
 //! ([`quarter_disc_mesh`](mortar::generate::quarter_disc_mesh)); master: the ring's inner arc
 //! ([`quarter_annulus_mesh`]). Dual multipliers, segment-based integration, the exact
 //! complementarity law with automatic `c`.
@@ -25,7 +25,7 @@
 //! theory's own error.
 
 use mortar::generate::{quarter_annulus_mesh, CellShape};
-use mortar::scenes::shrink_fit::ShrinkFitScene;
+use mortar_scenes::shrink_fit::ShrinkFitScene;
 use nalgebra::Vector3;
 
 /// Matching angular nodes (32 cells on both arcs; the meshes still differ: radii, the disc's

@@ -7,8 +7,8 @@ use std::path::Path;
 use mortar::core::mesh::{BoundaryFace, VolumeMesh};
 use mortar::generate::{rectangle_mesh, CellShape};
 use mortar::io::{msh41_volume_bytes, MshFormat};
-use mortar::scenes::file::contact::ContactSpec;
-use mortar::scenes::file::FileSystem;
+use mortar_scenes::file::contact::ContactSpec;
+use mortar_scenes::file::FileSystem;
 use serde_json::Value;
 
 use crate::common::{mortar, TempDir};
@@ -326,9 +326,9 @@ fn builtin_hertz2d_matches_the_closed_form() {
 /// library's `HertzScene::run` and `ShrinkFitScene::run`) to 1e-9: one scene, two ways in.
 #[test]
 fn builtin_contact_scenes_write_their_results_and_their_scene_file() {
-    use mortar::scenes::file::HERTZ_ARC_CELLS;
-    use mortar::scenes::hertz::HertzScene;
-    use mortar::scenes::shrink_fit::ShrinkFitScene;
+    use mortar_scenes::file::HERTZ_ARC_CELLS;
+    use mortar_scenes::hertz::HertzScene;
+    use mortar_scenes::shrink_fit::ShrinkFitScene;
     let dir = TempDir::new("contact-builtin-files");
     for (name, bodies) in [
         ("hertz2d", ["cylinder", "block"]),
@@ -401,7 +401,7 @@ fn builtin_contact_scenes_write_their_results_and_their_scene_file() {
 }
 
 /// The built-in 3D Hertz scene (a sphere octant on a block, the default mesh of
-/// `mortar::scenes::hertz::sphere`): report.json carries the inputs, and the closed form of
+/// `mortar_scenes::hertz::sphere`): report.json carries the inputs, and the closed form of
 /// Johnson (1985, sec. 4.2) at the imposed approach `d` (`a = sqrt(R d)`,
 /// `p0 = 2 E* a / (pi R)`) and at the computed load `P` beside the computed values: the peak
 /// pressure within 3 % of both, the contact radius within one element of both, at most 10

@@ -2,7 +2,7 @@
 //! exit code, and no output written.
 
 use mortar::io::MshFormat;
-use mortar::scenes::file::tied_block;
+use mortar_scenes::file::tied_block;
 
 use crate::common::{mortar, TempDir};
 

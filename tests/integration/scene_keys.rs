@@ -28,17 +28,17 @@ use mortar::generate::{
     CellShape, SecondOrder,
 };
 use mortar::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
-use mortar::scenes::file::contact::{
+use mortar_scenes::file::contact::{
     Component, ComponentValue, ContactInterfaceSpec, ContactSolveSpec, ContactSpec,
     DisplacementSpec, ElasticBodySpec, LawSpec, TractionSpec,
 };
-use mortar::scenes::file::tied_heat::{
+use mortar_scenes::file::tied_heat::{
     BodySpec, DirichletSpec, FormulationSpec, InterfaceSpec, Mode, NeumannSpec, SideSpec,
     SolveSpec, TiedHeatSpec,
 };
-use mortar::scenes::file::FileSystem;
-use mortar::scenes::pellet::{AxialModel, PelletScene};
-use mortar::scenes::NamedLaw;
+use mortar_scenes::file::FileSystem;
+use mortar_scenes::pellet::{AxialModel, PelletScene};
+use mortar_scenes::NamedLaw;
 use nalgebra::Vector3;
 use serde_json::Value;
 
@@ -635,7 +635,7 @@ fn kind_row(dir: &TempDir, base: &str, kind: &str, other: &str) {
 // tied_heat
 
 /// The base tied-heat scene: the unit square cut at `x = 1/2` (the patch test of
-/// `mortar::scenes::file::tied_block`, `n = 4`): `left` (master, 2 x 4 Quad4, k = 1, T = 0 on
+/// `mortar_scenes::file::tied_block`, `n = 4`): `left` (master, 2 x 4 Quad4, k = 1, T = 0 on
 /// `x = 0`), `right` (slave, 3 x 6 cells cut into Tri3, k = 2, entering flux 4/3 on
 /// `x = 1`); the exact temperature is piecewise linear, 2/3 on the cut and 1 at `x = 1`.
 const TIED: &str = r#"kind = "tied_heat"
@@ -1018,7 +1018,7 @@ fn swap_tied_sides(f: &Scenes) {
     assert!(off(&[o.num("bodies.1.temperature_max")], 1.0) < 1e-10);
 }
 
-/// Every key of `kind = "tied_heat"` (src/scenes/file/tied_heat.rs). Sources: the base
+/// Every key of `kind = "tied_heat"` (crates/mortar-scenes/src/file/tied_heat.rs). Sources: the base
 /// scene's exact solution, conduction through two slabs in series (Fourier's law, one
 /// dimension): `T(1) = 2/3 + (4/3)(1/2) / k_right` (5/6 for `k_right = 4`), `T(1) = 1 + q/8`
 /// with a source `q` in the left slab (linear elements are exact at the nodes in one
@@ -1532,7 +1532,7 @@ fn swap_contact_sides(f: &Scenes) {
     assert!(off(&pressures(&o), SIGMA) < 1e-8);
 }
 
-/// Every key of `kind = "contact"` (src/scenes/file/contact.rs). Sources: uniaxial plane
+/// Every key of `kind = "contact"` (crates/mortar-scenes/src/file/contact.rs). Sources: uniaxial plane
 /// strain (Hooke's law with `eps_zz = 0`, free sides): `sigma_zz = -nu sigma`, the upper
 /// block's top down by `sigma (1 - nu^2) (1 / E_u + 1 / E_l)`; two equal blocks in series
 /// squeezed by `delta`: `E delta / (2 (1 - nu^2))`; the exponential law `P_o exp(S (xi -
@@ -1561,7 +1561,7 @@ fn every_contact_key_has_an_effect() {
 // ---------------------------------------------------------------------------------------
 // pellet
 
-/// The base pellet scene: the default pellet (`mortar::scenes::pellet`) on the coarsest mesh,
+/// The base pellet scene: the default pellet (`mortar_scenes::pellet`) on the coarsest mesh,
 /// its power ramped to 20 kW/m in 1 s, two backward Euler steps of 1 s (the gap closes at
 /// about 1.9 s), then the steady state at full power; one snapshot.
 const PELLET: &str = r#"kind = "pellet"
@@ -1634,7 +1634,7 @@ impl Pellet {
             "run-{}",
             self.runs.fetch_add(1, Ordering::Relaxed)
         ));
-        let report = mortar::scenes::pellet::run_from_toml(&text, &out, false);
+        let report = mortar_scenes::pellet::run_from_toml(&text, &out, false);
         let written = std::fs::read_to_string(out.join("report.json"))
             .ok()
             .map(|t| serde_json::from_str(&t).unwrap());
@@ -2080,7 +2080,7 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
     ]
 }
 
-/// Every key of `kind = "pellet"` (src/scenes/pellet/mod.rs), on the base scene of [`PELLET`]
+/// Every key of `kind = "pellet"` (crates/mortar-scenes/src/pellet/mod.rs), on the base scene of [`PELLET`]
 /// (70 ms a run): each key moves a named figure of `report.json` the way the physics of
 /// docs/models.md (sections 3 to 6) gives, measured against the base (steady centre 1010 K,
 /// gap 3.83 um, interface pressure 20.3 MPa, plenum 5.21 MPa): a less conductive pellet is

@@ -449,7 +449,7 @@ fn vtu_writes_second_order_cells_in_vtk_order() {
 /// elements and the mortar tie reproduce to round-off.
 #[test]
 fn tied_heat_scene_on_second_order_bodies_is_exact() {
-    use mortar::scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
     let dir = mesh("");
     let scenes = [
         (
@@ -612,7 +612,7 @@ fn curved_second_order_sphere_converges_with_the_subdivision_level() {
 #[test]
 fn second_order_tie_reproduces_a_quadratic_field() {
     use mortar::generate::SecondOrder;
-    use mortar::scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
+    use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
     for dim in [2, 3] {
         for (family, space) in [
             (SecondOrder::Complete, "standard"),

@@ -1,4 +1,4 @@
-use mortar::scenes::pellet::{run, PelletScene};
+use mortar_scenes::pellet::{run, PelletScene};
 
 fn out(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("mortar-pellet-test-{}-{name}", std::process::id()))

@@ -8,7 +8,7 @@ use mortar::physics::laws::{ContactComplementarity, ExponentialContact};
 use mortar::physics::nonlinear::{NewtonFailureReason, NewtonOptions};
 use mortar::physics::thermomech::{ThermoMechSolver, ThermoMechSolverState};
 use mortar::physics::PhysicsError;
-use mortar::scenes::pellet::{
+use mortar_scenes::pellet::{
     coupled_problem, run, AxialModel, ContactLawName, Geometry, PelletError, PelletScene,
     SolverMethod,
 };
@@ -498,7 +498,7 @@ fn the_3d_segment_is_the_generalized_plane_strain_cross_section() {
     s2.mesh.refinement = 1;
     s2.time.snapshots = 1;
     let mut s3 = s2.clone();
-    s3.model.geometry = mortar::scenes::pellet::Geometry::ThreeD;
+    s3.model.geometry = mortar_scenes::pellet::Geometry::ThreeD;
     s3.mesh.axial_layers = 1;
     let (r2, r3) = (run_scene(&s2, "2d"), run_scene(&s3, "3d"));
     assert_eq!(r3["models"]["geometry"], "3d");
@@ -631,7 +631,7 @@ fn free_expansion_error(r: usize, axial: AxialModel) -> f64 {
 #[test]
 fn laws_chosen_by_name_run_the_scene_as_the_built_in_ones() {
     use mortar::physics::laws::{LawParameters, LawRegistry};
-    use mortar::scenes::pellet::run_coupled_with;
+    use mortar_scenes::pellet::run_coupled_with;
     let mut s = scene(ContactLawName::Exponential);
     s.mesh.refinement = 1;
     s.time.snapshots = 1;
@@ -674,7 +674,7 @@ fn laws_chosen_by_name_run_the_scene_as_the_built_in_ones() {
 #[test]
 fn scene_files_name_their_laws() {
     use mortar::physics::laws::{DynLaw, LawError, LawRegistry, MechanicalGapConductance};
-    use mortar::scenes::pellet::run_with_registry;
+    use mortar_scenes::pellet::run_with_registry;
     let base = "kind = \"pellet\"\n[mesh]\nrefinement = 1\n[time]\nsnapshots = 1\n\
                 [gap]\ncontact_conductance = 1e-4\n";
     let named = format!(

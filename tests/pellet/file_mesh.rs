@@ -9,8 +9,8 @@ use mortar::physics::laws::{
 };
 use mortar::physics::nonlinear::NewtonOptions;
 use mortar::physics::thermomech::{GapThermoMechanics, ThermoMechSolver, ThermoMechSolverState};
-use mortar::scenes::pellet::file_mesh::FileGeometry;
-use mortar::scenes::pellet::{coupled_problem, run, Geometry, PelletError, PelletScene};
+use mortar_scenes::pellet::file_mesh::FileGeometry;
+use mortar_scenes::pellet::{coupled_problem, run, Geometry, PelletError, PelletScene};
 use serde_json::Value;
 
 fn root() -> PathBuf {
@@ -317,7 +317,7 @@ fn a_stack_file_is_checked() {
     assert!(err.contains("r-z"), "{err}");
     // Under the exact law the as-built open lands would leave the upper pellets free.
     let mut s = file_scene(stack());
-    s.contact.law = mortar::scenes::pellet::ContactLawName::Exact;
+    s.contact.law = mortar_scenes::pellet::ContactLawName::Exact;
     let err = run(&s, &out("stack-exact"), false).unwrap_err();
     assert!(
         matches!(err, PelletError::Invalid(_)) && err.to_string().contains("exponential"),

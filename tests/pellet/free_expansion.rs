@@ -15,7 +15,7 @@ use mortar::physics::elastic::{
     recover_stress_with_axial_strain, solve_elastic, solve_generalized_plane_strain, AxialForce,
     ComponentSet, ElasticBody, ElasticMaterial, ElasticOptions,
 };
-use mortar::scenes::pellet::{pellet_mesh, PelletScene};
+use mortar_scenes::pellet::{pellet_mesh, PelletScene};
 use nalgebra::Vector3;
 
 /// UO2-like: E = 200 GPa, nu = 0.3, alpha = 1e-5 /K, T_ref = 293 K.

@@ -2,8 +2,8 @@
 //! "warnings") and where a failed solve was left (its step, time, Newton's reason and the
 //! block of equations with the largest residual).
 
-use mortar::scenes::pellet::limits::{LIMITS, UO2_MELTING_POINT};
-use mortar::scenes::pellet::{run, AxialModel, PelletError, PelletScene};
+use mortar_scenes::pellet::limits::{LIMITS, UO2_MELTING_POINT};
+use mortar_scenes::pellet::{run, AxialModel, PelletError, PelletScene};
 use serde_json::Value;
 
 fn out(name: &str) -> std::path::PathBuf {
@@ -75,7 +75,7 @@ fn an_rz_warning_gives_the_distance_from_the_axis() {
     let dir = out("rz");
     // The dished pellet: its tension peaks away from the mid-plane.
     let mut s = PelletScene::default();
-    s.model.geometry = mortar::scenes::pellet::Geometry::Axisymmetric;
+    s.model.geometry = mortar_scenes::pellet::Geometry::Axisymmetric;
     s.mesh.file = Some(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/scenes/pellet_rz.msh"),
     );

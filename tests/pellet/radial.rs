@@ -93,7 +93,7 @@
 
 use std::f64::consts::PI;
 
-use mortar::scenes::pellet::{AxialModel, ContactLawName, PelletScene};
+use mortar_scenes::pellet::{AxialModel, ContactLawName, PelletScene};
 use nalgebra::{Matrix3, Vector3};
 
 /// The molar gas constant `R` (J/mol/K, exact since the 2019 SI).

@@ -8,7 +8,7 @@ use mortar::physics::laws::{
 };
 use mortar::physics::nonlinear::NewtonOptions;
 use mortar::physics::thermomech::{ThermoMechSolver, ThermoMechSolverState};
-use mortar::scenes::pellet::{
+use mortar_scenes::pellet::{
     coupled_problem, run_with_registry, AxialModel, ContactLawName, Geometry, PelletError,
     PelletScene, SolverMethod,
 };

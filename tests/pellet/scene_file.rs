@@ -1,4 +1,4 @@
-use mortar::scenes::pellet::{run_from_toml, PelletError, PelletScene, SolverMethod};
+use mortar_scenes::pellet::{run_from_toml, PelletError, PelletScene, SolverMethod};
 
 #[test]
 fn parses_the_keys_and_refuses_unknown_ones() {
@@ -86,13 +86,13 @@ fn run_from_toml_writes_the_report() {
 /// is now written at the end, all or none: the failed run leaves no output folder.
 #[test]
 fn a_failed_run_writes_nothing() {
-    let mut scene = mortar::scenes::pellet::PelletScene::default();
+    let mut scene = mortar_scenes::pellet::PelletScene::default();
     scene.model.mechanics = false;
     scene.solver.max_iterations = 1;
     scene.solver.relative_tolerance = 1e-15;
     let dir = std::env::temp_dir().join(format!("mortar-pellet-failed-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let err = mortar::scenes::pellet::run(&scene, &dir, false).unwrap_err();
+    let err = mortar_scenes::pellet::run(&scene, &dir, false).unwrap_err();
     eprintln!("failed as asked: {err}");
     assert!(
         !dir.exists(),

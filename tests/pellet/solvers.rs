@@ -1,6 +1,6 @@
 use mortar::physics::nonlinear::NewtonFailureReason;
 use mortar::physics::PhysicsError;
-use mortar::scenes::pellet::{run, PelletError, PelletScene, SolverMethod};
+use mortar_scenes::pellet::{run, PelletError, PelletScene, SolverMethod};
 
 fn out(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("mortar-pellet-test-{}-{name}", std::process::id()))
@@ -75,7 +75,7 @@ fn a_failing_newton_reports_its_history() {
 /// a method given is kept.
 #[test]
 fn auto_picks_by_the_measured_rule() {
-    use mortar::scenes::pellet::{SolverData, AUTO_NEWTON_ABOVE_2D};
+    use mortar_scenes::pellet::{SolverData, AUTO_NEWTON_ABOVE_2D};
     let auto = SolverData::default();
     assert_eq!(auto.method, SolverMethod::Auto);
     let pick = |thermomech, plane, n| auto.choose(thermomech, plane, n);
