@@ -73,6 +73,7 @@ mod quad8;
 mod quad9;
 mod registry;
 mod shape;
+mod table;
 mod tri3;
 mod tri6;
 #[cfg(feature = "volume")]

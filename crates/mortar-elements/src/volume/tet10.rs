@@ -51,12 +51,11 @@ impl VolumeElement for Tet10 {
     }
     #[inline]
     fn shape_values_into(&self, xi: &Vector3<f64>, out: &mut [f64]) {
-        barycentric(&[xi.x, xi.y, xi.z], &EDGES, out, None);
+        barycentric::<3, 3>(&[xi.x, xi.y, xi.z], &EDGES, Some(out), None);
     }
     #[inline]
     fn shape_gradients_into(&self, xi: &Vector3<f64>, out: &mut [[f64; 3]]) {
-        let mut n = [0.0; 10];
-        barycentric(&[xi.x, xi.y, xi.z], &EDGES, &mut n, Some(out));
+        barycentric::<3, 3>(&[xi.x, xi.y, xi.z], &EDGES, None, Some(out));
     }
     fn gmsh_type(&self) -> Option<u32> {
         Some(11)
