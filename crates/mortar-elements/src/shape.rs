@@ -4,9 +4,15 @@
 //! functions of Line2, Quad4 and Hex8, the tensor products of the quadratic Lagrange
 //! polynomials on `[-1, 1]` of Line3, Quad9 and Hex27, the serendipity functions of Quad8 and
 //! Hex20), [`LinearSimplex`] (Tri3, Tet4) and [`QuadraticSimplex`] (the quadratic functions of
-//! the barycentric coordinates of Tri6 and Tet10). Each formula is written once, for any
+//! the barycentric coordinates of Tri6 and Tet10), and for the 2D cells [`InPlane`] (those of
+//! the surface element of the same shape). Each formula is written once, for any
 //! dimension, so that an element file states its nodes and nothing is written twice; all of
 //! it is allocation-free and inlined, being called in the coupling's hot loop.
+
+#[cfg(feature = "volume")]
+use mortar_core::element::{ReferenceElement, MAX_FACE_NODES};
+#[cfg(feature = "volume")]
+use nalgebra::Vector2;
 
 /// A family of shape functions evaluated on an element's node table. `W` is the width of the
 /// reference points and nodes the element traits hand over (2 for faces, 3 for cells); a
@@ -98,6 +104,32 @@ impl<const D: usize, const W: usize> Shapes<W> for QuadraticSimplex<D> {
     #[inline]
     fn gradients(&self, _nodes: &[[f64; W]], xi: &[f64; W], out: &mut [[f64; W]]) {
         barycentric::<D, W>(&head(xi), self.0, None, Some(out));
+    }
+}
+
+/// The shape functions of a 2D cell in the plane `z = 0`: those of the surface element of the
+/// same shape and node table, at `(xi, eta)`, their gradients given a zero third component
+/// (through a buffer of two-component gradients, which the compiler vectorises better than
+/// writing three components node by node). The cell's node table is not read.
+#[cfg(feature = "volume")]
+#[derive(Clone, Copy)]
+pub(crate) struct InPlane<E: 'static>(pub(crate) &'static E);
+
+#[cfg(feature = "volume")]
+impl<E: ReferenceElement> Shapes<3> for InPlane<E> {
+    #[inline]
+    fn values(&self, _nodes: &[[f64; 3]], xi: &[f64; 3], out: &mut [f64]) {
+        self.0.shape_values_into(&Vector2::new(xi[0], xi[1]), out);
+    }
+    #[inline]
+    fn gradients(&self, _nodes: &[[f64; 3]], xi: &[f64; 3], out: &mut [[f64; 3]]) {
+        let mut g = [[0.0; 2]; MAX_FACE_NODES];
+        let k = self.0.node_count();
+        self.0
+            .shape_gradients_into(&Vector2::new(xi[0], xi[1]), &mut g[..k]);
+        for (o, g) in out.iter_mut().zip(&g[..k]) {
+            *o = [g[0], g[1], 0.0];
+        }
     }
 }
 

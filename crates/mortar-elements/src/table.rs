@@ -1,10 +1,11 @@
-//! The built-in elements as tables. A built-in surface element is its node coordinates (Gmsh
-//! order, corners first), the family of its shape functions
-//! ([`Shapes`](crate::shape::Shapes)) and a few numbers (corners, degree, Gmsh type);
-//! [`face_element!`] turns such a table into the unit type, its shared instance and the trait
-//! impls, so that the name, the node count, the node table and the loops of the shape functions
-//! over the nodes are written once for all elements. [`concat`] builds a node table from that
-//! of the element it refines (Quad8 from Quad4, Quad9 from Quad8).
+//! The built-in elements as tables. A built-in element is its node coordinates (Gmsh order,
+//! corners first), the family of its shape functions ([`Shapes`](crate::shape::Shapes)) and a
+//! few numbers (corners, degree, Gmsh type, and for a cell its faces); [`face_element!`] and
+//! [`cell_element!`] turn such a table into the unit type, its shared instance and the trait
+//! impls, so that the name, the node count, the node table and the loops of the shape
+//! functions over the nodes are written once for all elements. [`concat`] builds a node table
+//! from that of the element it refines (Quad9 from Quad8, Hex27 from Hex20) and [`in_plane`]
+//! the table of a 2D cell from that of the surface element of the same shape.
 //!
 //! The tests check each element by hand (they list every type), not through these tables.
 
@@ -98,6 +99,49 @@ macro_rules! face_element {
 }
 pub(crate) use face_element;
 
+/// Declares a built-in volume element from its table: the unit struct `$name` (documented by
+/// the doc comments given), its shared instance `$instance` and its `VolumeElement` impl. The
+/// table: the reference domain (a `VolumeDomain` variant), the shape degree, the Gmsh type, the
+/// node table (a constant `[[f64; 3]; N]`; 2D cells leave the third coordinate zero), the
+/// shape family (a `Shapes<3>` value), the surface element of every face (a static) and the
+/// faces as local node lists, outward for a positively oriented cell. The geometric map is
+/// affine for every placement of the nodes exactly when the degree is 1.
+#[cfg(feature = "volume")]
+macro_rules! cell_element {
+    (
+        $(#[$doc:meta])*
+        $name:ident, $instance:ident: $domain:ident, degree $degree:literal,
+        gmsh $gmsh:literal, nodes $nodes:path, shapes $shapes:expr,
+        face $face:path, faces $faces:expr $(,)?
+    ) => {
+        $crate::table::unit_element!($(#[$doc])* $name, $instance, "volume::");
+
+        impl ::mortar_fem::element::VolumeElement for $name {
+            $crate::table::shared_methods!($name, $degree, $nodes, $shapes, Vector3, 3, [x, y, z]);
+            fn domain(&self) -> ::mortar_fem::element::VolumeDomain {
+                ::mortar_fem::element::VolumeDomain::$domain
+            }
+            fn gmsh_type(&self) -> Option<u32> {
+                Some($gmsh)
+            }
+            fn is_affine(&self) -> bool {
+                self.shape_degree() == 1
+            }
+            fn faces(&self) -> &'static [&'static [usize]] {
+                $faces
+            }
+            fn face_element(&self, face: usize) -> ::mortar_core::element::ElementRef {
+                let count = self.faces().len();
+                let what = if self.dim() == 2 { "edges" } else { "faces" };
+                assert!(face < count, "a {} has {count} {what}", self.name());
+                &$face
+            }
+        }
+    };
+}
+#[cfg(feature = "volume")]
+pub(crate) use cell_element;
+
 /// The node table `a` followed by `b`: the nodes of an element after those of the element it
 /// refines. `N` must be `A + B` (checked where the constant is evaluated, at compile time).
 pub(crate) const fn concat<const W: usize, const A: usize, const B: usize, const N: usize>(
@@ -113,6 +157,19 @@ pub(crate) const fn concat<const W: usize, const A: usize, const B: usize, const
     }
     while i < N {
         out[i] = b[i - A];
+        i += 1;
+    }
+    out
+}
+
+/// The nodes of a surface element in the plane `z = 0`: the node table of the 2D cell of the
+/// same shape.
+#[cfg(feature = "volume")]
+pub(crate) const fn in_plane<const N: usize>(nodes: &[[f64; 2]; N]) -> [[f64; 3]; N] {
+    let mut out = [[0.0; 3]; N];
+    let mut i = 0;
+    while i < N {
+        out[i] = [nodes[i][0], nodes[i][1], 0.0];
         i += 1;
     }
     out
