@@ -14,9 +14,17 @@
 //!
 //! ## Adding an element
 //!
-//! One new type implementing [`ReferenceElement`](mortar_core::element::ReferenceElement)
-//! and [`SurfaceElement`](mortar_core::element::SurfaceElement); nothing else changes. A
-//! three-node quadratic line, say:
+//! The elements shipped here are each a table: the node coordinates, the family of the shape
+//! functions (one formula per node for any dimension, or the barycentric ones of the
+//! simplices), the corner count, the degree, the Gmsh type and, for a cell, its faces; a
+//! macro of the crate writes the type and its trait impls from it, so that a new built-in
+//! element is its nodes and little more, and a 2D cell shares the shape functions of the
+//! interface face of the same shape.
+//!
+//! A program's own element is one new type implementing
+//! [`ReferenceElement`](mortar_core::element::ReferenceElement) and
+//! [`SurfaceElement`](mortar_core::element::SurfaceElement) (or a [`LagrangeFace`], from its
+//! nodes alone); nothing else changes. A three-node quadratic line, say:
 //!
 //! ```
 //! use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
@@ -73,6 +81,7 @@ mod quad8;
 mod quad9;
 mod registry;
 mod shape;
+mod table;
 mod tri3;
 mod tri6;
 #[cfg(feature = "volume")]

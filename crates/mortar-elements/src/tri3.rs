@@ -1,54 +1,14 @@
 //! The three-node linear triangle face `Tri3` (Gmsh type 2).
 
-use mortar_core::element::{ReferenceDomain, ReferenceElement, SurfaceElement};
-use nalgebra::Vector2;
+use crate::shape::LinearSimplex;
+use crate::table::face_element;
 
-/// Three-node triangle on `(0,0), (1,0), (0,1)`: `N_1 = 1 - xi - eta`, `N_2 = xi`,
-/// `N_3 = eta`. Gmsh type 2.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct Tri3;
+/// The corners `(0,0), (1,0), (0,1)`.
+pub(crate) const TRI3_NODES: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
-/// The shared `Tri3` instance.
-pub static TRI3: Tri3 = Tri3;
-
-impl ReferenceElement for Tri3 {
-    fn name(&self) -> &'static str {
-        "Tri3"
-    }
-    fn domain(&self) -> ReferenceDomain {
-        ReferenceDomain::Triangle
-    }
-    fn node_count(&self) -> usize {
-        3
-    }
-    fn corner_count(&self) -> usize {
-        3
-    }
-    fn shape_degree(&self) -> u32 {
-        1
-    }
-    fn node_reference_coords(&self) -> &'static [[f64; 2]] {
-        &[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]
-    }
-    #[inline]
-    fn shape_values_into(&self, xi: &Vector2<f64>, out: &mut [f64]) {
-        out[0] = 1.0 - xi.x - xi.y;
-        out[1] = xi.x;
-        out[2] = xi.y;
-    }
-    #[inline]
-    fn shape_gradients_into(&self, _xi: &Vector2<f64>, out: &mut [[f64; 2]]) {
-        out[0] = [-1.0, -1.0];
-        out[1] = [1.0, 0.0];
-        out[2] = [0.0, 1.0];
-    }
-}
-
-impl SurfaceElement for Tri3 {
-    fn is_affine(&self) -> bool {
-        true
-    }
-    fn gmsh_type(&self) -> Option<u32> {
-        Some(2)
-    }
+face_element! {
+    /// Three-node triangle on `(0,0), (1,0), (0,1)`: `N_1 = 1 - xi - eta`, `N_2 = xi`,
+    /// `N_3 = eta`. Gmsh type 2.
+    Tri3, TRI3: Triangle, corners 3, degree 1, gmsh 2,
+    nodes TRI3_NODES, shapes LinearSimplex::<2>
 }

@@ -8,8 +8,8 @@
 //! [`VolumeElement::faces`](mortar_fem::element::VolumeElement::faces)).
 //!
 //! The names repeat those of the surface elements of the crate root (a 2D body's triangle is
-//! a `volume::Tri3`, an interface triangle in 3D a [`crate::Tri3`]); the 2D cells reuse the
-//! surface elements' shape functions.
+//! a `volume::Tri3`, an interface triangle in 3D a [`crate::Tri3`]); the 2D cells use the node
+//! tables and shape functions of the surface elements of the same shape.
 //!
 //! ```
 //! use mortar_fem::element::VolumeElement;
@@ -23,19 +23,15 @@
 mod hex20;
 mod hex27;
 mod hex8;
-mod quad4;
-mod quadratic2d;
+mod planar;
 mod registry;
 mod tet10;
 mod tet4;
-mod tri3;
 
 pub use hex20::{Hex20, HEX20};
 pub use hex27::{Hex27, HEX27};
 pub use hex8::{Hex8, HEX8};
-pub use quad4::{Quad4, QUAD4};
-pub use quadratic2d::{Quad8, Quad9, Tri6, QUAD8, QUAD9, TRI6};
+pub use planar::{Quad4, Quad8, Quad9, Tri3, Tri6, QUAD4, QUAD8, QUAD9, TRI3, TRI6};
 pub use registry::VolumeRegistry;
 pub use tet10::{Tet10, TET10};
 pub use tet4::{Tet4, TET4};
-pub use tri3::{Tri3, TRI3};
