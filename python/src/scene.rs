@@ -4,11 +4,8 @@
 use std::path::{Path, PathBuf};
 
 use mortar::extend::Registries;
-use mortar::io::write_outputs;
-use mortar_scenes::file::{
-    contact::ContactSpec, scene_kind, tied_heat::TiedHeatSpec, FileSystem, SceneOutput,
-};
-use mortar_scenes::pellet;
+use mortar_scenes::file::FileSystem;
+use mortar_scenes::{run_scene, SceneContext};
 use pyo3::prelude::*;
 
 use crate::errors::{self, Kind};
@@ -18,28 +15,6 @@ type Failure = (Kind, String);
 
 fn scene_error(e: impl std::fmt::Display) -> Failure {
     (Kind::Scene, e.to_string())
-}
-
-/// The report of a file scene (tied heat, contact), its files written into `out` if given.
-fn run_file_scene(
-    output: SceneOutput,
-    out: Option<&Path>,
-) -> Result<(String, Vec<String>), Failure> {
-    if let Some(dir) = out {
-        let files: Vec<(&str, Vec<u8>)> = output
-            .files
-            .iter()
-            .map(|(n, b)| (n.as_str(), b.clone()))
-            .collect();
-        write_outputs(dir, &files).map_err(|e| (Kind::MeshFile, e.to_string()))?;
-    }
-    let report = output
-        .files
-        .iter()
-        .find(|(n, _)| n == "report.json")
-        .map(|(_, b)| String::from_utf8_lossy(b).into_owned())
-        .ok_or_else(|| scene_error("the scene wrote no report.json"))?;
-    Ok((report, output.warnings))
 }
 
 /// A fresh folder under the system's temporary folder, for a scene that must write its
@@ -54,7 +29,10 @@ fn scratch_dir() -> Result<PathBuf, Failure> {
     Ok(dir)
 }
 
-/// Runs a scene named `path` in messages, its mesh paths relative to `base`.
+/// Runs a scene named `path` in messages, its mesh paths relative to `base`, through the
+/// scenes' one dispatch ([`run_scene`]): its outputs are written into `out`, or into a scratch
+/// folder removed afterwards when `out` is `None`. Returns the report as JSON text and the
+/// coupling's warnings.
 fn run(
     text: &str,
     path: &Path,
@@ -62,40 +40,25 @@ fn run(
     out: Option<&Path>,
 ) -> Result<(String, Vec<String>), Failure> {
     let registries = Registries::default();
-    let kind = scene_kind(text, path).map_err(scene_error)?;
-    match kind.as_str() {
-        "pellet" => {
-            let (dir, scratch) = match out {
-                Some(d) => (d.to_path_buf(), false),
-                None => (scratch_dir()?, true),
-            };
-            let report = pellet::run_from_toml_with(text, base, &dir, false, &registries.laws)
-                .map_err(|e| scene_error(format!("{}: {e}", path.display())));
-            if scratch {
-                // Best effort: a scratch folder left behind is only untidy.
-                let _ = std::fs::remove_dir_all(&dir);
-            }
-            Ok((report?.to_string(), Vec::new()))
-        }
-        "tied_heat" => {
-            let spec = TiedHeatSpec::parse(text, path).map_err(scene_error)?;
-            let output = spec
-                .run_with(path, base, &FileSystem, &registries)
-                .map_err(scene_error)?;
-            run_file_scene(output, out)
-        }
-        "contact" => {
-            let spec = ContactSpec::parse(text, path).map_err(scene_error)?;
-            let output = spec
-                .run_with(path, base, &FileSystem, &registries)
-                .map_err(scene_error)?;
-            run_file_scene(output, out)
-        }
-        other => Err(scene_error(format!(
-            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, contact, pellet)",
-            path.display()
-        ))),
+    let (dir, scratch) = match out {
+        Some(d) => (d.to_path_buf(), false),
+        None => (scratch_dir()?, true),
+    };
+    let ctx = SceneContext {
+        path,
+        base,
+        source: &FileSystem,
+        registries: &registries,
+        out: &dir,
+        progress: false,
+    };
+    let run = run_scene(text, &ctx).map_err(scene_error);
+    if scratch {
+        // Best effort: a scratch folder left behind is only untidy.
+        let _ = std::fs::remove_dir_all(&dir);
     }
+    let run = run?;
+    Ok((run.report_json, run.warnings))
 }
 
 /// Runs the scene `text` (TOML, or JSON when `json` is true: a dict from Python) named `path`

@@ -1,14 +1,15 @@
 //! `mortar run`: a scene file (or a built-in scene) in, VTU files and `report.json` out.
 //!
-//! The scene file's `kind` picks the problem; add a kind with one arm in [`run_kind`].
+//! The scene file's `kind` picks the problem ([`run_scene`] of the scenes).
 
 use std::path::Path;
 
 use mortar::io::write_outputs;
 use mortar_scenes::file::{
-    builtin_scene, contact::ContactSpec, run_builtin_contact, scene_kind, tied_heat::TiedHeatSpec,
-    FileSystem, InMemory, SceneOutput, SceneSource, BUILTIN_CONTACT_SCENES,
+    builtin_scene, run_builtin_contact, FileSystem, InMemory, BUILTIN_CONTACT_SCENES,
 };
+use mortar_scenes::pellet::PelletScene;
+use mortar_scenes::{run_scene, SceneContext};
 
 use mortar::extend::Registries;
 use mortar_scenes::pellet;
@@ -204,45 +205,50 @@ fn print_coupled(report: &Value, out: &Path) {
     say!("output: {} (report.json, VTU over time)", out.display());
 }
 
-/// Runs the command with the cells and laws of `registries`; the error is the message for the
-/// user.
+/// `mortar run`: a scene file of any kind, or a built-in scene (written out beside its
+/// results as `scene.toml` and its meshes, for the user to copy), through the one
+/// [`run_scene`] of the scenes.
 pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result<(), String> {
-    // The pellet writes its own outputs (VTU snapshots over time, report.json).
-    match (&args.scene_file, &args.scene) {
+    // A scene named `path`, its meshes under `base` from `source`, written into DIR.
+    let ctx = |path, base, source| SceneContext {
+        path,
+        base,
+        source,
+        registries,
+        out: &args.out,
+        progress: !json,
+    };
+    let (run, extra) = match (&args.scene_file, &args.scene) {
         (Some(path), None) => {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
-            if scene_kind(&text, path).map_err(|e| e.to_string())? == "pellet" {
-                let base = path.parent().unwrap_or(Path::new(""));
-                let report =
-                    pellet::run_from_toml_with(&text, base, &args.out, !json, &registries.laws)
-                        .map_err(|e| format!("{}: {e}", path.display()))?;
-                print_pellet(&report, &args.out, json);
-                return Ok(());
-            }
-        }
-        (None, Some(name)) if name == "pellet" => {
-            let report = pellet::run_builtin(&args.out, !json).map_err(|e| e.to_string())?;
-            print_pellet(&report, &args.out, json);
-            return Ok(());
-        }
-        _ => {}
-    }
-    let (output, extra) = match (&args.scene_file, &args.scene) {
-        (Some(path), None) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
-            let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
+            let base = path.parent().unwrap_or(Path::new(""));
+            let ctx = ctx(path, base, &FileSystem);
             (
-                run_kind(&text, path, &base, &FileSystem, registries)?,
+                run_scene(&text, &ctx).map_err(|e| e.to_string())?,
                 Vec::new(),
             )
+        }
+        (None, Some(name)) if name == "pellet" => {
+            // The built-in pellet is the scene file of every default, written out beside it.
+            let scene = PelletScene {
+                scene: Some("pellet".into()),
+                ..PelletScene::default()
+            };
+            let toml = toml::to_string(&scene).map_err(|e| e.to_string())?;
+            let path = args.out.join("scene.toml");
+            let ctx = ctx(&path, &args.out, &FileSystem);
+            let run = run_scene(&toml, &ctx).map_err(|e| e.to_string())?;
+            (run, vec![("scene.toml".to_string(), toml.into_bytes())])
         }
         (None, Some(name)) if BUILTIN_CONTACT_SCENES.contains(&name.as_str()) => {
             let output = run_builtin_contact(name)
                 .map_err(|e| e.to_string())?
                 .ok_or_else(|| format!("no built-in contact scene named \"{name}\""))?;
-            (output, Vec::new())
+            let ctx = ctx(Path::new(name.as_str()), &args.out, &FileSystem);
+            let run = mortar_scenes::write_scene_output("contact", output, &ctx)
+                .map_err(|e| e.to_string())?;
+            (run, Vec::new())
         }
         (None, Some(name)) => {
             let scene = builtin_scene(name).map_err(|e| e.to_string())?;
@@ -257,62 +263,35 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
                     .map(|(name, bytes)| (base.join(name), bytes.clone()))
                     .collect(),
             };
-            let output = run_kind(&scene.toml, &path, &base, &source, registries)?;
+            let ctx = ctx(&path, &base, &source);
+            let run = run_scene(&scene.toml, &ctx).map_err(|e| e.to_string())?;
             let mut extra = scene.meshes;
             extra.push(("scene.toml".to_string(), scene.toml.into_bytes()));
-            (output, extra)
+            (run, extra)
         }
         _ => return Err("give a scene file or --scene NAME (not both)".into()),
     };
-    let mut files: Vec<(&str, Vec<u8>)> = output
-        .files
-        .iter()
-        .map(|(n, b)| (n.as_str(), b.clone()))
-        .collect();
-    files.extend(extra.iter().map(|(n, b)| (n.as_str(), b.clone())));
-    write_outputs(&args.out, &files).map_err(|e| e.to_string())?;
-    for w in &output.warnings {
+    let extra_files: Vec<(&str, Vec<u8>)> =
+        extra.iter().map(|(n, b)| (n.as_str(), b.clone())).collect();
+    write_outputs(&args.out, &extra_files).map_err(|e| e.to_string())?;
+    if run.kind == "pellet" {
+        print_pellet(&run.report, &args.out, json);
+        return Ok(());
+    }
+    for w in &run.warnings {
         eprintln!("mortar: warning: {w}");
     }
     if json {
-        let report = output
+        print!("{}", run.report_json);
+    } else {
+        say!("{}", run.summary);
+        let names: Vec<&str> = run
             .files
             .iter()
-            .find(|(n, _)| n == "report.json")
-            .map(|(_, b)| String::from_utf8_lossy(b).into_owned())
-            .unwrap_or_default();
-        print!("{report}");
-    } else {
-        say!("{}", output.summary);
-        let names: Vec<&str> = files.iter().map(|(n, _)| *n).collect();
+            .map(String::as_str)
+            .chain(extra.iter().map(|(n, _)| n.as_str()))
+            .collect();
         say!("output: {} ({})", args.out.display(), names.join(", "));
     }
     Ok(())
-}
-
-/// Dispatches on the scene's `kind`.
-fn run_kind(
-    text: &str,
-    path: &Path,
-    base: &Path,
-    source: &dyn SceneSource,
-    registries: &Registries,
-) -> Result<SceneOutput, String> {
-    let kind = scene_kind(text, path).map_err(|e| e.to_string())?;
-    match kind.as_str() {
-        "tied_heat" => {
-            let spec = TiedHeatSpec::parse(text, path).map_err(|e| e.to_string())?;
-            spec.run_with(path, base, source, registries)
-                .map_err(|e| e.to_string())
-        }
-        "contact" => {
-            let spec = ContactSpec::parse(text, path).map_err(|e| e.to_string())?;
-            spec.run_with(path, base, source, registries)
-                .map_err(|e| e.to_string())
-        }
-        other => Err(format!(
-            "{}: kind: unknown scene kind \"{other}\" (known kinds: tied_heat, contact, pellet)",
-            path.display()
-        )),
-    }
 }

@@ -157,6 +157,65 @@ fn builtin_scene_writes_its_scene_file() {
     solve(out.join("scene.toml").to_str().unwrap());
 }
 
+/// The built-in pellet is a scene file too: `mortar run --scene pellet` writes it beside its
+/// results (`scene.toml`, every key at its default), and that file runs to the same bits
+/// (every VTU file and the report's history).
+#[test]
+fn the_builtin_pellet_writes_its_scene_file() {
+    let dir = TempDir::new("scene-builtin-pellet");
+    let (a, b) = (dir.join("a"), dir.join("b"));
+    let o = mortar(&["run", "--scene", "pellet", "--out", a.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let scene = a.join("scene.toml");
+    assert!(scene.is_file(), "scene.toml written");
+    let o = mortar(&["run", scene.to_str().unwrap(), "--out", b.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in ["pellet_0004.vtu", "interface_0004.vtu", "pellet.pvd"] {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        assert!(x == y, "{f} differs");
+    }
+    let history = |d: &std::path::Path| {
+        let r: Value =
+            serde_json::from_slice(&std::fs::read(d.join("report.json")).unwrap()).unwrap();
+        r["history"].clone()
+    };
+    assert_eq!(history(&a), history(&b));
+}
+
+/// One dispatch over the kinds: a scene file of no known kind is refused naming the kinds,
+/// by the command line and by the library's `run_scene` alike.
+#[test]
+fn an_unknown_kind_is_refused_naming_the_kinds() {
+    let dir = TempDir::new("scene-unknown-kind");
+    let scene = dir.file("x.toml", "kind = \"friction\"\n");
+    let out = dir.join("out");
+    let o = mortar(&["run", &scene, "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("known kinds: tied_heat, contact, pellet"),
+        "{err}"
+    );
+    assert!(!out.exists(), "nothing written");
+    let registries = mortar::extend::Registries::default();
+    let ctx = mortar_scenes::SceneContext {
+        path: std::path::Path::new(&scene),
+        base: &dir.join(""),
+        source: &mortar_scenes::file::FileSystem,
+        registries: &registries,
+        out: &out,
+        progress: false,
+    };
+    let e = mortar_scenes::run_scene("kind = \"friction\"\n", &ctx).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("kind: unknown scene kind \"friction\""),
+        "{e}"
+    );
+}
+
 #[test]
 fn example_scene_runs() {
     let scene = concat!(

@@ -27,7 +27,9 @@ pub mod pellet;
 #[cfg(feature = "plots")]
 pub mod plot;
 pub mod progress;
+mod scene;
 pub mod shrink_fit;
 pub mod tied_heat;
 
 pub use named_law::NamedLaw;
+pub use scene::{run_scene, write_scene_output, Scene, SceneContext, SceneRun};

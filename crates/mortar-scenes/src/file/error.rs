@@ -60,6 +60,15 @@ pub enum SceneError {
         /// Steps asked for.
         steps: usize,
     },
+    /// A pellet scene failed (its own error: a value out of range, a law, a solve that did
+    /// not converge, naming its step and time).
+    #[error("{}: {source}", path.display())]
+    Pellet {
+        /// The scene file.
+        path: PathBuf,
+        /// The pellet's error.
+        source: Box<crate::pellet::PelletError>,
+    },
     /// The scene file cannot be read, or the scene kind is unknown.
     #[error("{0}")]
     Other(String),

@@ -103,7 +103,9 @@ pub use coupled::{
     run_with_registry, thermal_law, MAX_STEP_CUTS,
 };
 pub use mesh::{annulus_mesh, pellet_mesh};
-pub use run::{run, run_builtin, run_from_toml, run_from_toml_with, run_thermal};
+pub use run::{
+    is_output, run, run_builtin, run_from_toml, run_from_toml_with, run_thermal, run_with_laws,
+};
 
 use mortar_fem::mesh::VolumeMeshError;
 use mortar_physics::laws::{GapConductance, GasConductivity, LawError};

@@ -40,11 +40,24 @@ pub fn run_from_toml_with(
     progress: bool,
     laws: &mortar_physics::laws::LawRegistry,
 ) -> Result<Value, PelletError> {
-    let scene = PelletScene::from_toml_in(text, base)?;
+    run_with_laws(&PelletScene::from_toml_in(text, base)?, laws, out, progress)
+}
+
+/// Runs `scene` (thermomechanical, or thermal only with `[model] mechanics = false`) with the
+/// laws its `[laws]` tables name made by `laws`, writing into `out` (as [`run`]).
+///
+/// # Errors
+/// As [`run_from_toml_with`].
+pub fn run_with_laws(
+    scene: &PelletScene,
+    laws: &mortar_physics::laws::LawRegistry,
+    out: &Path,
+    progress: bool,
+) -> Result<Value, PelletError> {
     if scene.model.mechanics {
-        super::run_with_registry(&scene, laws, out, progress)
+        super::run_with_registry(scene, laws, out, progress)
     } else {
-        run_thermal(&scene, out, progress)
+        run_thermal(scene, out, progress)
     }
 }
 
@@ -302,7 +315,7 @@ pub fn run_thermal(scene: &PelletScene, out: &Path, progress: bool) -> Result<Va
 }
 
 /// Whether `name` is one of the pellet scenes' own output files.
-fn is_pellet_output(name: &str) -> bool {
+pub fn is_output(name: &str) -> bool {
     let numbered = |prefix: &str| {
         name.strip_prefix(prefix)
             .and_then(|rest| rest.strip_suffix(".vtu"))
@@ -332,7 +345,7 @@ pub(super) fn write_scene_outputs(
     let files: Vec<(&str, Vec<u8>)> = names.iter().map(String::as_str).zip(bytes).collect();
     write_outputs(out, &files)?;
     let written: Vec<&str> = names.iter().map(String::as_str).collect();
-    remove_stale_outputs(out, &written, is_pellet_output)?;
+    remove_stale_outputs(out, &written, is_output)?;
     Ok(())
 }
 
