@@ -18,9 +18,10 @@ use mortar_physics::laws::{
     ConstraintLaw, ContactComplementarity, DynLaw, ExponentialContact, GapConductance,
     GasConductivity, LawRegistry, MechanicalGapConductance, RelocationInput, RelocationModel,
 };
+use mortar_physics::nonlinear::NewtonOptions;
 use mortar_physics::thermomech::{
     GapThermoMechanics, GasPressure, Plenum, ThermoElasticBody, ThermoMechOptions,
-    ThermoMechSolver, ThermoMechSolverState,
+    ThermoMechSolver, ThermoMechSolverState, ThermoMechStats,
 };
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
@@ -31,7 +32,7 @@ use super::limits::{extremes, LimitWatch, When};
 use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{
     annulus_mesh, pellet_mesh, AxialModel, ContactLawName, Geometry, PelletError, PelletScene,
-    SolverMethod,
+    SolverChoice, SolverMethod,
 };
 #[cfg(feature = "plots")]
 use crate::plot::{line_chart_png, Chart, Curve};
@@ -534,9 +535,23 @@ fn extreme_node(
 /// # Errors
 /// As [`run`](super::run).
 pub fn run_coupled(scene: &PelletScene, out: &Path, progress: bool) -> Result<Value, PelletError> {
-    let registry = LawRegistry::with_shipped();
+    run_coupled_in(scene, &LawRegistry::with_shipped(), out, progress)
+}
+
+/// [`run_coupled`] with the laws and relocation models of `registry`: the laws the scene's
+/// `[laws]` tables name ([`run_with_registry`]), else the scene's built-in ones under their
+/// descriptive names, as [`run_coupled`] reports them.
+///
+/// # Errors
+/// As [`run_with_registry`].
+pub fn run_coupled_in(
+    scene: &PelletScene,
+    registry: &LawRegistry,
+    out: &Path,
+    progress: bool,
+) -> Result<Value, PelletError> {
     if scene.laws.thermal.is_some() || scene.laws.contact.is_some() {
-        return run_with_registry(scene, &registry, out, progress);
+        return run_with_registry(scene, registry, out, progress);
     }
     let relocation = registry.relocation(&scene.model.relocation)?;
     match scene.contact.law {
@@ -736,7 +751,9 @@ fn summary<TL: ConstraintLaw, ML: ConstraintLaw>(
 }
 
 /// The time stepping, reports and outputs of the coupled scene with contact law `law`
-/// (`onset`: the exponential law's `xi`, for the time contact engages).
+/// (`onset`: the exponential law's `xi`, for the time contact engages): the initial state,
+/// the backward Euler steps and the steady state at full power ([`March`]), then the
+/// report and the outputs.
 fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     scene: &PelletScene,
     laws: (TL, ML),
@@ -752,60 +769,266 @@ fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     let scene = &scene;
     let problem = problem_of(scene, file.as_ref(), laws.0, laws.1, relocation)?;
     let setup_seconds = start.elapsed().as_secs_f64();
-    let c = &scene.cladding;
     let choice = scene
         .solver
         .choose(true, scene.model.geometry.is_plane(), problem.dimension());
-    let method = match choice.method {
-        SolverMethod::Jfnk => ThermoMechSolver::Jfnk(scene.solver.jfnk_options()),
-        _ => ThermoMechSolver::Newton,
-    };
-    let mut solver = ThermoMechSolverState::new(method);
-    let newton = scene.solver.newton_options(scene.power.linear_power);
-    // A picked JFNK whose solve fails hands the solve, and the rest of the run, to Newton.
-    let mut fallback: Option<Value> = None;
-    let solve = |x: &mut Vec<f64>,
-                 t: f64,
-                 transient: Option<(&[f64], f64)>,
-                 solver: &mut ThermoMechSolverState,
-                 fallback: &mut Option<Value>|
-     -> Result<(), PhysicsError> {
+    let steps = scene.time.steps();
+    let bar = progress_bar(progress, steps as u64 + 1);
+    let mut march = March::new(scene, &problem, &choice, out);
+    march.initial()?;
+    for k in 1..=steps {
+        if let Err(e) = march.step(k) {
+            bar.finish_and_clear();
+            return Err(e);
+        }
+        let s = march.rows.last().expect("the step's row").1;
+        bar.set_message(format!(
+            "t = {:.1} s, T0 = {:.0} K, gap = {:.2} um",
+            march.time,
+            s.center,
+            s.gap * 1e6
+        ));
+        bar.inc(1);
+    }
+    let transient_stats = march.solver.stats;
+    let steady = march.steady();
+    bar.inc(1);
+    bar.finish_and_clear();
+    let t_steady = steady?;
+    let report = CoupledReport {
+        scene,
+        file: file.as_ref(),
+        names,
+        onset,
+        relocation,
+        choice: &choice,
+        transient_stats,
+        t_steady,
+        seconds: (setup_seconds, start),
+    }
+    .json(&march)?;
+    let March {
+        mut outputs, rows, ..
+    } = march;
+    outputs.extend(history_plots(&rows)?);
+    let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
+    outputs.push(("report.json".to_string(), text.into_bytes()));
+    write_scene_outputs(out, outputs)?;
+    Ok(report)
+}
+
+/// A row of the history: time, summary, Newton and linear iterations, step cuts.
+type Row = (f64, Summary, usize, usize, usize);
+
+/// The coupled run as it goes: the problem and its solver (with the fallback of a picked
+/// JFNK to Newton), the state, the history, the snapshots and the outputs, the model
+/// ranges watched. Each solve that fails ends the run through [`fail`](Self::fail), which
+/// writes what was computed with `"status": "failed"`.
+struct March<'a, TL: ConstraintLaw, ML: ConstraintLaw> {
+    scene: &'a PelletScene,
+    problem: &'a GapThermoMechanics<TL, ML>,
+    choice: &'a SolverChoice,
+    out: &'a Path,
+    newton: NewtonOptions,
+    solver: ThermoMechSolverState,
+    /// A picked JFNK whose solve failed hands the solve, and the rest of the run, to Newton:
+    /// when and why.
+    fallback: Option<Value>,
+    x: Vec<f64>,
+    /// The pellet's centre node (its temperature is the history's).
+    centre: usize,
+    time: f64,
+    cuts_total: usize,
+    rows: Vec<Row>,
+    files: Vec<(String, f64)>,
+    outputs: Vec<(String, Vec<u8>)>,
+    watch: LimitWatch,
+}
+
+impl<'a, TL: ConstraintLaw, ML: ConstraintLaw> March<'a, TL, ML> {
+    /// The run of `problem` (of `scene`) by the method of `choice`, from the uniform outer
+    /// temperature, writing into `out`.
+    fn new(
+        scene: &'a PelletScene,
+        problem: &'a GapThermoMechanics<TL, ML>,
+        choice: &'a SolverChoice,
+        out: &'a Path,
+    ) -> Self {
+        let method = match choice.method {
+            SolverMethod::Jfnk => ThermoMechSolver::Jfnk(scene.solver.jfnk_options()),
+            _ => ThermoMechSolver::Newton,
+        };
+        let bodies = problem.heat().bodies();
+        let t_co = scene.cladding.outer_temperature;
+        let t0 = vec![t_co; bodies[0].mesh.node_count()];
+        let t1 = vec![t_co; bodies[1].mesh.node_count()];
+        Self {
+            scene,
+            problem,
+            choice,
+            out,
+            newton: scene.solver.newton_options(scene.power.linear_power),
+            solver: ThermoMechSolverState::new(method),
+            fallback: None,
+            x: problem.state([&t0, &t1]),
+            centre: nearest_node(&bodies[0].mesh, Vector3::zeros()),
+            time: 0.0,
+            cuts_total: 0,
+            rows: Vec::new(),
+            files: Vec::new(),
+            outputs: Vec::new(),
+            watch: LimitWatch::default(),
+        }
+    }
+
+    /// Solves the state at `t` (steady for `transient = None`) from `self.x`; a picked JFNK
+    /// that fails is handed to Newton, from the same start.
+    fn solve(&mut self, t: f64, transient: Option<(&[f64], f64)>) -> Result<(), PhysicsError> {
         // The start of the solve, kept only while a fallback can use it.
-        let start = (choice.picked && matches!(solver.method, ThermoMechSolver::Jfnk(_)))
-            .then(|| x.clone());
-        match (problem.solve(x, t, transient, solver, &newton), start) {
+        let start = (self.choice.picked && matches!(self.solver.method, ThermoMechSolver::Jfnk(_)))
+            .then(|| self.x.clone());
+        let problem = self.problem;
+        match (
+            problem.solve(&mut self.x, t, transient, &mut self.solver, &self.newton),
+            start,
+        ) {
             (Ok(_), _) => Ok(()),
             (Err(e), Some(start)) => {
-                *fallback = Some(json!({ "time": t, "cause": e.to_string() }));
-                solver.method = ThermoMechSolver::Newton;
-                x.copy_from_slice(&start);
-                problem.solve(x, t, transient, solver, &newton).map(|_| ())
+                self.fallback = Some(json!({ "time": t, "cause": e.to_string() }));
+                self.solver.method = ThermoMechSolver::Newton;
+                self.x.copy_from_slice(&start);
+                problem
+                    .solve(&mut self.x, t, transient, &mut self.solver, &self.newton)
+                    .map(|_| ())
             }
             (Err(e), None) => Err(e),
         }
-    };
-    let bodies = problem.heat().bodies();
-    let centre = nearest_node(&bodies[0].mesh, Vector3::zeros());
-    let t0 = vec![c.outer_temperature; bodies[0].mesh.node_count()];
-    let t1 = vec![c.outer_temperature; bodies[1].mesh.node_count()];
-    let mut x = problem.state([&t0, &t1]);
+    }
 
-    let steps = scene.time.steps();
-    let bar = progress_bar(progress, steps as u64 + 1);
-    let snapshot_every = scene.time.snapshot_every();
-    let mut outputs: Vec<(String, Vec<u8>)> = Vec::new();
-    let mut files = Vec::new();
-    let mut rows: Vec<(f64, Summary, usize, usize, usize)> = Vec::new();
-    let mut time = 0.0;
-    let mut cuts_total = 0;
+    /// The model ranges at the state, at `time`, for the step named `step`.
+    fn observe(&mut self, time: f64, step: Value) -> Result<(), PelletError> {
+        let extremes = extremes(self.problem, &self.x, time)?;
+        self.watch.observe(&When { time, step }, &extremes);
+        Ok(())
+    }
 
-    // The initial state: mechanical equilibrium at the uniform temperature, no power.
-    let failure = |e: PelletError,
-                   rows: &[(f64, Summary, usize, usize, usize)],
-                   watch: &LimitWatch,
-                   outputs: Vec<(String, Vec<u8>)>,
-                   files: &[(String, f64)]|
-     -> PelletError {
+    /// The initial state: mechanical equilibrium at the uniform temperature, no power; its
+    /// row and snapshot.
+    fn initial(&mut self) -> Result<(), PelletError> {
+        if let Err(e) = self.solve(0.0, None) {
+            let what = "the initial state".to_string();
+            let e = located(self.problem, e, what, Some(0), 0.0, &self.x, None);
+            return Err(self.fail(e));
+        }
+        self.observe(0.0, json!("initial"))?;
+        let rep0 = self.solver.stats;
+        self.rows.push((
+            0.0,
+            summary(self.problem, &self.x, self.centre),
+            rep0.newton_iterations,
+            rep0.linear_iterations,
+            0,
+        ));
+        write_snapshot(
+            self.out,
+            self.problem,
+            &self.x,
+            self.time,
+            &mut self.files,
+            &mut self.outputs,
+        )
+    }
+
+    /// Time step `k`: backward Euler from the time reached to `k dt` (the end at most),
+    /// halving the step on a failure up to [`MAX_STEP_CUTS`] times; its row, and its
+    /// snapshot when one is due. An interruption asked for stops the run here.
+    fn step(&mut self, k: usize) -> Result<(), PelletError> {
+        let (scene, steps) = (self.scene, self.scene.time.steps());
+        if crate::interrupt::requested() {
+            let e = PelletError::Interrupted {
+                time: self.time,
+                steps: k - 1,
+            };
+            return Err(self.fail(e));
+        }
+        let target = (k as f64 * scene.time.step).min(scene.time.end);
+        let before = self.solver.stats;
+        let mut cuts = 0;
+        while self.time < target {
+            let time = self.time;
+            let dt = (target - time).min(scene.time.step / f64::powi(2.0, cuts as i32));
+            let old = self.x.clone();
+            match self.solve(time + dt, Some((&old, dt))) {
+                Ok(_) => self.time += dt,
+                Err(e) => {
+                    cuts += 1;
+                    if cuts > MAX_STEP_CUTS {
+                        let what = format!(
+                            "time step {k} of {steps} (from t = {time} s, dt = {dt} s after \
+                             {MAX_STEP_CUTS} halvings)"
+                        );
+                        let transient = Some((old.as_slice(), dt));
+                        let e = located(
+                            self.problem,
+                            e,
+                            what,
+                            Some(k),
+                            time + dt,
+                            &self.x,
+                            transient,
+                        );
+                        return Err(self.fail(e));
+                    }
+                    self.x = old;
+                }
+            }
+        }
+        self.time = target;
+        self.cuts_total += cuts;
+        let s = summary(self.problem, &self.x, self.centre);
+        self.observe(self.time, json!(k))?;
+        self.rows.push((
+            self.time,
+            s,
+            self.solver.stats.newton_iterations - before.newton_iterations,
+            self.solver.stats.linear_iterations - before.linear_iterations,
+            cuts,
+        ));
+        if k.is_multiple_of(scene.time.snapshot_every()) || k == steps {
+            write_snapshot(
+                self.out,
+                self.problem,
+                &self.x,
+                self.time,
+                &mut self.files,
+                &mut self.outputs,
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The steady state at full power (at the end, or the ramp's end if later); its time.
+    fn steady(&mut self) -> Result<f64, PelletError> {
+        let t_steady = self.time.max(self.scene.power.ramp_time);
+        if let Err(e) = self.solve(t_steady, None) {
+            let what = "the steady state at full power".to_string();
+            let e = located(self.problem, e, what, None, t_steady, &self.x, None);
+            return Err(self.fail(e));
+        }
+        self.observe(t_steady, json!("steady"))?;
+        self.outputs
+            .push(("pellet.pvd".to_string(), pvd(&self.files).into_bytes()));
+        self.outputs.push((
+            "interface.pvd".to_string(),
+            pvd(&interface_files(&self.files)).into_bytes(),
+        ));
+        Ok(t_steady)
+    }
+
+    /// Ends the run on the error `e`: writes what was computed (the snapshots, the history,
+    /// the located failure, `"status": "failed"` or `"interrupted"`) and returns `e` (or,
+    /// when those outputs cannot be written, an error saying so too).
+    fn fail(&mut self, e: PelletError) -> PelletError {
         let physics = match &e {
             PelletError::Physics(p) => Some(p),
             PelletError::SolveFailed { source, .. } => Some(source.as_ref()),
@@ -839,19 +1062,20 @@ fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
         } else {
             "failed"
         };
+        let files = &self.files;
         let report = json!({
             "scene": "pellet",
             "status": status,
             "error": e.to_string(),
             "failure": located,
             "residual_history": history,
-            "warnings": watch.to_json(),
-            "valid_steps": rows.len(),
-            "history": history_json(scene, rows),
+            "warnings": self.watch.to_json(),
+            "valid_steps": self.rows.len(),
+            "history": history_json(self.scene, &self.rows),
             "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
-            "scene_data": scene,
+            "scene_data": self.scene,
         });
-        let mut outputs = outputs;
+        let mut outputs = std::mem::take(&mut self.outputs);
         outputs.push(("pellet.pvd".to_string(), pvd(files).into_bytes()));
         outputs.push((
             "interface.pvd".to_string(),
@@ -863,155 +1087,174 @@ fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
                 .expect("JSON values serialise")
                 .into_bytes(),
         ));
-        match write_scene_outputs(out, outputs) {
+        match write_scene_outputs(self.out, outputs) {
             Ok(()) => e,
             Err(w) => PelletError::Invalid(format!("{e}; and the outputs of the failure: {w}")),
         }
-    };
-    let mut watch = LimitWatch::default();
-    if let Err(e) = solve(&mut x, 0.0, None, &mut solver, &mut fallback) {
-        let e = located(
-            &problem,
-            e,
-            "the initial state".into(),
-            Some(0),
-            0.0,
-            &x,
-            None,
-        );
-        return Err(failure(e, &rows, &watch, outputs, &files));
     }
-    watch.observe(
-        &When {
-            time: 0.0,
-            step: json!("initial"),
-        },
-        &extremes(&problem, &x, 0.0)?,
-    );
-    let rep0 = solver.stats;
-    rows.push((
-        0.0,
-        summary(&problem, &x, centre),
-        rep0.newton_iterations,
-        rep0.linear_iterations,
-        0,
-    ));
-    write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
-    for k in 1..=steps {
-        if crate::interrupt::requested() {
-            bar.finish_and_clear();
-            let e = PelletError::Interrupted { time, steps: k - 1 };
-            return Err(failure(e, &rows, &watch, outputs, &files));
-        }
-        let target = (k as f64 * scene.time.step).min(scene.time.end);
-        let before = solver.stats;
-        let mut cuts = 0;
-        // Backward Euler from `time` to `target`, halving the step on a failure.
-        while time < target {
-            let dt = (target - time).min(scene.time.step / f64::powi(2.0, cuts as i32));
-            let old = x.clone();
-            match solve(
-                &mut x,
-                time + dt,
-                Some((&old, dt)),
-                &mut solver,
-                &mut fallback,
-            ) {
-                Ok(_) => time += dt,
-                Err(e) => {
-                    cuts += 1;
-                    if cuts > MAX_STEP_CUTS {
-                        bar.finish_and_clear();
-                        let what = format!(
-                            "time step {k} of {steps} (from t = {time} s, dt = {dt} s after \
-                             {MAX_STEP_CUTS} halvings)"
-                        );
-                        let e =
-                            located(&problem, e, what, Some(k), time + dt, &x, Some((&old, dt)));
-                        return Err(failure(e, &rows, &watch, outputs, &files));
-                    }
-                    x = old;
-                }
-            }
-        }
-        time = target;
-        cuts_total += cuts;
-        let s = summary(&problem, &x, centre);
-        watch.observe(
-            &When {
-                time,
-                step: json!(k),
-            },
-            &extremes(&problem, &x, time)?,
-        );
-        rows.push((
-            time,
-            s,
-            solver.stats.newton_iterations - before.newton_iterations,
-            solver.stats.linear_iterations - before.linear_iterations,
-            cuts,
-        ));
-        if k % snapshot_every == 0 || k == steps {
-            write_snapshot(out, &problem, &x, time, &mut files, &mut outputs)?;
-        }
-        bar.set_message(format!(
-            "t = {time:.1} s, T0 = {:.0} K, gap = {:.2} um",
-            s.center,
-            s.gap * 1e6
-        ));
-        bar.inc(1);
-    }
-    // The steady state at full power, and its energy balance.
-    let transient_stats = solver.stats;
-    let t_steady = time.max(scene.power.ramp_time);
-    if let Err(e) = solve(&mut x, t_steady, None, &mut solver, &mut fallback) {
-        bar.finish_and_clear();
-        let e = located(
-            &problem,
-            e,
-            "the steady state at full power".into(),
-            None,
-            t_steady,
-            &x,
-            None,
-        );
-        return Err(failure(e, &rows, &watch, outputs, &files));
-    }
-    watch.observe(
-        &When {
-            time: t_steady,
-            step: json!("steady"),
-        },
-        &extremes(&problem, &x, t_steady)?,
-    );
-    bar.inc(1);
-    bar.finish_and_clear();
-    let steady = summary(&problem, &x, centre);
-    let heat_out = outer_heat_flow(&problem, &x)?;
-    // Per unit length in 2D, over the segment in 3D.
-    let length = if scene.model.geometry.is_plane() {
-        1.0
-    } else {
-        scene.model.segment_height
-    };
-    let power_in = scene.power.at(t_steady) * length;
-    outputs.push(("pellet.pvd".to_string(), pvd(&files).into_bytes()));
-    outputs.push((
-        "interface.pvd".to_string(),
-        pvd(&interface_files(&files)).into_bytes(),
-    ));
+}
 
-    // When contact engages: the exponential law's pressure rises where the gap falls below
-    // xi (the smallest gap, not zero: the gap is not closed; an off-centre pellet engages on
-    // its near side first); the exact law's mean contact pressure is positive. (A millionth
-    // of the gas pressure: the round-off of an inactive node's pressure is far below it.)
+/// What the coupled run's report says besides the march's own state.
+struct CoupledReport<'a> {
+    scene: &'a PelletScene,
+    file: Option<&'a FileGeometry>,
+    /// The thermal and contact laws' names.
+    names: (&'a str, &'a str),
+    /// The exponential law's onset gap.
+    onset: Option<f64>,
+    relocation: &'a Arc<dyn RelocationModel>,
+    choice: &'a SolverChoice,
+    /// The solver's counts before the steady solve.
+    transient_stats: ThermoMechStats,
+    t_steady: f64,
+    /// The set-up's seconds, and the run's start.
+    seconds: (f64, Instant),
+}
+
+impl CoupledReport<'_> {
+    /// The report of a march that reached its steady state.
+    ///
+    /// # Errors
+    /// [`PelletError::Physics`] where the heat flow or the eigenstrain cannot be evaluated.
+    fn json<TL: ConstraintLaw, ML: ConstraintLaw>(
+        &self,
+        march: &March<'_, TL, ML>,
+    ) -> Result<Value, PelletError> {
+        let (scene, problem, rows) = (self.scene, march.problem, &march.rows);
+        let (onset, t_steady, x) = (self.onset, self.t_steady, &march.x);
+        let bodies = problem.heat().bodies();
+        let steady = summary(problem, x, march.centre);
+        let heat_out = outer_heat_flow(problem, x)?;
+        // Per unit length in 2D, over the segment in 3D.
+        let length = if scene.model.geometry.is_plane() {
+            1.0
+        } else {
+            scene.model.segment_height
+        };
+        let power_in = scene.power.at(t_steady) * length;
+        let closure = contact_engaged(rows, onset);
+        let last = rows.last().expect("the initial row").1;
+        let peak = rows.iter().map(|r| r.1.peak_pressure).fold(0.0, f64::max);
+        let stats = march.solver.stats;
+        let mesh = |b: usize| {
+            json!({
+                "nodes": bodies[b].mesh.node_count(),
+                "cells": bodies[b].mesh.cell_count(),
+            })
+        };
+        Ok(json!({
+            "scene": "pellet",
+            "status": if march.watch.is_empty() { "ok" } else { "warnings" },
+            // The model ranges the run left, each once (docs/models.md, section 3b).
+            "warnings": march.watch.to_json(),
+            "models": {
+                "heat": true,
+                "mechanics": true,
+                "geometry": scene.model.geometry,
+                "axial": scene.model.axial(),
+                "contact_law": self.names.1,
+                "gap_conductance": self.names.0,
+                "plenum": "ideal gas, fixed moles",
+                // The pellet's relocation model, and the burnup it sees (MWd/kgU).
+                "relocation": self.relocation.name(),
+                "burnup": scene.model.burnup,
+                "contact_engaged": closure.is_some(),
+                // The exponential law's onset gap xi (m), below which its pressure rises.
+                "contact_onset_gap": onset,
+            },
+            "method": match march.solver.method { ThermoMechSolver::Newton => "newton", ThermoMechSolver::Jfnk(_) => "jfnk" },
+            "solver_choice": {
+                "asked": scene.solver.method.name(),
+                "picked": self.choice.method.name(),
+                "why": self.choice.reason,
+                "fallback_to_newton": march.fallback,
+            },
+            "center_temperature": last.center,
+            "gap": last.gap,
+            // When contact engaged (the mean gap fell below xi, or the exact law's pressure
+            // became positive); the key's name is kept for the scripts that read it.
+            "gap_closure_time": closure,
+            "peak_interface_pressure": peak,
+            "plenum_pressure": last.plenum,
+            "interface_pressure": last.interface_pressure,
+            "history": history_json(scene, rows),
+            // Uncovered slave area or skipped pairs of the coupling, named (none on these meshes).
+            "coupling_warnings": problem.heat().tie()
+                .coupling()
+                .warnings
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>(),
+            "steady": {
+                "time": t_steady,
+                "center_temperature": steady.center,
+                "pellet_surface_temperature": steady.pellet_surface,
+                "cladding_inner_temperature": steady.cladding_inner,
+                "gap": steady.gap,
+                "interface_pressure": steady.interface_pressure,
+                "plenum_pressure": steady.plenum,
+                "pellet_surface_displacement": steady.displacement,
+                // The pellet's relocation strain across its axis (0 without relocation).
+                "relocation_strain": problem.eigenstrain_at(0, t_steady)?.map_or(0.0, |e| e[0]),
+                // The bodies' axial strains (null where the axial direction is held).
+                "axial_strain": {
+                    "pellet": problem.fields(x).axial_strain[0],
+                    "cladding": problem.fields(x).axial_strain[1],
+                },
+                "power_in": power_in,
+                "heat_out": heat_out,
+                "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
+            },
+            "solver": {
+                "newton_iterations": stats.newton_iterations,
+                "linear_iterations": stats.linear_iterations,
+                "factorizations": stats.factorizations,
+                "symbolic_analyses": stats.symbolic_analyses,
+                "reused_preconditioners": stats.reused_preconditioners,
+                "transient_newton_iterations": self.transient_stats.newton_iterations,
+                "step_cuts": march.cuts_total,
+                "seconds": {
+                    "newton_total": stats.total_seconds,
+                    "assembly": stats.assembly_seconds,
+                    "linear": stats.linear_seconds,
+                },
+            },
+            "mesh": {
+                "file": self.file.map(|f| json!({
+                    "path": scene.mesh.file.as_ref().map(|p| p.display().to_string()),
+                    "pellet_radius": f.pellet_radius,
+                    "cladding_inner_radius": f.inner_radius,
+                    "cladding_outer_radius": f.outer_radius,
+                    "height": f.height,
+                    "pellet_volume": f.pellet_volume,
+                    "land_area": f.land_area,
+                    "end_voids": f.end_voids(),
+                })),
+                "refinement": scene.mesh.refinement,
+                "pellet": mesh(0),
+                "cladding": mesh(1),
+                "interface_slave_nodes": problem.normal_gap().weights.len(),
+                "unknowns": problem.dimension(),
+            },
+            "vtu": march.files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
+            "seconds": { "setup": self.seconds.0, "total": self.seconds.1.elapsed().as_secs_f64() },
+            "scene_data": scene,
+        }))
+    }
+}
+
+/// When contact engaged, from the history: the exponential law's pressure rises where the
+/// gap falls below `xi` (the smallest gap, not zero: the gap is not closed; an off-centre
+/// pellet engages on its near side first); the exact law's (`onset` `None`) mean contact
+/// pressure is positive (above a millionth of the gas pressure: the round-off of an inactive
+/// node's pressure is far below it). From the initial state (an off-centre pellet touching
+/// at once), or between two rows (interpolated in the exponential law's smallest gap).
+fn contact_engaged(rows: &[Row], onset: Option<f64>) -> Option<f64> {
     let touches = |s: &Summary| match onset {
         Some(xi) => s.min_gap <= xi,
         None => s.contact_pressure > 1e-6 * s.plenum,
     };
-    // Engaged from the initial state (an off-centre pellet touching at once), or between two
-    // rows (interpolated in the exponential law's smallest gap).
-    let closure = rows.iter().position(|r| touches(&r.1)).map(|i| {
+    rows.iter().position(|r| touches(&r.1)).map(|i| {
         if i == 0 {
             return rows[0].0;
         }
@@ -1022,119 +1265,7 @@ fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
             }
             _ => t1,
         }
-    });
-    let last = rows.last().expect("the initial row").1;
-    let peak = rows.iter().map(|r| r.1.peak_pressure).fold(0.0, f64::max);
-    let stats = solver.stats;
-    let mesh = |b: usize| {
-        json!({
-            "nodes": bodies[b].mesh.node_count(),
-            "cells": bodies[b].mesh.cell_count(),
-        })
-    };
-    let report = json!({
-        "scene": "pellet",
-        "status": if watch.is_empty() { "ok" } else { "warnings" },
-        // The model ranges the run left, each once (docs/models.md, section 3b).
-        "warnings": watch.to_json(),
-        "models": {
-            "heat": true,
-            "mechanics": true,
-            "geometry": scene.model.geometry,
-            "axial": scene.model.axial(),
-            "contact_law": names.1,
-            "gap_conductance": names.0,
-            "plenum": "ideal gas, fixed moles",
-            // The pellet's relocation model, and the burnup it sees (MWd/kgU).
-            "relocation": relocation.name(),
-            "burnup": scene.model.burnup,
-            "contact_engaged": closure.is_some(),
-            // The exponential law's onset gap xi (m), below which its pressure rises.
-            "contact_onset_gap": onset,
-        },
-        "method": match solver.method { ThermoMechSolver::Newton => "newton", ThermoMechSolver::Jfnk(_) => "jfnk" },
-        "solver_choice": {
-            "asked": scene.solver.method.name(),
-            "picked": choice.method.name(),
-            "why": choice.reason,
-            "fallback_to_newton": fallback,
-        },
-        "center_temperature": last.center,
-        "gap": last.gap,
-        // When contact engaged (the mean gap fell below xi, or the exact law's pressure
-        // became positive); the key's name is kept for the scripts that read it.
-        "gap_closure_time": closure,
-        "peak_interface_pressure": peak,
-        "plenum_pressure": last.plenum,
-        "interface_pressure": last.interface_pressure,
-        "history": history_json(scene, &rows),
-        // Uncovered slave area or skipped pairs of the coupling, named (none on these meshes).
-        "coupling_warnings": problem.heat().tie()
-            .coupling()
-            .warnings
-            .iter()
-            .map(ToString::to_string)
-            .collect::<Vec<_>>(),
-        "steady": {
-            "time": t_steady,
-            "center_temperature": steady.center,
-            "pellet_surface_temperature": steady.pellet_surface,
-            "cladding_inner_temperature": steady.cladding_inner,
-            "gap": steady.gap,
-            "interface_pressure": steady.interface_pressure,
-            "plenum_pressure": steady.plenum,
-            "pellet_surface_displacement": steady.displacement,
-            // The pellet's relocation strain across its axis (0 without relocation).
-            "relocation_strain": problem.eigenstrain_at(0, t_steady)?.map_or(0.0, |e| e[0]),
-            // The bodies' axial strains (null where the axial direction is held).
-            "axial_strain": {
-                "pellet": problem.fields(&x).axial_strain[0],
-                "cladding": problem.fields(&x).axial_strain[1],
-            },
-            "power_in": power_in,
-            "heat_out": heat_out,
-            "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
-        },
-        "solver": {
-            "newton_iterations": stats.newton_iterations,
-            "linear_iterations": stats.linear_iterations,
-            "factorizations": stats.factorizations,
-            "symbolic_analyses": stats.symbolic_analyses,
-            "reused_preconditioners": stats.reused_preconditioners,
-            "transient_newton_iterations": transient_stats.newton_iterations,
-            "step_cuts": cuts_total,
-            "seconds": {
-                "newton_total": stats.total_seconds,
-                "assembly": stats.assembly_seconds,
-                "linear": stats.linear_seconds,
-            },
-        },
-        "mesh": {
-            "file": file.as_ref().map(|f| json!({
-                "path": scene.mesh.file.as_ref().map(|p| p.display().to_string()),
-                "pellet_radius": f.pellet_radius,
-                "cladding_inner_radius": f.inner_radius,
-                "cladding_outer_radius": f.outer_radius,
-                "height": f.height,
-                "pellet_volume": f.pellet_volume,
-                "land_area": f.land_area,
-                "end_voids": f.end_voids(),
-            })),
-            "refinement": scene.mesh.refinement,
-            "pellet": mesh(0),
-            "cladding": mesh(1),
-            "interface_slave_nodes": problem.normal_gap().weights.len(),
-            "unknowns": problem.dimension(),
-        },
-        "vtu": files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
-        "seconds": { "setup": setup_seconds, "total": start.elapsed().as_secs_f64() },
-        "scene_data": scene,
-    });
-    outputs.extend(history_plots(&rows)?);
-    let text = serde_json::to_string_pretty(&report).expect("JSON values serialise");
-    outputs.push(("report.json".to_string(), text.into_bytes()));
-    write_scene_outputs(out, outputs)?;
-    Ok(report)
+    })
 }
 
 /// The error of the failed solve `solve` (`step`, to time `time`; `transient` as
@@ -1258,7 +1389,7 @@ fn interface_files(files: &[(String, f64)]) -> Vec<(String, f64)> {
 }
 
 /// The history as arrays over the time steps.
-fn history_json(scene: &PelletScene, rows: &[(f64, Summary, usize, usize, usize)]) -> Value {
+fn history_json(scene: &PelletScene, rows: &[Row]) -> Value {
     let col = |f: &dyn Fn(&Summary) -> f64| rows.iter().map(|r| f(&r.1)).collect::<Vec<_>>();
     let mut history = json!({
         "time": rows.iter().map(|r| r.0).collect::<Vec<_>>(),

@@ -99,8 +99,8 @@ mod stress;
 
 pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{
-    coupled_problem, coupled_problem_with, exponential_contact_law, run_coupled, run_coupled_with,
-    run_with_registry, thermal_law, MAX_STEP_CUTS,
+    coupled_problem, coupled_problem_with, exponential_contact_law, run_coupled, run_coupled_in,
+    run_coupled_with, run_with_registry, thermal_law, MAX_STEP_CUTS,
 };
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use run::{

@@ -55,7 +55,7 @@ pub fn run_with_laws(
     progress: bool,
 ) -> Result<Value, PelletError> {
     if scene.model.mechanics {
-        super::run_with_registry(scene, laws, out, progress)
+        super::run_coupled_in(scene, laws, out, progress)
     } else {
         run_thermal(scene, out, progress)
     }
