@@ -23,6 +23,7 @@ pub mod file;
 pub mod hertz;
 pub mod interrupt;
 mod named_law;
+mod parse;
 pub mod pellet;
 #[cfg(feature = "plots")]
 pub mod plot;

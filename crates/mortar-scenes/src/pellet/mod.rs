@@ -93,16 +93,17 @@ mod closed_form;
 mod coupled;
 pub mod file_mesh;
 pub mod limits;
+mod march;
 mod mesh;
+mod problem;
 mod run;
 mod stress;
 
 pub use closed_form::{closed_form, ClosedForm};
-pub use coupled::{
-    coupled_problem, coupled_problem_with, exponential_contact_law, run_coupled, run_coupled_in,
-    run_coupled_with, run_with_registry, thermal_law, MAX_STEP_CUTS,
-};
+pub use coupled::{run_coupled, run_coupled_in, run_coupled_with, run_with_registry};
+pub use march::MAX_STEP_CUTS;
 pub use mesh::{annulus_mesh, pellet_mesh};
+pub use problem::{coupled_problem, coupled_problem_with, exponential_contact_law, thermal_law};
 pub use run::{
     is_output, run, run_builtin, run_from_toml, run_from_toml_with, run_thermal, run_with_laws,
 };
@@ -765,7 +766,7 @@ impl PelletScene {
     /// [`PelletError::Parse`] for invalid TOML, an unknown key or a wrong type;
     /// [`PelletError::Invalid`] for values out of range (see [`check`](Self::check)).
     pub fn from_toml(text: &str) -> Result<Self, PelletError> {
-        let scene: Self = crate::file::error::parse_toml(text)
+        let scene: Self = crate::parse::parse_toml(text)
             .map_err(|f| PelletError::Parse(format!("line {}: {}", f.line, f.keyed_message())))?;
         scene.check()?;
         Ok(scene)
