@@ -55,8 +55,12 @@ use super::tied_heat::SideSpec;
 use super::{coupling_of, face_nodes, widen_hint};
 use super::{SceneError, SceneOutput, SceneSource};
 use mortar::extend::Registries;
+use mortar::extend::VolumeRegistry;
 use mortar::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
-use mortar::io::{parse_gmsh_volume, CouplingSettings, Integration, Multipliers};
+use mortar::io::{
+    parse_gmsh_volume, CouplingSettings, GmshVolume, Integration, IoError, Multipliers,
+};
+use mortar_physics::laws::LawRegistry;
 
 /// A contact scene file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -545,46 +549,10 @@ impl ContactSpec {
         registries: &Registries,
     ) -> Result<SolvedContact, SceneError> {
         let t_start = Instant::now();
-        let registry = &registries.cells;
-        let laws = &registries.laws;
-        let mesh_error = |context: String, source| SceneError::Mesh {
-            path: path.to_path_buf(),
-            context,
-            source: Box::new(source),
-        };
-        let physics = |source| SceneError::Physics {
-            path: path.to_path_buf(),
-            source: Box::new(source),
-        };
-        let invalid = |key: String, what: String| SceneError::Invalid {
-            path: path.to_path_buf(),
-            key,
-            what,
-        };
-        let order = [&self.contact.slave, &self.contact.master];
-        let mut volumes = Vec::with_capacity(2);
-        for side in order {
-            let name = &side.body;
-            let b = &self.bodies[name];
-            let file = base.join(&b.mesh);
-            let bytes = source
-                .read(&file)
-                .map_err(|e| mesh_error(format!("bodies.{name}.mesh"), e))?;
-            let v = parse_gmsh_volume(bytes, &file, &b.group, registry)
-                .map_err(|e| mesh_error(format!("bodies.{name}.group"), e))?;
-            volumes.push((name.clone(), v));
-        }
+        let errors = Errors { path };
+        let volumes = self.read_volumes(&errors, base, source, &registries.cells)?;
         let dim = volumes[0].1.dimension as usize;
-        if volumes[1].1.dimension as usize != dim {
-            return Err(invalid(
-                "bodies".into(),
-                format!(
-                    "body \"{}\" is {}D but body \"{}\" is {}D",
-                    volumes[0].0, dim, volumes[1].0, volumes[1].1.dimension
-                ),
-            ));
-        }
-
+        let order = [&self.contact.slave, &self.contact.master];
         let mut bodies = Vec::with_capacity(2);
         let mut surfaces = Vec::with_capacity(2);
         let mut labels = Vec::with_capacity(2);
@@ -592,84 +560,15 @@ impl ContactSpec {
             .into_iter()
             .zip(order.iter().zip(&volumes))
         {
-            let b = &self.bodies[name];
-            let mut body = ElasticBody::new(
-                name.clone(),
-                v.mesh.clone(),
-                ElasticMaterial::new(b.youngs_modulus, b.poisson_ratio),
-            );
-            for (i, d) in b.dirichlet.iter().enumerate() {
-                let key = format!("bodies.{name}.dirichlet[{i}]");
-                let faces = v
-                    .boundary_faces_in(&d.group)
-                    .map_err(|e| mesh_error(key.clone(), e))?;
-                let (components, value) = match (d.component, &d.value) {
-                    (Component::Z, _) if dim == 2 => {
-                        return Err(invalid(
-                            format!("{key}.component"),
-                            "z in a 2D body (plane strain has x and y)".into(),
-                        ))
-                    }
-                    (Component::All, ComponentValue::Array(a)) => {
-                        if a.len() != dim {
-                            return Err(invalid(
-                                format!("{key}.value"),
-                                format!("{} values for a {dim}D body", a.len()),
-                            ));
-                        }
-                        let mut v = Vector3::zeros();
-                        v.as_mut_slice()[..dim].copy_from_slice(a);
-                        (ComponentSet::All, v)
-                    }
-                    (Component::All, ComponentValue::Number(x)) => {
-                        (ComponentSet::All, Vector3::new(*x, *x, *x))
-                    }
-                    (c, ComponentValue::Number(x)) => {
-                        let k = match c {
-                            Component::X => 0,
-                            Component::Y => 1,
-                            _ => 2,
-                        };
-                        let mut v = Vector3::zeros();
-                        v[k] = *x;
-                        (ComponentSet::One(k), v)
-                    }
-                    (_, ComponentValue::Array(_)) => {
-                        return Err(invalid(
-                            format!("{key}.value"),
-                            "an array is for component = \"all\"".into(),
-                        ))
-                    }
-                };
-                body = body.with_dirichlet_nodes(face_nodes(&faces), components, move |_| value);
-            }
-            for (i, t) in b.traction.iter().enumerate() {
-                let key = format!("bodies.{name}.traction[{i}]");
-                let faces = v
-                    .boundary_faces_in(&t.group)
-                    .map_err(|e| mesh_error(key.clone(), e))?;
-                if t.value.len() != dim {
-                    return Err(invalid(
-                        format!("{key}.value"),
-                        format!("{} values for a {dim}D body", t.value.len()),
-                    ));
-                }
-                let mut tv = Vector3::zeros();
-                tv.as_mut_slice()[..dim].copy_from_slice(&t.value);
-                body.tractions.push(TractionCondition {
-                    faces,
-                    traction: Arc::new(move |_| tv),
-                });
-            }
+            bodies.push(self.elastic_body(&errors, name, v, dim)?);
             let surface = v
                 .boundary_surface_in(&side.group)
-                .map_err(|e| mesh_error(format!("contact.{which}"), e))?;
+                .map_err(|e| errors.mesh(format!("contact.{which}"), e))?;
             let faces = v
                 .boundary_faces_in(&side.group)
-                .map_err(|e| mesh_error(format!("contact.{which}"), e))?;
+                .map_err(|e| errors.mesh(format!("contact.{which}"), e))?;
             surfaces.push((surface, faces));
             labels.push(v.label());
-            bodies.push(body);
         }
         let t_read = t_start.elapsed().as_secs_f64();
 
@@ -678,27 +577,27 @@ impl ContactSpec {
         let (master_surface, _) = surfaces.pop().expect("two surfaces");
         let (slave_surface, slave_faces) = surfaces.pop().expect("two surfaces");
         let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)
-            .map_err(|e| physics(e.into()))?;
+            .map_err(|e| errors.physics(e.into()))?;
         let tie = Tie::on_interface(&bodies[0].mesh, &bodies[1].mesh, interface, &coupling)
-            .map_err(physics)?;
+            .map_err(|e| errors.physics(e))?;
         let gap = NormalGap::new(
             &tie,
             dim,
             bodies[0].mesh.node_count(),
             bodies[1].mesh.node_count(),
         )
-        .map_err(physics)?;
+        .map_err(|e| errors.physics(e))?;
         let t_coupling = t.elapsed().as_secs_f64();
 
         let t = Instant::now();
         let options = ElasticOptions::default();
         let stiffness = [
-            assemble_elastic_stiffness(&bodies[0], &options).map_err(physics)?,
-            assemble_elastic_stiffness(&bodies[1], &options).map_err(physics)?,
+            assemble_elastic_stiffness(&bodies[0], &options).map_err(|e| errors.physics(e))?,
+            assemble_elastic_stiffness(&bodies[1], &options).map_err(|e| errors.physics(e))?,
         ];
         let load = [
-            assemble_elastic_load(&bodies[0], &options).map_err(physics)?,
-            assemble_elastic_load(&bodies[1], &options).map_err(physics)?,
+            assemble_elastic_load(&bodies[0], &options).map_err(|e| errors.physics(e))?,
+            assemble_elastic_load(&bodies[1], &options).map_err(|e| errors.physics(e))?,
         ];
         let dirichlet = [bodies[0].dirichlet_dofs(), bodies[1].dirichlet_dofs()];
         let t_assembly = t.elapsed().as_secs_f64();
@@ -710,7 +609,7 @@ impl ContactSpec {
         let names = [bodies[0].name.as_str(), bodies[1].name.as_str()];
         for (name, h) in names.iter().zip(&held) {
             if !h.free.is_empty() {
-                return Err(physics(PhysicsError::NotHeld {
+                return Err(errors.physics(PhysicsError::NotHeld {
                     body: name.to_string(),
                     motions: describe_motions(&h.free),
                 }));
@@ -718,67 +617,32 @@ impl ContactSpec {
         }
 
         let t = Instant::now();
-        let contact_options = ContactOptions {
-            load_steps: self.solve.load_steps,
-            max_newton_steps: self.solve.max_newton_steps,
-            tolerance: self.solve.tolerance,
+        let system = ContactSystem {
+            stiffness: &stiffness,
+            load: &load,
+            dirichlet: &dirichlet,
+            gap: &gap,
         };
-        let c = &self.contact;
-        let mut complementarity = None;
-        let (solution, law_description) = match c.law {
-            _ if c.named_law.is_some() => {
-                let named = c.named_law.as_ref().expect("checked by the guard");
-                let law = named
-                    .make(laws)
-                    .map_err(|e| invalid("contact.named_law".into(), e.to_string()))?;
-                (
-                    solve_steps(&stiffness, &load, &dirichlet, &gap, &law, &contact_options),
-                    format!("{} (by name) {:?}", named.name, named.parameters),
-                )
-            }
-            LawSpec::Exact => {
-                let cc = automatic_complementarity(&stiffness[0], &tie, &gap, dim);
-                let law = ContactComplementarity::try_new(cc)
-                    .map_err(|e| invalid("contact.law".into(), e.to_string()))?;
-                complementarity = Some(cc);
-                (
-                    solve_steps(&stiffness, &load, &dirichlet, &gap, &law, &contact_options),
-                    format!("exact complementarity, c = {cc:e} Pa/m (automatic)"),
-                )
-            }
-            LawSpec::Exponential => {
-                let (po, s, xi) = (
-                    c.base_pressure.unwrap_or(0.0),
-                    c.stiffness.unwrap_or(0.0),
-                    c.onset.unwrap_or(0.0),
-                );
-                let law = ExponentialPressure::try_new(po, s, xi)
-                    .map_err(|e| invalid("contact.law".into(), e.to_string()))?;
-                (
-                    solve_steps(&stiffness, &load, &dirichlet, &gap, &law, &contact_options),
-                    format!(
-                        "exponential pressure, P_o = {po:e} Pa, S = {s:e} 1/m^2, xi = {xi:e} m"
-                    ),
-                )
-            }
-        };
+        let (solution, law_description, complementarity) =
+            self.solve_law(&errors, &system, &tie, dim, &registries.laws)?;
         let solution = solution.map_err(|(step, e)| match (step, e) {
-            (Some(k), e) => invalid(
+            (Some(k), e) => errors.invalid(
                 "solve.load_steps".into(),
                 format!(
                     "load step {k} of {}: Newton's method did not converge: {e}",
                     self.solve.load_steps
                 ),
             ),
-            (None, e) => physics(name_bodies(e, names, &held)),
+            (None, e) => errors.physics(name_bodies(e, names, &held)),
         })?;
         let t_solve = t.elapsed().as_secs_f64();
 
         let t = Instant::now();
-        let stresses = [
-            recover_stress(&bodies[0], &solution.displacements[0], &options).map_err(physics)?,
-            recover_stress(&bodies[1], &solution.displacements[1], &options).map_err(physics)?,
-        ];
+        let stress = |b: usize| {
+            recover_stress(&bodies[b], &solution.displacements[b], &options)
+                .map_err(|e| errors.physics(e))
+        };
+        let stresses = [stress(0)?, stress(1)?];
         let t_stress = t.elapsed().as_secs_f64();
 
         Ok(SolvedContact {
@@ -810,9 +674,248 @@ impl ContactSpec {
             t_start,
         })
     }
+
+    /// The bodies' meshes, slave first (through `source`, paths relative to `base`), of one
+    /// dimension.
+    fn read_volumes(
+        &self,
+        errors: &Errors,
+        base: &Path,
+        source: &dyn SceneSource,
+        registry: &VolumeRegistry,
+    ) -> Result<Vec<(String, GmshVolume)>, SceneError> {
+        let mut volumes = Vec::with_capacity(2);
+        for side in [&self.contact.slave, &self.contact.master] {
+            let name = &side.body;
+            let b = &self.bodies[name];
+            let file = base.join(&b.mesh);
+            let bytes = source
+                .read(&file)
+                .map_err(|e| errors.mesh(format!("bodies.{name}.mesh"), e))?;
+            let v = parse_gmsh_volume(bytes, &file, &b.group, registry)
+                .map_err(|e| errors.mesh(format!("bodies.{name}.group"), e))?;
+            volumes.push((name.clone(), v));
+        }
+        let dim = volumes[0].1.dimension;
+        if volumes[1].1.dimension != dim {
+            return Err(errors.invalid(
+                "bodies".into(),
+                format!(
+                    "body \"{}\" is {}D but body \"{}\" is {}D",
+                    volumes[0].0, dim, volumes[1].0, volumes[1].1.dimension
+                ),
+            ));
+        }
+        Ok(volumes)
+    }
+
+    /// Body `name` of the mesh `v` (`dim` components): its material, its displacement
+    /// conditions and its tractions.
+    fn elastic_body(
+        &self,
+        errors: &Errors,
+        name: &str,
+        v: &GmshVolume,
+        dim: usize,
+    ) -> Result<ElasticBody, SceneError> {
+        let b = &self.bodies[name];
+        let mut body = ElasticBody::new(
+            name.to_string(),
+            v.mesh.clone(),
+            ElasticMaterial::new(b.youngs_modulus, b.poisson_ratio),
+        );
+        for (i, d) in b.dirichlet.iter().enumerate() {
+            let key = format!("bodies.{name}.dirichlet[{i}]");
+            let faces = v
+                .boundary_faces_in(&d.group)
+                .map_err(|e| errors.mesh(key.clone(), e))?;
+            let (components, value) = dirichlet_value(errors, d, dim, &key)?;
+            body = body.with_dirichlet_nodes(face_nodes(&faces), components, move |_| value);
+        }
+        for (i, t) in b.traction.iter().enumerate() {
+            let key = format!("bodies.{name}.traction[{i}]");
+            let faces = v
+                .boundary_faces_in(&t.group)
+                .map_err(|e| errors.mesh(key.clone(), e))?;
+            if t.value.len() != dim {
+                return Err(errors.invalid(
+                    format!("{key}.value"),
+                    format!("{} values for a {dim}D body", t.value.len()),
+                ));
+            }
+            let mut tv = Vector3::zeros();
+            tv.as_mut_slice()[..dim].copy_from_slice(&t.value);
+            body.tractions.push(TractionCondition {
+                faces,
+                traction: Arc::new(move |_| tv),
+            });
+        }
+        Ok(body)
+    }
+
+    /// The contact law of `[contact]` (by name, exact or exponential), its description and
+    /// (exact) its complementarity parameter, and the load steps solved under it.
+    fn solve_law(
+        &self,
+        errors: &Errors,
+        system: &ContactSystem,
+        tie: &Tie,
+        dim: usize,
+        laws: &LawRegistry,
+    ) -> Result<(StepsResult, String, Option<f64>), SceneError> {
+        let options = ContactOptions {
+            load_steps: self.solve.load_steps,
+            max_newton_steps: self.solve.max_newton_steps,
+            tolerance: self.solve.tolerance,
+        };
+        let c = &self.contact;
+        if let Some(named) = &c.named_law {
+            let law = named
+                .make(laws)
+                .map_err(|e| errors.invalid("contact.named_law".into(), e.to_string()))?;
+            let description = format!("{} (by name) {:?}", named.name, named.parameters);
+            return Ok((system.solve(&law, &options), description, None));
+        }
+        Ok(match c.law {
+            LawSpec::Exact => {
+                let cc = automatic_complementarity(&system.stiffness[0], tie, system.gap, dim);
+                let law = ContactComplementarity::try_new(cc)
+                    .map_err(|e| errors.invalid("contact.law".into(), e.to_string()))?;
+                (
+                    system.solve(&law, &options),
+                    format!("exact complementarity, c = {cc:e} Pa/m (automatic)"),
+                    Some(cc),
+                )
+            }
+            LawSpec::Exponential => {
+                let (po, s, xi) = (
+                    c.base_pressure.unwrap_or(0.0),
+                    c.stiffness.unwrap_or(0.0),
+                    c.onset.unwrap_or(0.0),
+                );
+                let law = ExponentialPressure::try_new(po, s, xi)
+                    .map_err(|e| errors.invalid("contact.law".into(), e.to_string()))?;
+                (
+                    system.solve(&law, &options),
+                    format!(
+                        "exponential pressure, P_o = {po:e} Pa, S = {s:e} 1/m^2, xi = {xi:e} m"
+                    ),
+                    None,
+                )
+            }
+        })
+    }
+}
+
+/// The errors of one scene file, each naming it.
+struct Errors<'a> {
+    path: &'a Path,
+}
+
+impl Errors<'_> {
+    fn mesh(&self, context: String, source: IoError) -> SceneError {
+        SceneError::Mesh {
+            path: self.path.to_path_buf(),
+            context,
+            source: Box::new(source),
+        }
+    }
+
+    fn physics(&self, source: PhysicsError) -> SceneError {
+        SceneError::Physics {
+            path: self.path.to_path_buf(),
+            source: Box::new(source),
+        }
+    }
+
+    fn invalid(&self, key: String, what: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            key,
+            what,
+        }
+    }
+}
+
+/// The components and value of a displacement condition `d` (`key` in messages) of a body of
+/// `dim` components.
+fn dirichlet_value(
+    errors: &Errors,
+    d: &DisplacementSpec,
+    dim: usize,
+    key: &str,
+) -> Result<(ComponentSet, Vector3<f64>), SceneError> {
+    Ok(match (d.component, &d.value) {
+        (Component::Z, _) if dim == 2 => {
+            return Err(errors.invalid(
+                format!("{key}.component"),
+                "z in a 2D body (plane strain has x and y)".into(),
+            ))
+        }
+        (Component::All, ComponentValue::Array(a)) => {
+            if a.len() != dim {
+                return Err(errors.invalid(
+                    format!("{key}.value"),
+                    format!("{} values for a {dim}D body", a.len()),
+                ));
+            }
+            let mut v = Vector3::zeros();
+            v.as_mut_slice()[..dim].copy_from_slice(a);
+            (ComponentSet::All, v)
+        }
+        (Component::All, ComponentValue::Number(x)) => {
+            (ComponentSet::All, Vector3::new(*x, *x, *x))
+        }
+        (c, ComponentValue::Number(x)) => {
+            let k = match c {
+                Component::X => 0,
+                Component::Y => 1,
+                _ => 2,
+            };
+            let mut v = Vector3::zeros();
+            v[k] = *x;
+            (ComponentSet::One(k), v)
+        }
+        (_, ComponentValue::Array(_)) => {
+            return Err(errors.invalid(
+                format!("{key}.value"),
+                "an array is for component = \"all\"".into(),
+            ))
+        }
+    })
 }
 
 type Dofs = (Vec<u32>, Vec<f64>);
+
+/// The load steps' solution, or the step (if one) and the error where they failed.
+type StepsResult = Result<ContactSolution, (Option<usize>, PhysicsError)>;
+
+/// The assembled contact problem of the two bodies, before its law: stiffnesses, loads,
+/// prescribed displacements and the normal gap.
+struct ContactSystem<'a> {
+    stiffness: &'a [mortar_core::linalg::SparseMatrix; 2],
+    load: &'a [Vec<f64>; 2],
+    dirichlet: &'a [Dofs; 2],
+    gap: &'a NormalGap,
+}
+
+impl ContactSystem<'_> {
+    /// The load steps under `law` ([`solve_steps`]).
+    fn solve<L: mortar_physics::laws::ConstraintLaw>(
+        &self,
+        law: &L,
+        options: &ContactOptions,
+    ) -> StepsResult {
+        solve_steps(
+            self.stiffness,
+            self.load,
+            self.dirichlet,
+            self.gap,
+            law,
+            options,
+        )
+    }
+}
 
 /// Motions described and joined by `" and "`.
 fn describe_motions(motions: &[RigidMotion]) -> String {
@@ -868,7 +971,7 @@ fn solve_steps<L: mortar_physics::laws::ConstraintLaw>(
     gap: &NormalGap,
     law: &L,
     options: &ContactOptions,
-) -> Result<ContactSolution, (Option<usize>, PhysicsError)> {
+) -> StepsResult {
     let run = |scale: f64, steps: usize| {
         let l = [0, 1].map(|b| load[b].iter().map(|x| x * scale).collect::<Vec<_>>());
         let d = [0, 1].map(|b| dirichlet[b].1.iter().map(|x| x * scale).collect::<Vec<_>>());
