@@ -111,7 +111,8 @@ pub struct CouplingStats {
     pub d_roundoff_dropped: usize,
     /// The largest of them, relative to its diagonal entry.
     pub d_roundoff_largest: f64,
-    /// With a space that claims a diagonal D ([`MultiplierSpace::diagonal_d`]): the
+    /// With a space that claims a diagonal D
+    /// ([`MultiplierFastPaths::diagonal_d`](crate::multiplier::MultiplierFastPaths::diagonal_d)): the
     /// off-diagonal entries kept (above 1e-12 of their row's diagonal entry), counted
     /// on the recombined D ([`Coupling::recombined`]) where the slave faces are recombined.
     /// None on a covered interface; partly covered faces keep some, and so do curved faces
@@ -168,7 +169,8 @@ pub struct Coupling {
     /// more than once, skipped pairs, a dual D that is not diagonal.
     pub warnings: Vec<CouplingWarning>,
     /// With a space that recombines second-order slave faces
-    /// ([`MultiplierSpace::recombines`]: dual multipliers on Tri6 or Quad8 faces), D in the
+    /// ([`MultiplierFastPaths::recombines`](crate::multiplier::MultiplierFastPaths::recombines):
+    /// dual multipliers on Tri6 or Quad8 faces), D in the
     /// recombined basis and the recombination; `None` where no slave face is recombined (or
     /// second-order faces of different kinds share an edge node, so that no one recombination
     /// serves: see [`slave_recombination`]).
@@ -702,7 +704,7 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// such lines, a projector whose direction is one vector on the whole slave
 /// ([`Projector::uniform_direction`](crate::projector::Projector::uniform_direction): the
 /// built-in ones on a straight slave), a multiplier space with one basis for every face
-/// ([`MultiplierSpace::basis_is_uniform`](crate::multiplier::MultiplierSpace::basis_is_uniform):
+/// ([`MultiplierFastPaths::basis_is_uniform`](crate::multiplier::MultiplierFastPaths::basis_is_uniform):
 /// standard, and dual in the Cartesian measure), the master facing the slave within the
 /// search radius and covering every slave face. Projection is then a coordinate along the
 /// line: the pairs come from merging the two sides' sorted node coordinates, and each row of
@@ -1094,7 +1096,11 @@ fn finish(
     let mut roundoff = RoundoffDropped::default();
     let mut recombined = None;
     let mut off = OffDiagonal::default();
-    if options.multipliers.diagonal_d() {
+    if options
+        .multipliers
+        .fast_paths()
+        .is_some_and(|f| f.diagonal_d())
+    {
         (d, roundoff) = drop_roundoff(&d, ROUNDOFF);
         recombined = recombine(interface, options.multipliers.as_ref(), &d, roundoff);
         off = off_diagonal(recombined.as_ref().map_or(&d, |r| &r.d));
@@ -1188,7 +1194,7 @@ fn recombine(
     d: &SparseMatrix,
     nodal: RoundoffDropped,
 ) -> Option<Recombined> {
-    if !space.recombines() {
+    if !space.fast_paths().is_some_and(|f| f.recombines()) {
         return None;
     }
     let t = slave_recombination(interface).ok()??;
