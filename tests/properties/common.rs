@@ -7,7 +7,7 @@ use std::sync::Arc;
 use mortar::core::integration::{IntegrationStrategy, PairedRule, SegmentBased, SegmentContext};
 use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
-use mortar::core::projector::{NodalNormalField, Projector};
+use mortar::core::projector::{NodalNormalField, Projector, ProjectorFastPaths};
 use mortar::testing::MeshPair;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
@@ -216,8 +216,9 @@ pub fn vertical_lines() -> Interface {
 }
 
 /// The nodal normal field without its claim of a uniform direction
-/// ([`Projector::uniform_direction`]): a straight 2D interface then takes the fused kernel
-/// instead of the sorted merge, as it does under a user's projector that makes no such claim.
+/// ([`ProjectorFastPaths::uniform_direction`]), keeping that of an affine one
+/// ([`ProjectorFastPaths::direction_is_affine`]): a straight 2D interface then takes the fused
+/// kernel with its closed-form projection instead of the sorted merge.
 #[derive(Debug)]
 pub struct NotUniform;
 
@@ -234,6 +235,12 @@ impl Projector for NotUniform {
         NodalNormalField.direction(slave, xi)
     }
 
+    fn fast_paths(&self) -> Option<&dyn ProjectorFastPaths> {
+        Some(self)
+    }
+}
+
+impl ProjectorFastPaths for NotUniform {
     fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
         NodalNormalField.direction_is_affine(slave)
     }

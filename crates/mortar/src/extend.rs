@@ -59,10 +59,10 @@
 //! ```
 //!
 //! **A projector of one's own**: project along the fixed direction `+z` (for flat interfaces
-//! in the plane `z = const`, the exact normal). It keeps the trait's default
-//! `within_nodal_normals` (`false`), so the search inflates its slave faces' boxes by
-//! `Tolerances::search_inflation`; a projector whose directions are always convex
-//! combinations of a face's nodal normals may return `true` there for exact boxes:
+//! in the plane `z = const`, the exact normal). It states no facts of its field, so the
+//! search inflates its slave faces' boxes by `Tolerances::search_inflation` as a margin (a
+//! projector whose directions are always convex combinations of a face's nodal normals may
+//! say so, [`ProjectorFastPaths::within_nodal_normals`], for exact boxes):
 //!
 //! ```
 //! use std::sync::Arc;
@@ -89,6 +89,7 @@
 //! let options = CouplingOptions { projector: Arc::new(AlongZ), ..Default::default() };
 //! let c = assemble_coupling(&Interface::new(slave, master)?, &options)?;
 //! assert!((c.stats.area - 1.0).abs() < 1e-12);
+//! assert!(c.stats.slave_box_inflation > 0.0);
 //! # Ok(()) }
 //! ```
 //!
@@ -154,7 +155,7 @@
 pub use mortar_core::element::{ReferenceElement, SurfaceElement};
 pub use mortar_core::integration::IntegrationStrategy;
 pub use mortar_core::multiplier::{MultiplierFastPaths, MultiplierSpace};
-pub use mortar_core::projector::Projector;
+pub use mortar_core::projector::{Projector, ProjectorFastPaths};
 pub use mortar_core::CouplingOptions;
 pub use mortar_elements::volume::VolumeRegistry;
 pub use mortar_elements::ElementRegistry;

@@ -702,8 +702,8 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 ///
 /// A straight 2D interface goes before that to a sorted merge: both sides one open chain of
 /// such lines, a projector whose direction is one vector on the whole slave
-/// ([`Projector::uniform_direction`](crate::projector::Projector::uniform_direction): the
-/// built-in ones on a straight slave), a multiplier space with one basis for every face
+/// ([`ProjectorFastPaths::uniform_direction`](crate::projector::ProjectorFastPaths::uniform_direction):
+/// the built-in ones on a straight slave), a multiplier space with one basis for every face
 /// ([`MultiplierFastPaths::basis_is_uniform`](crate::multiplier::MultiplierFastPaths::basis_is_uniform):
 /// standard, and dual in the Cartesian measure), the master facing the slave within the
 /// search radius and covering every slave face. Projection is then a coordinate along the

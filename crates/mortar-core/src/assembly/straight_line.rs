@@ -25,7 +25,8 @@
 //!   or backwards, as generators and Gmsh write a line) is read as it is; otherwise its
 //!   nodes are sorted along the line and its faces must join consecutive ones (no chain is
 //!   walked: a walk over faces numbered at random is a chase of cache misses);
-//! - the projector's [`uniform_direction`](crate::projector::Projector::uniform_direction);
+//! - the projector's uniform direction
+//!   ([`ProjectorFastPaths::uniform_direction`](crate::projector::ProjectorFastPaths::uniform_direction));
 //! - a multiplier space whose basis is the same on every face
 //!   ([`MultiplierFastPaths::basis_is_uniform`](crate::multiplier::MultiplierFastPaths::basis_is_uniform));
 //! - the master facing the slave;
@@ -181,7 +182,8 @@ pub(super) fn couple(
         .reduce(|| (f64::INFINITY, 0.0), |p, q| (p.0.min(q.0), p.1.max(q.1)));
     let Some(n) = options
         .projector
-        .uniform_direction(interface, direction_resolution(shortest, largest))
+        .fast_paths()
+        .and_then(|f| f.uniform_direction(interface, direction_resolution(shortest, largest)))
     else {
         return Ok(None);
     };
