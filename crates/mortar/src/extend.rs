@@ -93,6 +93,52 @@
 //! # Ok(()) }
 //! ```
 //!
+//! **An integration strategy of one's own**: here the shipped segmentation behind a count of
+//! the slave faces it integrates. The coupling hands it every face (its fused kernels are for
+//! [`SegmentBased`](crate::core::integration::SegmentBased) itself), and it gives the same D
+//! and M, to round-off:
+//!
+//! ```
+//! use std::sync::atomic::{AtomicUsize, Ordering};
+//! use std::sync::Arc;
+//! use mortar::core::integration::{PairedRule, SegmentBased, SegmentContext};
+//! use mortar::core::interface::FaceGeometry;
+//! use mortar::extend::IntegrationStrategy;
+//! use mortar::generate::half_circle_mesh;
+//! use mortar::{assemble_coupling, CouplingOptions, Interface};
+//!
+//! #[derive(Debug, Default)]
+//! struct Counted(AtomicUsize);
+//! impl IntegrationStrategy for Counted {
+//!     fn name(&self) -> String {
+//!         "segment-based, counted".into()
+//!     }
+//!     fn paired_rule_into(
+//!         &self,
+//!         ctx: &SegmentContext<'_>,
+//!         slave: &FaceGeometry,
+//!         candidates: &[u32],
+//!         out: &mut PairedRule,
+//!     ) -> mortar::core::Result<()> {
+//!         self.0.fetch_add(1, Ordering::Relaxed);
+//!         SegmentBased::default().paired_rule_into(ctx, slave, candidates, out)
+//!     }
+//! }
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let (slave, master) = (half_circle_mesh(40, false, 1)?, half_circle_mesh(61, true, 1)?);
+//! let interface = Interface::new(slave, master)?;
+//! let counted = Arc::new(Counted::default());
+//! let options = CouplingOptions { integration: counted.clone(), ..Default::default() };
+//! let c = assemble_coupling(&interface, &options)?;
+//! assert_eq!(counted.0.load(Ordering::Relaxed), 40);
+//! let shipped = assemble_coupling(&interface, &CouplingOptions::default())?;
+//! assert_eq!(shipped.stats.fused_line_faces, 40);
+//! let (d, m) = (&c.d - &shipped.d, &c.m - &shipped.m);
+//! assert!(d.data().iter().chain(m.data()).all(|v| v.abs() < 1e-15));
+//! # Ok(()) }
+//! ```
+//!
 //! **A constraint law of one's own**, its tangent for free (dual numbers) and checked, then
 //! chosen at run time by name:
 //!
@@ -153,7 +199,7 @@
 //! (feature `proptest-support`; documented on docs.rs).
 
 pub use mortar_core::element::{ReferenceElement, SurfaceElement};
-pub use mortar_core::integration::IntegrationStrategy;
+pub use mortar_core::integration::{IntegrationFastPaths, IntegrationStrategy};
 pub use mortar_core::multiplier::{MultiplierFastPaths, MultiplierSpace};
 pub use mortar_core::projector::{Projector, ProjectorFastPaths};
 pub use mortar_core::CouplingOptions;

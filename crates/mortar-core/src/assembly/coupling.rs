@@ -20,7 +20,9 @@ use crate::error::{MortarError, Result, Side};
 use crate::integration::affine_moments::{affine_moments_into, PendingBlock};
 use crate::integration::closed_form::{self, closed_form_into, ClosedForm, ClosedFormScratch};
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
-use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
+use crate::integration::{
+    IntegrationFastPaths, LineSegments, PairedRule, SegmentBased, SegmentContext, CANDIDATE_BATCH,
+};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
@@ -94,9 +96,9 @@ pub struct CouplingStats {
     pub straight_line_faces: usize,
     /// Slave faces whose clip polygons were integrated in closed form (3D: linear triangles on
     /// both sides by vertex formulas, flat bilinear quads on either side by the polygons'
-    /// moments; with a strategy that segments them exactly, see
-    /// [`IntegrationStrategy::polygon_segments`](crate::integration::IntegrationStrategy::polygon_segments));
-    /// the others went through the integration strategy's points.
+    /// moments; with [`SegmentBased`](crate::integration::SegmentBased) of a degree exact for
+    /// them, see [`assemble_coupling`]); the others went through the integration strategy's
+    /// points.
     pub closed_form_faces: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
@@ -471,10 +473,8 @@ impl Search {
             anchor,
             interface.dim() == SpatialDim::Two,
         );
-        let closed_form = options
-            .integration
-            .polygon_segments()
-            .and_then(|rule| closed_form::applies(interface, rule));
+        let closed_form = SegmentBased::of(options.integration.as_ref())
+            .and_then(|s| closed_form::applies(interface, s.polygon_segments()));
         let search = Search::Tree { tree, closed_form };
         (search, masters, order)
     }
@@ -487,7 +487,7 @@ fn line_rule(interface: &Interface, options: &CouplingOptions) -> Option<LineSeg
     if interface.dim() != SpatialDim::Two {
         return None;
     }
-    let rule = options.integration.line_segments()?;
+    let rule = SegmentBased::of(options.integration.as_ref())?.line_segments();
     let (slave, master) = (interface.slave(), interface.master());
     let types = slave.element_types().iter().chain(master.element_types());
     types.copied().all(is_linear_line).then_some(rule)
@@ -680,9 +680,8 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// The master faces are found by a search tree, and each slave face is segmented and
 /// integrated by `options.integration`, except on a 2D interface whose faces are all straight
 /// two-node lines in chains (as `Interface::new` leaves a line interface: no branch, faces
-/// oriented alike) with a strategy that is the exact segmentation of
-/// [`SegmentBased`](crate::integration::SegmentBased)
-/// ([`IntegrationStrategy::line_segments`](crate::integration::IntegrationStrategy::line_segments)):
+/// oriented alike) with the strategy [`SegmentBased`](crate::integration::SegmentBased) (found
+/// by its type: a strategy of one's own, a wrapper of it included, takes the general path):
 /// there the search is a merge, a walk along the master's chains from the previous slave
 /// face's partners (slave faces in chain order), and each face is segmented and integrated in
 /// one fused loop, without the paired points in between. The fused kernel does the strategy's
@@ -713,6 +712,21 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// round-off). [`CouplingStats::straight_line_faces`] says whether it ran (all the slave
 /// faces or none; line2d at 10^6 slave faces, one thread: 3.1x faster than the fused kernel
 /// end to end).
+///
+/// A 3D interface whose faces are all linear triangles or flat bilinear quads, with the
+/// strategy [`SegmentBased`](crate::integration::SegmentBased) (found by its type) of a degree
+/// that integrates the integrands exactly, has the clip polygons of each pair integrated in
+/// closed form instead of the strategy's points (the integrals of any exact quadrature, to
+/// round-off; [`CouplingStats::closed_form_faces`]).
+///
+/// What the fast paths read of the plug-ins: the strategy's type (above) and whether it
+/// splits over candidates
+/// ([`IntegrationFastPaths`](crate::integration::IntegrationFastPaths)); the projector's
+/// affine, uniform and bounded directions
+/// ([`ProjectorFastPaths`](crate::projector::ProjectorFastPaths)); the space's diagonal D,
+/// recombination and uniform basis
+/// ([`MultiplierFastPaths`](crate::multiplier::MultiplierFastPaths)). A plug-in that states
+/// none of these gets the same D and M, to round-off, on the general path.
 ///
 /// # Errors
 /// [`MortarError::NoOverlap`] when no slave face overlaps a master face; the errors of the
@@ -1544,7 +1558,8 @@ fn general_face(
     // blocks merged by master node before the next, so that the memory of a face's
     // points stays bounded however many partners it has. Every bit of D and M is the
     // one of the face done at once: the same sums in the same order.
-    let batch = if options.integration.splits_over_candidates() {
+    let splits = |f: &dyn IntegrationFastPaths| f.splits_over_candidates();
+    let batch = if options.integration.fast_paths().is_some_and(splits) {
         CANDIDATE_BATCH
     } else {
         cands.len()
