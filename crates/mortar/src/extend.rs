@@ -14,6 +14,17 @@
 //! | [`NewtonProblem`] | a nonlinear problem for [`newton`](crate::physics::nonlinear::newton) | the solvers (Newton, JFNK) |
 //! | [`Preconditioner`], [`LinearOperator`] | a preconditioner or operator for GMRES | [`gmres`](crate::core::linalg::gmres), JFNK |
 //!
+//! A multiplier space, a projector or an integration strategy of one's own implements its
+//! mathematical methods only (the basis on a face, the direction at a point, the paired rule
+//! of a face), as below, and gets the D and M of the shipped one it imitates, to round-off.
+//! The coupling's fast paths are the library's business: it recognises
+//! [`SegmentBased`](crate::core::integration::SegmentBased) by its type for its fused
+//! kernels, and reads the few facts it cannot find itself (a diagonal D, an affine or uniform
+//! direction, candidates that may be split) from each trait's one optional method,
+//! `fast_paths`, whose default `None` claims nothing and is always correct. A plug-in that
+//! knows such facts may state them there ([`MultiplierFastPaths`], [`ProjectorFastPaths`],
+//! [`IntegrationFastPaths`]); the shipped ones do.
+//!
 //! **A multiplier space of one's own**: here a dual basis under another name (a real one
 //! would build its own coefficients in [`MultiplierSpace::basis`]). It gives the shipped dual
 //! space's D and M; only the shipped one states that D is diagonal
