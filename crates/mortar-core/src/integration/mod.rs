@@ -161,8 +161,8 @@ impl SegmentContext<'_> {
 /// **Fast paths.** Two of the coupling's fast paths are [`SegmentBased`]'s own segmentation
 /// written for special faces: the fused kernel for straight two-node lines in 2D (and the
 /// sorted merge of a straight interface), and the closed-form integration of the clip
-/// polygons of flat first-order faces in 3D (see [`assemble_coupling`](crate::assemble_coupling)).
-/// The coupling takes them when the strategy *is* a [`SegmentBased`] (it looks at the type,
+/// polygons of flat first-order faces in 3D (see
+/// [`assemble_coupling`](crate::assemble_coupling)). The coupling takes them when the strategy *is* a [`SegmentBased`] (it looks at the type,
 /// hence the [`Any`] bound, which every `'static` type meets), for its degree: nothing to
 /// claim, and nothing a strategy of one's own can claim wrongly; any other strategy, a wrapper
 /// of [`SegmentBased`] included, goes through
@@ -202,6 +202,11 @@ pub trait IntegrationStrategy: Any + Send + Sync + std::fmt::Debug {
 /// Facts about an [`IntegrationStrategy`] that let the coupling take a fast path, reached
 /// through [`IntegrationStrategy::fast_paths`]. Every method has a default that claims
 /// nothing and is always correct; a strategy overrides those it knows to hold.
+///
+/// (A trait for one fact, as the other plug-ins have theirs,
+/// [`MultiplierFastPaths`](crate::multiplier::MultiplierFastPaths) and
+/// [`ProjectorFastPaths`](crate::projector::ProjectorFastPaths): one shape for the three, and
+/// room for a fact more with its default without touching a strategy that states none.)
 pub trait IntegrationFastPaths {
     /// Whether the rule of a slave face against its candidates may be built from parts of
     /// the candidate list: true when the points of each candidate depend on that candidate
