@@ -30,4 +30,5 @@ mod properties {
     mod straight_lines;
     mod strategies;
     mod threads;
+    mod user_plug_ins;
 }

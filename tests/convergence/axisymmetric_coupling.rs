@@ -12,7 +12,7 @@
 use mortar::core::geometry::ModelGeometry;
 use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
-use mortar::core::multiplier::{DualMultipliers, LmBasis, MultiplierSpace};
+use mortar::core::multiplier::{DualMultipliers, LmBasis, MultiplierFastPaths, MultiplierSpace};
 use mortar::testing::polyline;
 use mortar::Tolerances;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, MortarError, SurfaceMesh};
@@ -193,6 +193,12 @@ impl MultiplierSpace for ClaimsDiagonal {
         DualMultipliers.basis(face, tol)
     }
 
+    fn fast_paths(&self) -> Option<&dyn MultiplierFastPaths> {
+        Some(self)
+    }
+}
+
+impl MultiplierFastPaths for ClaimsDiagonal {
     fn diagonal_d(&self) -> bool {
         true
     }

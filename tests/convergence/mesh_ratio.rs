@@ -5,20 +5,21 @@
 //! coordinates (a linear field reproduced: the patch test). Batched D and M are also the
 //! same bit for bit as the face done in one batch, and on one thread as on two. (In 2D the
 //! default path is the fused kernel for straight lines, which takes a face's candidates at
-//! once; the batching is checked there through a strategy that does not claim the
-//! segmentation.)
+//! once; the batching is checked there through a strategy of one's own, which the coupling
+//! does not take for `SegmentBased`.)
 
 use std::sync::Arc;
 
 use mortar::core::integration::{
-    IntegrationStrategy, PairedRule, SegmentBased, SegmentContext, CANDIDATE_BATCH,
+    IntegrationFastPaths, IntegrationStrategy, PairedRule, SegmentBased, SegmentContext,
+    CANDIDATE_BATCH,
 };
 use mortar::core::interface::FaceGeometry;
 use mortar::generate::{line_mesh, square_quads};
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface};
 
-/// Segment-based integration that takes every candidate of a face in one call (the default
-/// of `splits_over_candidates`).
+/// Segment-based integration that takes every candidate of a face in one call (a strategy
+/// that states no [`IntegrationFastPaths`]).
 #[derive(Debug)]
 struct Unsplit(SegmentBased);
 
@@ -59,6 +60,12 @@ impl IntegrationStrategy for Batched {
         self.0.paired_rule_into(ctx, slave, candidates, out)
     }
 
+    fn fast_paths(&self) -> Option<&dyn IntegrationFastPaths> {
+        Some(self)
+    }
+}
+
+impl IntegrationFastPaths for Batched {
     fn splits_over_candidates(&self) -> bool {
         true
     }

@@ -180,7 +180,11 @@ fn second_order_interfaces_tie_constants_and_linear_fields() {
                     );
                 }
             }
-            if options.multipliers.diagonal_d() {
+            if options
+                .multipliers
+                .fast_paths()
+                .is_some_and(|f| f.diagonal_d())
+            {
                 assert_eq!(c.stats.d_off_diagonal, 0, "{what}");
                 recombined_condenses(&interface, &c, t.as_ref(), &what);
                 // Dual: D~ = D T^T (D itself where nothing is recombined) is diagonal to

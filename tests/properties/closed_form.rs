@@ -11,7 +11,7 @@
 
 use std::sync::Arc;
 
-use mortar::core::integration::{IntegrationStrategy, PolygonSegments, SegmentBased};
+use mortar::core::integration::SegmentBased;
 use mortar::core::projector::ElementNormal;
 use mortar::elements::TRI3;
 use mortar::generate::{cylinder_surface, sphere_surface, square_triangles, Diagonal};
@@ -220,7 +220,7 @@ fn uncovered_area_and_back_facing_faces_are_counted_alike() {
 }
 
 /// A fixed degree at least the integrands' (2) keeps the closed form; degree 1 (inexact on
-/// purpose) is the strategy's, as is a strategy that does not claim the segmentation; a
+/// purpose) is the strategy's, as is a strategy that is not `SegmentBased` itself; a
 /// triangle against quads takes the moments at its integrands' degree (3) and not below it.
 #[test]
 fn what_the_closed_form_takes() {
@@ -262,10 +262,6 @@ fn what_the_closed_form_takes() {
     let two = CouplingOptions::default().segment_based(Some(2)).unwrap();
     let c = assemble_coupling(&interface, &two).unwrap();
     assert_eq!(c.stats.closed_form_faces, 0);
-    assert_eq!(
-        SegmentBased::default().polygon_segments(),
-        Some(PolygonSegments { degree: None })
-    );
 }
 
 /// The closed form is bit-for-bit the same on 1, 2 and 3 threads (2,888 slave faces, twelve

@@ -4,10 +4,12 @@
 use std::collections::HashMap;
 use std::sync::Arc;
 
-use mortar::core::integration::{IntegrationStrategy, PairedRule, SegmentBased, SegmentContext};
+use mortar::core::integration::{
+    IntegrationFastPaths, IntegrationStrategy, PairedRule, SegmentBased, SegmentContext,
+};
 use mortar::core::interface::FaceGeometry;
 use mortar::core::linalg::SparseMatrix;
-use mortar::core::projector::{NodalNormalField, Projector};
+use mortar::core::projector::{NodalNormalField, Projector, ProjectorFastPaths};
 use mortar::testing::MeshPair;
 use mortar::{assemble_coupling, Coupling, CouplingOptions, Interface, SurfaceMesh};
 use nalgebra::Vector3;
@@ -162,10 +164,11 @@ pub fn nodal_values(
     (fs, fm)
 }
 
-/// [`SegmentBased`] without [`IntegrationStrategy::line_segments`] and
-/// [`IntegrationStrategy::polygon_segments`]: the general path (the strategy's points,
-/// integrated by the coupling), as a user's strategy reaches it. The reference of the fused
-/// 2D kernel and of the 3D closed form.
+/// [`SegmentBased`] behind a strategy of one's own, which the coupling does not take for
+/// [`SegmentBased`] (it recognises that by its type): the general path (the strategy's points,
+/// integrated by the coupling), as a user's strategy reaches it, with the same
+/// [`IntegrationFastPaths`] (split over candidates). The reference of the fused 2D kernel and
+/// of the 3D closed form.
 #[derive(Debug)]
 pub struct Plain(pub SegmentBased);
 
@@ -184,8 +187,8 @@ impl IntegrationStrategy for Plain {
         self.0.paired_rule_into(ctx, slave, candidates, out)
     }
 
-    fn splits_over_candidates(&self) -> bool {
-        self.0.splits_over_candidates()
+    fn fast_paths(&self) -> Option<&dyn IntegrationFastPaths> {
+        self.0.fast_paths()
     }
 }
 
@@ -216,8 +219,9 @@ pub fn vertical_lines() -> Interface {
 }
 
 /// The nodal normal field without its claim of a uniform direction
-/// ([`Projector::uniform_direction`]): a straight 2D interface then takes the fused kernel
-/// instead of the sorted merge, as it does under a user's projector that makes no such claim.
+/// ([`ProjectorFastPaths::uniform_direction`]), keeping that of an affine one
+/// ([`ProjectorFastPaths::direction_is_affine`]): a straight 2D interface then takes the fused
+/// kernel with its closed-form projection instead of the sorted merge.
 #[derive(Debug)]
 pub struct NotUniform;
 
@@ -234,6 +238,12 @@ impl Projector for NotUniform {
         NodalNormalField.direction(slave, xi)
     }
 
+    fn fast_paths(&self) -> Option<&dyn ProjectorFastPaths> {
+        Some(self)
+    }
+}
+
+impl ProjectorFastPaths for NotUniform {
     fn direction_is_affine(&self, slave: &FaceGeometry) -> bool {
         NodalNormalField.direction_is_affine(slave)
     }

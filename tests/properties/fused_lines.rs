@@ -2,9 +2,9 @@
 //! against the general path it replaces: the same D and M, to round-off, on every interface
 //! it takes, and the same warnings where it hands faces back.
 //!
-//! Reference: the general path, forced by `common::Plain`, a strategy that wraps [`SegmentBased`]
-//! without claiming its 2D segmentation (a user's strategy reaches the coupling the same
-//! way). The fused kernel does the same operations on the same numbers, in another order of
+//! Reference: the general path, forced by `common::Plain`, a strategy of one's own that wraps
+//! [`SegmentBased`], which the coupling does not take for it (a user's strategy reaches the
+//! coupling the same way). The fused kernel does the same operations on the same numbers, in another order of
 //! summation (slave faces along their chain instead of in Morton order): D and M agree to
 //! 1e-13 of their largest entry, the counts of pairs and the uncovered area exactly.
 //!
@@ -14,7 +14,6 @@
 
 use std::f64::consts::PI;
 
-use mortar::core::integration::{IntegrationStrategy, LineSegments, SegmentBased};
 use mortar::elements::{LINE2, LINE3};
 use mortar::testing::{covered_pair_2d, polyline, shuffled, MeshPair};
 use mortar::{
@@ -294,7 +293,7 @@ fn axisymmetric_measure() {
 }
 
 /// Not for the fused kernel, so the general path: a master of three-node lines, and a
-/// strategy that does not claim the segmentation. (A branching line interface is refused
+/// strategy that is not `SegmentBased` itself. (A branching line interface is refused
 /// before the coupling: `Interface::new` names the T junction.)
 #[test]
 fn three_node_lines_or_another_strategy_take_the_general_path() {
@@ -320,10 +319,6 @@ fn three_node_lines_or_another_strategy_take_the_general_path() {
     assert_eq!(c.stats.fused_line_faces, 0);
     let c = assemble_coupling(&interface, &options()[0]).unwrap();
     assert_eq!(c.stats.fused_line_faces, 6);
-    assert_eq!(
-        SegmentBased::default().line_segments(),
-        Some(LineSegments { degree: None })
-    );
 }
 
 /// The fused path is bit-for-bit the same on 1, 2 and 3 threads (a slave of 3,000 faces,

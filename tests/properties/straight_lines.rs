@@ -2,8 +2,8 @@
 //! replaces: the same D and M, to round-off, on every interface it takes, and the general
 //! path's results (warnings included) on every interface it leaves.
 //!
-//! Reference: the general path, forced by `common::Plain` (a strategy that wraps
-//! [`SegmentBased`] without claiming its 2D segmentation, as a user's strategy reaches the
+//! Reference: the general path, forced by `common::Plain` (a strategy of one's own that wraps
+//! [`SegmentBased`], which the coupling does not take for it, as a user's strategy reaches the
 //! coupling). The merge evaluates the same Gauss rule at the same reference points of each
 //! overlap; the master coordinate of a point comes from its coordinate along the line instead
 //! of from cross products with the nodal normals, which on a straight line are the same
@@ -255,8 +255,8 @@ fn what_the_merge_leaves() {
     }
 }
 
-/// A user's projector that does not claim a uniform direction, or a strategy that does not
-/// claim the 2D segmentation, keeps the merge out (the default trait methods).
+/// A user's projector that does not claim a uniform direction, or a strategy that is not
+/// `SegmentBased` itself, keeps the merge out.
 #[test]
 fn plug_ins_that_do_not_claim_it() {
     let slave = polyline(&points(0.0, 1.0, 0.0, 10, 1.0), 1, false);

@@ -14,9 +14,22 @@
 //! | [`NewtonProblem`] | a nonlinear problem for [`newton`](crate::physics::nonlinear::newton) | the solvers (Newton, JFNK) |
 //! | [`Preconditioner`], [`LinearOperator`] | a preconditioner or operator for GMRES | [`gmres`](crate::core::linalg::gmres), JFNK |
 //!
-//! **A multiplier space of one's own**: here a dual basis under another name, which the
-//! coupling uses as it uses the shipped ones (a real one would build its own coefficients in
-//! [`MultiplierSpace::basis`]):
+//! A multiplier space, a projector or an integration strategy of one's own implements its
+//! mathematical methods only (the basis on a face, the direction at a point, the paired rule
+//! of a face), as below, and gets the D and M of the shipped one it imitates, to round-off.
+//! The coupling's fast paths are the library's business: it recognises
+//! [`SegmentBased`](crate::core::integration::SegmentBased) by its type for its fused
+//! kernels, and reads the few facts it cannot find itself (a diagonal D, an affine or uniform
+//! direction, candidates that may be split) from each trait's one optional method,
+//! `fast_paths`, whose default `None` claims nothing and is always correct. A plug-in that
+//! knows such facts may state them there ([`MultiplierFastPaths`], [`ProjectorFastPaths`],
+//! [`IntegrationFastPaths`]); the shipped ones do.
+//!
+//! **A multiplier space of one's own**: here a dual basis under another name (a real one
+//! would build its own coefficients in [`MultiplierSpace::basis`]). It gives the shipped dual
+//! space's D and M; only the shipped one states that D is diagonal
+//! ([`MultiplierFastPaths::diagonal_d`]), so that its coupling also folds D's round-off off
+//! the diagonal into it:
 //!
 //! ```
 //! use std::sync::Arc;
@@ -35,27 +48,32 @@
 //!     fn basis(&self, face: &FaceGeometry, tol: &Tolerances) -> mortar::core::Result<LmBasis> {
 //!         DualMultipliers.basis(face, tol)
 //!     }
-//!     fn diagonal_d(&self) -> bool {
-//!         true
-//!     }
 //! }
 //!
 //! # fn main() -> Result<(), Box<dyn std::error::Error>> {
 //! let slave = square_triangles(4, Diagonal::Main, 0.0, false, 1)?;
 //! let master = square_quads(5, 0.0, true, 1)?;
+//! let interface = Interface::new(slave, master)?;
 //! let options = CouplingOptions { multipliers: Arc::new(MyDual), ..Default::default() };
-//! let c = assemble_coupling(&Interface::new(slave, master)?, &options)?;
+//! let c = assemble_coupling(&interface, &options)?;
 //! assert!((c.stats.area - 1.0).abs() < 1e-12);
-//! // Dual: D is diagonal.
-//! assert!(c.d.outer_iterator().all(|row| row.nnz() == 1));
+//! // Dual: D is diagonal, to round-off.
+//! for (j, row) in c.d.outer_iterator().enumerate() {
+//!     let diagonal = row.get(j).copied().unwrap_or(0.0);
+//!     assert!(row.iter().all(|(k, v)| k == j || v.abs() < 1e-12 * diagonal));
+//! }
+//! // The shipped dual space's D and M, to round-off.
+//! let shipped = assemble_coupling(&interface, &CouplingOptions::default().dual())?;
+//! let (d, m) = (&c.d - &shipped.d, &c.m - &shipped.m);
+//! assert!(d.data().iter().chain(m.data()).all(|v| v.abs() < 1e-15));
 //! # Ok(()) }
 //! ```
 //!
 //! **A projector of one's own**: project along the fixed direction `+z` (for flat interfaces
-//! in the plane `z = const`, the exact normal). It keeps the trait's default
-//! `within_nodal_normals` (`false`), so the search inflates its slave faces' boxes by
-//! `Tolerances::search_inflation`; a projector whose directions are always convex
-//! combinations of a face's nodal normals may return `true` there for exact boxes:
+//! in the plane `z = const`, the exact normal). It states no facts of its field, so the
+//! search inflates its slave faces' boxes by `Tolerances::search_inflation` as a margin (a
+//! projector whose directions are always convex combinations of a face's nodal normals may
+//! say so, [`ProjectorFastPaths::within_nodal_normals`], for exact boxes):
 //!
 //! ```
 //! use std::sync::Arc;
@@ -82,6 +100,53 @@
 //! let options = CouplingOptions { projector: Arc::new(AlongZ), ..Default::default() };
 //! let c = assemble_coupling(&Interface::new(slave, master)?, &options)?;
 //! assert!((c.stats.area - 1.0).abs() < 1e-12);
+//! assert!(c.stats.slave_box_inflation > 0.0);
+//! # Ok(()) }
+//! ```
+//!
+//! **An integration strategy of one's own**: here the shipped segmentation behind a count of
+//! the slave faces it integrates. The coupling hands it every face (its fused kernels are for
+//! [`SegmentBased`](crate::core::integration::SegmentBased) itself), and it gives the same D
+//! and M, to round-off:
+//!
+//! ```
+//! use std::sync::atomic::{AtomicUsize, Ordering};
+//! use std::sync::Arc;
+//! use mortar::core::integration::{PairedRule, SegmentBased, SegmentContext};
+//! use mortar::core::interface::FaceGeometry;
+//! use mortar::extend::IntegrationStrategy;
+//! use mortar::generate::half_circle_mesh;
+//! use mortar::{assemble_coupling, CouplingOptions, Interface};
+//!
+//! #[derive(Debug, Default)]
+//! struct Counted(AtomicUsize);
+//! impl IntegrationStrategy for Counted {
+//!     fn name(&self) -> String {
+//!         "segment-based, counted".into()
+//!     }
+//!     fn paired_rule_into(
+//!         &self,
+//!         ctx: &SegmentContext<'_>,
+//!         slave: &FaceGeometry,
+//!         candidates: &[u32],
+//!         out: &mut PairedRule,
+//!     ) -> mortar::core::Result<()> {
+//!         self.0.fetch_add(1, Ordering::Relaxed);
+//!         SegmentBased::default().paired_rule_into(ctx, slave, candidates, out)
+//!     }
+//! }
+//!
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let (slave, master) = (half_circle_mesh(40, false, 1)?, half_circle_mesh(61, true, 1)?);
+//! let interface = Interface::new(slave, master)?;
+//! let counted = Arc::new(Counted::default());
+//! let options = CouplingOptions { integration: counted.clone(), ..Default::default() };
+//! let c = assemble_coupling(&interface, &options)?;
+//! assert_eq!(counted.0.load(Ordering::Relaxed), 40);
+//! let shipped = assemble_coupling(&interface, &CouplingOptions::default())?;
+//! assert_eq!(shipped.stats.fused_line_faces, 40);
+//! let (d, m) = (&c.d - &shipped.d, &c.m - &shipped.m);
+//! assert!(d.data().iter().chain(m.data()).all(|v| v.abs() < 1e-15));
 //! # Ok(()) }
 //! ```
 //!
@@ -145,9 +210,9 @@
 //! (feature `proptest-support`; documented on docs.rs).
 
 pub use mortar_core::element::{ReferenceElement, SurfaceElement};
-pub use mortar_core::integration::IntegrationStrategy;
-pub use mortar_core::multiplier::MultiplierSpace;
-pub use mortar_core::projector::Projector;
+pub use mortar_core::integration::{IntegrationFastPaths, IntegrationStrategy};
+pub use mortar_core::multiplier::{MultiplierFastPaths, MultiplierSpace};
+pub use mortar_core::projector::{Projector, ProjectorFastPaths};
 pub use mortar_core::CouplingOptions;
 pub use mortar_elements::volume::VolumeRegistry;
 pub use mortar_elements::ElementRegistry;

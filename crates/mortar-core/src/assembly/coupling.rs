@@ -20,7 +20,9 @@ use crate::error::{MortarError, Result, Side};
 use crate::integration::affine_moments::{affine_moments_into, PendingBlock};
 use crate::integration::closed_form::{self, closed_form_into, ClosedForm, ClosedFormScratch};
 use crate::integration::segments_2d::{fused_line_face, is_linear_line, LineFace};
-use crate::integration::{LineSegments, PairedRule, SegmentContext, CANDIDATE_BATCH};
+use crate::integration::{
+    IntegrationFastPaths, LineSegments, PairedRule, SegmentBased, SegmentContext, CANDIDATE_BATCH,
+};
 use crate::interface::{FaceGeometry, Interface, MasterFaces, SpatialDim};
 use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
@@ -94,9 +96,9 @@ pub struct CouplingStats {
     pub straight_line_faces: usize,
     /// Slave faces whose clip polygons were integrated in closed form (3D: linear triangles on
     /// both sides by vertex formulas, flat bilinear quads on either side by the polygons'
-    /// moments; with a strategy that segments them exactly, see
-    /// [`IntegrationStrategy::polygon_segments`](crate::integration::IntegrationStrategy::polygon_segments));
-    /// the others went through the integration strategy's points.
+    /// moments; with [`SegmentBased`](crate::integration::SegmentBased) of a degree exact for
+    /// them, see [`assemble_coupling`]); the others went through the integration strategy's
+    /// points.
     pub closed_form_faces: usize,
     /// Slave faces covered in part.
     pub faces_partly_covered: usize,
@@ -111,7 +113,8 @@ pub struct CouplingStats {
     pub d_roundoff_dropped: usize,
     /// The largest of them, relative to its diagonal entry.
     pub d_roundoff_largest: f64,
-    /// With a space that claims a diagonal D ([`MultiplierSpace::diagonal_d`]): the
+    /// With a space that claims a diagonal D
+    /// ([`MultiplierFastPaths::diagonal_d`](crate::multiplier::MultiplierFastPaths::diagonal_d)): the
     /// off-diagonal entries kept (above 1e-12 of their row's diagonal entry), counted
     /// on the recombined D ([`Coupling::recombined`]) where the slave faces are recombined.
     /// None on a covered interface; partly covered faces keep some, and so do curved faces
@@ -168,7 +171,8 @@ pub struct Coupling {
     /// more than once, skipped pairs, a dual D that is not diagonal.
     pub warnings: Vec<CouplingWarning>,
     /// With a space that recombines second-order slave faces
-    /// ([`MultiplierSpace::recombines`]: dual multipliers on Tri6 or Quad8 faces), D in the
+    /// ([`MultiplierFastPaths::recombines`](crate::multiplier::MultiplierFastPaths::recombines):
+    /// dual multipliers on Tri6 or Quad8 faces), D in the
     /// recombined basis and the recombination; `None` where no slave face is recombined (or
     /// second-order faces of different kinds share an edge node, so that no one recombination
     /// serves: see [`slave_recombination`]).
@@ -469,10 +473,8 @@ impl Search {
             anchor,
             interface.dim() == SpatialDim::Two,
         );
-        let closed_form = options
-            .integration
-            .polygon_segments()
-            .and_then(|rule| closed_form::applies(interface, rule));
+        let closed_form = SegmentBased::of(options.integration.as_ref())
+            .and_then(|s| closed_form::applies(interface, s.polygon_segments()));
         let search = Search::Tree { tree, closed_form };
         (search, masters, order)
     }
@@ -485,7 +487,7 @@ fn line_rule(interface: &Interface, options: &CouplingOptions) -> Option<LineSeg
     if interface.dim() != SpatialDim::Two {
         return None;
     }
-    let rule = options.integration.line_segments()?;
+    let rule = SegmentBased::of(options.integration.as_ref())?.line_segments();
     let (slave, master) = (interface.slave(), interface.master());
     let types = slave.element_types().iter().chain(master.element_types());
     types.copied().all(is_linear_line).then_some(rule)
@@ -678,9 +680,8 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// The master faces are found by a search tree, and each slave face is segmented and
 /// integrated by `options.integration`, except on a 2D interface whose faces are all straight
 /// two-node lines in chains (as `Interface::new` leaves a line interface: no branch, faces
-/// oriented alike) with a strategy that is the exact segmentation of
-/// [`SegmentBased`](crate::integration::SegmentBased)
-/// ([`IntegrationStrategy::line_segments`](crate::integration::IntegrationStrategy::line_segments)):
+/// oriented alike) with the strategy [`SegmentBased`](crate::integration::SegmentBased) (found
+/// by its type: a strategy of one's own, a wrapper of it included, takes the general path):
 /// there the search is a merge, a walk along the master's chains from the previous slave
 /// face's partners (slave faces in chain order), and each face is segmented and integrated in
 /// one fused loop, without the paired points in between. The fused kernel does the strategy's
@@ -700,9 +701,9 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 ///
 /// A straight 2D interface goes before that to a sorted merge: both sides one open chain of
 /// such lines, a projector whose direction is one vector on the whole slave
-/// ([`Projector::uniform_direction`](crate::projector::Projector::uniform_direction): the
-/// built-in ones on a straight slave), a multiplier space with one basis for every face
-/// ([`MultiplierSpace::basis_is_uniform`](crate::multiplier::MultiplierSpace::basis_is_uniform):
+/// ([`ProjectorFastPaths::uniform_direction`](crate::projector::ProjectorFastPaths::uniform_direction):
+/// the built-in ones on a straight slave), a multiplier space with one basis for every face
+/// ([`MultiplierFastPaths::basis_is_uniform`](crate::multiplier::MultiplierFastPaths::basis_is_uniform):
 /// standard, and dual in the Cartesian measure), the master facing the slave within the
 /// search radius and covering every slave face. Projection is then a coordinate along the
 /// line: the pairs come from merging the two sides' sorted node coordinates, and each row of
@@ -711,6 +712,21 @@ fn drop_roundoff(d: &SparseMatrix, tol: f64) -> (SparseMatrix, RoundoffDropped) 
 /// round-off). [`CouplingStats::straight_line_faces`] says whether it ran (all the slave
 /// faces or none; line2d at 10^6 slave faces, one thread: 3.1x faster than the fused kernel
 /// end to end).
+///
+/// A 3D interface whose faces are all linear triangles or flat bilinear quads, with the
+/// strategy [`SegmentBased`](crate::integration::SegmentBased) (found by its type) of a degree
+/// that integrates the integrands exactly, has the clip polygons of each pair integrated in
+/// closed form instead of the strategy's points (the integrals of any exact quadrature, to
+/// round-off; [`CouplingStats::closed_form_faces`]).
+///
+/// What the fast paths read of the plug-ins: the strategy's type (above) and whether it
+/// splits over candidates
+/// ([`IntegrationFastPaths`](crate::integration::IntegrationFastPaths)); the projector's
+/// affine, uniform and bounded directions
+/// ([`ProjectorFastPaths`](crate::projector::ProjectorFastPaths)); the space's diagonal D,
+/// recombination and uniform basis
+/// ([`MultiplierFastPaths`](crate::multiplier::MultiplierFastPaths)). A plug-in that states
+/// none of these gets the same D and M, to round-off, on the general path.
 ///
 /// # Errors
 /// [`MortarError::NoOverlap`] when no slave face overlaps a master face; the errors of the
@@ -1094,7 +1110,11 @@ fn finish(
     let mut roundoff = RoundoffDropped::default();
     let mut recombined = None;
     let mut off = OffDiagonal::default();
-    if options.multipliers.diagonal_d() {
+    if options
+        .multipliers
+        .fast_paths()
+        .is_some_and(|f| f.diagonal_d())
+    {
         (d, roundoff) = drop_roundoff(&d, ROUNDOFF);
         recombined = recombine(interface, options.multipliers.as_ref(), &d, roundoff);
         off = off_diagonal(recombined.as_ref().map_or(&d, |r| &r.d));
@@ -1188,7 +1208,7 @@ fn recombine(
     d: &SparseMatrix,
     nodal: RoundoffDropped,
 ) -> Option<Recombined> {
-    if !space.recombines() {
+    if !space.fast_paths().is_some_and(|f| f.recombines()) {
         return None;
     }
     let t = slave_recombination(interface).ok()??;
@@ -1538,7 +1558,8 @@ fn general_face(
     // blocks merged by master node before the next, so that the memory of a face's
     // points stays bounded however many partners it has. Every bit of D and M is the
     // one of the face done at once: the same sums in the same order.
-    let batch = if options.integration.splits_over_candidates() {
+    let splits = |f: &dyn IntegrationFastPaths| f.splits_over_candidates();
+    let batch = if options.integration.fast_paths().is_some_and(splits) {
         CANDIDATE_BATCH
     } else {
         cands.len()

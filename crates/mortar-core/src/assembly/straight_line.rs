@@ -25,9 +25,10 @@
 //!   or backwards, as generators and Gmsh write a line) is read as it is; otherwise its
 //!   nodes are sorted along the line and its faces must join consecutive ones (no chain is
 //!   walked: a walk over faces numbered at random is a chase of cache misses);
-//! - the projector's [`uniform_direction`](crate::projector::Projector::uniform_direction);
+//! - the projector's uniform direction
+//!   ([`ProjectorFastPaths::uniform_direction`](crate::projector::ProjectorFastPaths::uniform_direction));
 //! - a multiplier space whose basis is the same on every face
-//!   ([`basis_is_uniform`](crate::multiplier::MultiplierSpace::basis_is_uniform));
+//!   ([`MultiplierFastPaths::basis_is_uniform`](crate::multiplier::MultiplierFastPaths::basis_is_uniform));
 //! - the master facing the slave;
 //! - every master node within the smallest slave face's search radius of the slave line (the
 //!   search would then find every master face overlapping a slave face: the part of it over
@@ -56,7 +57,7 @@ use crate::linalg::csr::csr_checked_in_parallel;
 use crate::linalg::SparseMatrix;
 use crate::memory::{collect_populated, Spare};
 use crate::mesh::SurfaceMesh;
-use crate::multiplier::LmBasis;
+use crate::multiplier::{LmBasis, MultiplierFastPaths};
 use crate::quadrature::{Quadrature, QuadratureRule};
 
 /// Slave faces (the merge) or rows (the rows) per parallel task.
@@ -159,10 +160,10 @@ pub(super) fn couple(
     if smesh.element_types().len() != 1 || mmesh.element_types().len() != 1 {
         return Ok(None);
     }
-    if !options
-        .multipliers
-        .basis_is_uniform(smesh.element_types()[0], options.geometry)
-    {
+    let uniform_basis = |f: &dyn MultiplierFastPaths| {
+        f.basis_is_uniform(smesh.element_types()[0], options.geometry)
+    };
+    if !options.multipliers.fast_paths().is_some_and(uniform_basis) {
         return Ok(None);
     }
     let (Some(slave_faces), Some(master_faces)) = (two_node_faces(smesh), two_node_faces(mmesh))
@@ -181,7 +182,8 @@ pub(super) fn couple(
         .reduce(|| (f64::INFINITY, 0.0), |p, q| (p.0.min(q.0), p.1.max(q.1)));
     let Some(n) = options
         .projector
-        .uniform_direction(interface, direction_resolution(shortest, largest))
+        .fast_paths()
+        .and_then(|f| f.uniform_direction(interface, direction_resolution(shortest, largest)))
     else {
         return Ok(None);
     };

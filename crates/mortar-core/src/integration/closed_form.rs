@@ -15,11 +15,9 @@
 //! multiplied into the local blocks) by one pass over the vertices and a few products per
 //! pair; the result is the one of any exact quadrature, to round-off.
 //!
-//! The coupling runs it instead of the strategy when the strategy says it is the exact
-//! segmentation of [`SegmentBased`](super::SegmentBased)
-//! ([`IntegrationStrategy::polygon_segments`](super::IntegrationStrategy::polygon_segments))
-//! with a degree that integrates these integrands exactly, and every face of both sides is
-//! such a triangle ([`applies`]).
+//! The coupling runs it instead of the strategy when the strategy is
+//! [`SegmentBased`](super::SegmentBased) (found by its type) with a degree that integrates
+//! these integrands exactly, and every face of both sides is such a triangle ([`applies`]).
 
 use nalgebra::Vector2;
 

@@ -19,6 +19,12 @@
 //! - [`AdaptiveElementBased`]: the same on leaves of a recursive split of the slave face,
 //!   refined where master edges cross it: a reference for curved faces, built without
 //!   clipping or flat sub-faces (slow).
+//!
+//! A strategy of one's own implements [`IntegrationStrategy`] (a name and the paired rule of a
+//! face). The coupling's fused kernels are [`SegmentBased`]'s segmentation in another form,
+//! which it takes for a [`SegmentBased`] found by its type; the one fact a strategy may state
+//! besides, that a face's candidates may be handed over in parts, is apart, in
+//! [`IntegrationFastPaths`].
 
 mod adaptive;
 pub(crate) mod affine_moments;
@@ -29,6 +35,8 @@ mod element_based;
 mod segment_based;
 pub(crate) mod segments_2d;
 pub(crate) mod segments_3d;
+
+use std::any::Any;
 
 use nalgebra::{Vector2, Vector3};
 
@@ -144,7 +152,27 @@ impl SegmentContext<'_> {
 }
 
 /// An integration strategy: the user's speed-for-accuracy dial.
-pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
+///
+/// Implement this to add a strategy: its [`name`](IntegrationStrategy::name) and the paired
+/// rule of a slave face against its candidates
+/// ([`paired_rule_into`](IntegrationStrategy::paired_rule_into)) are all the coupling needs:
+/// it integrates D and M on the points it is handed.
+///
+/// **Fast paths.** Two of the coupling's fast paths are [`SegmentBased`]'s own segmentation
+/// written for special faces: the fused kernel for straight two-node lines in 2D (and the
+/// sorted merge of a straight interface), and the closed-form integration of the clip
+/// polygons of flat first-order faces in 3D (see
+/// [`assemble_coupling`](crate::assemble_coupling)). The coupling takes them when the strategy *is* a [`SegmentBased`] (it looks at the type,
+/// hence the [`Any`] bound, which every `'static` type meets), for its degree: nothing to
+/// claim, and nothing a strategy of one's own can claim wrongly; any other strategy, a wrapper
+/// of [`SegmentBased`] included, goes through
+/// [`paired_rule_into`](IntegrationStrategy::paired_rule_into) on every face. The one fact
+/// the coupling cannot find, whether a face's candidates may be handed over in parts, is the
+/// method of [`IntegrationFastPaths`], which a strategy reaches the coupling through by
+/// returning itself from [`fast_paths`](IntegrationStrategy::fast_paths). The default, `None`,
+/// claims nothing and is always correct: a strategy of one's own computes the same D and M
+/// (to round-off) as the strategy it imitates without knowing of any of this.
+pub trait IntegrationStrategy: Any + Send + Sync + std::fmt::Debug {
     /// A description, such as `"segment-based, degree auto"`.
     fn name(&self) -> String;
 
@@ -164,6 +192,22 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
         out: &mut PairedRule,
     ) -> Result<()>;
 
+    /// The facts about this strategy that the coupling's fast paths rely on (see the trait's
+    /// documentation), if it states any. The default, `None`, states none: always correct.
+    fn fast_paths(&self) -> Option<&dyn IntegrationFastPaths> {
+        None
+    }
+}
+
+/// Facts about an [`IntegrationStrategy`] that let the coupling take a fast path, reached
+/// through [`IntegrationStrategy::fast_paths`]. Every method has a default that claims
+/// nothing and is always correct; a strategy overrides those it knows to hold.
+///
+/// (A trait for one fact, as the other plug-ins have theirs,
+/// [`MultiplierFastPaths`](crate::multiplier::MultiplierFastPaths) and
+/// [`ProjectorFastPaths`](crate::projector::ProjectorFastPaths): one shape for the three, and
+/// room for a fact more with its default without touching a strategy that states none.)
+pub trait IntegrationFastPaths {
     /// Whether the rule of a slave face against its candidates may be built from parts of
     /// the candidate list: true when the points of each candidate depend on that candidate
     /// and the slave face alone, so that the rules of consecutive parts, concatenated, are
@@ -175,50 +219,27 @@ pub trait IntegrationStrategy: Send + Sync + std::fmt::Debug {
     fn splits_over_candidates(&self) -> bool {
         false
     }
-
-    /// Whether this strategy, on a 2D interface of straight two-node lines, is the exact
-    /// segmentation of [`SegmentBased`] (the master nodes projected onto the slave line along
-    /// the projector's field, Gauss points on each overlap segment) and with which degree.
-    /// The coupling may then run its fused kernel for such lines instead of
-    /// [`paired_rule_into`](Self::paired_rule_into): the same operations without the
-    /// points in between, and a walk along the master's chains instead of the tree search
-    /// (see [`assemble_coupling`](crate::assemble_coupling)). The default, `None`, always
-    /// calls the strategy.
-    fn line_segments(&self) -> Option<LineSegments> {
-        None
-    }
-
-    /// Whether this strategy, on a 3D interface of flat first-order faces, is the exact
-    /// segmentation of [`SegmentBased`] (both faces projected onto the auxiliary plane of the
-    /// slave face, clipped, each clip polygon integrated exactly for the integrands' degree)
-    /// and with which degree. The coupling may then integrate the clip polygons of linear
-    /// triangles and flat bilinear quads in closed form ([`CouplingStats::closed_form_faces`](crate::CouplingStats::closed_form_faces))
-    /// instead of calling [`paired_rule_into`](Self::paired_rule_into): the integrals of
-    /// any exact quadrature, to round-off. The default, `None`, always calls the strategy.
-    fn polygon_segments(&self) -> Option<PolygonSegments> {
-        None
-    }
 }
 
-/// What the closed-form integration of clip polygons needs to know of a strategy that
-/// segments 3D faces exactly ([`IntegrationStrategy::polygon_segments`]).
+/// What the closed-form integration of clip polygons needs to know of the [`SegmentBased`]
+/// strategy that segments 3D faces ([`SegmentBased::polygon_segments`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PolygonSegments {
+pub(crate) struct PolygonSegments {
     /// The quadrature degree on each clip triangle; `None`: [`default_degree`]. A degree below
     /// the integrands' keeps the strategy (its quadrature is then not exact).
     pub degree: Option<u32>,
 }
 
-/// What the fused kernel for straight two-node lines needs to know of a strategy that
-/// segments them exactly ([`IntegrationStrategy::line_segments`]).
+/// What the fused kernel for straight two-node lines needs to know of the [`SegmentBased`]
+/// strategy that segments them ([`SegmentBased::line_segments`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct LineSegments {
+pub(crate) struct LineSegments {
     /// The degree of the Gauss rule on each segment; `None`: [`default_degree`].
     pub degree: Option<u32>,
 }
 
 /// Candidates per call of [`IntegrationStrategy::paired_rule_into`] for a strategy that
-/// [splits over candidates](IntegrationStrategy::splits_over_candidates): far more than a
+/// [splits over candidates](IntegrationFastPaths::splits_over_candidates): far more than a
 /// slave face meets at ordinary mesh ratios (about ten), so that only a face much coarser
 /// than its master is split.
 pub const CANDIDATE_BATCH: usize = 4096;

@@ -2,9 +2,11 @@
 //! clip polygons in 3D, subdivided for curved second-order faces), exact on affine faces.
 
 use super::curved_3d::{self, subdivision_level, DEFAULT_CURVED_TOLERANCE, MAX_SUBDIVISION};
+use std::any::Any;
+
 use super::{
-    segments_2d, segments_3d, IntegrationStrategy, LineSegments, PairedRule, PolygonSegments,
-    SegmentContext,
+    segments_2d, segments_3d, IntegrationFastPaths, IntegrationStrategy, LineSegments, PairedRule,
+    PolygonSegments, SegmentContext,
 };
 use crate::error::{MortarError, Result};
 use crate::interface::{FaceGeometry, SpatialDim};
@@ -159,24 +161,39 @@ impl IntegrationStrategy for SegmentBased {
         }
     }
 
+    fn fast_paths(&self) -> Option<&dyn IntegrationFastPaths> {
+        Some(self)
+    }
+}
+
+impl IntegrationFastPaths for SegmentBased {
     /// True: the points of each master face come from that face and the slave alone (its
     /// overlap segment or clip polygon).
     fn splits_over_candidates(&self) -> bool {
         true
     }
+}
 
-    /// Its own 2D segmentation, of its degree.
-    fn line_segments(&self) -> Option<LineSegments> {
-        Some(LineSegments {
-            degree: self.degree,
-        })
+impl SegmentBased {
+    /// `strategy` when it is a [`SegmentBased`]: the strategy whose segmentation the
+    /// coupling's fused kernels are.
+    pub(crate) fn of(strategy: &dyn IntegrationStrategy) -> Option<&Self> {
+        (strategy as &dyn Any).downcast_ref::<Self>()
     }
 
-    /// Its own 3D segmentation, of its degree (the quad and curved-face options do not touch
-    /// linear triangles, the only faces the closed form takes).
-    fn polygon_segments(&self) -> Option<PolygonSegments> {
-        Some(PolygonSegments {
+    /// Its 2D segmentation, of its degree, for the fused kernel of straight lines.
+    pub(crate) fn line_segments(&self) -> LineSegments {
+        LineSegments {
             degree: self.degree,
-        })
+        }
+    }
+
+    /// Its 3D segmentation, of its degree, for the closed form of clip polygons (the quad
+    /// and curved-face options do not touch linear triangles, the only faces the closed form
+    /// takes).
+    pub(crate) fn polygon_segments(&self) -> PolygonSegments {
+        PolygonSegments {
+            degree: self.degree,
+        }
     }
 }

@@ -212,7 +212,10 @@ fn root_beyond_ends(ga: f64, gb: f64) -> Option<Option<f64>> {
 fn is_affine_line(ctx: &SegmentContext<'_>, face: &FaceGeometry) -> bool {
     face.element.is_affine()
         && face.element.shape_degree() == 1
-        && ctx.projector.direction_is_affine(face)
+        && ctx
+            .projector
+            .fast_paths()
+            .is_some_and(|f| f.direction_is_affine(face))
 }
 
 /// What `F` needs at one point of the slave line: position, tangent, direction and its

@@ -4,7 +4,7 @@
 
 use nalgebra::SMatrix;
 
-use super::{LmBasis, MultiplierSpace};
+use super::{LmBasis, MultiplierFastPaths, MultiplierSpace};
 use crate::element::{ElementRef, SurfaceElement, MAX_FACE_NODES};
 use crate::error::{MortarError, Result};
 use crate::geometry::ModelGeometry;
@@ -54,22 +54,8 @@ impl MultiplierSpace for DualMultipliers {
         "dual"
     }
 
-    fn diagonal_d(&self) -> bool {
-        true
-    }
-
-    fn recombines(&self) -> bool {
-        true
-    }
-
     fn basis(&self, face: &FaceGeometry, _tol: &Tolerances) -> Result<LmBasis> {
         dual_basis(face, ModelGeometry::Cartesian)
-    }
-
-    /// On an affine face in the Cartesian measure: the face's constant Jacobian cancels from
-    /// the coefficients (the axisymmetric measure weights them by the face's radii).
-    fn basis_is_uniform(&self, element: ElementRef, geometry: ModelGeometry) -> bool {
-        element.is_affine() && !geometry.is_axisymmetric()
     }
 
     fn basis_for(
@@ -79,6 +65,28 @@ impl MultiplierSpace for DualMultipliers {
         geometry: ModelGeometry,
     ) -> Result<LmBasis> {
         dual_basis(face, geometry)
+    }
+
+    fn fast_paths(&self) -> Option<&dyn MultiplierFastPaths> {
+        Some(self)
+    }
+}
+
+impl MultiplierFastPaths for DualMultipliers {
+    /// Biorthogonal, for either measure.
+    fn diagonal_d(&self) -> bool {
+        true
+    }
+
+    /// Tri6 and Quad8 faces are recombined (see [`DualMultipliers`]).
+    fn recombines(&self) -> bool {
+        true
+    }
+
+    /// On an affine face in the Cartesian measure: the face's constant Jacobian cancels from
+    /// the coefficients (the axisymmetric measure weights them by the face's radii).
+    fn basis_is_uniform(&self, element: ElementRef, geometry: ModelGeometry) -> bool {
+        element.is_affine() && !geometry.is_axisymmetric()
     }
 }
 

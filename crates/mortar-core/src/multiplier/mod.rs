@@ -6,13 +6,17 @@
 //! that `int Phi_j N_k = delta_jk int N_k`: D becomes diagonal. The linear space on
 //! second-order faces has `Phi_c` the first-order function of corner `c` and no multiplier
 //! (an empty row of D and M) on the other nodes.
+//!
+//! A space of one's own implements [`MultiplierSpace`] (a name and the basis on a face); what
+//! the coupling's fast paths rely on is apart, in [`MultiplierFastPaths`], which only a space
+//! that wants them implements (the shipped standard and dual spaces do).
 
 mod basis;
 mod dual;
 mod linear;
 mod standard;
 
-pub use basis::{LmBasis, MultiplierSpace};
+pub use basis::{LmBasis, MultiplierFastPaths, MultiplierSpace};
 pub use dual::{recombination, slave_recombination, DualMultipliers, RECOMBINATION_ALPHA};
 pub use linear::LinearMultipliers;
 pub use standard::StandardMultipliers;

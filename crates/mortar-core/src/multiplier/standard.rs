@@ -1,6 +1,6 @@
 //! Standard multipliers: the slave shape functions themselves (`Phi_j = N_j`).
 
-use super::{LmBasis, MultiplierSpace};
+use super::{LmBasis, MultiplierFastPaths, MultiplierSpace};
 use crate::element::ElementRef;
 use crate::error::Result;
 use crate::geometry::ModelGeometry;
@@ -20,6 +20,12 @@ impl MultiplierSpace for StandardMultipliers {
         Ok(LmBasis::identity(face.node_count()))
     }
 
+    fn fast_paths(&self) -> Option<&dyn MultiplierFastPaths> {
+        Some(self)
+    }
+}
+
+impl MultiplierFastPaths for StandardMultipliers {
     /// The identity on every face.
     fn basis_is_uniform(&self, _element: ElementRef, _geometry: ModelGeometry) -> bool {
         true

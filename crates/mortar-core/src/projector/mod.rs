@@ -4,6 +4,10 @@
 //! face centre, with the projector's direction at that centre as the plane normal. The 2D
 //! segment-based method and element-based integration project along the direction field at
 //! each point.
+//!
+//! A field of one's own implements [`Projector`] (a name and the direction at a point); what
+//! the coupling's fast paths rely on is apart, in [`ProjectorFastPaths`], which only a field
+//! that wants them implements (the shipped ones do).
 
 use nalgebra::{Vector2, Vector3};
 
@@ -13,6 +17,25 @@ use crate::element::ElementRef;
 use crate::interface::{FaceGeometry, Interface};
 
 /// A projection direction field on a slave face.
+///
+/// Implement this to add a field: its [`name`](Projector::name) and its
+/// [`direction`](Projector::direction) at a point of a slave face are all the coupling needs.
+///
+/// **Fast paths.** The coupling also has faster ways to the same D and M that rely on facts
+/// about a field: that it is affine on a face (the 2D segmentation then projects in closed
+/// form), that it is one vector on the whole interface (a straight 2D interface is then a
+/// sorted merge), that it stays within a face's nodal normals (the search then needs no
+/// heuristic margin). It cannot find them from the directions it is handed, short of
+/// sampling the field everywhere, so a field states them, apart from this trait: they are the
+/// methods of [`ProjectorFastPaths`], which a field reaches the coupling through by returning
+/// itself from [`fast_paths`](Projector::fast_paths). The default, `None`, states none of
+/// them and is always correct: a field of one's own computes the same D and M (to round-off)
+/// without knowing of them. The shipped [`ElementNormal`] and [`NodalNormalField`] implement
+/// them.
+///
+/// (A trait of their own rather than a struct of flags: the facts are about a face, an
+/// element type or an interface, and as methods with defaults a field states only those it
+/// has.)
 pub trait Projector: Send + Sync + std::fmt::Debug {
     /// A short name.
     fn name(&self) -> &'static str;
@@ -25,7 +48,20 @@ pub trait Projector: Send + Sync + std::fmt::Debug {
         xi: &Vector2<f64>,
     ) -> (Vector3<f64>, [Vector3<f64>; 2]);
 
-    /// Whether [`direction`](Self::direction) is an affine function of `xi` on `slave` (a
+    /// The facts about this field that the coupling's fast paths rely on (see the trait's
+    /// documentation), if it states any. The default, `None`, states none: always correct.
+    fn fast_paths(&self) -> Option<&dyn ProjectorFastPaths> {
+        None
+    }
+}
+
+/// Facts about a [`Projector`]'s field that let the coupling take a fast path, reached
+/// through [`Projector::fast_paths`]. Every method has a default that claims nothing and is
+/// always correct; a field overrides those it knows to hold. A claim that does not hold gives
+/// wrong results (a projection along the wrong direction, a master face the search misses),
+/// so claim only what the field guarantees.
+pub trait ProjectorFastPaths {
+    /// Whether [`direction`](Projector::direction) is an affine function of `xi` on `slave` (a
     /// constant derivative). The 2D segmentation then projects master nodes onto an affine
     /// slave line by solving a quadratic in closed form instead of iterating. The default,
     /// `false`, is always correct.
@@ -80,6 +116,24 @@ impl Projector for ElementNormal {
         "element-normal"
     }
 
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        _xi: &Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        let c = slave.element.domain().centre();
+        (
+            slave.element.unit_normal(slave.node_coords(), &c),
+            [Vector3::zeros(); 2],
+        )
+    }
+
+    fn fast_paths(&self) -> Option<&dyn ProjectorFastPaths> {
+        Some(self)
+    }
+}
+
+impl ProjectorFastPaths for ElementNormal {
     /// Constant over the face.
     fn direction_is_affine(&self, _slave: &FaceGeometry) -> bool {
         true
@@ -91,18 +145,6 @@ impl Projector for ElementNormal {
             let face = interface.slave_face(f);
             self.direction(&face, &Vector2::zeros()).0
         })
-    }
-
-    fn direction(
-        &self,
-        slave: &FaceGeometry,
-        _xi: &Vector2<f64>,
-    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
-        let c = slave.element.domain().centre();
-        (
-            slave.element.unit_normal(slave.node_coords(), &c),
-            [Vector3::zeros(); 2],
-        )
     }
 }
 
@@ -117,6 +159,20 @@ impl Projector for NodalNormalField {
         "nodal-normal-field"
     }
 
+    fn direction(
+        &self,
+        slave: &FaceGeometry,
+        xi: &Vector2<f64>,
+    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
+        slave.normal_field(xi)
+    }
+
+    fn fast_paths(&self) -> Option<&dyn ProjectorFastPaths> {
+        Some(self)
+    }
+}
+
+impl ProjectorFastPaths for NodalNormalField {
     /// Where the shape functions are non-negative (the two-node line, the linear triangle,
     /// the bilinear quad: [`in_hull_of_nodes`](crate::search::in_hull_of_nodes)), the field
     /// interpolates the nodal normals with weights that are non-negative and sum to one.
@@ -136,13 +192,5 @@ impl Projector for NodalNormalField {
         let normals = interface.slave_nodal_normals();
         let nodes = interface.slave_nodes();
         uniform(nodes.len(), tol, |i| normals[nodes[i] as usize])
-    }
-
-    fn direction(
-        &self,
-        slave: &FaceGeometry,
-        xi: &Vector2<f64>,
-    ) -> (Vector3<f64>, [Vector3<f64>; 2]) {
-        slave.normal_field(xi)
     }
 }

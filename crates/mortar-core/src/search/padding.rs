@@ -12,13 +12,14 @@
 //!   of the projector's field on the face (the 2D segmentation and the element-based
 //!   integration at `x` itself, the 3D auxiliary plane at the face's centre), by a distance
 //!   of at most the search radius `r`. Where each such direction is that of a convex
-//!   combination `d` of the face's nodal normals `n_i` ([`Projector::within_nodal_normals`]),
-//!   `d` is no shorter than `c = min_i n_i . u` (`u` the normals' mean direction; 1 where they
-//!   are one), so `y = x + t d` with `|t| <= r / c`: `y` lies in `hull(x_i) + (r / c)
-//!   hull(+-n_i)`, whose box is the box of the nodes widened on each axis by `(r / c) max_i
-//!   |n_i|` on that axis (and by at most `r`); in 2D, where `d` is taken at `x` itself with
-//!   the same weights, in the smaller `hull(x_i +- (r / c) n_i)`. (Normals that fan out by
-//!   a right angle or more bound nothing: the nodes' box is widened by `r` on every axis.)
+//!   combination `d` of the face's nodal normals `n_i`
+//!   ([`ProjectorFastPaths::within_nodal_normals`]), `d` is no shorter than
+//!   `c = min_i n_i . u` (`u` the normals' mean direction; 1 where they are one), so
+//!   `y = x + t d` with `|t| <= r / c`: `y` lies in `hull(x_i) + (r / c) hull(+-n_i)`, whose
+//!   box is the box of the nodes widened on each axis by `(r / c) max_i |n_i|` on that axis
+//!   (and by at most `r`); in 2D, where `d` is taken at `x` itself with the same weights, in
+//!   the smaller `hull(x_i +- (r / c) n_i)`. (Normals that fan out by a right angle or more
+//!   bound nothing: the nodes' box is widened by `r` on every axis.)
 //!
 //! Where both hold for every face type of a side, that side's boxes get no inflation, only a
 //! margin for the rounding of their own arithmetic; elsewhere they are inflated by
@@ -26,6 +27,8 @@
 //! bulge of curved faces and the directions of a projector that does not bound them. The
 //! coupling reports which ([`CouplingStats::slave_box_inflation`]).
 //!
+//! [`ProjectorFastPaths::within_nodal_normals`]:
+//!     crate::projector::ProjectorFastPaths::within_nodal_normals
 //! [`Tolerances::search_inflation`]: crate::tolerances::Tolerances::search_inflation
 //! [`CouplingStats::slave_box_inflation`]: crate::CouplingStats::slave_box_inflation
 
@@ -60,7 +63,7 @@ impl Padding {
         let inflation = interface.tolerances().search_inflation;
         let (slave, master) = (interface.slave(), interface.master());
         let master_bound = master.element_types().iter().all(|&e| in_hull_of_nodes(e));
-        let slave_bound = projector.is_some_and(|p| {
+        let slave_bound = projector.and_then(Projector::fast_paths).is_some_and(|p| {
             slave
                 .element_types()
                 .iter()
