@@ -8,7 +8,7 @@ mod verification {
     pub mod claims;
 }
 
-use verification::claims::{claim, claims, problems, render};
+use verification::claims::{claim, claims, format_values, problems, render, select};
 
 #[test]
 fn every_claim_is_within_its_bound_and_names_its_test() {
@@ -21,25 +21,72 @@ fn every_claim_is_within_its_bound_and_names_its_test() {
     );
 }
 
+/// Fails, naming the first line that differs, when the committed `docs/{page}` is not
+/// `generated`; `command` writes it.
+fn assert_committed(page: &str, generated: &str, command: &str) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("docs")
+        .join(page);
+    let committed = std::fs::read_to_string(&path).unwrap();
+    if committed != generated {
+        let line = committed
+            .lines()
+            .zip(generated.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(committed.lines().count().min(generated.lines().count()));
+        panic!(
+            "docs/{page} differs from the generated page from line {}:\n  committed: {:?}\n  \
+             generated: {:?}\nrun `{command}`",
+            line + 1,
+            committed.lines().nth(line),
+            generated.lines().nth(line)
+        );
+    }
+}
+
 #[test]
 fn the_committed_page_is_the_generated_one() {
     let page = render().unwrap_or_else(|e| panic!("rendering the verification page: {e}"));
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/verification.md");
-    let committed = std::fs::read_to_string(&path).unwrap();
-    if committed != page {
-        let line = committed
-            .lines()
-            .zip(page.lines())
-            .position(|(a, b)| a != b)
-            .unwrap_or(committed.lines().count().min(page.lines().count()));
-        panic!(
-            "docs/verification.md differs from the generated page from line {}:\n  committed: \
-             {:?}\n  generated: {:?}\nrun `cargo run --example verification_doc`",
-            line + 1,
-            committed.lines().nth(line),
-            page.lines().nth(line)
-        );
-    }
+    assert_committed(
+        "verification.md",
+        &page,
+        "cargo run --release --example verification_doc",
+    );
+}
+
+/// The JSON placeholders' selectors, reducers, scales and styles, on a small array of records
+/// like a benchmark's.
+#[test]
+fn json_placeholders_select_reduce_and_format() {
+    let runs = serde_json::json!([
+        {"case": "a", "n": 10, "threads": 1, "s": 0.25, "ok": true, "deep": {"x": 1500.0}},
+        {"case": "a", "n": 10, "threads": 2, "s": 0.125, "ok": true, "deep": {"x": 2.0}},
+        {"case": "b", "n": 20, "threads": "default", "s": 4.0, "ok": false, "deep": {"x": 3.0}},
+    ]);
+    let show = |pointer: &str, format: &str| {
+        let values: Vec<_> = select(&runs, pointer)?.into_iter().cloned().collect();
+        format_values(&values, format).map(|(text, _)| text)
+    };
+    let ok = |pointer: &str, format: &str| show(pointer, format).unwrap();
+    assert_eq!(ok("/1/s", ".3"), "0.125");
+    assert_eq!(ok("/[case=a,threads=1]/s", "e1"), "2.5e-1");
+    assert_eq!(ok("/[n>=10,n<=10,threads!=2]/deep/x", ","), "1,500");
+    assert_eq!(ok("/[case=b]/threads", "text"), "default");
+    assert_eq!(ok("/[]/s", "max *1e3 ,"), "4,000");
+    assert_eq!(ok("/[case=a]/s", "min .3"), "0.125");
+    assert_eq!(ok("/[ok=true]", "count .0"), "2");
+    assert_eq!(ok("/[deep/x>=2,deep/x<=3]", "count .0"), "2");
+    assert_eq!(ok("/[threads=1]/s", "/4 .4"), "0.0625");
+    assert_eq!(ok("/0/s", ">=0.25"), "met");
+    assert_eq!(ok("/0/s", "<=0.2"), "not met");
+    // Several values without a reducer, none to reduce, and a style that is not one.
+    assert!(show("/[case=a]/s", ".3").unwrap_err().contains("2 values"));
+    assert!(show("/[case=c]/s", "max .3")
+        .unwrap_err()
+        .contains("keeps no element"));
+    assert!(show("/[case=c]/s", ".3").unwrap_err().contains("0 values"));
+    assert!(show("/0/s", "%3").is_err());
+    assert!(show("/0/missing", ".3").is_err());
 }
 
 /// The checks catch what they are for: a figure above its bound, and a bound more than 100

@@ -9,7 +9,10 @@
 //! - `{{id|bound}}`: the bound its test asserts, for a figure stated with its guard or a
 //!   check the page states by its bound;
 //! - `{{json:FILE#/POINTER|FORMAT}}`: a number read from a JSON file under `docs/` (written by
-//!   an example), `FORMAT` `.3` (fixed, 3 decimals) or `e1` (scientific, 1 decimal).
+//!   an example), `FORMAT` `.3` (fixed, 3 decimals) or `e1` (scientific, 1 decimal); the
+//!   pointer may pick array elements by their fields (`/[case=line2d,threads=1]/pairs`), and
+//!   the format may reduce, scale and style them (`min`, `/1e6`, `,`, `>=5e6`: see
+//!   [`json_figure`]).
 //!
 //! A figure is a string as the page prints it (`5.8e-16`, `0.04%`) or a JSON reference
 //! (`json:FILE#/POINTER|FORMAT`), so that the page prints the JSON's value and the check
@@ -201,39 +204,228 @@ fn trim(s: &str) -> String {
     s.trim_end_matches('0').trim_end_matches('.').to_string()
 }
 
-/// Reads `FILE#/POINTER|FORMAT` from `docs/FILE`: the number as printed and its value.
+/// Reads `FILE#POINTER|FORMAT` from `docs/FILE`: the figure as printed and its value (after
+/// any scales; NaN for a string).
+///
+/// `POINTER` is a JSON pointer whose segments may also be selectors, `[KEY=V,KEY!=V,KEY>=V,
+/// KEY<=V]`, which keep the elements of an array that meet every condition (`KEY` a pointer
+/// within the element without its leading slash, numbers compared as numbers; `[]` keeps
+/// every element). `FORMAT` is words separated by spaces: first, where the pointer selects
+/// several values, `min`, `max` or `count`; then any scales, `*K` or `/K` (`K` a number, or
+/// `json:FILE#POINTER` for one value); last the style: `.N` (fixed, `N` decimals), `eN`
+/// (scientific, `N` decimals), `,` (a whole number with thousands separators), `text` (a
+/// string as it is), or `>=K` / `<=K` (`met` or `not met`).
 fn json_figure(reference: &str) -> Result<(String, f64), String> {
     let (location, format) = reference
         .split_once('|')
         .ok_or_else(|| format!("json:{reference}: no |FORMAT"))?;
+    json_values(location)
+        .and_then(|values| format_values(&values, format))
+        .map_err(|e| format!("json:{reference}: {e}"))
+}
+
+/// The values `FILE#POINTER` selects in `docs/FILE`.
+fn json_values(location: &str) -> Result<Vec<serde_json::Value>, String> {
     let (file, pointer) = location
         .split_once('#')
-        .ok_or_else(|| format!("json:{reference}: no #POINTER"))?;
+        .ok_or_else(|| "no #POINTER".to_string())?;
     static CACHE: OnceLock<std::sync::Mutex<BTreeMap<String, serde_json::Value>>> = OnceLock::new();
     let cache = CACHE.get_or_init(Default::default);
     let mut cache = cache.lock().unwrap_or_else(|e| e.into_inner());
     if !cache.contains_key(file) {
         let path = root().join("docs").join(file);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("json:{reference}: {}: {e}", path.display()))?;
-        let value = serde_json::from_str(&text)
-            .map_err(|e| format!("json:{reference}: {}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let value = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         cache.insert(file.to_string(), value);
     }
-    let value = cache[file]
-        .pointer(pointer)
-        .and_then(serde_json::Value::as_f64)
-        .ok_or_else(|| format!("json:{reference}: no number at {pointer}"))?;
-    let text = if let Some(d) = format.strip_prefix('.') {
-        let d: usize = d.parse().map_err(|_| format!("json:{reference}: format"))?;
+    Ok(select(&cache[file], pointer)?
+        .into_iter()
+        .cloned()
+        .collect())
+}
+
+/// The values `pointer` reaches from `root`: one through plain segments, any number through
+/// a selector (see [`json_figure`]).
+///
+/// # Errors
+///
+/// When a plain segment names no member or index, or a selector meets what is not an array.
+pub fn select<'a>(
+    root: &'a serde_json::Value,
+    pointer: &str,
+) -> Result<Vec<&'a serde_json::Value>, String> {
+    let rest = pointer
+        .strip_prefix('/')
+        .ok_or_else(|| format!("pointer {pointer:?} does not start with /"))?;
+    // Split at the slashes outside brackets: a selector's keys are pointers too.
+    let mut segments = Vec::new();
+    let (mut depth, mut from) = (0usize, 0);
+    for (i, c) in rest.char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth = depth.saturating_sub(1),
+            '/' if depth == 0 => {
+                segments.push(&rest[from..i]);
+                from = i + 1;
+            }
+            _ => {}
+        }
+    }
+    segments.push(&rest[from..]);
+    let mut values = vec![root];
+    for segment in segments {
+        let mut next = Vec::new();
+        for value in values {
+            if let Some(conditions) = segment.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
+                let items = value
+                    .as_array()
+                    .ok_or_else(|| format!("{segment}: not an array"))?;
+                for item in items {
+                    if meets(item, conditions)? {
+                        next.push(item);
+                    }
+                }
+            } else {
+                let key = segment.replace("~1", "/").replace("~0", "~");
+                let child = match value {
+                    serde_json::Value::Array(items) => {
+                        key.parse::<usize>().ok().and_then(|k| items.get(k))
+                    }
+                    other => other.get(&key),
+                };
+                next.push(child.ok_or_else(|| format!("nothing at {segment:?}"))?);
+            }
+        }
+        values = next;
+    }
+    Ok(values)
+}
+
+/// Whether `item` meets every condition of a selector's `KEY=V,KEY>=V,...`.
+fn meets(item: &serde_json::Value, conditions: &str) -> Result<bool, String> {
+    for condition in conditions.split(',').filter(|c| !c.trim().is_empty()) {
+        let (key, op, wanted) = ["!=", ">=", "<=", "="]
+            .iter()
+            .find_map(|op| condition.split_once(op).map(|(k, v)| (k, *op, v.trim())))
+            .ok_or_else(|| format!("[{conditions}]: {condition:?} is not KEY=V, !=, >= or <="))?;
+        let Some(found) = item.pointer(&format!("/{}", key.trim())) else {
+            return Ok(false);
+        };
+        let numbers = found.as_f64().zip(wanted.parse::<f64>().ok());
+        let equal = match (numbers, found) {
+            (Some((a, b)), _) => a == b,
+            (None, serde_json::Value::String(s)) => s == wanted,
+            (None, serde_json::Value::Bool(b)) => wanted.parse() == Ok(*b),
+            (None, serde_json::Value::Null) => wanted == "null",
+            (None, _) => false,
+        };
+        let holds = match op {
+            "=" => equal,
+            "!=" => !equal,
+            ">=" => numbers.is_some_and(|(a, b)| a >= b),
+            _ => numbers.is_some_and(|(a, b)| a <= b),
+        };
+        if !holds {
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
+/// `values` as `format` prints them (see [`json_figure`]), and the value printed.
+///
+/// # Errors
+///
+/// When the format is not understood, or the values are not one number (or several, reduced).
+pub fn format_values(values: &[serde_json::Value], format: &str) -> Result<(String, f64), String> {
+    let words: Vec<&str> = format.split_whitespace().collect();
+    let (style, steps) = words
+        .split_last()
+        .ok_or_else(|| "empty format".to_string())?;
+    let (reducer, scales) = match steps.split_first() {
+        Some((&r @ ("min" | "max" | "count"), scales)) => (Some(r), scales),
+        _ => (None, steps),
+    };
+    let number = |v: &serde_json::Value| v.as_f64().ok_or_else(|| format!("{v} is not a number"));
+    // A scale's or a verdict's K: a number, or one number from a JSON file.
+    let operand = |k: &str| match k.strip_prefix("json:") {
+        Some(location) => match json_values(location)?.as_slice() {
+            [v] => number(v),
+            vs => Err(format!("{k}: {} values, not one", vs.len())),
+        },
+        None => k
+            .parse::<f64>()
+            .map_err(|_| format!("{k:?} is not a number")),
+    };
+    if *style == "text" {
+        return match (reducer, scales, values) {
+            (None, [], [serde_json::Value::String(s)]) => Ok((s.clone(), f64::NAN)),
+            _ => Err("text: one string, without min, max, count or scales".to_string()),
+        };
+    }
+    let mut value = match (reducer, values) {
+        (Some("count"), _) => values.len() as f64,
+        (Some(r), [first, rest @ ..]) => rest.iter().try_fold(number(first)?, |acc, v| {
+            let v = number(v)?;
+            Ok::<_, String>(if r == "min" { acc.min(v) } else { acc.max(v) })
+        })?,
+        (Some(r), []) => return Err(format!("{r} of nothing: the selector keeps no element")),
+        (None, [v]) => number(v)?,
+        (None, _) => {
+            return Err(format!(
+                "{} values: select one, or reduce them with min, max or count",
+                values.len()
+            ))
+        }
+    };
+    for scale in scales {
+        let (multiply, k) = match (scale.strip_prefix('*'), scale.strip_prefix('/')) {
+            (Some(k), _) => (true, k),
+            (_, Some(k)) => (false, k),
+            _ => return Err(format!("{scale:?}: neither a reducer nor a scale *K or /K")),
+        };
+        let k = operand(k)?;
+        value = if multiply { value * k } else { value / k };
+    }
+    let digits = |d: &str| d.parse::<usize>().map_err(|_| format!("style {style:?}"));
+    let text = if let Some(d) = style.strip_prefix('.') {
+        let d = digits(d)?;
         format!("{value:.d$}")
-    } else if let Some(d) = format.strip_prefix('e') {
-        let d: usize = d.parse().map_err(|_| format!("json:{reference}: format"))?;
+    } else if let Some(d) = style.strip_prefix('e') {
+        let d = digits(d)?;
         format!("{value:.d$e}")
+    } else if *style == "," {
+        grouped(value)
+    } else if let Some((at_least, k)) = style
+        .strip_prefix(">=")
+        .map(|k| (true, k))
+        .or_else(|| style.strip_prefix("<=").map(|k| (false, k)))
+    {
+        let k = operand(k)?;
+        let met = if at_least { value >= k } else { value <= k };
+        if met { "met" } else { "not met" }.to_string()
     } else {
-        return Err(format!("json:{reference}: format {format:?}"));
+        return Err(format!("style {style:?}"));
     };
     Ok((text, value))
+}
+
+/// `value` rounded to a whole number, with commas between thousands.
+fn grouped(value: f64) -> String {
+    let digits = format!("{:.0}", value.abs());
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    if value.round() < 0.0 {
+        format!("-{out}")
+    } else {
+        out
+    }
 }
 
 /// A placeholder of the template: what it prints.
@@ -270,20 +462,47 @@ fn slot(key: &str) -> Result<Slot<'_>, String> {
     Ok(Slot::Figure(c, 0))
 }
 
-/// The template's placeholders, in order.
-fn placeholders() -> Result<Vec<(std::ops::Range<usize>, &'static str)>, String> {
+/// A template's placeholders, in order.
+fn placeholders(template: &str) -> Result<Vec<(std::ops::Range<usize>, &str)>, String> {
     let mut out = Vec::new();
     let mut from = 0;
-    while let Some(start) = TEMPLATE[from..].find("{{") {
+    while let Some(start) = template[from..].find("{{") {
         let start = from + start;
-        let end = TEMPLATE[start..]
+        let end = template[start..]
             .find("}}")
             .map(|e| start + e + 2)
-            .ok_or_else(|| format!("template: unclosed {{{{ at byte {start}"))?;
-        out.push((start..end, &TEMPLATE[start + 2..end - 2]));
+            .ok_or_else(|| format!("unclosed {{{{ at byte {start}"))?;
+        out.push((start..end, &template[start + 2..end - 2]));
         from = end;
     }
     Ok(out)
+}
+
+/// `template` (the file `name` next to this one) with its placeholders filled.
+///
+/// # Errors
+///
+/// When a placeholder names no claim or figure, or a JSON reference does not resolve: the
+/// template's line and the reason.
+fn fill(name: &str, template: &str) -> Result<String, String> {
+    let mut page = String::new();
+    let mut at = 0;
+    let slots = placeholders(template).map_err(|e| format!("tests/verification/{name}: {e}"))?;
+    for (range, key) in slots {
+        page.push_str(&template[at..range.start]);
+        let text = slot(key).and_then(|s| match s {
+            Slot::Figure(c, k) => c.figure_text(k),
+            Slot::Bound(c) => Ok(c.bound_text()),
+            Slot::Json(reference) => json_figure(reference).map(|(text, _)| text),
+        });
+        page.push_str(&text.map_err(|e| {
+            let line = template[..range.start].matches('\n').count() + 1;
+            format!("tests/verification/{name}:{line}: {e}")
+        })?);
+        at = range.end;
+    }
+    page.push_str(&template[at..]);
+    Ok(page)
 }
 
 /// The verification page: the template with its placeholders filled, then the table of
@@ -293,20 +512,7 @@ fn placeholders() -> Result<Vec<(std::ops::Range<usize>, &'static str)>, String>
 ///
 /// When a placeholder names no claim or figure, or a JSON reference does not resolve.
 pub fn render() -> Result<String, String> {
-    let mut page = String::new();
-    let mut at = 0;
-    for (range, key) in placeholders()? {
-        page.push_str(&TEMPLATE[at..range.start]);
-        page.push_str(&match slot(key)? {
-            Slot::Figure(c, k) => c.figure_text(k)?,
-            Slot::Bound(c) => c.bound_text(),
-            Slot::Json(reference) => json_figure(reference)?.0,
-        });
-        at = range.end;
-    }
-    page.push_str(&TEMPLATE[at..]);
-    page.push_str(&table()?);
-    Ok(page)
+    Ok(fill("template.md", TEMPLATE)? + &table()?)
 }
 
 /// The closing table: every claim with its figures, bound, test and command.
@@ -359,7 +565,7 @@ fn cell(text: &str) -> String {
 pub fn problems() -> Vec<String> {
     let mut out = Vec::new();
     let mut ids = BTreeSet::new();
-    let slots = match placeholders() {
+    let slots = match placeholders(TEMPLATE) {
         Ok(p) => p,
         Err(e) => return vec![e],
     };
