@@ -2,13 +2,17 @@
 //! `tests/verification/claims.toml` and `tests/verification/template.md` generate, every
 //! figure it states lies within its test's bound (and within 100 times of it, or the page
 //! states the bound), and every test named there exists and reads its bound from the data.
-//! After changing the data or the template: `cargo run --example verification_doc`.
+//! After changing the data or the template: `cargo run --example verification_doc`. The
+//! performance page is checked the same way against its template and the benchmarks' JSON
+//! files (`cargo run --example performance_doc`).
 
 mod verification {
     pub mod claims;
 }
 
-use verification::claims::{claim, claims, format_values, problems, render, select};
+use verification::claims::{
+    claim, claims, format_values, problems, render, render_performance, select,
+};
 
 #[test]
 fn every_claim_is_within_its_bound_and_names_its_test() {
@@ -51,6 +55,19 @@ fn the_committed_page_is_the_generated_one() {
         "verification.md",
         &page,
         "cargo run --release --example verification_doc",
+    );
+}
+
+/// docs/performance.md is what `tests/verification/performance_template.md` and the
+/// benchmarks' JSON files under `docs/` generate.
+#[test]
+fn the_committed_performance_page_is_the_generated_one() {
+    let page =
+        render_performance().unwrap_or_else(|e| panic!("rendering the performance page: {e}"));
+    assert_committed(
+        "performance.md",
+        &page,
+        "cargo run --release --example performance_doc",
     );
 }
 

@@ -19,9 +19,14 @@
 //! compares that value with the bound. The page ends with a table of every claim, its
 //! figures, its bound, the test that asserts it and the command that runs the test.
 //!
+//! The performance page, docs/performance.md, is `performance_template.md` (next to this
+//! file) filled by the same placeholders, from the benchmarks' JSON files only
+//! ([`render_performance`]).
+//!
 //! Included by each test binary that reads a bound (`claim("id").bound`), by
-//! `tests/verification.rs` (the consistency checks) and by `examples/verification_doc.rs`
-//! (writes the page).
+//! `tests/verification.rs` (the consistency checks), by `examples/verification_doc.rs`
+//! (writes the verification page) and by `examples/performance_doc.rs` (writes the
+//! performance page).
 
 #![allow(dead_code)]
 
@@ -35,6 +40,8 @@ use serde::Deserialize;
 const CLAIMS: &str = include_str!("claims.toml");
 /// The page's prose and tables, with placeholders.
 const TEMPLATE: &str = include_str!("template.md");
+/// The performance page's prose and tables, with placeholders (JSON figures only).
+const PERFORMANCE_TEMPLATE: &str = include_str!("performance_template.md");
 
 /// How a claim's figures relate to its bound.
 #[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
@@ -513,6 +520,16 @@ fn fill(name: &str, template: &str) -> Result<String, String> {
 /// When a placeholder names no claim or figure, or a JSON reference does not resolve.
 pub fn render() -> Result<String, String> {
     Ok(fill("template.md", TEMPLATE)? + &table()?)
+}
+
+/// The performance page: its template with the benchmarks' figures filled in from their JSON
+/// files under `docs/`.
+///
+/// # Errors
+///
+/// When a placeholder does not resolve.
+pub fn render_performance() -> Result<String, String> {
+    fill("performance_template.md", PERFORMANCE_TEMPLATE)
 }
 
 /// The closing table: every claim with its figures, bound, test and command.
