@@ -292,6 +292,105 @@ struct ChunkWorkspace {
     face: FaceBuffers,
 }
 
+impl ChunkWorkspace {
+    /// Gathers the slave faces `faces` of a chunk and the rows in D of their nodes, and
+    /// clears what a chunk that failed may have left behind.
+    ///
+    /// The faces are gathered first, in a loop of independent reads (a file whose nodes are
+    /// numbered far apart then costs its cache misses in parallel rather than one after the
+    /// other between tree queries), and kept for the per-face work: into the faces of the
+    /// chunk before, where there is one (a face is ~460 bytes, most of them unused).
+    fn gather(&mut self, interface: &Interface, faces: &[u32]) {
+        self.face.d.clear();
+        self.face.m.clear();
+        let slave_mesh = interface.slave();
+        for (i, &s) in faces.iter().enumerate() {
+            match self.geometry.get_mut(i) {
+                Some(g) => interface.slave_face_into(s as usize, g),
+                None => self.geometry.push(interface.slave_face(s as usize)),
+            }
+        }
+        self.geometry.truncate(faces.len());
+        self.rows.clear();
+        self.rows.extend(faces.iter().map(|&s| {
+            let mut rows = [0u32; MAX_FACE_NODES];
+            for (r, &n) in rows.iter_mut().zip(slave_mesh.face(s as usize).nodes) {
+                *r = interface
+                    .slave_row(n)
+                    .expect("face nodes are on the interface");
+            }
+            rows
+        }));
+    }
+
+    /// The master candidates of each gathered face, `all[offsets[i]..offsets[i + 1]]`:
+    /// the tree's, or the chain walk's (from the previous face's candidates when it is this
+    /// face's neighbour; `start` is the chunk's first position in the processing order),
+    /// kept within each face's radius along its normal for a widened search (`radii`).
+    fn candidates(
+        &mut self,
+        interface: &Interface,
+        ctx: &SegmentContext<'_>,
+        search: &Search,
+        radii: Option<&[f64]>,
+        start: usize,
+    ) {
+        let Self {
+            geometry,
+            offsets,
+            all,
+            scratch,
+            blocks,
+            group,
+            face: buffers,
+            ..
+        } = self;
+        offsets.clear();
+        offsets.push(0usize);
+        all.clear();
+        match search {
+            Search::Tree { tree, .. } => {
+                tree.candidates_of_group(interface, geometry, group, all, offsets);
+            }
+            Search::Lines {
+                search, follows, ..
+            } => {
+                for (i, face) in geometry.iter().enumerate() {
+                    let seeds = if i > 0 && follows[start + i] {
+                        &all[offsets[i - 1]..offsets[i]]
+                    } else {
+                        &[]
+                    };
+                    let lines = &mut buffers.lines;
+                    if seeds.is_empty()
+                        || !search.walk(interface, ctx.masters, lines, face, seeds, scratch, blocks)
+                    {
+                        search.exhaustive(interface, ctx.masters, face, scratch);
+                    }
+                    all.extend_from_slice(scratch);
+                    offsets.push(all.len());
+                }
+            }
+        }
+        if let Some(radii) = radii {
+            // The boxes reach farther at a slant; see `keep_within_radius`.
+            let mut kept = 0;
+            for i in 0..geometry.len() {
+                scratch.clear();
+                scratch.extend_from_slice(&all[offsets[i]..offsets[i + 1]]);
+                let face = &geometry[i];
+                let radius = radii[face.index as usize];
+                keep_within_radius(interface, ctx.masters, face, radius, scratch);
+                all[kept..kept + scratch.len()].copy_from_slice(scratch);
+                offsets[i] = kept;
+                kept += scratch.len();
+            }
+            offsets[geometry.len()] = kept;
+            all.truncate(kept);
+        }
+    }
+}
+
 /// The buffers of one slave face's work, and the chunk's entries of D and M, summed as they come.
 #[derive(Default)]
 struct FaceBuffers {
@@ -548,6 +647,40 @@ impl ChunkStats {
         self.seconds_segments += o.seconds_segments;
         self.seconds_integration += o.seconds_integration;
     }
+
+    /// Counts one batch's paired rule (its pairs, cells, back-facing and skipped pairs, and
+    /// degrees), and keeps the face's first skipped pair.
+    #[inline]
+    fn tally(&mut self, rule: &mut PairedRule, first_skipped: &mut Option<MortarError>) {
+        self.pairs += rule.pairs as usize;
+        self.segments += rule.cells as usize;
+        self.back_facing += rule.back_facing as usize;
+        self.skipped += rule.skipped as usize;
+        self.degrees |= rule.degrees;
+        if first_skipped.is_none() {
+            *first_skipped = rule.first_skipped.take();
+        }
+    }
+
+    /// Counts a slave face whose points miss the fraction `missing` of it (negative: cover
+    /// it more than once) beyond the tolerance `coverage`, and notes its tag.
+    fn count_coverage(
+        &mut self,
+        face: &FaceGeometry,
+        missing: f64,
+        coverage: f64,
+        notes: &mut FaceNotes,
+    ) {
+        if missing > coverage {
+            self.partly_covered += 1;
+            self.uncovered_area += missing * face.measure();
+            note(&mut notes.uncovered, face.tag);
+        } else if -missing > coverage {
+            self.overlapped += 1;
+            self.overlapped_area += -missing * face.measure();
+            note(&mut notes.overlapped, face.tag);
+        }
+    }
 }
 
 /// What one worker accumulates: its buffers, its compressed parts of D and M (keyed by chunk),
@@ -574,6 +707,27 @@ impl Accumulator {
             m: PartList::expecting(chunks),
             ..Self::default()
         }
+    }
+
+    /// The workers' accumulators as one: the first error and the first skipped pair in
+    /// slave-face order, the smallest tags, the summed counts and every part of D and M.
+    fn merged(accs: Vec<Accumulator>) -> Self {
+        let mut total = Accumulator::default();
+        for acc in accs {
+            if let Some((c, e)) = acc.error {
+                if total.error.as_ref().is_none_or(|(k, _)| c < *k) {
+                    total.error = Some((c, e));
+                }
+            }
+            if let Some((at, e)) = acc.first_skipped {
+                total.keep_first_skipped(at, e);
+            }
+            total.add_notes(&acc.uncovered, &acc.overlapped);
+            total.stats.add(&acc.stats);
+            total.d.append(acc.d);
+            total.m.append(acc.m);
+        }
+        total
     }
 
     /// Keeps the earlier of two first-skipped records.
@@ -984,21 +1138,7 @@ fn general_path(
     drop((search, order, masters));
     let t_asm = Instant::now();
     let faces_seconds = (t_asm - start).as_secs_f64() - tree_seconds;
-    let mut total = Accumulator::default();
-    for acc in accs {
-        if let Some((c, e)) = acc.error {
-            if total.error.as_ref().is_none_or(|(k, _)| c < *k) {
-                total.error = Some((c, e));
-            }
-        }
-        if let Some((at, e)) = acc.first_skipped {
-            total.keep_first_skipped(at, e);
-        }
-        total.add_notes(&acc.uncovered, &acc.overlapped);
-        total.stats.add(&acc.stats);
-        total.d.append(acc.d);
-        total.m.append(acc.m);
-    }
+    let total = Accumulator::merged(accs);
     if let Some((_, e)) = total.error {
         return Err(e);
     }
@@ -1311,88 +1451,19 @@ fn chunk(
 ) -> Result<()> {
     let faces = &order[positions.clone()];
     let mut out = ChunkStats::default();
-    let slave_mesh = interface.slave();
     let t_search = Instant::now();
+    acc.ws.gather(interface, faces);
+    acc.ws
+        .candidates(interface, ctx, search, radii, positions.start);
     let ChunkWorkspace {
         geometry,
         rows: face_rows,
         offsets,
         all,
         scratch,
-        blocks,
-        group,
         face: buffers,
+        ..
     } = &mut acc.ws;
-    // A chunk that failed may have left triplets behind.
-    buffers.d.clear();
-    buffers.m.clear();
-    offsets.clear();
-    offsets.push(0usize);
-    all.clear();
-    // The chunk's slave faces are gathered first, in a loop of independent reads (a file
-    // whose nodes are numbered far apart then costs its cache misses in parallel rather than
-    // one after the other between tree queries), and kept for the per-face work.
-    // Into the faces of the chunk before, where there is one (a face is ~460 bytes, most of
-    // them unused).
-    for (i, &s) in faces.iter().enumerate() {
-        match geometry.get_mut(i) {
-            Some(g) => interface.slave_face_into(s as usize, g),
-            None => geometry.push(interface.slave_face(s as usize)),
-        }
-    }
-    geometry.truncate(faces.len());
-    face_rows.clear();
-    face_rows.extend(faces.iter().map(|&s| {
-        let mut rows = [0u32; MAX_FACE_NODES];
-        for (r, &n) in rows.iter_mut().zip(slave_mesh.face(s as usize).nodes) {
-            *r = interface
-                .slave_row(n)
-                .expect("face nodes are on the interface");
-        }
-        rows
-    }));
-    match search {
-        Search::Tree { tree, .. } => {
-            tree.candidates_of_group(interface, geometry, group, all, offsets);
-        }
-        Search::Lines {
-            search, follows, ..
-        } => {
-            for (i, face) in geometry.iter().enumerate() {
-                // From the previous face's candidates when it is this face's neighbour.
-                let seeds = if i > 0 && follows[positions.start + i] {
-                    &all[offsets[i - 1]..offsets[i]]
-                } else {
-                    &[]
-                };
-                let lines = &mut buffers.lines;
-                if seeds.is_empty()
-                    || !search.walk(interface, ctx.masters, lines, face, seeds, scratch, blocks)
-                {
-                    search.exhaustive(interface, ctx.masters, face, scratch);
-                }
-                all.extend_from_slice(scratch);
-                offsets.push(all.len());
-            }
-        }
-    }
-    if let Some(radii) = radii {
-        // A widened search keeps the candidates within each face's radius along its normal
-        // (the boxes reach farther at a slant; see `keep_within_radius`).
-        let mut kept = 0;
-        for i in 0..faces.len() {
-            scratch.clear();
-            scratch.extend_from_slice(&all[offsets[i]..offsets[i + 1]]);
-            let face = &geometry[i];
-            let radius = radii[face.index as usize];
-            keep_within_radius(interface, ctx.masters, face, radius, scratch);
-            all[kept..kept + scratch.len()].copy_from_slice(scratch);
-            offsets[i] = kept;
-            kept += scratch.len();
-        }
-        offsets[faces.len()] = kept;
-        all.truncate(kept);
-    }
     out.candidates = all.len();
     let t0 = Instant::now();
     out.seconds_search = (t0 - t_search).as_secs_f64();
@@ -1579,10 +1650,7 @@ fn general_face(
         basis.is_some()
     });
     let mut any_points = false;
-    // The covered fraction, summed over batches (`None` if a batch did not measure
-    // it), and the sum of the weights, for when it is `None`.
-    let mut covered = Some(0.0);
-    let mut weights = 0.0;
+    let mut coverage = Coverage::default();
     let mut first_skipped = None;
     for part in cands.chunks(batch) {
         let ta = Instant::now();
@@ -1594,14 +1662,8 @@ fn general_face(
         let closed = match (&closed_form, &basis) {
             (Some(cf), Some(b)) => {
                 let add = |cols: &[u32], block: &[f64]| columns.add_cols(cols, block);
-                let (d, tris, degree) = (&mut blocks.d, &mut *scratch, cf.rule.degree);
-                match (cf.triangles, cf.shape(face.element)) {
-                    (true, _) => closed_form_into(ctx, face, part, degree, b, d, tris, add, rule)?,
-                    (false, Some(shape)) => affine_moments_into(
-                        ctx, face, shape, part, cf, b, d, tris, pending, add, rule,
-                    )?,
-                    (false, None) => false,
-                }
+                let d = &mut blocks.d;
+                closed_form_batch(ctx, cf, face, part, b, d, scratch, pending, add, rule)?
             }
             _ => false,
         };
@@ -1611,18 +1673,8 @@ fn general_face(
                 .integration
                 .paired_rule_into(ctx, face, part, rule)?;
         }
-        out.pairs += rule.pairs as usize;
-        out.segments += rule.cells as usize;
-        out.back_facing += rule.back_facing as usize;
-        out.skipped += rule.skipped as usize;
-        out.degrees |= rule.degrees;
-        if first_skipped.is_none() {
-            first_skipped = rule.first_skipped.take();
-        }
-        covered = covered.zip(rule.covered).map(|(a, c)| a + c);
-        if covered.is_none() {
-            weights += rule.points.iter().map(|p| p.weight).sum::<f64>();
-        }
+        out.tally(rule, &mut first_skipped);
+        coverage.add(rule);
         out.seconds_segments += ta.elapsed().as_secs_f64();
         if closed {
             any_points |= rule.pairs > 0;
@@ -1631,18 +1683,7 @@ fn general_face(
                 continue;
             }
             any_points = true;
-            if options.geometry.is_axisymmetric() {
-                // The measure of the revolved surface, 2 pi r at the slave point (after the
-                // coverage, which compares lengths of the meridian).
-                for p in rule.points.iter_mut() {
-                    p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
-                }
-            }
-            let basis = match &basis {
-                Some(b) => b,
-                None => basis.insert(options.multipliers.basis_for(face, tol, options.geometry)?),
-            };
-            integrate_batch_into(interface, ctx.masters, face, basis, &rule.points, blocks);
+            integrate_strategy_points(options, ctx, face, &mut basis, rule, blocks)?;
         }
         // The M blocks merged by master node (see `MergedColumns`).
         for (mf, km, block) in blocks.m_blocks() {
@@ -1656,12 +1697,7 @@ fn general_face(
             .filter(|(k, _)| *k < at)
             .or(Some((at, e)));
     }
-    // How much of the face the points cover: as the strategy measured it, or the sum of
-    // the weights against the face's measure.
-    let missing = match covered {
-        Some(c) => 1.0 - c,
-        None => 1.0 - weights / face.measure(),
-    };
+    let missing = coverage.missing(face);
     if !any_points {
         out.without_partner += 1;
         out.uncovered_area += face.measure();
@@ -1671,33 +1707,119 @@ fn general_face(
     if closed_form.is_some() {
         out.closed_form += 1;
     }
-    if missing > tol.coverage {
-        out.partly_covered += 1;
-        out.uncovered_area += missing * face.measure();
-        note(&mut notes.uncovered, face.tag);
-    } else if -missing > tol.coverage {
-        out.overlapped += 1;
-        out.overlapped_area += -missing * face.measure();
-        note(&mut notes.overlapped, face.tag);
-    }
+    out.count_coverage(face, missing, tol.coverage, notes);
     // Rows of nodes without a multiplier (linear multipliers on second-order faces)
     // stay empty.
-    let mut carries = [true; MAX_FACE_NODES];
-    if let Some(b) = &basis {
-        for (j, c) in carries[..ks].iter_mut().enumerate() {
-            *c = b.carries(j);
-        }
-    }
+    let carries = |j: usize| basis.as_ref().is_none_or(|b| b.carries(j));
     push_face_rows(
         (d, m),
         order,
         rows,
-        |j| carries[j],
+        carries,
         |j, k| blocks.d[j][k],
         &columns.cols,
         |j, p| columns.vals[p * ks + j],
     );
     Ok(())
+}
+
+/// How much of a slave face its batches' points cover.
+struct Coverage {
+    /// The covered fraction, summed over batches (`None` if a batch did not measure it).
+    covered: Option<f64>,
+    /// The sum of the weights, for when `covered` is `None`.
+    weights: f64,
+}
+
+impl Default for Coverage {
+    fn default() -> Self {
+        Self {
+            covered: Some(0.0),
+            weights: 0.0,
+        }
+    }
+}
+
+impl Coverage {
+    /// Adds one batch's paired rule.
+    #[inline]
+    fn add(&mut self, rule: &PairedRule) {
+        self.covered = self.covered.zip(rule.covered).map(|(a, c)| a + c);
+        if self.covered.is_none() {
+            self.weights += rule.points.iter().map(|p| p.weight).sum::<f64>();
+        }
+    }
+
+    /// The fraction of `face` its points miss (negative: cover more than once): as the
+    /// strategy measured it, or the sum of the weights against the face's measure.
+    fn missing(&self, face: &FaceGeometry) -> f64 {
+        match self.covered {
+            Some(c) => 1.0 - c,
+            None => 1.0 - self.weights / face.measure(),
+        }
+    }
+}
+
+/// Integrates the strategy's paired points `rule` of `face` into `blocks`: weighted by the
+/// revolved surface's measure in an axisymmetric geometry, with the face's multiplier basis
+/// (built here if the closed form did not build it).
+#[inline]
+fn integrate_strategy_points(
+    options: &CouplingOptions,
+    ctx: &SegmentContext<'_>,
+    face: &FaceGeometry,
+    basis: &mut Option<LmBasis>,
+    rule: &mut PairedRule,
+    blocks: &mut LocalBlocks,
+) -> Result<()> {
+    if options.geometry.is_axisymmetric() {
+        // The measure of the revolved surface, 2 pi r at the slave point (after the coverage,
+        // which compares lengths of the meridian).
+        for p in rule.points.iter_mut() {
+            p.weight *= options.geometry.weight(&face.map(&p.xi_slave));
+        }
+    }
+    let tol = ctx.interface.tolerances();
+    let basis = match basis {
+        Some(b) => b,
+        None => basis.insert(options.multipliers.basis_for(face, tol, options.geometry)?),
+    };
+    integrate_batch_into(
+        ctx.interface,
+        ctx.masters,
+        face,
+        basis,
+        &rule.points,
+        blocks,
+    );
+    Ok(())
+}
+
+/// The closed form's segmentation and integration of the candidates `part` of `face` at once
+/// ([`closed_form_into`] on triangles, [`affine_moments_into`] on the shapes it takes):
+/// whether it did them (a face it leaves, not integrated in the plane, goes to the strategy).
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn closed_form_batch(
+    ctx: &SegmentContext<'_>,
+    cf: &ClosedForm,
+    face: &FaceGeometry,
+    part: &[u32],
+    basis: &LmBasis,
+    d: &mut [[f64; MAX_FACE_NODES]; MAX_FACE_NODES],
+    tris: &mut ClosedFormScratch,
+    pending: &mut Vec<PendingBlock>,
+    add: impl FnMut(&[u32], &[f64]),
+    rule: &mut PairedRule,
+) -> Result<bool> {
+    let degree = cf.rule.degree;
+    match (cf.triangles, cf.shape(face.element)) {
+        (true, _) => closed_form_into(ctx, face, part, degree, basis, d, tris, add, rule),
+        (false, Some(shape)) => affine_moments_into(
+            ctx, face, shape, part, cf, basis, d, tris, pending, add, rule,
+        ),
+        (false, None) => Ok(false),
+    }
 }
 
 #[cfg(test)]

@@ -114,6 +114,78 @@ struct Leaf {
     landed: [Option<u32>; 3],
 }
 
+impl Leaf {
+    /// The leaves a face of `domain` starts from: the line, the triangle, or the
+    /// quadrilateral's two triangles, with where their vertices land.
+    fn roots(domain: ReferenceDomain, lander: &mut Lander<'_, '_>) -> Vec<Leaf> {
+        let v = Vector2::new;
+        let roots: &[[Vector2<f64>; 3]] = match domain {
+            ReferenceDomain::Line => &[[v(-1.0, 0.0), v(1.0, 0.0), v(0.0, 0.0)]],
+            ReferenceDomain::Triangle => &[[v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)]],
+            ReferenceDomain::Quadrilateral => &[
+                [v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0)],
+                [v(-1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)],
+            ],
+        };
+        let corners = if domain == ReferenceDomain::Line {
+            2
+        } else {
+            3
+        };
+        let mut stack: Vec<Leaf> = Vec::new();
+        for xi in roots {
+            let mut landed = [None; 3];
+            for i in 0..corners {
+                landed[i] = lander.land(&xi[i]).map(|h| h.0);
+            }
+            stack.push(Leaf {
+                xi: *xi,
+                depth: 0,
+                landed,
+            });
+        }
+        stack
+    }
+
+    /// Splits the leaf onto `stack`: halves of a line, quarters of a triangle through its
+    /// edge midpoints, with where the new vertices land.
+    fn split(&self, line: bool, lander: &mut Lander<'_, '_>, stack: &mut Vec<Leaf>) {
+        let [a, b, c] = self.xi;
+        let depth = self.depth + 1;
+        if line {
+            let mid = 0.5 * (a + b);
+            let lm = lander.land(&mid).map(|h| h.0);
+            let [la, lb, _] = self.landed;
+            stack.push(Leaf {
+                xi: [a, mid, mid],
+                depth,
+                landed: [la, lm, None],
+            });
+            stack.push(Leaf {
+                xi: [mid, b, mid],
+                depth,
+                landed: [lm, lb, None],
+            });
+        } else {
+            let (ab, bc, ca) = (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a));
+            let (lab, lbc, lca) = (
+                lander.land(&ab).map(|h| h.0),
+                lander.land(&bc).map(|h| h.0),
+                lander.land(&ca).map(|h| h.0),
+            );
+            let [la, lb, lc] = self.landed;
+            for (xi, landed) in [
+                ([a, ab, ca], [la, lab, lca]),
+                ([ab, b, bc], [lab, lb, lbc]),
+                ([ca, bc, c], [lca, lbc, lc]),
+                ([bc, ca, ab], [lbc, lca, lab]),
+            ] {
+                stack.push(Leaf { xi, depth, landed });
+            }
+        }
+    }
+}
+
 /// A master face (slot) and the reference coordinates of a projected point on it.
 type Hit = (u32, Vector2<f64>);
 
@@ -191,27 +263,8 @@ impl IntegrationStrategy for AdaptiveElementBased {
             last: None,
         };
         let v = Vector2::new;
-        let roots: &[[Vector2<f64>; 3]] = match domain {
-            ReferenceDomain::Line => &[[v(-1.0, 0.0), v(1.0, 0.0), v(0.0, 0.0)]],
-            ReferenceDomain::Triangle => &[[v(0.0, 0.0), v(1.0, 0.0), v(0.0, 1.0)]],
-            ReferenceDomain::Quadrilateral => &[
-                [v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0)],
-                [v(-1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)],
-            ],
-        };
         let corners = if line { 2 } else { 3 };
-        let mut stack: Vec<Leaf> = Vec::new();
-        for xi in roots {
-            let mut landed = [None; 3];
-            for i in 0..corners {
-                landed[i] = lander.land(&xi[i]).map(|h| h.0);
-            }
-            stack.push(Leaf {
-                xi: *xi,
-                depth: 0,
-                landed,
-            });
-        }
+        let mut stack = Leaf::roots(domain, &mut lander);
         // The rule's points on the current leaf: slave coordinates, weight, landing.
         let mut points: Vec<(Vector2<f64>, f64, Option<Hit>)> = Vec::new();
         let (mut landed_measure, mut measure) = (0.0, 0.0);
@@ -254,39 +307,7 @@ impl IntegrationStrategy for AdaptiveElementBased {
                     continue;
                 }
             }
-            // Split: halves of a line, quarters of a triangle through its edge midpoints.
-            let depth = leaf.depth + 1;
-            if line {
-                let mid = 0.5 * (a + b);
-                let lm = lander.land(&mid).map(|h| h.0);
-                let [la, lb, _] = leaf.landed;
-                stack.push(Leaf {
-                    xi: [a, mid, mid],
-                    depth,
-                    landed: [la, lm, None],
-                });
-                stack.push(Leaf {
-                    xi: [mid, b, mid],
-                    depth,
-                    landed: [lm, lb, None],
-                });
-            } else {
-                let (ab, bc, ca) = (0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a));
-                let (lab, lbc, lca) = (
-                    lander.land(&ab).map(|h| h.0),
-                    lander.land(&bc).map(|h| h.0),
-                    lander.land(&ca).map(|h| h.0),
-                );
-                let [la, lb, lc] = leaf.landed;
-                for (xi, landed) in [
-                    ([a, ab, ca], [la, lab, lca]),
-                    ([ab, b, bc], [lab, lb, lbc]),
-                    ([ca, bc, c], [lca, lbc, lc]),
-                    ([bc, ca, ab], [lbc, lca, lab]),
-                ] {
-                    stack.push(Leaf { xi, depth, landed });
-                }
-            }
+            leaf.split(line, &mut lander, &mut stack);
         }
         // Points of one master face together (stable: in the order of the leaves).
         out.points.sort_by_key(|p| p.master);

@@ -305,19 +305,7 @@ pub(crate) fn affine_moments_into(
     let scale = jac.determinant() * setup.measure;
     let ks = slave.node_count();
     let ns = shape_polynomials(slave_shape, slave.element);
-    let phi: [Poly; 4] = if basis.identity {
-        ns
-    } else {
-        std::array::from_fn(|j| {
-            let mut p = [0.0; P2];
-            for (k, n) in ns.iter().enumerate().take(ks) {
-                for (pv, nv) in p.iter_mut().zip(n) {
-                    *pv += basis.a[j][k] * nv;
-                }
-            }
-            p
-        })
-    };
+    let phi = multiplier_polynomials(basis, &ns, ks);
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
     let mut dface = [[0.0; 4]; 4];
@@ -338,20 +326,9 @@ pub(crate) fn affine_moments_into(
         let Some(mshape) = form.shape(mel) else {
             return Ok(false);
         };
-        // The master's reference coordinates `s = mc + minv (p - mx)` (a triangle's from its
-        // corners: the map of the linear triangle, `p = p0 + [p1 - p0, p2 - p0] s`).
-        let (mc, mx, minv) = match mshape {
-            FlatShape::Triangle => {
-                let e = Matrix2::from_columns(&[mp[1] - mp[0], mp[2] - mp[0]]);
-                let Some(minv) = e.try_inverse() else {
-                    return Ok(false);
-                };
-                (Vector2::zeros(), mp[0], minv)
-            }
-            FlatShape::Quad => match PlanarMap::new(mel, &mp[..km]).affine_parts() {
-                Some(parts) => parts,
-                None => return Ok(false),
-            },
+        // The master's reference coordinates `s = mc + minv (p - mx)`.
+        let Some((mc, mx, minv)) = master_coordinates(mshape, mel, &mp[..km]) else {
+            return Ok(false);
         };
         // Everything about the clip polygon's first vertex `p0` (`o` in the slave's reference
         // coordinates): with `r = o + u`, the moments are those of `u`, small where the pair
@@ -411,6 +388,41 @@ pub(crate) fn affine_moments_into(
     }
     out.covered = Some(covered / setup.area_s);
     Ok(true)
+}
+
+/// The multipliers as polynomials, `Phi_j = sum_k a_jk N_k` of the slave's shape
+/// polynomials `ns` (the first `ks` of them), or `ns` themselves for a standard basis.
+fn multiplier_polynomials(basis: &LmBasis, ns: &[Poly; 4], ks: usize) -> [Poly; 4] {
+    if basis.identity {
+        return *ns;
+    }
+    std::array::from_fn(|j| {
+        let mut p = [0.0; P2];
+        for (k, n) in ns.iter().enumerate().take(ks) {
+            for (pv, nv) in p.iter_mut().zip(n) {
+                *pv += basis.a[j][k] * nv;
+            }
+        }
+        p
+    })
+}
+
+/// The affine map to a master face's reference coordinates from the plane,
+/// `s = mc + minv (p - mx)`, of the face of shape `shape` with the nodes `mp` in the plane (a
+/// triangle's from its corners: the map of the linear triangle, `p = p0 + [p1 - p0, p2 - p0]
+/// s`); `None` where the face is degenerate or its map not affine.
+fn master_coordinates(
+    shape: FlatShape,
+    element: ElementRef,
+    mp: &[Vector2<f64>],
+) -> Option<(Vector2<f64>, Vector2<f64>, Matrix2<f64>)> {
+    match shape {
+        FlatShape::Triangle => {
+            let e = Matrix2::from_columns(&[mp[1] - mp[0], mp[2] - mp[0]]);
+            Some((Vector2::zeros(), mp[0], e.try_inverse()?))
+        }
+        FlatShape::Quad => PlanarMap::new(element, mp).affine_parts(),
+    }
 }
 
 #[cfg(test)]

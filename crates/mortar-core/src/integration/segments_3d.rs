@@ -284,25 +284,18 @@ pub(super) fn segments_into(
     quad_subdivision: u32,
     out: &mut PairedRule,
 ) -> Result<()> {
-    let tol = ctx.interface.tolerances();
     let el = slave.element;
     let mut setup = SlavePlane::new(ctx, slave)?;
-    let SlavePlane {
-        plane,
-        area_s,
-        slave_map,
-        in_reference,
-        extra_degree,
-        measure,
-        ..
-    } = setup;
     let mut mp = [Vector2::zeros(); MAX_FACE_NODES];
     let mut clip = Polygon::default();
-    let mut tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
-    // The cut triangles of a non-parallelogram quad (`quad_subdivision > 1`), in the slave's
-    // reference coordinates.
-    let cut = quad_subdivision > 1 && in_reference && !slave_map.is_affine();
-    let mut cut_tris: Vec<[Vector2<f64>; 3]> = Vec::new();
+    let mut cells = CellBuffers {
+        // The cut triangles of a non-parallelogram quad (`quad_subdivision > 1`), in the
+        // slave's reference coordinates.
+        cut: quad_subdivision > 1 && setup.in_reference && !setup.slave_map.is_affine(),
+        quad_subdivision,
+        tris: ArrayVec::new(),
+        cut_tris: Vec::new(),
+    };
     let mut covered = 0.0;
 
     for &m in candidates {
@@ -313,127 +306,29 @@ pub(super) fn segments_into(
         };
         // A slave face whose Jacobian varies is integrated in its reference coordinates with
         // the Jacobian as a factor: `extra_degree` more.
-        let deg = degree.unwrap_or_else(|| default_degree(el, mel) + extra_degree);
+        let deg = degree.unwrap_or_else(|| default_degree(el, mel) + setup.extra_degree);
         let rule = QuadratureRule::cached(ReferenceDomain::Triangle, deg)?;
-        let master_map = PlanarMap::new(mel, &mp[..km]);
-        let fail =
-            |f: InverseMapFailure, p: &Vector2<f64>, side, tag| MortarError::ProjectionFailed {
-                face: FaceLocation {
-                    side: Some(side),
-                    tag,
-                },
-                point: plane.lift(p).into(),
-                iterations: f.iterations,
-                residual: f.residual,
-            };
-        // An affine slave is integrated on the clip triangles in the plane. A non-affine
-        // slave (bilinear quad) is integrated in its reference coordinates: the clip polygon's
-        // vertices are mapped back and triangulated there, and the weights carry the surface
-        // Jacobian, so that on a planar face Phi_j N_k J stays a polynomial and D is exact on
-        // a covered face.
-        // One paired point at `c` (in-plane coordinates for an affine slave, the slave's
-        // reference coordinates otherwise) with quadrature weight `weight`.
-        let point_at = |c: Vector2<f64>, weight: f64| -> Result<PairedPoint> {
-            let (p, xi_s, jac) = if in_reference {
-                // The surface's own measure (not the plane's): the measure the dual basis
-                // is built with, so D stays diagonal on warped faces too.
-                let (p, _) = slave_map.eval(&c);
-                (p, c, el.jacobian_det(slave.node_coords(), &c))
-            } else {
-                let xi_s = slave_map
-                    .invert(&c, tol.newton, tol.newton_max_iterations)
-                    .map_err(|f| fail(f, &c, Side::Slave, slave.tag))?;
-                (c, xi_s, measure)
-            };
-            let xi_m = master_map
-                .invert(&p, tol.newton, tol.newton_max_iterations)
-                .map_err(|f| fail(f, &p, Side::Master, ctx.master_tag(m)))?;
-            Ok(PairedPoint {
-                master: m,
-                xi_slave: xi_s,
-                xi_master: xi_m,
-                weight: weight * jac,
-            })
+        let pair = PairMaps {
+            ctx,
+            slave,
+            setup: &setup,
+            master_map: PlanarMap::new(mel, &mp[..km]),
+            master: m,
         };
+        // Both maps affine and the degree at least the integrands': integrated exactly on
+        // any triangulation.
+        let exact = pair.master_map.is_affine() && deg >= default_degree(el, mel);
         let pushed = out.points.len();
         let cells_before = out.cells;
         // A point that cannot be mapped back drops the pair (counted, never silently).
-        let mut emit = || -> Result<()> {
-            if deg == 2 && !in_reference {
-                // Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle. Its
-                // points on the spokes (centroid to vertex) are shared by neighbouring triangles,
-                // so an n-gon needs 2n points instead of 3n; still exact for degree 2. Where the
-                // integrands are of degree 2 at most (both maps affine, the degree at least the
-                // default), any triangulation integrates them exactly and the fan from a vertex
-                // serves: n - 2 triangles, 2n - 3 points.
-                let exact = master_map.is_affine() && deg >= default_degree(el, mel);
-                let push = |c, weight, cells| {
-                    out.cells += cells;
-                    if weight > 0.0 {
-                        out.points.push(point_at(c, weight)?);
-                    }
-                    Ok(())
-                };
-                if exact {
-                    vertex_fan_midpoints(&clip, push)?;
-                } else {
-                    fan_midpoints(&clip, push)?;
-                }
-            } else {
-                tris.clear();
-                cut_tris.clear();
-                if cut {
-                    // Each plane triangle of the centroid fan cut into m^2, its vertices
-                    // mapped back: the chords m times closer to the curved edges.
-                    let mut plane_tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> =
-                        ArrayVec::new();
-                    clip.for_each_triangle(|t| plane_tris.push(t));
-                    let to_xi = |v: &Vector2<f64>| {
-                        slave_map
-                            .invert(v, tol.newton, tol.newton_max_iterations)
-                            .map_err(|f| fail(f, v, Side::Slave, slave.tag))
-                    };
-                    for t in &plane_tris {
-                        cut_triangle(t, quad_subdivision, to_xi, &mut cut_tris)?;
-                    }
-                } else if in_reference {
-                    let mut xi_poly = Polygon::default();
-                    for v in &clip.vertices {
-                        let xi = slave_map
-                            .invert(v, tol.newton, tol.newton_max_iterations)
-                            .map_err(|f| fail(f, v, Side::Slave, slave.tag))?;
-                        xi_poly.vertices.push(xi);
-                    }
-                    xi_poly.for_each_triangle(|t| tris.push(t));
-                } else if master_map.is_affine() && deg >= default_degree(el, mel) {
-                    // Both maps affine and the degree at least the integrands': they are
-                    // integrated exactly on any triangulation, so the cheapest serves: the fan from a
-                    // vertex of the (convex) clip polygon, n - 2 triangles instead of n.
-                    clip.for_each_fan_triangle(|t| tris.push(t));
-                } else {
-                    // The quadrature is not exact: the fan from the centroid, whose triangles
-                    // do not depend on which vertex the polygon starts at (so that relabelling
-                    // the faces permutes D and M to round-off).
-                    clip.for_each_triangle(|t| tris.push(t));
-                }
-                let list: &[[Vector2<f64>; 3]] = if cut { &cut_tris } else { &tris };
-                for t in list {
-                    let e1 = t[1] - t[0];
-                    let e2 = t[2] - t[0];
-                    let twice_area = e1.x * e2.y - e1.y * e2.x;
-                    if twice_area <= 0.0 {
-                        continue;
-                    }
-                    out.cells += 1;
-                    for (q, w) in rule.points().iter().zip(rule.weights()) {
-                        out.points
-                            .push(point_at(t[0] + e1 * q.x + e2 * q.y, w * twice_area)?);
-                    }
-                }
-            }
-            Ok(())
+        let emitted = if deg == 2 && !setup.in_reference {
+            pair.midpoint_points(&clip, exact, out)
+        } else {
+            cells
+                .triangulate(&pair, &clip, exact)
+                .and_then(|()| pair.triangle_points(cells.list(), rule, out))
         };
-        if let Err(e) = emit() {
+        if let Err(e) = emitted {
             out.points.truncate(pushed);
             out.cells = cells_before;
             out.skip(e);
@@ -446,8 +341,178 @@ pub(super) fn segments_into(
             covered += area;
         }
     }
-    out.covered = Some(covered / area_s);
+    out.covered = Some(covered / setup.area_s);
     Ok(())
+}
+
+/// The maps of one slave/master pair of [`segments_into`]: where a point of the clip polygon
+/// lies on each face, and its quadrature weight.
+///
+/// An affine slave is integrated on the clip triangles in the plane. A non-affine slave
+/// (bilinear quad) is integrated in its reference coordinates: the clip polygon's vertices
+/// are mapped back and triangulated there, and the weights carry the surface Jacobian, so
+/// that on a planar face `Phi_j N_k J` stays a polynomial and D is exact on a covered face.
+struct PairMaps<'a, 'c> {
+    ctx: &'a SegmentContext<'c>,
+    slave: &'a FaceGeometry,
+    setup: &'a SlavePlane,
+    master_map: PlanarMap,
+    /// The master face's slot.
+    master: u32,
+}
+
+impl PairMaps<'_, '_> {
+    /// The projection failure of the point `p` of the plane onto the face on `side`.
+    #[cold]
+    fn fail(&self, f: InverseMapFailure, p: &Vector2<f64>, side: Side, tag: u64) -> MortarError {
+        MortarError::ProjectionFailed {
+            face: FaceLocation {
+                side: Some(side),
+                tag,
+            },
+            point: self.setup.plane.lift(p).into(),
+            iterations: f.iterations,
+            residual: f.residual,
+        }
+    }
+
+    /// The slave's reference coordinates of the point `v` of the plane.
+    #[inline]
+    fn slave_xi(&self, v: &Vector2<f64>) -> Result<Vector2<f64>> {
+        let tol = self.ctx.interface.tolerances();
+        self.setup
+            .slave_map
+            .invert(v, tol.newton, tol.newton_max_iterations)
+            .map_err(|f| self.fail(f, v, Side::Slave, self.slave.tag))
+    }
+
+    /// One paired point at `c` (in-plane coordinates for an affine slave, the slave's
+    /// reference coordinates otherwise) with quadrature weight `weight`.
+    #[inline]
+    fn point_at(&self, c: Vector2<f64>, weight: f64) -> Result<PairedPoint> {
+        let tol = self.ctx.interface.tolerances();
+        let setup = self.setup;
+        let (p, xi_s, jac) = if setup.in_reference {
+            // The surface's own measure (not the plane's): the measure the dual basis is
+            // built with, so D stays diagonal on warped faces too.
+            let (p, _) = setup.slave_map.eval(&c);
+            let el = self.slave.element;
+            (p, c, el.jacobian_det(self.slave.node_coords(), &c))
+        } else {
+            (c, self.slave_xi(&c)?, setup.measure)
+        };
+        let xi_m = self
+            .master_map
+            .invert(&p, tol.newton, tol.newton_max_iterations)
+            .map_err(|f| self.fail(f, &p, Side::Master, self.ctx.master_tag(self.master)))?;
+        Ok(PairedPoint {
+            master: self.master,
+            xi_slave: xi_s,
+            xi_master: xi_m,
+            weight: weight * jac,
+        })
+    }
+
+    /// Degree 2 on an affine slave: the edge-midpoint rule on each fan triangle of `clip`.
+    /// Its points on the spokes (centroid to vertex) are shared by neighbouring triangles, so
+    /// an n-gon needs 2n points instead of 3n; still exact for degree 2. Where the integrands
+    /// are of degree 2 at most (`exact`), any triangulation integrates them exactly and the
+    /// fan from a vertex serves: n - 2 triangles, 2n - 3 points.
+    fn midpoint_points(&self, clip: &Polygon, exact: bool, out: &mut PairedRule) -> Result<()> {
+        let push = |c, weight, cells| {
+            out.cells += cells;
+            if weight > 0.0 {
+                out.points.push(self.point_at(c, weight)?);
+            }
+            Ok(())
+        };
+        if exact {
+            vertex_fan_midpoints(clip, push)
+        } else {
+            fan_midpoints(clip, push)
+        }
+    }
+
+    /// The triangle rule `rule` on each triangle of `list` of positive area.
+    fn triangle_points(
+        &self,
+        list: &[[Vector2<f64>; 3]],
+        rule: &QuadratureRule,
+        out: &mut PairedRule,
+    ) -> Result<()> {
+        for t in list {
+            let e1 = t[1] - t[0];
+            let e2 = t[2] - t[0];
+            let twice_area = e1.x * e2.y - e1.y * e2.x;
+            if twice_area <= 0.0 {
+                continue;
+            }
+            out.cells += 1;
+            for (q, w) in rule.points().iter().zip(rule.weights()) {
+                out.points
+                    .push(self.point_at(t[0] + e1 * q.x + e2 * q.y, w * twice_area)?);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The triangles a clip polygon is integrated on, kept between the pairs of one slave face.
+struct CellBuffers {
+    /// Whether each plane triangle is cut into `quad_subdivision^2` (a non-parallelogram quad
+    /// integrated in its reference coordinates).
+    cut: bool,
+    quad_subdivision: u32,
+    tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES>,
+    cut_tris: Vec<[Vector2<f64>; 3]>,
+}
+
+impl CellBuffers {
+    /// The triangles of the last [`triangulate`](Self::triangulate).
+    fn list(&self) -> &[[Vector2<f64>; 3]] {
+        if self.cut {
+            &self.cut_tris
+        } else {
+            &self.tris
+        }
+    }
+
+    /// Triangulates `clip` for the pair `pair` (`exact`: the quadrature integrates the
+    /// pair's integrands exactly on any triangulation).
+    fn triangulate(&mut self, pair: &PairMaps<'_, '_>, clip: &Polygon, exact: bool) -> Result<()> {
+        self.tris.clear();
+        self.cut_tris.clear();
+        if self.cut {
+            // Each plane triangle of the centroid fan cut into m^2, its vertices mapped back:
+            // the chords m times closer to the curved edges.
+            let mut plane_tris: ArrayVec<[Vector2<f64>; 3], MAX_POLYGON_VERTICES> = ArrayVec::new();
+            clip.for_each_triangle(|t| plane_tris.push(t));
+            for t in &plane_tris {
+                cut_triangle(
+                    t,
+                    self.quad_subdivision,
+                    |v| pair.slave_xi(v),
+                    &mut self.cut_tris,
+                )?;
+            }
+        } else if pair.setup.in_reference {
+            let mut xi_poly = Polygon::default();
+            for v in &clip.vertices {
+                xi_poly.vertices.push(pair.slave_xi(v)?);
+            }
+            xi_poly.for_each_triangle(|t| self.tris.push(t));
+        } else if exact {
+            // The cheapest triangulation serves: the fan from a vertex of the (convex) clip
+            // polygon, n - 2 triangles instead of n.
+            clip.for_each_fan_triangle(|t| self.tris.push(t));
+        } else {
+            // The quadrature is not exact: the fan from the centroid, whose triangles do not
+            // depend on which vertex the polygon starts at (so that relabelling the faces
+            // permutes D and M to round-off).
+            clip.for_each_triangle(|t| self.tris.push(t));
+        }
+        Ok(())
+    }
 }
 
 /// The auxiliary plane of a slave face: through its centre `x0` (returned too), normal to

@@ -32,8 +32,11 @@ pub struct OrientationReport {
     pub kept_as_given: usize,
 }
 
+/// A face's unit normal, centre and measure.
+type FaceFrame = (Vector3<f64>, Vector3<f64>, f64);
+
 /// The unit normal and the centre of each face, and its measure.
-fn face_frames(mesh: &SurfaceMesh) -> Vec<(Vector3<f64>, Vector3<f64>, f64)> {
+fn face_frames(mesh: &SurfaceMesh) -> Vec<FaceFrame> {
     (0..mesh.face_count())
         .map(|f| {
             let view = mesh.face(f);
@@ -360,81 +363,8 @@ pub fn face_each_other(
         .unwrap_or(0);
     let fs = face_frames(slave);
     let fm = face_frames(master);
-    let sizes: Vec<f64> = (0..slave.face_count())
-        .map(|f| {
-            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
-            let k = slave.face_coords_into(f, &mut x);
-            (0..k)
-                .flat_map(|i| (i + 1..k).map(move |j| (i, j)))
-                .map(|(i, j)| (x[i] - x[j]).norm())
-                .fold(0.0, f64::max)
-        })
-        .collect();
-    // Nearby pairs by a grid of master centres. A pair's centres lie within
-    // `sqrt(1 + reach^2)` times the largest slave size of each other, so with cells that wide
-    // a slave face's partners are in the 27 cells around its own.
-    let largest = sizes.iter().copied().fold(0.0, f64::max);
-    let cell = largest * (1.0 + reach * reach).sqrt() * (1.0 + 1e-9);
-    let key = |x: &Vector3<f64>| {
-        (
-            (x.x / cell).floor() as i64,
-            (x.y / cell).floor() as i64,
-            (x.z / cell).floor() as i64,
-        )
-    };
-    let mut grid: rustc_hash::FxHashMap<(i64, i64, i64), Vec<u32>> = Default::default();
-    if cell > 0.0 && cell.is_finite() {
-        for (m, (_, c, _)) in fm.iter().enumerate() {
-            grid.entry(key(c)).or_default().push(m as u32);
-        }
-    }
-    // Nearby pairs (slave face, master face, distance along the slave normal), the slave
-    // faces in chunks on all threads, concatenated in face order. Each slave face heeds the
-    // nearest master faces along its normal only (within a thousandth of its size of the
-    // nearest): where the surfaces touch, the faces behind them must not decide, neither those
-    // of the next facet of a coarse closed surface (a triangle's sides turn by 120 degrees:
-    // the master faces near a corner lie behind the next side) nor those of the far side of a
-    // thin body within reach (a short prism's caps).
-    let near: Vec<(u32, u32, f64)> = {
-        use rayon::prelude::*;
-        const CHUNK: usize = 4096;
-        let chunks: Vec<Vec<(u32, u32, f64)>> = fs
-            .par_chunks(CHUNK)
-            .enumerate()
-            .map(|(chunk, frames)| {
-                let mut out = Vec::new();
-                let mut pairs = Vec::new();
-                for (i, (n, c, _)) in frames.iter().enumerate() {
-                    let s = chunk * CHUNK + i;
-                    let (i, j, k) = key(c);
-                    pairs.clear();
-                    for di in -1..=1 {
-                        for dj in -1..=1 {
-                            for dk in -1..=1 {
-                                let cell = grid.get(&(i + di, j + dj, k + dk));
-                                for &m in cell.into_iter().flatten() {
-                                    let d = fm[m as usize].1 - c;
-                                    let along = n.dot(&d);
-                                    let across = (d - n * along).norm();
-                                    if across <= sizes[s] && along.abs() <= reach * sizes[s] {
-                                        pairs.push((s as u32, m, along));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                    let closest = pairs
-                        .iter()
-                        .map(|p| p.2.abs())
-                        .fold(f64::INFINITY, f64::min);
-                    let tol = 1e-3 * sizes[s];
-                    out.extend(pairs.iter().filter(|p| p.2.abs() <= closest + tol));
-                }
-                out
-            })
-            .collect();
-        chunks.concat()
-    };
+    let sizes = face_sizes(slave);
+    let near = nearby_pairs(&fs, &fm, &sizes, reach);
     // Slave pieces: the master on the normal's side (a positive gap) or the other.
     let mut votes = vec![(0.0f64, 0.0f64); ns];
     for &(s, _, along) in &near {
@@ -491,6 +421,97 @@ pub fn face_each_other(
             kept_as_given: agree.iter().filter(|&&a| a == 0.0).count(),
         },
     ])
+}
+
+/// The size of each face of `mesh`: the largest distance between two of its nodes.
+fn face_sizes(mesh: &SurfaceMesh) -> Vec<f64> {
+    (0..mesh.face_count())
+        .map(|f| {
+            let mut x = [Vector3::zeros(); MAX_FACE_NODES];
+            let k = mesh.face_coords_into(f, &mut x);
+            (0..k)
+                .flat_map(|i| (i + 1..k).map(move |j| (i, j)))
+                .map(|(i, j)| (x[i] - x[j]).norm())
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
+/// The nearby pairs (slave face, master face, distance along the slave normal) of the
+/// slave faces' and master faces' frames `fs`, `fm` (normal, centre, area), the slave faces
+/// of sizes `sizes`: centres within `reach` times the slave face's size of each other along
+/// its normal and within its size across it.
+fn nearby_pairs(
+    fs: &[FaceFrame],
+    fm: &[FaceFrame],
+    sizes: &[f64],
+    reach: f64,
+) -> Vec<(u32, u32, f64)> {
+    // Nearby pairs by a grid of master centres. A pair's centres lie within
+    // `sqrt(1 + reach^2)` times the largest slave size of each other, so with cells that wide
+    // a slave face's partners are in the 27 cells around its own.
+    let largest = sizes.iter().copied().fold(0.0, f64::max);
+    let cell = largest * (1.0 + reach * reach).sqrt() * (1.0 + 1e-9);
+    let key = |x: &Vector3<f64>| {
+        (
+            (x.x / cell).floor() as i64,
+            (x.y / cell).floor() as i64,
+            (x.z / cell).floor() as i64,
+        )
+    };
+    let mut grid: rustc_hash::FxHashMap<(i64, i64, i64), Vec<u32>> = Default::default();
+    if cell > 0.0 && cell.is_finite() {
+        for (m, (_, c, _)) in fm.iter().enumerate() {
+            grid.entry(key(c)).or_default().push(m as u32);
+        }
+    }
+    // Nearby pairs (slave face, master face, distance along the slave normal), the slave
+    // faces in chunks on all threads, concatenated in face order. Each slave face heeds the
+    // nearest master faces along its normal only (within a thousandth of its size of the
+    // nearest): where the surfaces touch, the faces behind them must not decide, neither those
+    // of the next facet of a coarse closed surface (a triangle's sides turn by 120 degrees:
+    // the master faces near a corner lie behind the next side) nor those of the far side of a
+    // thin body within reach (a short prism's caps).
+    {
+        use rayon::prelude::*;
+        const CHUNK: usize = 4096;
+        let chunks: Vec<Vec<(u32, u32, f64)>> = fs
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(chunk, frames)| {
+                let mut out = Vec::new();
+                let mut pairs = Vec::new();
+                for (i, (n, c, _)) in frames.iter().enumerate() {
+                    let s = chunk * CHUNK + i;
+                    let (i, j, k) = key(c);
+                    pairs.clear();
+                    for di in -1..=1 {
+                        for dj in -1..=1 {
+                            for dk in -1..=1 {
+                                let cell = grid.get(&(i + di, j + dj, k + dk));
+                                for &m in cell.into_iter().flatten() {
+                                    let d = fm[m as usize].1 - c;
+                                    let along = n.dot(&d);
+                                    let across = (d - n * along).norm();
+                                    if across <= sizes[s] && along.abs() <= reach * sizes[s] {
+                                        pairs.push((s as u32, m, along));
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    let closest = pairs
+                        .iter()
+                        .map(|p| p.2.abs())
+                        .fold(f64::INFINITY, f64::min);
+                    let tol = 1e-3 * sizes[s];
+                    out.extend(pairs.iter().filter(|p| p.2.abs() <= closest + tol));
+                }
+                out
+            })
+            .collect();
+        chunks.concat()
+    }
 }
 
 /// The faces reversed overall: for consistency, or with their piece, not both.
