@@ -420,53 +420,11 @@ impl CouplingSummary {
     }
 }
 
-/// A few readable lines: sizes, pairs, segments, area, time, formulation.
-impl fmt::Display for CouplingSummary {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let p = &self.seconds_by_phase;
-        let side = |label: &Option<String>, faces: usize, nodes: usize| {
-            let counts = format!("{}, {}", plural(faces, "face"), plural(nodes, "node"));
-            match label {
-                Some(l) => format!("{counts} ({l})"),
-                None => counts,
-            }
-        };
-        let (ns, nm) = (self.slave_nodes.len(), self.master_nodes.len());
-        let mut lines = vec![
-            ("slave", side(&self.slave, self.slave_faces, ns)),
-            ("master", side(&self.master, self.master_faces, nm)),
-        ];
-        if let Some(o) = &self.orientation {
-            let one = |s: &SideOrientation| match s.components {
-                Some(c) => format!(
-                    "{} ({}, {} reversed)",
-                    s.method.describe(),
-                    plural(c, "piece"),
-                    plural(s.flipped, "face")
-                ),
-                None => format!(
-                    "{} ({} reversed)",
-                    s.method.describe(),
-                    plural(s.flipped, "face")
-                ),
-            };
-            lines.push((
-                "oriented",
-                format!("slave {}; master {}", one(&o.slave), one(&o.master)),
-            ));
-        }
-        let degrees: Vec<String> = self.degrees_used.iter().map(u32::to_string).collect();
-        lines.push((
-            "problem",
-            format!(
-                "{}D, {}; quadrature degree {} used; search radius {}, boxes {}",
-                self.dimension,
-                self.formulation,
-                degrees.join(", "),
-                self.search_radius,
-                self.search_boxes
-            ),
-        ));
+impl CouplingSummary {
+    /// The summary's line on D: its size and nonzeros, the recombination and the entries off
+    /// its diagonal.
+    fn d_line(&self) -> String {
+        let ns = self.slave_nodes.len();
         let mut d = format!("{ns} x {ns}, {}", plural(self.d_nonzeros, "nonzero"));
         if let Some(t) = &self.recombination {
             d.push_str(&format!(
@@ -487,7 +445,76 @@ impl fmt::Display for CouplingSummary {
                 self.d_roundoff_largest
             ));
         }
-        lines.push(("D", d));
+        d
+    }
+
+    /// The summary's line on the time taken, by phase.
+    fn time_line(&self) -> String {
+        let p = &self.seconds_by_phase;
+        format!(
+            "{:.4} s on {} (tree {:.4}, faces {:.4}, assembly {:.4}; per-face work in \
+             thread-seconds: search {:.4}, segments {:.4}, integration {:.4})",
+            self.seconds,
+            plural(self.threads, "thread"),
+            p.tree,
+            p.faces,
+            p.assembly,
+            p.thread_seconds.search,
+            p.thread_seconds.segments,
+            p.thread_seconds.integration
+        )
+    }
+}
+
+/// The summary's line on how the surfaces were oriented.
+fn orientation_line(o: &OrientationSummary) -> String {
+    let one = |s: &SideOrientation| match s.components {
+        Some(c) => format!(
+            "{} ({}, {} reversed)",
+            s.method.describe(),
+            plural(c, "piece"),
+            plural(s.flipped, "face")
+        ),
+        None => format!(
+            "{} ({} reversed)",
+            s.method.describe(),
+            plural(s.flipped, "face")
+        ),
+    };
+    format!("slave {}; master {}", one(&o.slave), one(&o.master))
+}
+
+/// A few readable lines: sizes, pairs, segments, area, time, formulation.
+impl fmt::Display for CouplingSummary {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let side = |label: &Option<String>, faces: usize, nodes: usize| {
+            let counts = format!("{}, {}", plural(faces, "face"), plural(nodes, "node"));
+            match label {
+                Some(l) => format!("{counts} ({l})"),
+                None => counts,
+            }
+        };
+        let (ns, nm) = (self.slave_nodes.len(), self.master_nodes.len());
+        let mut lines = vec![
+            ("slave", side(&self.slave, self.slave_faces, ns)),
+            ("master", side(&self.master, self.master_faces, nm)),
+        ];
+        if let Some(o) = &self.orientation {
+            lines.push(("oriented", orientation_line(o)));
+        }
+        let degrees: Vec<String> = self.degrees_used.iter().map(u32::to_string).collect();
+        lines.push((
+            "problem",
+            format!(
+                "{}D, {}; quadrature degree {} used; search radius {}, boxes {}",
+                self.dimension,
+                self.formulation,
+                degrees.join(", "),
+                self.search_radius,
+                self.search_boxes
+            ),
+        ));
+        lines.push(("D", self.d_line()));
         lines.push((
             "M",
             format!("{ns} x {nm}, {}", plural(self.m_nonzeros, "nonzero")),
@@ -540,21 +567,7 @@ impl fmt::Display for CouplingSummary {
                 ),
             ));
         }
-        lines.push((
-            "time",
-            format!(
-                "{:.4} s on {} (tree {:.4}, faces {:.4}, assembly {:.4}; per-face work in \
-                 thread-seconds: search {:.4}, segments {:.4}, integration {:.4})",
-                self.seconds,
-                plural(self.threads, "thread"),
-                p.tree,
-                p.faces,
-                p.assembly,
-                p.thread_seconds.search,
-                p.thread_seconds.segments,
-                p.thread_seconds.integration
-            ),
-        ));
+        lines.push(("time", self.time_line()));
         for (i, (key, value)) in lines.iter().enumerate() {
             if i > 0 {
                 writeln!(f)?;

@@ -121,40 +121,7 @@ pub fn vtu_string_with_vectors(
         path: path.to_path_buf(),
         source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
     };
-    // Field names in order of first appearance.
-    let mut names: Vec<&str> = Vec::new();
-    for (p, piece) in pieces.iter().enumerate() {
-        for (name, values) in &piece.point_data {
-            if values.len() != piece.mesh.node_count() {
-                return Err(invalid(format!(
-                    "piece {p}: field {name:?} has {} values for {} nodes",
-                    values.len(),
-                    piece.mesh.node_count()
-                )));
-            }
-            if !names.contains(name) {
-                names.push(name);
-            }
-        }
-    }
-    for (name, values) in vectors {
-        if values.len() != pieces.len() {
-            return Err(invalid(format!(
-                "vector field {name:?} has {} pieces for {}",
-                values.len(),
-                pieces.len()
-            )));
-        }
-        for (p, (v, piece)) in values.iter().zip(pieces).enumerate() {
-            if v.len() != 3 * piece.mesh.node_count() {
-                return Err(invalid(format!(
-                    "piece {p}: vector field {name:?} has {} values for 3 x {} nodes",
-                    v.len(),
-                    piece.mesh.node_count()
-                )));
-            }
-        }
-    }
+    let names = field_names(pieces, vectors).map_err(invalid)?;
     let nn: usize = pieces.iter().map(|p| p.mesh.node_count()).sum();
     let nc: usize = pieces.iter().map(|p| p.mesh.cell_count()).sum();
     let mut s = String::new();
@@ -222,6 +189,68 @@ pub fn vtu_string_with_vectors(
         }),
     );
     s.push_str("        </DataArray>\n      </Points>\n      <Cells>\n");
+    let (types, offsets, conn) = cell_arrays(pieces, nc).map_err(invalid)?;
+    s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+    write_values(&mut s, conn.into_iter());
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
+    write_values(&mut s, offsets.iter().map(|o| o.to_string()));
+    s.push_str("        </DataArray>\n");
+    s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
+    write_values(&mut s, types.iter().map(|t| t.to_string()));
+    s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
+    s.push_str("  </UnstructuredGrid>\n</VTKFile>\n");
+    Ok(s)
+}
+
+/// The scalar fields' names in order of first appearance, after checking every field's
+/// length against its piece (a message naming the piece and the field otherwise).
+fn field_names<'a>(
+    pieces: &[VtuPiece<'a>],
+    vectors: &[(&str, Vec<&[f64]>)],
+) -> Result<Vec<&'a str>, String> {
+    let invalid = |message: String| message;
+    let mut names: Vec<&str> = Vec::new();
+    for (p, piece) in pieces.iter().enumerate() {
+        for (name, values) in &piece.point_data {
+            if values.len() != piece.mesh.node_count() {
+                return Err(invalid(format!(
+                    "piece {p}: field {name:?} has {} values for {} nodes",
+                    values.len(),
+                    piece.mesh.node_count()
+                )));
+            }
+            if !names.contains(name) {
+                names.push(name);
+            }
+        }
+    }
+    for (name, values) in vectors {
+        if values.len() != pieces.len() {
+            return Err(invalid(format!(
+                "vector field {name:?} has {} pieces for {}",
+                values.len(),
+                pieces.len()
+            )));
+        }
+        for (p, (v, piece)) in values.iter().zip(pieces).enumerate() {
+            if v.len() != 3 * piece.mesh.node_count() {
+                return Err(invalid(format!(
+                    "piece {p}: vector field {name:?} has {} values for 3 x {} nodes",
+                    v.len(),
+                    piece.mesh.node_count()
+                )));
+            }
+        }
+    }
+    Ok(names)
+}
+
+/// The VTK cell types, offsets and connectivity of all pieces' cells (the nodes numbered
+/// across pieces), `nc` cells in all; a message naming the piece and cell for a cell of
+/// fewer nodes than its corners.
+fn cell_arrays(pieces: &[VtuPiece<'_>], nc: usize) -> Result<CellArrays, String> {
+    let invalid = |message: String| message;
     let mut types = Vec::with_capacity(nc);
     let mut offsets = Vec::with_capacity(nc);
     let mut conn = Vec::new();
@@ -263,18 +292,11 @@ pub fn vtu_string_with_vectors(
         }
         first_node += mesh.node_count();
     }
-    s.push_str("        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    write_values(&mut s, conn.into_iter());
-    s.push_str("        </DataArray>\n");
-    s.push_str("        <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    write_values(&mut s, offsets.iter().map(|o| o.to_string()));
-    s.push_str("        </DataArray>\n");
-    s.push_str("        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    write_values(&mut s, types.iter().map(|t| t.to_string()));
-    s.push_str("        </DataArray>\n      </Cells>\n    </Piece>\n");
-    s.push_str("  </UnstructuredGrid>\n</VTKFile>\n");
-    Ok(s)
+    Ok((types, offsets, conn))
 }
+
+/// VTK's cell types, offsets and connectivity (as text).
+type CellArrays = (Vec<u8>, Vec<usize>, Vec<String>);
 
 /// The VTK cell type of a surface element, by its Gmsh type (whose node order is VTK's for
 /// each of these): Line2 -> `VTK_LINE` (3), Line3 -> `VTK_QUADRATIC_EDGE` (21), Tri3 ->

@@ -259,57 +259,86 @@ struct Part<'a> {
 
 /// Part `i` becomes entity `i + 1` of its dimension and physical group `i + 1`.
 fn parts_bytes(parts: &[Part<'_>], format: MshFormat) -> Result<Vec<u8>, IoError> {
-    let unwritable = |reason: String| IoError::Unwritable { reason };
-    let mut node_owner: HashMap<u64, [f64; 3]> = HashMap::new();
-    let mut element_tags: HashMap<u64, usize> = HashMap::new();
-    let mut own_nodes: Vec<Vec<(u64, [f64; 3])>> = Vec::with_capacity(parts.len());
-    let mut bboxes = Vec::with_capacity(parts.len());
-    for (s, part) in parts.iter().enumerate() {
-        let name = part.name;
-        if name.contains(['"', '\n', '\r']) {
-            return Err(unwritable(format!(
-                "physical name {name:?} contains a quote or a line break"
-            )));
-        }
-        for (_, list) in &part.blocks {
-            for (tag, _) in list {
-                if let Some(other) = element_tags.insert(*tag, s) {
-                    return Err(unwritable(format!(
-                        "element tag {tag} is used by \"{}\" and \"{name}\"",
-                        parts[other].name
-                    )));
+    let checked = CheckedParts::of(parts)?;
+    let mut w = Writer::new(format);
+    write_header(&mut w, parts, &checked.bboxes);
+    write_nodes(&mut w, parts, &checked.own_nodes);
+    write_elements(&mut w, parts, &checked.element_tags);
+    Ok(w.buf)
+}
+
+/// What the parts of a file hold once checked: each part's nodes not written by an earlier
+/// part, each part's bounding box, and the part of each element tag.
+struct CheckedParts {
+    own_nodes: Vec<Vec<(u64, [f64; 3])>>,
+    bboxes: Vec<([f64; 3], [f64; 3])>,
+    element_tags: HashMap<u64, usize>,
+}
+
+impl CheckedParts {
+    /// Checks `parts`: names without quotes or line breaks, each element tag in one part,
+    /// each node tag at one position.
+    fn of(parts: &[Part<'_>]) -> Result<Self, IoError> {
+        let unwritable = |reason: String| IoError::Unwritable { reason };
+        let mut node_owner: HashMap<u64, [f64; 3]> = HashMap::new();
+        let mut element_tags: HashMap<u64, usize> = HashMap::new();
+        let mut own_nodes: Vec<Vec<(u64, [f64; 3])>> = Vec::with_capacity(parts.len());
+        let mut bboxes = Vec::with_capacity(parts.len());
+        for (s, part) in parts.iter().enumerate() {
+            let name = part.name;
+            if name.contains(['"', '\n', '\r']) {
+                return Err(unwritable(format!(
+                    "physical name {name:?} contains a quote or a line break"
+                )));
+            }
+            for (_, list) in &part.blocks {
+                for (tag, _) in list {
+                    if let Some(other) = element_tags.insert(*tag, s) {
+                        return Err(unwritable(format!(
+                            "element tag {tag} is used by \"{}\" and \"{name}\"",
+                            parts[other].name
+                        )));
+                    }
                 }
             }
-        }
-        let mut mine = Vec::new();
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for &(tag, x) in &part.nodes {
-            for k in 0..3 {
-                lo[k] = lo[k].min(x[k]);
-                hi[k] = hi[k].max(x[k]);
-            }
-            match node_owner.get(&tag) {
-                Some(y) if y == &x => {}
-                Some(_) => {
-                    return Err(unwritable(format!(
+            let mut mine = Vec::new();
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for &(tag, x) in &part.nodes {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(x[k]);
+                    hi[k] = hi[k].max(x[k]);
+                }
+                match node_owner.get(&tag) {
+                    Some(y) if y == &x => {}
+                    Some(_) => {
+                        return Err(unwritable(format!(
                         "node tag {tag} has two positions (in \"{name}\" and an earlier surface)"
                     )))
-                }
-                None => {
-                    node_owner.insert(tag, x);
-                    mine.push((tag, x));
+                    }
+                    None => {
+                        node_owner.insert(tag, x);
+                        mine.push((tag, x));
+                    }
                 }
             }
+            if part.nodes.is_empty() {
+                (lo, hi) = ([0.0; 3], [0.0; 3]);
+            }
+            bboxes.push((lo, hi));
+            own_nodes.push(mine);
         }
-        if part.nodes.is_empty() {
-            (lo, hi) = ([0.0; 3], [0.0; 3]);
-        }
-        bboxes.push((lo, hi));
-        own_nodes.push(mine);
+        Ok(Self {
+            own_nodes,
+            bboxes,
+            element_tags,
+        })
     }
+}
 
-    let mut w = Writer::new(format);
+/// The `$MeshFormat`, `$PhysicalNames` and `$Entities` sections.
+fn write_header(w: &mut Writer, parts: &[Part<'_>], bboxes: &[([f64; 3], [f64; 3])]) {
+    let format = w.format;
     w.text("$MeshFormat\n");
     match format {
         MshFormat::Ascii => w.text("4.1 0 8\n"),
@@ -347,7 +376,10 @@ fn parts_bytes(parts: &[Part<'_>], format: MshFormat) -> Result<Vec<u8>, IoError
         }
     }
     w.end_section("Entities");
+}
 
+/// The `$Nodes` section: each part's own nodes in its entity.
+fn write_nodes(w: &mut Writer, parts: &[Part<'_>], own_nodes: &[Vec<(u64, [f64; 3])>]) {
     let total_nodes: usize = own_nodes.iter().map(Vec::len).sum();
     let (min_node, max_node) = min_max(own_nodes.iter().flatten().map(|n| n.0));
     w.text("$Nodes\n");
@@ -373,7 +405,10 @@ fn parts_bytes(parts: &[Part<'_>], format: MshFormat) -> Result<Vec<u8>, IoError
         }
     }
     w.end_section("Nodes");
+}
 
+/// The `$Elements` section: each part's blocks in its entity.
+fn write_elements(w: &mut Writer, parts: &[Part<'_>], element_tags: &HashMap<u64, usize>) {
     let block_count: usize = parts.iter().map(|p| p.blocks.len()).sum();
     let (min_el, max_el) = min_max(element_tags.keys().copied());
     w.text("$Elements\n");
@@ -403,7 +438,6 @@ fn parts_bytes(parts: &[Part<'_>], format: MshFormat) -> Result<Vec<u8>, IoError
         }
     }
     w.end_section("Elements");
-    Ok(w.buf)
 }
 
 fn min_max(tags: impl Iterator<Item = u64>) -> (u64, u64) {
