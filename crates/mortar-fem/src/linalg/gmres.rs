@@ -98,6 +98,51 @@ fn norm(a: &[f64]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// Reduces column `j` of the Hessenberg matrix `h` to upper triangular form: the previous
+/// Givens rotations `(cs, sn)` applied to it, then a new one that zeroes `h[j + 1][j]`, also
+/// applied to the residual's coordinates `g`. Returns the new diagonal entry, or `None`
+/// where the column vanishes.
+fn rotate_column(
+    h: &mut [Vec<f64>],
+    cs: &mut [f64],
+    sn: &mut [f64],
+    g: &mut [f64],
+    j: usize,
+) -> Option<f64> {
+    for i in 0..j {
+        let t = cs[i] * h[i][j] + sn[i] * h[i + 1][j];
+        h[i + 1][j] = -sn[i] * h[i][j] + cs[i] * h[i + 1][j];
+        h[i][j] = t;
+    }
+    let r = h[j][j].hypot(h[j + 1][j]);
+    if r == 0.0 {
+        return None;
+    }
+    cs[j] = h[j][j] / r;
+    sn[j] = h[j + 1][j] / r;
+    h[j][j] = r;
+    h[j + 1][j] = 0.0;
+    g[j + 1] = -sn[j] * g[j];
+    g[j] *= cs[j];
+    Some(r)
+}
+
+/// `z = V y` of the first `k` Krylov vectors `v`, with `y = H^-1 g` by back substitution on
+/// the upper triangular `k x k` part of `h`: the cycle's correction before preconditioning.
+fn krylov_combination(h: &[Vec<f64>], g: &[f64], v: &[Vec<f64>], k: usize, z: &mut [f64]) {
+    let mut y = vec![0.0; k];
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..k).map(|l| h[i][l] * y[l]).sum();
+        y[i] = (g[i] - s) / h[i][i];
+    }
+    z.fill(0.0);
+    for (yi, vi) in y.iter().zip(v) {
+        for (zl, vl) in z.iter_mut().zip(vi) {
+            *zl += yi * vl;
+        }
+    }
+}
+
 /// Solves `A x = b` by right-preconditioned restarted GMRES(m), starting from the `x` given
 /// (zero it for no initial guess).
 ///
@@ -187,24 +232,12 @@ pub fn gmres(
             }
             let hnext = norm(&w);
             h[j + 1][j] = hnext;
-            for i in 0..j {
-                let t = cs[i] * h[i][j] + sn[i] * h[i + 1][j];
-                h[i + 1][j] = -sn[i] * h[i][j] + cs[i] * h[i + 1][j];
-                h[i][j] = t;
-            }
-            let r = h[j][j].hypot(h[j + 1][j]);
-            if r == 0.0 {
+            let Some(r) = rotate_column(&mut h, &mut cs, &mut sn, &mut g, j) else {
                 // Cannot happen for a non-singular operator: the new direction and the
                 // projection both vanish.
                 k = j;
                 break;
-            }
-            cs[j] = h[j][j] / r;
-            sn[j] = h[j + 1][j] / r;
-            h[j][j] = r;
-            h[j + 1][j] = 0.0;
-            g[j + 1] = -sn[j] * g[j];
-            g[j] *= cs[j];
+            };
             iterations += 1;
             k = j + 1;
             let breakdown = hnext <= f64::EPSILON * r;
@@ -217,18 +250,8 @@ pub fn gmres(
                 break;
             }
         }
-        // y = H^-1 g (upper triangular), x += M^-1 (V y).
-        let mut y = vec![0.0; k];
-        for i in (0..k).rev() {
-            let s: f64 = (i + 1..k).map(|l| h[i][l] * y[l]).sum();
-            y[i] = (g[i] - s) / h[i][i];
-        }
-        z.fill(0.0);
-        for (yi, vi) in y.iter().zip(&v) {
-            for (zl, vl) in z.iter_mut().zip(vi) {
-                *zl += yi * vl;
-            }
-        }
+        // x += M^-1 (V y), y = H^-1 g.
+        krylov_combination(&h, &g, &v, k, &mut z);
         m.apply_in_place(&mut z)?;
         for (xl, zl) in x.iter_mut().zip(&z) {
             *xl += zl;
