@@ -26,6 +26,7 @@ macro_rules! say {
 }
 
 mod couple;
+mod pellet_report;
 mod report;
 mod run;
 mod scene;

@@ -90,3 +90,38 @@ impl SceneError {
         })
     }
 }
+
+/// The errors of one scene file, each naming it: the steps of a scene's check and solve make
+/// their errors through it rather than each repeating the file's path.
+pub(crate) struct Errors<'a> {
+    /// The scene file.
+    pub(crate) path: &'a Path,
+}
+
+impl Errors<'_> {
+    /// A mesh file or group that cannot be read, under the key `context` that names it.
+    pub(crate) fn mesh(&self, context: String, source: IoError) -> SceneError {
+        SceneError::Mesh {
+            path: self.path.to_path_buf(),
+            context,
+            source: Box::new(source),
+        }
+    }
+
+    /// A problem that cannot be built or solved.
+    pub(crate) fn physics(&self, source: PhysicsError) -> SceneError {
+        SceneError::Physics {
+            path: self.path.to_path_buf(),
+            source: Box::new(source),
+        }
+    }
+
+    /// A value of `key` out of range or inconsistent with others.
+    pub(crate) fn invalid(&self, key: String, what: String) -> SceneError {
+        SceneError::Invalid {
+            path: self.path.to_path_buf(),
+            key,
+            what,
+        }
+    }
+}

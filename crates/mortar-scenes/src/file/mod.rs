@@ -37,6 +37,7 @@ pub mod contact;
 pub mod contact_files;
 pub(crate) mod error;
 pub mod tied_heat;
+mod two_bodies;
 
 use std::path::{Path, PathBuf};
 

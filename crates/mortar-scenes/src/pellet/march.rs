@@ -404,47 +404,17 @@ impl CoupledReport<'_> {
         march: &March<'_, TL, ML>,
     ) -> Result<Value, PelletError> {
         let (scene, problem, rows) = (self.scene, march.problem, &march.rows);
-        let (onset, t_steady, x) = (self.onset, self.t_steady, &march.x);
-        let bodies = problem.heat().bodies();
-        let steady = summary(problem, x, march.centre);
+        let x = &march.x;
         let heat_out = outer_heat_flow(problem, x)?;
-        // Per unit length in 2D, over the segment in 3D.
-        let length = if scene.model.geometry.is_plane() {
-            1.0
-        } else {
-            scene.model.segment_height
-        };
-        let power_in = scene.power.at(t_steady) * length;
-        let closure = contact_engaged(rows, onset);
+        let closure = contact_engaged(rows, self.onset);
         let last = rows.last().expect("the initial row").1;
         let peak = rows.iter().map(|r| r.1.peak_pressure).fold(0.0, f64::max);
-        let stats = march.solver.stats;
-        let mesh = |b: usize| {
-            json!({
-                "nodes": bodies[b].mesh.node_count(),
-                "cells": bodies[b].mesh.cell_count(),
-            })
-        };
         Ok(json!({
             "scene": "pellet",
             "status": if march.watch.is_empty() { "ok" } else { "warnings" },
             // The model ranges the run left, each once (docs/models.md, section 3b).
             "warnings": march.watch.to_json(),
-            "models": {
-                "heat": true,
-                "mechanics": true,
-                "geometry": scene.model.geometry,
-                "axial": scene.model.axial(),
-                "contact_law": self.names.1,
-                "gap_conductance": self.names.0,
-                "plenum": "ideal gas, fixed moles",
-                // The pellet's relocation model, and the burnup it sees (MWd/kgU).
-                "relocation": self.relocation.name(),
-                "burnup": scene.model.burnup,
-                "contact_engaged": closure.is_some(),
-                // The exponential law's onset gap xi (m), below which its pressure rises.
-                "contact_onset_gap": onset,
-            },
+            "models": self.models_json(closure),
             "method": match march.solver.method { ThermoMechSolver::Newton => "newton", ThermoMechSolver::Jfnk(_) => "jfnk" },
             "solver_choice": {
                 "asked": scene.solver.method.name(),
@@ -468,61 +438,128 @@ impl CoupledReport<'_> {
                 .iter()
                 .map(ToString::to_string)
                 .collect::<Vec<_>>(),
-            "steady": {
-                "time": t_steady,
-                "center_temperature": steady.center,
-                "pellet_surface_temperature": steady.pellet_surface,
-                "cladding_inner_temperature": steady.cladding_inner,
-                "gap": steady.gap,
-                "interface_pressure": steady.interface_pressure,
-                "plenum_pressure": steady.plenum,
-                "pellet_surface_displacement": steady.displacement,
-                // The pellet's relocation strain across its axis (0 without relocation).
-                "relocation_strain": problem.eigenstrain_at(0, t_steady)?.map_or(0.0, |e| e[0]),
-                // The bodies' axial strains (null where the axial direction is held).
-                "axial_strain": {
-                    "pellet": problem.fields(x).axial_strain[0],
-                    "cladding": problem.fields(x).axial_strain[1],
-                },
-                "power_in": power_in,
-                "heat_out": heat_out,
-                "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
-            },
-            "solver": {
-                "newton_iterations": stats.newton_iterations,
-                "linear_iterations": stats.linear_iterations,
-                "factorizations": stats.factorizations,
-                "symbolic_analyses": stats.symbolic_analyses,
-                "reused_preconditioners": stats.reused_preconditioners,
-                "transient_newton_iterations": self.transient_stats.newton_iterations,
-                "step_cuts": march.cuts_total,
-                "seconds": {
-                    "newton_total": stats.total_seconds,
-                    "assembly": stats.assembly_seconds,
-                    "linear": stats.linear_seconds,
-                },
-            },
-            "mesh": {
-                "file": self.file.map(|f| json!({
-                    "path": scene.mesh.file.as_ref().map(|p| p.display().to_string()),
-                    "pellet_radius": f.pellet_radius,
-                    "cladding_inner_radius": f.inner_radius,
-                    "cladding_outer_radius": f.outer_radius,
-                    "height": f.height,
-                    "pellet_volume": f.pellet_volume,
-                    "land_area": f.land_area,
-                    "end_voids": f.end_voids(),
-                })),
-                "refinement": scene.mesh.refinement,
-                "pellet": mesh(0),
-                "cladding": mesh(1),
-                "interface_slave_nodes": problem.normal_gap().weights.len(),
-                "unknowns": problem.dimension(),
-            },
+            "steady": self.steady_json(march, heat_out)?,
+            "solver": self.solver_json(march),
+            "mesh": self.mesh_json(march),
             "vtu": march.files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
             "seconds": { "setup": self.seconds.0, "total": self.seconds.1.elapsed().as_secs_f64() },
             "scene_data": scene,
         }))
+    }
+
+    /// What was modelled: the geometry, the laws, the plenum, the relocation and burnup, and
+    /// whether contact engaged (at `closure`).
+    fn models_json(&self, closure: Option<f64>) -> Value {
+        let scene = self.scene;
+        json!({
+            "heat": true,
+            "mechanics": true,
+            "geometry": scene.model.geometry,
+            "axial": scene.model.axial(),
+            "contact_law": self.names.1,
+            "gap_conductance": self.names.0,
+            "plenum": "ideal gas, fixed moles",
+            // The pellet's relocation model, and the burnup it sees (MWd/kgU).
+            "relocation": self.relocation.name(),
+            "burnup": scene.model.burnup,
+            "contact_engaged": closure.is_some(),
+            // The exponential law's onset gap xi (m), below which its pressure rises.
+            "contact_onset_gap": self.onset,
+        })
+    }
+
+    /// The steady state at full power: its temperatures, gap, pressures, displacement,
+    /// relocation and axial strains, and its energy balance (the power in against
+    /// `heat_out`, the heat flow out of the cladding).
+    ///
+    /// # Errors
+    /// [`PelletError::Physics`] where the eigenstrain cannot be evaluated.
+    fn steady_json<TL: ConstraintLaw, ML: ConstraintLaw>(
+        &self,
+        march: &March<'_, TL, ML>,
+        heat_out: f64,
+    ) -> Result<Value, PelletError> {
+        let (scene, problem, x, t_steady) = (self.scene, march.problem, &march.x, self.t_steady);
+        let steady = summary(problem, x, march.centre);
+        // Per unit length in 2D, over the segment in 3D.
+        let length = if scene.model.geometry.is_plane() {
+            1.0
+        } else {
+            scene.model.segment_height
+        };
+        let power_in = scene.power.at(t_steady) * length;
+        Ok(json!({
+            "time": t_steady,
+            "center_temperature": steady.center,
+            "pellet_surface_temperature": steady.pellet_surface,
+            "cladding_inner_temperature": steady.cladding_inner,
+            "gap": steady.gap,
+            "interface_pressure": steady.interface_pressure,
+            "plenum_pressure": steady.plenum,
+            "pellet_surface_displacement": steady.displacement,
+            // The pellet's relocation strain across its axis (0 without relocation).
+            "relocation_strain": problem.eigenstrain_at(0, t_steady)?.map_or(0.0, |e| e[0]),
+            // The bodies' axial strains (null where the axial direction is held).
+            "axial_strain": {
+                "pellet": problem.fields(x).axial_strain[0],
+                "cladding": problem.fields(x).axial_strain[1],
+            },
+            "power_in": power_in,
+            "heat_out": heat_out,
+            "relative_imbalance": (heat_out - power_in).abs() / power_in.max(f64::MIN_POSITIVE),
+        }))
+    }
+
+    /// The solver's counts (the transient's beside them), step cuts and seconds.
+    fn solver_json<TL: ConstraintLaw, ML: ConstraintLaw>(
+        &self,
+        march: &March<'_, TL, ML>,
+    ) -> Value {
+        let stats = march.solver.stats;
+        json!({
+            "newton_iterations": stats.newton_iterations,
+            "linear_iterations": stats.linear_iterations,
+            "factorizations": stats.factorizations,
+            "symbolic_analyses": stats.symbolic_analyses,
+            "reused_preconditioners": stats.reused_preconditioners,
+            "transient_newton_iterations": self.transient_stats.newton_iterations,
+            "step_cuts": march.cuts_total,
+            "seconds": {
+                "newton_total": stats.total_seconds,
+                "assembly": stats.assembly_seconds,
+                "linear": stats.linear_seconds,
+            },
+        })
+    }
+
+    /// The meshes: the mesh file's geometry (if one), the refinement, each body's size, the
+    /// interface's slave nodes and the unknowns.
+    fn mesh_json<TL: ConstraintLaw, ML: ConstraintLaw>(&self, march: &March<'_, TL, ML>) -> Value {
+        let (scene, problem) = (self.scene, march.problem);
+        let bodies = problem.heat().bodies();
+        let mesh = |b: usize| {
+            json!({
+                "nodes": bodies[b].mesh.node_count(),
+                "cells": bodies[b].mesh.cell_count(),
+            })
+        };
+        json!({
+            "file": self.file.map(|f| json!({
+                "path": scene.mesh.file.as_ref().map(|p| p.display().to_string()),
+                "pellet_radius": f.pellet_radius,
+                "cladding_inner_radius": f.inner_radius,
+                "cladding_outer_radius": f.outer_radius,
+                "height": f.height,
+                "pellet_volume": f.pellet_volume,
+                "land_area": f.land_area,
+                "end_voids": f.end_voids(),
+            })),
+            "refinement": scene.mesh.refinement,
+            "pellet": mesh(0),
+            "cladding": mesh(1),
+            "interface_slave_nodes": problem.normal_gap().weights.len(),
+            "unknowns": problem.dimension(),
+        })
     }
 }
 

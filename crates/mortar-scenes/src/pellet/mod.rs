@@ -89,6 +89,7 @@
 //! # Ok::<(), mortar_scenes::pellet::PelletError>(())
 //! ```
 
+mod check;
 mod closed_form;
 mod coupled;
 pub mod file_mesh;
@@ -98,15 +99,15 @@ mod mesh;
 mod problem;
 mod run;
 mod stress;
+mod thermal;
 
 pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{run_coupled, run_coupled_in, run_coupled_with, run_with_registry};
 pub use march::MAX_STEP_CUTS;
 pub use mesh::{annulus_mesh, pellet_mesh};
 pub use problem::{coupled_problem, coupled_problem_with, exponential_contact_law, thermal_law};
-pub use run::{
-    is_output, run, run_builtin, run_from_toml, run_from_toml_with, run_thermal, run_with_laws,
-};
+pub use run::{is_output, run, run_builtin, run_from_toml, run_from_toml_with, run_with_laws};
+pub use thermal::run_thermal;
 
 use mortar_fem::mesh::VolumeMeshError;
 use mortar_physics::laws::{GapConductance, GasConductivity, LawError};
@@ -770,195 +771,6 @@ impl PelletScene {
             .map_err(|f| PelletError::Parse(format!("line {}: {}", f.line, f.keyed_message())))?;
         scene.check()?;
         Ok(scene)
-    }
-
-    /// Checks the values.
-    ///
-    /// # Errors
-    /// [`PelletError::Invalid`] naming the first value out of range.
-    pub fn check(&self) -> Result<(), PelletError> {
-        let bad = |what: String| Err(PelletError::Invalid(what));
-        if let Some(s) = &self.scene {
-            if s != "pellet" {
-                return bad(format!("scene = {s:?} is not \"pellet\""));
-            }
-        }
-        let (p, c) = (&self.pellet, &self.cladding);
-        let positive = [
-            ("pellet.radius", p.radius),
-            ("pellet.conductivity_a", p.conductivity_a),
-            ("cladding.conductivity", c.conductivity),
-            ("cladding.outer_temperature", c.outer_temperature),
-            ("time.step", self.time.step),
-            ("solver.relative_tolerance", self.solver.relative_tolerance),
-        ];
-        for (what, v) in positive {
-            if !(v > 0.0 && v.is_finite()) {
-                return bad(format!("{what} = {v} is not positive and finite"));
-            }
-        }
-        let non_negative = [
-            ("pellet.conductivity_b", p.conductivity_b),
-            ("pellet.heat_capacity", p.heat_capacity),
-            ("cladding.heat_capacity", c.heat_capacity),
-            ("power.linear_power", self.power.linear_power),
-            ("power.ramp_time", self.power.ramp_time),
-            ("time.end", self.time.end),
-        ];
-        for (what, v) in non_negative {
-            if !(v >= 0.0 && v.is_finite()) {
-                return bad(format!("{what} = {v} is not non-negative and finite"));
-            }
-        }
-        if !(p.radius < c.inner_radius
-            && c.inner_radius < c.outer_radius
-            && c.outer_radius.is_finite())
-        {
-            return bad(format!(
-                "radii must satisfy pellet.radius < cladding.inner_radius < cladding.outer_radius (got {}, {}, {})",
-                p.radius, c.inner_radius, c.outer_radius
-            ));
-        }
-        if self.mesh.refinement == 0 || self.mesh.refinement > 64 {
-            return bad(format!(
-                "mesh.refinement = {} is not in 1..=64",
-                self.mesh.refinement
-            ));
-        }
-        if self.solver.max_iterations == 0 || self.solver.gmres_restart == 0 {
-            return bad("solver.max_iterations and solver.gmres_restart must be positive".into());
-        }
-        if self.time.end / self.time.step > 1e6 {
-            return bad(format!(
-                "time.end / time.step = {} steps is too many",
-                self.time.end / self.time.step
-            ));
-        }
-        self.gap_law()?;
-        for (what, e, nu, alpha) in [
-            (
-                "pellet",
-                p.youngs_modulus,
-                p.poisson_ratio,
-                p.thermal_expansion,
-            ),
-            (
-                "cladding",
-                c.youngs_modulus,
-                c.poisson_ratio,
-                c.thermal_expansion,
-            ),
-        ] {
-            if !(e > 0.0 && e.is_finite()) {
-                return bad(format!(
-                    "{what}.youngs_modulus = {e} is not positive and finite"
-                ));
-            }
-            if !(nu > -1.0 && nu < 0.5) {
-                return bad(format!("{what}.poisson_ratio = {nu} is not in (-1, 0.5)"));
-            }
-            if !(alpha >= 0.0 && alpha.is_finite()) {
-                return bad(format!(
-                    "{what}.thermal_expansion = {alpha} is not non-negative and finite"
-                ));
-            }
-        }
-        let (ct, pl, m) = (&self.contact, &self.plenum, &self.model);
-        let non_negative = [
-            ("cladding.coolant_pressure", c.coolant_pressure),
-            ("gap.contact_conductance", self.gap.contact_conductance),
-            ("contact.stiffness_exponent", ct.stiffness_exponent),
-            ("plenum.fill_pressure", pl.fill_pressure),
-            ("plenum.volume", pl.volume),
-        ];
-        for (what, v) in non_negative {
-            if !(v >= 0.0 && v.is_finite()) {
-                return bad(format!("{what} = {v} is not non-negative and finite"));
-            }
-        }
-        for (what, v) in [
-            ("plenum.fill_temperature", pl.fill_temperature),
-            ("model.reference_temperature", m.reference_temperature),
-        ] {
-            if !(v > 0.0 && v.is_finite()) {
-                return bad(format!("{what} = {v} is not positive and finite"));
-            }
-        }
-        if !ct.onset_gap.is_finite() {
-            return bad(format!(
-                "contact.onset_gap = {} is not finite",
-                ct.onset_gap
-            ));
-        }
-        if !(m.burnup >= 0.0 && m.burnup.is_finite()) {
-            return bad(format!(
-                "model.burnup = {} is not non-negative and finite (MWd/kgU)",
-                m.burnup
-            ));
-        }
-        if m.burnup != 0.0 && m.relocation == "none" {
-            return bad(format!(
-                "model.burnup = {} has no effect with model.relocation = \"none\": the \
-                 burnup is what the relocation model sees (give model.relocation = \
-                 \"frapcon\", say)",
-                m.burnup
-            ));
-        }
-        if m.relocation != "none" && !m.mechanics {
-            return bad(format!(
-                "model.relocation = {:?} with model.mechanics = false: relocation moves the \
-                 pellet, which the heat-only scene holds",
-                m.relocation
-            ));
-        }
-        if m.geometry == Geometry::PlaneStrain && m.axial == Some(AxialModel::Generalized) {
-            return bad(
-                "model.geometry = \"plane_strain\" with model.axial = \"generalized\": give \
-                 geometry = \"plane\" for generalized plane strain"
-                    .into(),
-            );
-        }
-        if !m.geometry.is_plane() && !m.mechanics {
-            return bad(format!(
-                "model.geometry = {:?} with model.mechanics = false: the thermal scene is the 2D \
-                 cross-section",
-                m.geometry
-            ));
-        }
-        // The thermal scene makes its gap conductance from [gap] alone: a law by name would
-        // be passed over.
-        for (what, set) in [
-            ("laws.thermal", self.laws.thermal.is_some()),
-            ("laws.contact", self.laws.contact.is_some()),
-        ] {
-            if set && !m.mechanics {
-                return bad(format!(
-                    "{what} with model.mechanics = false: the thermal scene holds the gap at its \
-                     as-built width with the law of [gap]; laws by name are for the \
-                     thermomechanical scene"
-                ));
-            }
-        }
-        if !(m.segment_height > 0.0 && m.segment_height.is_finite()) {
-            return bad(format!(
-                "model.segment_height = {} is not positive and finite",
-                m.segment_height
-            ));
-        }
-        if self.mesh.file.is_some() && (m.geometry == Geometry::ThreeD || !m.mechanics) {
-            return bad(format!(
-                "mesh.file with model.geometry = {:?} and model.mechanics = {}: a mesh file is \
-                 the 2D cross-section or the r-z section of the thermomechanical scene",
-                m.geometry, m.mechanics
-            ));
-        }
-        if self.mesh.axial_layers == 0 || self.mesh.axial_layers > 64 {
-            return bad(format!(
-                "mesh.axial_layers = {} is not in 1..=64",
-                self.mesh.axial_layers
-            ));
-        }
-        Ok(())
     }
 
     /// Parses a scene file whose relative `[mesh] file` is in the folder `base` (the scene

@@ -1,0 +1,288 @@
+//! `kind = "tied_heat"`: heat conduction in two bodies read from Gmsh files, tied by mortar
+//! along two physical groups of their boundaries.
+//!
+//! Keys (all others are errors):
+//!
+//! - `kind = "tied_heat"`, optional `title` (a string) and `dimension` (2 or 3, checked
+//!   against the meshes).
+//! - `[bodies.NAME]`, exactly two (`NAME`: letters, digits, `_`, `-`; it names the VTU file):
+//!   `mesh` (a Gmsh 4.1 file, relative to the scene file), `group` (the physical group of the
+//!   cells), `conductivity` (k > 0), `rho_cp` (volumetric heat capacity, needed for a
+//!   transient solve; default 0), `source` (W/m^3, default 0), `initial` (the initial
+//!   temperature of a transient solve, default 0), `dirichlet = [{ group, value }, ...]`
+//!   (prescribed temperature) and `neumann = [{ group, flux }, ...]` (entering heat flux
+//!   `k dT/dn`, W/m^2) on physical groups of the body's boundary faces (lines in 2D, surfaces
+//!   in 3D). Boundary faces without a condition are insulated.
+//! - `[interface]`: `slave = { body, group }`, `master = { body, group }` (the slave side
+//!   carries the multipliers), `multipliers = "standard" | "dual" | "linear"` (default
+//!   `"dual"`; `"linear"`: on the corner nodes of second-order faces only),
+//!   `integration = "segment" | "element"` (default `"segment"`), `degree` (default
+//!   automatic), and for segment-based integration `curved_tolerance`, `subdivision` (curved
+//!   second-order faces in 3D) and `quad_subdivision` (non-parallelogram slave quads);
+//!   `search_radius` (a distance along the slave normals; default as far as the nearest
+//!   master surface, within a bound relative to the interface's size) and
+//!   `require_full_coverage` (default false: uncovered slave area and overlapping master
+//!   faces are warnings, not errors).
+//! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
+//!   (at most [`MAX_STEPS`])
+//!   for a transient solve; `formulation = "auto" | "saddle_point" | "dual_condensed"`
+//!   (default auto: the dual condensation when D is diagonal).
+//!
+//! Outputs: `NAME.vtu` per body (nodal `temperature`, at the end of a transient solve) and
+//! `report.json` (formulation and why, unknowns, seconds per phase, solver iterations).
+
+mod check;
+mod output;
+mod solve;
+mod solve_spec;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use mortar::extend::Registries;
+use mortar::io::{CouplingSettings, Integration, Multipliers};
+use mortar_physics::heat::{TiedHeat, TiedHeatSolution};
+use serde::{Deserialize, Serialize};
+
+use super::{SceneError, SceneOutput, SceneSource};
+
+pub use solve_spec::{FormulationSpec, Mode, SolveSpec};
+
+/// The most time steps a transient tied-heat scene may ask for (the pellet scene's limit too):
+/// beyond it a step count is refused rather than run without end.
+pub const MAX_STEPS: usize = 1_000_000;
+
+/// A tied heat scene file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TiedHeatSpec {
+    /// `"tied_heat"`.
+    pub kind: String,
+    /// A title for reports.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub title: Option<String>,
+    /// The expected dimension of the bodies (2 or 3), checked against the meshes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dimension: Option<u8>,
+    /// The settings of the solve.
+    #[serde(default)]
+    pub solve: SolveSpec,
+    /// The two bodies, by name.
+    pub bodies: BTreeMap<String, BodySpec>,
+    /// The interface.
+    pub interface: InterfaceSpec,
+}
+
+/// One body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// The Gmsh 4.1 file, relative to the scene file's folder.
+    pub mesh: PathBuf,
+    /// The physical group of the body's cells.
+    pub group: String,
+    /// The conductivity k (W/m/K).
+    pub conductivity: f64,
+    /// The volumetric heat capacity rho c_p (J/m^3/K).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rho_cp: Option<f64>,
+    /// The heat source (W/m^3).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub source: f64,
+    /// The initial temperature of a transient solve.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub initial: f64,
+    /// Prescribed temperatures.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub dirichlet: Vec<DirichletSpec>,
+    /// Entering heat fluxes.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub neumann: Vec<NeumannSpec>,
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// A prescribed temperature on a physical group of boundary faces.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DirichletSpec {
+    /// The physical group (in the body's mesh file).
+    pub group: String,
+    /// The temperature.
+    pub value: f64,
+}
+
+/// An entering heat flux `k dT/dn` on a physical group of boundary faces.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NeumannSpec {
+    /// The physical group (in the body's mesh file).
+    pub group: String,
+    /// The flux (W/m^2), positive into the body.
+    pub flux: f64,
+}
+
+/// One side of the interface.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SideSpec {
+    /// The body's name.
+    pub body: String,
+    /// The physical group of the side's faces (in the body's mesh file).
+    pub group: String,
+}
+
+/// The interface and its mortar coupling.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// The slave side: it carries the multipliers.
+    pub slave: SideSpec,
+    /// The master side.
+    pub master: SideSpec,
+    /// The multiplier space (default dual, the vocabulary's: [`Multipliers::default`]).
+    #[serde(default)]
+    pub multipliers: Multipliers,
+    /// The integration strategy.
+    #[serde(default)]
+    pub integration: Integration,
+    /// The quadrature degree (default automatic).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub degree: Option<u32>,
+    /// Segment-based: the curved-face subdivision tolerance (see
+    /// [`CouplingSettings::curved_tolerance`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curved_tolerance: Option<f64>,
+    /// Segment-based: a fixed curved-face subdivision level.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub subdivision: Option<u32>,
+    /// Segment-based: the cut of non-parallelogram slave quads (see
+    /// [`CouplingSettings::quad_subdivision`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quad_subdivision: Option<u32>,
+    /// How far along the slave normals the search looks for master faces, a distance (see
+    /// [`CouplingSettings::search_radius`]; default: as far as the nearest master surface,
+    /// within a bound relative to the interface's size).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub search_radius: Option<f64>,
+    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
+    /// of warnings.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub require_full_coverage: bool,
+}
+
+impl InterfaceSpec {
+    /// The coupling settings of these keys.
+    pub fn settings(&self) -> CouplingSettings {
+        CouplingSettings {
+            multipliers: self.multipliers,
+            integration: self.integration,
+            degree: self.degree,
+            curved_tolerance: self.curved_tolerance,
+            subdivision: self.subdivision,
+            quad_subdivision: self.quad_subdivision,
+            search_radius: self.search_radius,
+            require_full_coverage: self.require_full_coverage,
+            threads: None,
+        }
+    }
+}
+
+impl TiedHeatSpec {
+    /// Parses a scene file's text; `path` names it in messages.
+    ///
+    /// # Errors
+    /// [`SceneError::Syntax`] for bad TOML, an unknown or missing key or a wrong type (with
+    /// its line); [`SceneError::Invalid`] for values out of range or inconsistent (see
+    /// [`check`](Self::check)).
+    pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
+        let spec: Self = SceneError::parse(path, text)?;
+        spec.check(path)?;
+        Ok(spec)
+    }
+
+    /// The TOML text of the scene.
+    ///
+    /// # Errors
+    /// [`SceneError::Other`] if a value cannot be written as TOML (a NaN, say).
+    pub fn to_toml(&self) -> Result<String, SceneError> {
+        toml::to_string(self).map_err(|e| SceneError::Other(format!("scene as TOML: {e}")))
+    }
+
+    /// Reads the meshes (through `source`, paths relative to `base`, the scene file's
+    /// folder), builds and solves the problem, and renders the VTU files and `report.json`.
+    /// `path` names the scene file in messages and in the report.
+    ///
+    /// # Errors
+    /// [`SceneError::Mesh`] for a missing mesh file, a missing group or a group of the wrong
+    /// dimension (each naming the key, the file and the group); [`SceneError::Invalid`] for
+    /// bodies of different dimensions or not of `dimension`; [`SceneError::Physics`] for a
+    /// problem that cannot be built or solved (an inverted cell, an interface without
+    /// overlap, a singular system).
+    pub fn run(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+    ) -> Result<SceneOutput, SceneError> {
+        self.solve(path, base, source)?.output()
+    }
+
+    /// Reads the meshes and solves the problem (see [`run`](Self::run)), without rendering.
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn solve(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+    ) -> Result<SolvedTiedHeat, SceneError> {
+        self.solve_with(path, base, source, &Registries::default())
+    }
+
+    /// [`run`](Self::run) with the bodies' cells looked up in `registries.cells` (the shipped
+    /// cells and a program's own; the interface faces are the surface elements of their
+    /// faces).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_with(
+        &self,
+        path: &Path,
+        base: &Path,
+        source: &dyn SceneSource,
+        registries: &Registries,
+    ) -> Result<SceneOutput, SceneError> {
+        self.solve_with(path, base, source, registries)?.output()
+    }
+}
+
+/// A solved tied heat scene.
+#[derive(Debug, Clone)]
+pub struct SolvedTiedHeat {
+    /// The scene.
+    pub spec: TiedHeatSpec,
+    /// The scene file.
+    pub path: PathBuf,
+    /// The bodies' meshes as `file#group`, slave first.
+    pub labels: [String; 2],
+    /// The bodies' mesh files, slave first.
+    files: [PathBuf; 2],
+    /// The dimension of the bodies.
+    pub dimension: u8,
+    coupling: String,
+    /// The problem (bodies: slave first, named as in the scene).
+    pub problem: TiedHeat,
+    /// The solution (at the end of a transient solve).
+    pub solution: TiedHeatSolution,
+    /// Time steps taken (0 for a steady solve).
+    pub steps: usize,
+    /// The final time (0 for a steady solve).
+    pub time: f64,
+    t_start: Instant,
+    t_read: f64,
+}
