@@ -6,6 +6,8 @@
 //!   [`CellValues`](element::CellValues), the values an assembly loop needs at the
 //!   quadrature points of one cell);
 //! - [`quadrature`]: their quadrature rules;
+//! - [`field`]: the numbering of a nodal field's unknowns ([`DofLayout`](field::DofLayout),
+//!   [`ComponentSet`](field::ComponentSet)) and of those its prescribed values leave free;
 //! - [`mesh`]: [`VolumeMesh`], the nodes and cells of a body, whose boundary faces come out as
 //!   outward-oriented [`SurfaceMesh`](mortar_core::SurfaceMesh)es for an interface;
 //! - [`linalg`]: sparse linear algebra behind one solver interface
@@ -31,6 +33,7 @@
 )]
 
 pub mod element;
+pub mod field;
 pub mod linalg;
 pub mod mesh;
 pub mod quadrature;

@@ -2,6 +2,7 @@
 
 use mortar_core::{MortarError, Side};
 use mortar_fem::element::NonPositiveJacobian;
+use mortar_fem::field::FieldError;
 use mortar_fem::linalg::SolverError;
 use mortar_fem::mesh::VolumeMeshError;
 
@@ -107,4 +108,19 @@ pub enum PhysicsError {
     /// Newton's method failed (its residual history is in the error).
     #[error(transparent)]
     Newton(#[from] NewtonFailure),
+}
+
+impl From<FieldError> for PhysicsError {
+    /// A field's numbering error as [`PhysicsError::InvalidInput`]: body `"options"` for an
+    /// unknown component name (a user's text), `"dof layout"` for the rest.
+    fn from(e: FieldError) -> Self {
+        let body = match e {
+            FieldError::UnknownComponent { .. } => "options",
+            _ => "dof layout",
+        };
+        PhysicsError::InvalidInput {
+            body: body.into(),
+            what: e.to_string(),
+        }
+    }
 }

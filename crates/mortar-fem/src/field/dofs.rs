@@ -4,7 +4,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use crate::error::PhysicsError;
+use super::FieldError;
 
 /// Which components of a nodal field a condition acts on.
 ///
@@ -12,7 +12,7 @@ use crate::error::PhysicsError;
 /// surrounding white space ignored):
 ///
 /// ```
-/// use mortar_physics::elastic::ComponentSet;
+/// use mortar_fem::field::ComponentSet;
 /// assert_eq!("y".parse::<ComponentSet>().unwrap(), ComponentSet::One(1));
 /// assert!("w".parse::<ComponentSet>().is_err());
 /// ```
@@ -38,18 +38,18 @@ impl ComponentSet {
         (0..components).filter(move |&c| self.contains(c))
     }
 
-    /// Checks that the set fits a field of `components` components; the error text says
-    /// which component and how many there are.
+    /// Checks that the set fits a field of `components` components.
     ///
     /// # Errors
-    /// A message for [`PhysicsError::InvalidInput`] if the set is `One(c)` with
-    /// `c >= components`.
-    pub(crate) fn fits(self, components: usize) -> Result<(), String> {
+    /// [`FieldError::NoSuchComponent`] (saying which component and how many there are) if
+    /// the set is `One(c)` with `c >= components`.
+    pub fn fits(self, components: usize) -> Result<(), FieldError> {
         match self {
-            ComponentSet::One(c) if c >= components => Err(format!(
-                "component {} ({c}) does not exist: the field has {components} component(s)",
-                component_name(c)
-            )),
+            ComponentSet::One(c) if c >= components => Err(FieldError::NoSuchComponent {
+                name: component_name(c),
+                component: c,
+                components,
+            }),
             _ => Ok(()),
         }
     }
@@ -75,19 +75,18 @@ impl fmt::Display for ComponentSet {
 }
 
 impl FromStr for ComponentSet {
-    type Err = PhysicsError;
+    type Err = FieldError;
 
     /// # Errors
-    /// [`PhysicsError::InvalidInput`] (body `"options"`) for anything but x, y, z or all.
+    /// [`FieldError::UnknownComponent`] for anything but x, y, z or all.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
         match s.trim().to_ascii_lowercase().as_str() {
             "x" => Ok(ComponentSet::One(0)),
             "y" => Ok(ComponentSet::One(1)),
             "z" => Ok(ComponentSet::One(2)),
             "all" => Ok(ComponentSet::All),
-            _ => Err(PhysicsError::InvalidInput {
-                body: "options".into(),
-                what: format!("unknown component {s:?}: expected x, y, z or all"),
+            _ => Err(FieldError::UnknownComponent {
+                text: s.to_string(),
             }),
         }
     }
@@ -151,26 +150,22 @@ impl DofLayout {
     /// given, components ascending within a node.
     ///
     /// # Errors
-    /// [`PhysicsError::InvalidInput`] (body `"dof layout"`) for a node index beyond the
-    /// layout, a component set that does not fit it, or a layout too large for `u32`
-    /// numbering.
-    pub fn expand_nodes(&self, nodes: &[u32], set: ComponentSet) -> Result<Vec<u32>, PhysicsError> {
-        let invalid = |what: String| PhysicsError::InvalidInput {
-            body: "dof layout".into(),
-            what,
-        };
-        set.fits(self.components).map_err(invalid)?;
+    /// [`FieldError::NoSuchComponent`] for a component set that does not fit the layout,
+    /// [`FieldError::TooLarge`] for a layout too large for `u32` numbering,
+    /// [`FieldError::NodeBeyondLayout`] for a node index beyond it.
+    pub fn expand_nodes(&self, nodes: &[u32], set: ComponentSet) -> Result<Vec<u32>, FieldError> {
+        set.fits(self.components)?;
         if !self.fits_u32() {
-            return Err(invalid(format!(
-                "{} nodes x {} components do not fit u32 unknown numbers",
-                self.nodes, self.components
-            )));
+            return Err(FieldError::TooLarge {
+                nodes: self.nodes,
+                components: self.components,
+            });
         }
-        if let Some(bad) = nodes.iter().find(|&&n| n as usize >= self.nodes) {
-            return Err(invalid(format!(
-                "node index {bad} is beyond the layout's {} nodes",
-                self.nodes
-            )));
+        if let Some(&bad) = nodes.iter().find(|&&n| n as usize >= self.nodes) {
+            return Err(FieldError::NodeBeyondLayout {
+                node: bad,
+                nodes: self.nodes,
+            });
         }
         let per_node = set.components(self.components).count();
         let mut out = Vec::with_capacity(nodes.len() * per_node);
