@@ -146,7 +146,7 @@ fn hertz_cylinder_on_block_2d() {
     eprintln!(
         "Hertz 2D: P = {:.4e} N/m, a = {a:.5} (a_h = {:.5}, bracket [{:.5}, {:.5}], element \
          {:.5}), p0 = {:.4e} (p0_h off by {:+.2e}), {} of {} slave nodes in contact, \
-         Newton steps {:?}, equilibrium {:.1e}, {:.2} s",
+         Newton steps {:?}, equilibrium {:.1e}, profile L2 error {:.2e}, {:.2} s",
         run.load,
         run.half_width.estimate,
         run.half_width.last_in_contact,
@@ -158,9 +158,15 @@ fn hertz_cylinder_on_block_2d() {
         run.slave_nodes,
         run.steps.iter().map(|s| s.newton_steps).collect::<Vec<_>>(),
         run.equilibrium_error(),
+        run.profile_l2,
         run.seconds
     );
     hertz_2d_criteria(&run, "first order");
+    assert!(
+        run.profile_l2 <= crate::claims::claim("hertz2d.profile_24").bound,
+        "profile L2 error {:e}",
+        run.profile_l2
+    );
     // The solver's force sum_j w_j p_j is the normal force, larger than the vertical one by
     // the tilt of the normals: about a^2 / (8 R^2) for the elliptical profile.
     let tilt = run.force / run.vertical_force() - 1.0;
@@ -181,6 +187,12 @@ fn hertz_2d_newton_systems_by_body() {
     assert!(run.unknowns >= mortar::core::linalg::SUBSTRUCTURED_MIN);
     assert!(run.formulation.contains("by body"), "{}", run.formulation);
     hertz_2d_criteria(&run, "96 arc cells");
+    eprintln!("Hertz 2D, 96 arc cells: profile L2 error {:.2e}", run.profile_l2);
+    assert!(
+        run.profile_l2 <= crate::claims::claim("hertz2d.profile_96").bound,
+        "96 arc cells: profile L2 error {:e}",
+        run.profile_l2
+    );
 }
 
 /// The criteria of the 2D Hertz case (the doc of [`hertz_cylinder_on_block_2d`]): the scene
