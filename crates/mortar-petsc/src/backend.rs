@@ -4,8 +4,9 @@
 //! (an inexact inverse, where the direct backend's is exact to rounding), and every solve's
 //! report is kept for the caller to read ([`PetscBackend::reports`]).
 //!
-//! A solve builds PETSc's preconditioner again (the AMG hierarchy, say): the set-up is not
-//! kept between the solves of one matrix. Matrix-free iterative solves
+//! The preconditioner (the AMG hierarchy, say) is built when the matrix is "factorised" and
+//! again when its values change ([`Factorization::refactor`]), and kept for every solve
+//! between: a report says `setup_kept` for those. Matrix-free iterative solves
 //! ([`SparseSolver::solve_preconditioned`]) with the caller's preconditioner run the
 //! interface's default, the finite-element crate's own GMRES: PETSc sees assembled matrices
 //! only.
@@ -15,6 +16,8 @@ use std::sync::{Arc, Mutex};
 use mortar_core::linalg::{SparseMatrix, Triplets};
 use mortar_fem::linalg::{FactorStats, Factorization, MatrixKind, SolverError, SparseSolver};
 
+#[cfg(feature = "petsc")]
+use crate::csr::csr_parts;
 use crate::{PetscError, PetscSolver, SolveOptions, SolveReport};
 
 /// PETSc behind the solver interface, with the solve options it applies to every system.
@@ -39,12 +42,15 @@ impl PetscBackend {
     }
 }
 
-/// A system set up for PETSc's solves.
+/// A system set up for PETSc's solves: its matrix (full), and PETSc's solver with the
+/// preconditioner built for it.
 #[derive(Debug)]
 struct PetscSystem {
     a: SparseMatrix,
     kind: MatrixKind,
-    solver: PetscSolver,
+    rtol: f64,
+    #[cfg(feature = "petsc")]
+    prepared: crate::petsc::Prepared,
     reports: Arc<Mutex<Vec<SolveReport>>>,
 }
 
@@ -97,18 +103,25 @@ impl Factorization for PetscSystem {
                 what: "entries of the right-hand side",
             });
         }
-        let solved = self
-            .solver
-            .solve(&self.a, x)
-            .map_err(|e| solver_error(e, self.solver.options().rtol))?;
-        if solved.x.iter().any(|v| !v.is_finite()) {
-            return Err(SolverError::Singular { pivot: None });
+        #[cfg(feature = "petsc")]
+        {
+            let (solution, report) =
+                crate::petsc::solve_prepared(&self.prepared, &csr_parts(&self.a), x)
+                    .map_err(|e| solver_error(e, self.rtol))?;
+            if solution.iter().any(|v| !v.is_finite()) {
+                return Err(SolverError::Singular { pivot: None });
+            }
+            x.copy_from_slice(&solution);
+            if let Ok(mut reports) = self.reports.lock() {
+                reports.push(report);
+            }
+            Ok(())
         }
-        x.copy_from_slice(&solved.x);
-        if let Ok(mut reports) = self.reports.lock() {
-            reports.push(solved.report);
+        #[cfg(not(feature = "petsc"))]
+        {
+            let _ = &self.reports;
+            Err(solver_error(PetscError::NotBuilt, self.rtol))
         }
-        Ok(())
     }
 
     fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
@@ -124,6 +137,9 @@ impl Factorization for PetscSystem {
                 self.a.nnz()
             )));
         }
+        #[cfg(feature = "petsc")]
+        crate::petsc::update(&mut self.prepared, &csr_parts(&a))
+            .map_err(|e| solver_error(e, self.rtol))?;
         self.a = a;
         Ok(())
     }
@@ -151,13 +167,22 @@ impl SparseSolver for PetscBackend {
                 what: "columns of a square matrix",
             });
         }
+        let options = self.solver.options();
         if !crate::is_built() {
-            return Err(solver_error(PetscError::NotBuilt, 0.0));
+            return Err(solver_error(PetscError::NotBuilt, options.rtol));
         }
+        let a = full(a, kind);
+        crate::check_input(&a, &vec![0.0; rows], options)
+            .map_err(|e| solver_error(e, options.rtol))?;
+        #[cfg(feature = "petsc")]
+        let prepared = crate::petsc::prepare(&csr_parts(&a), options)
+            .map_err(|e| solver_error(e, options.rtol))?;
         Ok(Box::new(PetscSystem {
-            a: full(a, kind),
+            a,
             kind,
-            solver: self.solver.clone(),
+            rtol: options.rtol,
+            #[cfg(feature = "petsc")]
+            prepared,
             reports: Arc::clone(&self.reports),
         }))
     }

@@ -11,6 +11,7 @@
 
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
 use std::ptr;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::Instant;
 
@@ -417,127 +418,294 @@ fn matrix(a: &CsrParts<'_>, bs: usize) -> Result<Mat, PetscError> {
     Ok(mat)
 }
 
-/// Solves `a x = b` with `options`; the caller checked the sizes.
+/// The PETSc objects of a system set up for solves: the Krylov solver with its
+/// preconditioner, the index sets of a field split, the matrix and its near null space.
+struct Objects {
+    ksp: Ksp,
+    _splits: Vec<IndexSet>,
+    mat: Mat,
+    _near_null_space: Option<NullSpace>,
+}
+
+// SAFETY: PETSc's objects are plain heap data of the one process; this module touches them
+// only while it holds the lock on `STATE` (`with_petsc`, `Prepared`'s drop), one thread at
+// a time.
+unsafe impl Send for Objects {}
+// SAFETY: as for `Send`: every use, shared or not, holds the lock.
+unsafe impl Sync for Objects {}
+
+/// The matrix of `a` with its near null space, if the options give one.
+fn operator(
+    a: &CsrParts<'_>,
+    options: &SolveOptions,
+) -> Result<(Mat, Option<NullSpace>), PetscError> {
+    let mat = matrix(a, options.effective_block_size())?;
+    let Some(modes) = &options.near_null_space else {
+        return Ok((mat, None));
+    };
+    let coords = Vector::from_slice(&modes.coordinates, modes.dim)?;
+    let mut nsp = NullSpace(ptr::null_mut());
+    call!(MatNullSpaceCreateRigidBody(coords.0, &mut nsp.0))?;
+    call!(MatSetNearNullSpace(mat.0, nsp.0))?;
+    Ok((mat, Some(nsp)))
+}
+
+/// Index sets of the two fields of a Schur field split of `n` unknowns, given to `pc`.
+fn field_split(
+    pc: sys::PC,
+    split: &crate::options::FieldSplit,
+    n: usize,
+) -> Result<Vec<IndexSet>, PetscError> {
+    let mut in_first = vec![false; n];
+    for &i in &split.first {
+        in_first[i] = true;
+    }
+    let second: Vec<usize> = (0..n).filter(|&i| !in_first[i]).collect();
+    let mut splits = Vec::new();
+    for (name, field) in [(c"0", &split.first), (c"1", &second)] {
+        let idx = petsc_ints(field)?;
+        let mut is = IndexSet(ptr::null_mut());
+        call!(ISCreateGeneral(
+            comm_self(),
+            petsc_int(idx.len())?,
+            idx.as_ptr(),
+            sys::PetscCopyMode_PETSC_COPY_VALUES,
+            &mut is.0
+        ))?;
+        call!(PCFieldSplitSetIS(pc, name.as_ptr(), is.0))?;
+        splits.push(is);
+    }
+    Ok(splits)
+}
+
+/// Sets up the Krylov solver and its preconditioner for `a` (PETSc started and locked, the
+/// solve's options pushed); the objects and the seconds of `KSPSetUp`.
+fn set_up(a: &CsrParts<'_>, options: &SolveOptions) -> Result<(Objects, f64), PetscError> {
+    let (mat, near_null_space) = operator(a, options)?;
+    let mut ksp = Ksp(ptr::null_mut());
+    call!(KSPCreate(comm_self(), &mut ksp.0))?;
+    call!(KSPSetOperators(ksp.0, mat.0, mat.0))?;
+    let method = CString::new(options.method.petsc_name()).expect("no NUL");
+    call!(KSPSetType(ksp.0, method.as_ptr()))?;
+    call!(KSPSetTolerances(
+        ksp.0,
+        options.rtol,
+        options.atol,
+        sys::PETSC_DEFAULT as f64,
+        petsc_int(options.max_it)?
+    ))?;
+    let mut pc: sys::PC = ptr::null_mut();
+    call!(KSPGetPC(ksp.0, &mut pc))?;
+    let pc_name = CString::new(options.preconditioner.petsc_name()).expect("no NUL");
+    call!(PCSetType(pc, pc_name.as_ptr()))?;
+    // PETSc keeps its own references to the index sets; ours live as long as the solver.
+    let splits = match &options.preconditioner {
+        Preconditioner::FieldSplitSchur(split) => field_split(pc, split, a.nrows)?,
+        _ => Vec::new(),
+    };
+    call!(KSPSetFromOptions(ksp.0))?;
+    let t0 = Instant::now();
+    call!(KSPSetUp(ksp.0))?;
+    let objects = Objects {
+        ksp,
+        _splits: splits,
+        mat,
+        _near_null_space: near_null_space,
+    };
+    Ok((objects, t0.elapsed().as_secs_f64()))
+}
+
+/// The options text of a solve: the typed options, `PETSC_OPTIONS`, the free-form ones.
+fn option_text(options: &SolveOptions) -> String {
+    let environment = std::env::var("PETSC_OPTIONS").ok();
+    options.options_string_with_environment(environment.as_deref())
+}
+
+/// What a set-up solver gives for `b` (PETSc started and locked, the options pushed):
+/// the solution and its report, `setup` the set-up seconds to report with it (`None`: the
+/// set-up of an earlier solve, kept).
+fn solve_set_up(
+    objects: &Objects,
+    a: &CsrParts<'_>,
+    b: &[f64],
+    options: &SolveOptions,
+    version: &str,
+    option_text: &str,
+    setup: Option<f64>,
+) -> Result<(Vec<f64>, SolveReport), PetscError> {
+    let ksp = &objects.ksp;
+    let rhs = Vector::from_slice(b, 1)?;
+    let mut x = Vector::from_slice(&vec![0.0; b.len()], 1)?;
+    let t1 = Instant::now();
+    call!(KSPSolve(ksp.0, rhs.0, x.0))?;
+    let solve_seconds = t1.elapsed().as_secs_f64();
+
+    let mut reason: sys::KSPConvergedReason::Type = 0;
+    let mut iterations: PetscInt = 0;
+    let mut residual_norm = 0.0;
+    let mut ksp_type: *const c_char = ptr::null();
+    let mut pc_type: *const c_char = ptr::null();
+    let mut pc: sys::PC = ptr::null_mut();
+    call!(KSPGetConvergedReason(ksp.0, &mut reason))?;
+    call!(KSPGetIterationNumber(ksp.0, &mut iterations))?;
+    call!(KSPGetResidualNorm(ksp.0, &mut residual_norm))?;
+    call!(KSPGetType(ksp.0, &mut ksp_type))?;
+    // The KSP's PC after the options were read (an option may have replaced it).
+    call!(KSPGetPC(ksp.0, &mut pc))?;
+    call!(PCGetType(pc, &mut pc_type))?;
+    let (ksp_type, pc_type) = (type_name(ksp_type), type_name(pc_type));
+    let reason = ConvergedReason::from_code(reason);
+    let iterations = usize::try_from(iterations).unwrap_or(0);
+    if !reason.is_converged() {
+        return Err(PetscError::NotConverged {
+            reason,
+            iterations,
+            residual_norm,
+            ksp_type,
+            pc_type,
+        });
+    }
+    let mut solution = vec![0.0; b.len()];
+    x.with_values(|v| solution.copy_from_slice(v))?;
+    let relative_residual = a.relative_residual(&solution, b);
+    // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
+    // with a meaningless solution, which only the residual shows.
+    if options.method == KrylovMethod::PreOnly
+        && (relative_residual.is_nan() || relative_residual > options.rtol)
+    {
+        return Err(PetscError::Inaccurate {
+            relative_residual,
+            tolerance: options.rtol,
+            ksp_type,
+            pc_type,
+        });
+    }
+    let report = SolveReport {
+        backend: version.to_owned(),
+        ksp_type,
+        pc_type,
+        near_null_space: options.near_null_space.is_some(),
+        options: option_text.to_owned(),
+        iterations,
+        residual_norm,
+        reason,
+        relative_residual,
+        setup_seconds: setup.unwrap_or(0.0),
+        setup_kept: setup.is_none(),
+        solve_seconds,
+    };
+    Ok((solution, report))
+}
+
+/// Solves `a x = b` with `options`, setting the solver up for this one solve; the caller
+/// checked the sizes.
 pub(crate) fn solve(
     a: &CsrParts<'_>,
     b: &[f64],
     options: &SolveOptions,
 ) -> Result<(Vec<f64>, SolveReport), PetscError> {
     with_petsc(|version| {
-        let environment = std::env::var("PETSC_OPTIONS").ok();
-        let option_text = options.options_string_with_environment(environment.as_deref());
+        let text = option_text(options);
         // Declared first, dropped last: every object below is destroyed while it is pushed.
-        let _pushed = PushedOptions::push(&option_text)?;
-        let bs = options.effective_block_size();
-        let mat = matrix(a, bs)?;
-        if let Some(modes) = &options.near_null_space {
-            let coords = Vector::from_slice(&modes.coordinates, modes.dim)?;
-            let mut nsp = NullSpace(ptr::null_mut());
-            call!(MatNullSpaceCreateRigidBody(coords.0, &mut nsp.0))?;
-            call!(MatSetNearNullSpace(mat.0, nsp.0))?;
-        }
-        let rhs = Vector::from_slice(b, 1)?;
-        let mut x = Vector::from_slice(&vec![0.0; b.len()], 1)?;
-
-        let mut ksp = Ksp(ptr::null_mut());
-        call!(KSPCreate(comm_self(), &mut ksp.0))?;
-        call!(KSPSetOperators(ksp.0, mat.0, mat.0))?;
-        let method = CString::new(options.method.petsc_name()).expect("no NUL");
-        call!(KSPSetType(ksp.0, method.as_ptr()))?;
-        call!(KSPSetTolerances(
-            ksp.0,
-            options.rtol,
-            options.atol,
-            sys::PETSC_DEFAULT as f64,
-            petsc_int(options.max_it)?
-        ))?;
-        let mut pc: sys::PC = ptr::null_mut();
-        call!(KSPGetPC(ksp.0, &mut pc))?;
-        let pc_name = CString::new(options.preconditioner.petsc_name()).expect("no NUL");
-        call!(PCSetType(pc, pc_name.as_ptr()))?;
-        // The index sets live until the KSP is destroyed (declared after it, dropped before
-        // it; PETSc keeps its own references).
-        let mut splits = Vec::new();
-        if let Preconditioner::FieldSplitSchur(split) = &options.preconditioner {
-            let mut in_first = vec![false; b.len()];
-            for &i in &split.first {
-                in_first[i] = true;
-            }
-            let second: Vec<usize> = (0..b.len()).filter(|&i| !in_first[i]).collect();
-            for (name, field) in [(c"0", &split.first), (c"1", &second)] {
-                let idx = petsc_ints(field)?;
-                let mut is = IndexSet(ptr::null_mut());
-                call!(ISCreateGeneral(
-                    comm_self(),
-                    petsc_int(idx.len())?,
-                    idx.as_ptr(),
-                    sys::PetscCopyMode_PETSC_COPY_VALUES,
-                    &mut is.0
-                ))?;
-                call!(PCFieldSplitSetIS(pc, name.as_ptr(), is.0))?;
-                splits.push(is);
-            }
-        }
-        call!(KSPSetFromOptions(ksp.0))?;
-        let t0 = Instant::now();
-        call!(KSPSetUp(ksp.0))?;
-        let setup_seconds = t0.elapsed().as_secs_f64();
-        let t1 = Instant::now();
-        call!(KSPSolve(ksp.0, rhs.0, x.0))?;
-        let solve_seconds = t1.elapsed().as_secs_f64();
-
-        let mut reason: sys::KSPConvergedReason::Type = 0;
-        let mut iterations: PetscInt = 0;
-        let mut residual_norm = 0.0;
-        let mut ksp_type: *const c_char = ptr::null();
-        let mut pc_type: *const c_char = ptr::null();
-        call!(KSPGetConvergedReason(ksp.0, &mut reason))?;
-        call!(KSPGetIterationNumber(ksp.0, &mut iterations))?;
-        call!(KSPGetResidualNorm(ksp.0, &mut residual_norm))?;
-        call!(KSPGetType(ksp.0, &mut ksp_type))?;
-        // The KSP's PC after the options were read (an option may have replaced it).
-        call!(KSPGetPC(ksp.0, &mut pc))?;
-        call!(PCGetType(pc, &mut pc_type))?;
-        let (ksp_type, pc_type) = (type_name(ksp_type), type_name(pc_type));
-        let reason = ConvergedReason::from_code(reason);
-        let iterations = usize::try_from(iterations).unwrap_or(0);
-        if !reason.is_converged() {
-            return Err(PetscError::NotConverged {
-                reason,
-                iterations,
-                residual_norm,
-                ksp_type,
-                pc_type,
-            });
-        }
-        let mut solution = vec![0.0; b.len()];
-        x.with_values(|v| solution.copy_from_slice(v))?;
-        let relative_residual = a.relative_residual(&solution, b);
-        // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
-        // with a meaningless solution, which only the residual shows.
-        if options.method == KrylovMethod::PreOnly
-            && (relative_residual.is_nan() || relative_residual > options.rtol)
-        {
-            return Err(PetscError::Inaccurate {
-                relative_residual,
-                tolerance: options.rtol,
-                ksp_type,
-                pc_type,
-            });
-        }
-        let report = SolveReport {
-            backend: version.to_owned(),
-            ksp_type,
-            pc_type,
-            near_null_space: options.near_null_space.is_some(),
-            options: option_text,
-            iterations,
-            residual_norm,
-            reason,
-            relative_residual,
-            setup_seconds,
-            solve_seconds,
-        };
-        Ok((solution, report))
+        let _pushed = PushedOptions::push(&text)?;
+        let (objects, setup) = set_up(a, options)?;
+        solve_set_up(&objects, a, b, options, version, &text, Some(setup))
     })
+}
+
+/// A solver set up for one matrix and kept for all its solves: the preconditioner (an AMG
+/// hierarchy, a factorisation) is built once, at [`prepare`] and at each [`update`] of the
+/// matrix's values, not at every solve. Its PETSc objects are destroyed on drop (left to
+/// PETSc's own end if PETSc was finalised first).
+pub(crate) struct Prepared {
+    objects: Option<Objects>,
+    options: SolveOptions,
+    option_text: String,
+    setup_seconds: f64,
+    /// Whether a solve reported the set-up already.
+    setup_reported: AtomicBool,
+}
+
+impl std::fmt::Debug for Prepared {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Prepared")
+            .field("options", &self.option_text)
+            .field("setup_seconds", &self.setup_seconds)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Drop for Prepared {
+    fn drop(&mut self) {
+        if let Some(objects) = self.objects.take() {
+            let state = lock_state();
+            if let State::Ready { .. } = *state {
+                drop(objects);
+            } else {
+                // PETSc is gone: its objects went with it.
+                std::mem::forget(objects);
+            }
+        }
+    }
+}
+
+/// Sets up the solver for `a` with `options`; the caller checked the sizes.
+pub(crate) fn prepare(a: &CsrParts<'_>, options: &SolveOptions) -> Result<Prepared, PetscError> {
+    with_petsc(|_| {
+        let text = option_text(options);
+        let _pushed = PushedOptions::push(&text)?;
+        let (objects, setup_seconds) = set_up(a, options)?;
+        Ok(Prepared {
+            objects: Some(objects),
+            options: options.clone(),
+            option_text: text,
+            setup_seconds,
+            setup_reported: AtomicBool::new(false),
+        })
+    })
+}
+
+/// Solves `a x = b` with the solver set up for `a` (the matrix `prepared` was made or
+/// updated with, whose rows give the reported residual).
+pub(crate) fn solve_prepared(
+    prepared: &Prepared,
+    a: &CsrParts<'_>,
+    b: &[f64],
+) -> Result<(Vec<f64>, SolveReport), PetscError> {
+    with_petsc(|version| {
+        let objects = prepared.objects.as_ref().ok_or(PetscError::Finalized)?;
+        let _pushed = PushedOptions::push(&prepared.option_text)?;
+        let first = !prepared.setup_reported.swap(true, Ordering::Relaxed);
+        let setup = first.then_some(prepared.setup_seconds);
+        solve_set_up(
+            objects,
+            a,
+            b,
+            &prepared.options,
+            version,
+            &prepared.option_text,
+            setup,
+        )
+    })
+}
+
+/// Gives the solver the new values `a` of its matrix (the same pattern) and sets its
+/// preconditioner up again for them.
+pub(crate) fn update(prepared: &mut Prepared, a: &CsrParts<'_>) -> Result<(), PetscError> {
+    let options = prepared.options.clone();
+    let text = prepared.option_text.clone();
+    let objects = prepared.objects.as_mut().ok_or(PetscError::Finalized)?;
+    let seconds = with_petsc(|_| {
+        let _pushed = PushedOptions::push(&text)?;
+        let (mat, near_null_space) = operator(a, &options)?;
+        call!(KSPSetOperators(objects.ksp.0, mat.0, mat.0))?;
+        objects.mat = mat;
+        objects._near_null_space = near_null_space;
+        let t0 = Instant::now();
+        call!(KSPSetUp(objects.ksp.0))?;
+        Ok(t0.elapsed().as_secs_f64())
+    })?;
+    prepared.setup_seconds = seconds;
+    prepared.setup_reported = AtomicBool::new(false);
+    Ok(())
 }

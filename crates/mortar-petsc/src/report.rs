@@ -115,8 +115,12 @@ pub struct SolveReport {
     /// `|b - A x| / |b|` of the returned solution, measured after the solve (PETSc's own
     /// norm is the preconditioned one for CG and GMRES, and none for `preonly`).
     pub relative_residual: f64,
-    /// Seconds to build the preconditioner (`KSPSetUp`: AMG hierarchy, factorisation).
+    /// Seconds to build the preconditioner (`KSPSetUp`: AMG hierarchy, factorisation); 0
+    /// when the set-up was kept from an earlier solve of the same matrix.
     pub setup_seconds: f64,
+    /// Whether the preconditioner was the one set up for an earlier solve of the same
+    /// matrix (a backend's system solved again), not built for this solve.
+    pub setup_kept: bool,
     /// Seconds of the Krylov iterations (`KSPSolve`).
     pub solve_seconds: f64,
 }
@@ -126,8 +130,8 @@ impl fmt::Display for SolveReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "{} {}+{}{}: {} iterations, residual {:.2e} (|b - Ax|/|b| {:.1e}), {} (setup {:.3} s, \
-             solve {:.3} s)",
+            "{} {}+{}{}: {} iterations, residual {:.2e} (|b - Ax|/|b| {:.1e}), {} ({}, solve \
+             {:.3} s)",
             self.backend,
             self.ksp_type,
             self.pc_type,
@@ -140,7 +144,11 @@ impl fmt::Display for SolveReport {
             self.residual_norm,
             self.relative_residual,
             self.reason,
-            self.setup_seconds,
+            if self.setup_kept {
+                "setup kept".to_owned()
+            } else {
+                format!("setup {:.3} s", self.setup_seconds)
+            },
             self.solve_seconds
         )
     }
