@@ -37,6 +37,7 @@ mod petsc {
         "MatSeqAIJSetPreallocationCSR",
         "MatSetNearNullSpace",
         "MatNullSpaceCreateRigidBody",
+        "MatNullSpaceCreate",
         "MatNullSpaceDestroy",
         "MatDestroy",
         "VecCreateSeq",

@@ -14,11 +14,13 @@
 use std::sync::{Arc, Mutex};
 
 use mortar_core::linalg::{SparseMatrix, Triplets};
-use mortar_fem::linalg::{FactorStats, Factorization, MatrixKind, SolverError, SparseSolver};
+use mortar_fem::linalg::{
+    FactorStats, Factorization, MatrixKind, SolverError, SparseSolver, SystemInfo,
+};
 
 #[cfg(feature = "petsc")]
 use crate::csr::csr_parts;
-use crate::{PetscError, PetscSolver, SolveOptions, SolveReport};
+use crate::{PetscError, PetscSolver, Preconditioner, SolveOptions, SolveReport};
 
 /// PETSc behind the solver interface, with the solve options it applies to every system.
 #[derive(Debug, Clone)]
@@ -153,11 +155,45 @@ impl Factorization for PetscSystem {
     }
 }
 
+/// `vectors` made orthonormal by modified Gram-Schmidt (twice, for rounding), those that
+/// depend on the earlier ones (a rotation of unknowns on one line, say) dropped.
+fn orthonormal(vectors: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    for mut v in vectors {
+        let norm0 = dot(&v, &v).sqrt();
+        for _ in 0..2 {
+            for q in &basis {
+                let c = dot(&v, q);
+                v.iter_mut().zip(q).for_each(|(x, y)| *x -= c * y);
+            }
+        }
+        let norm = dot(&v, &v).sqrt();
+        if norm > 1e-10 * norm0 && norm > 0.0 {
+            v.iter_mut().for_each(|x| *x /= norm);
+            basis.push(v);
+        }
+    }
+    basis
+}
+
 impl SparseSolver for PetscBackend {
     fn factor(
         &self,
         a: &SparseMatrix,
         kind: MatrixKind,
+    ) -> Result<Box<dyn Factorization>, SolverError> {
+        self.factor_system(a, kind, SystemInfo::default())
+    }
+
+    /// As [`factor`](SparseSolver::factor); with GAMG and no rigid body modes in the
+    /// options, a displacement field's rigid motions (`info.displacements`, restricted to
+    /// the system's unknowns) are the near null space.
+    fn factor_system(
+        &self,
+        a: &SparseMatrix,
+        kind: MatrixKind,
+        info: SystemInfo<'_>,
     ) -> Result<Box<dyn Factorization>, SolverError> {
         let (rows, cols) = a.shape();
         if rows != cols {
@@ -174,9 +210,19 @@ impl SparseSolver for PetscBackend {
         let a = full(a, kind);
         crate::check_input(&a, &vec![0.0; rows], options)
             .map_err(|e| solver_error(e, options.rtol))?;
+        let modes = match (&options.preconditioner, &options.near_null_space) {
+            (Preconditioner::Gamg, None) => info
+                .displacements
+                .filter(|p| p.points.len() == rows && p.components.len() == rows)
+                .map(|p| orthonormal(p.rigid_body_modes()))
+                .unwrap_or_default(),
+            _ => Vec::new(),
+        };
         #[cfg(feature = "petsc")]
-        let prepared = crate::petsc::prepare(&csr_parts(&a), options)
+        let prepared = crate::petsc::prepare(&csr_parts(&a), options, modes)
             .map_err(|e| solver_error(e, options.rtol))?;
+        #[cfg(not(feature = "petsc"))]
+        let _ = modes;
         Ok(Box::new(PetscSystem {
             a,
             kind,

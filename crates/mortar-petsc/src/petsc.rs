@@ -424,7 +424,7 @@ struct Objects {
     ksp: Ksp,
     _splits: Vec<IndexSet>,
     mat: Mat,
-    _near_null_space: Option<NullSpace>,
+    near_null_space: Option<NullSpace>,
 }
 
 // SAFETY: PETSc's objects are plain heap data of the one process; this module touches them
@@ -438,14 +438,30 @@ unsafe impl Sync for Objects {}
 fn operator(
     a: &CsrParts<'_>,
     options: &SolveOptions,
+    modes: &[Vec<f64>],
 ) -> Result<(Mat, Option<NullSpace>), PetscError> {
     let mat = matrix(a, options.effective_block_size())?;
-    let Some(modes) = &options.near_null_space else {
-        return Ok((mat, None));
-    };
-    let coords = Vector::from_slice(&modes.coordinates, modes.dim)?;
     let mut nsp = NullSpace(ptr::null_mut());
-    call!(MatNullSpaceCreateRigidBody(coords.0, &mut nsp.0))?;
+    if let Some(rigid) = &options.near_null_space {
+        let coords = Vector::from_slice(&rigid.coordinates, rigid.dim)?;
+        call!(MatNullSpaceCreateRigidBody(coords.0, &mut nsp.0))?;
+    } else if !modes.is_empty() {
+        let vectors = modes
+            .iter()
+            .map(|m| Vector::from_slice(m, 1))
+            .collect::<Result<Vec<_>, _>>()?;
+        let raw: Vec<sys::Vec> = vectors.iter().map(|v| v.0).collect();
+        // PETSc takes its own references to the vectors.
+        call!(MatNullSpaceCreate(
+            comm_self(),
+            sys::PetscBool_PETSC_FALSE,
+            petsc_int(raw.len())?,
+            raw.as_ptr(),
+            &mut nsp.0
+        ))?;
+    } else {
+        return Ok((mat, None));
+    }
     call!(MatSetNearNullSpace(mat.0, nsp.0))?;
     Ok((mat, Some(nsp)))
 }
@@ -480,8 +496,12 @@ fn field_split(
 
 /// Sets up the Krylov solver and its preconditioner for `a` (PETSc started and locked, the
 /// solve's options pushed); the objects and the seconds of `KSPSetUp`.
-fn set_up(a: &CsrParts<'_>, options: &SolveOptions) -> Result<(Objects, f64), PetscError> {
-    let (mat, near_null_space) = operator(a, options)?;
+fn set_up(
+    a: &CsrParts<'_>,
+    options: &SolveOptions,
+    modes: &[Vec<f64>],
+) -> Result<(Objects, f64), PetscError> {
+    let (mat, near_null_space) = operator(a, options, modes)?;
     let mut ksp = Ksp(ptr::null_mut());
     call!(KSPCreate(comm_self(), &mut ksp.0))?;
     call!(KSPSetOperators(ksp.0, mat.0, mat.0))?;
@@ -510,7 +530,7 @@ fn set_up(a: &CsrParts<'_>, options: &SolveOptions) -> Result<(Objects, f64), Pe
         ksp,
         _splits: splits,
         mat,
-        _near_null_space: near_null_space,
+        near_null_space,
     };
     Ok((objects, t0.elapsed().as_secs_f64()))
 }
@@ -584,7 +604,7 @@ fn solve_set_up(
         backend: version.to_owned(),
         ksp_type,
         pc_type,
-        near_null_space: options.near_null_space.is_some(),
+        near_null_space: objects.near_null_space.is_some(),
         options: option_text.to_owned(),
         iterations,
         residual_norm,
@@ -608,7 +628,7 @@ pub(crate) fn solve(
         let text = option_text(options);
         // Declared first, dropped last: every object below is destroyed while it is pushed.
         let _pushed = PushedOptions::push(&text)?;
-        let (objects, setup) = set_up(a, options)?;
+        let (objects, setup) = set_up(a, options, &[])?;
         solve_set_up(&objects, a, b, options, version, &text, Some(setup))
     })
 }
@@ -620,6 +640,8 @@ pub(crate) fn solve(
 pub(crate) struct Prepared {
     objects: Option<Objects>,
     options: SolveOptions,
+    /// The near null space given besides the options (orthonormal vectors).
+    modes: Vec<Vec<f64>>,
     option_text: String,
     setup_seconds: f64,
     /// Whether a solve reported the set-up already.
@@ -650,14 +672,22 @@ impl Drop for Prepared {
 }
 
 /// Sets up the solver for `a` with `options`; the caller checked the sizes.
-pub(crate) fn prepare(a: &CsrParts<'_>, options: &SolveOptions) -> Result<Prepared, PetscError> {
+///
+/// Unless the options give rigid body modes, `modes` (orthonormal vectors over the unknowns,
+/// none if empty) is the near null space.
+pub(crate) fn prepare(
+    a: &CsrParts<'_>,
+    options: &SolveOptions,
+    modes: Vec<Vec<f64>>,
+) -> Result<Prepared, PetscError> {
     with_petsc(|_| {
         let text = option_text(options);
         let _pushed = PushedOptions::push(&text)?;
-        let (objects, setup_seconds) = set_up(a, options)?;
+        let (objects, setup_seconds) = set_up(a, options, &modes)?;
         Ok(Prepared {
             objects: Some(objects),
             options: options.clone(),
+            modes,
             option_text: text,
             setup_seconds,
             setup_reported: AtomicBool::new(false),
@@ -692,15 +722,20 @@ pub(crate) fn solve_prepared(
 /// Gives the solver the new values `a` of its matrix (the same pattern) and sets its
 /// preconditioner up again for them.
 pub(crate) fn update(prepared: &mut Prepared, a: &CsrParts<'_>) -> Result<(), PetscError> {
-    let options = prepared.options.clone();
-    let text = prepared.option_text.clone();
-    let objects = prepared.objects.as_mut().ok_or(PetscError::Finalized)?;
+    let Prepared {
+        objects,
+        options,
+        modes,
+        option_text,
+        ..
+    } = prepared;
+    let objects = objects.as_mut().ok_or(PetscError::Finalized)?;
     let seconds = with_petsc(|_| {
-        let _pushed = PushedOptions::push(&text)?;
-        let (mat, near_null_space) = operator(a, &options)?;
+        let _pushed = PushedOptions::push(option_text)?;
+        let (mat, near_null_space) = operator(a, options, modes)?;
         call!(KSPSetOperators(objects.ksp.0, mat.0, mat.0))?;
         objects.mat = mat;
-        objects._near_null_space = near_null_space;
+        objects.near_null_space = near_null_space;
         let t0 = Instant::now();
         call!(KSPSetUp(objects.ksp.0))?;
         Ok(t0.elapsed().as_secs_f64())

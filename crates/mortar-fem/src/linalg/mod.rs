@@ -22,6 +22,7 @@ mod gmres;
 pub mod nested_dissection;
 pub mod solver;
 mod substructured;
+mod system_info;
 
 pub use bordered::BorderedLu;
 pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
@@ -37,3 +38,4 @@ pub use mortar_core::linalg::{
 };
 pub use solver::{FactorStats, Factorization, MatrixKind, SolverError, SparseSolver};
 pub use substructured::{SubstructuredCholesky, SUBSTRUCTURED_MIN};
+pub use system_info::{SystemInfo, UnknownPlaces};

@@ -25,7 +25,7 @@
 
 use std::fmt::Debug;
 
-use super::{GmresOptions, GmresReport, LinearOperator, Preconditioner, SparseMatrix};
+use super::{GmresOptions, GmresReport, LinearOperator, Preconditioner, SparseMatrix, SystemInfo};
 
 /// Why a sparse factorisation or solve failed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -162,6 +162,21 @@ pub trait SparseSolver: Send + Sync + Debug {
         a: &SparseMatrix,
         kind: MatrixKind,
     ) -> Result<Box<dyn Factorization>, SolverError>;
+
+    /// [`factor`](Self::factor) with what the caller knows of the system (`info`), which a
+    /// backend may use (an AMG preconditioner's near null space); by default `factor`.
+    ///
+    /// # Errors
+    /// As [`factor`](Self::factor).
+    fn factor_system(
+        &self,
+        a: &SparseMatrix,
+        kind: MatrixKind,
+        info: SystemInfo<'_>,
+    ) -> Result<Box<dyn Factorization>, SolverError> {
+        let _ = info;
+        self.factor(a, kind)
+    }
 
     /// Solves `A x = b` iteratively, right-preconditioned by `preconditioner`, from the `x`
     /// given; `a` is an assembled matrix or a matrix-free product. By default this crate's

@@ -79,3 +79,82 @@ fn three_dimensional_rigid_body_modes_reach_gamg() {
     assert!(solved.report.near_null_space);
     assert!(relative_error(&solved.x, &reference) < 1e-7);
 }
+
+/// CG+GAMG through the solver interface on a system with `keep` of the clamped square's
+/// unknowns, told where they sit (`SystemInfo`) or not; its iterations and report.
+fn interface_iterations(m: usize, keep: impl Fn(usize) -> bool, told: bool) -> usize {
+    use mortar_core::linalg::Triplets;
+    use mortar_fem::linalg::{MatrixKind, SparseSolver, SystemInfo, UnknownPlaces};
+    use mortar_petsc::PetscBackend;
+
+    let (full, coords) = elasticity_2d(m);
+    let kept: Vec<usize> = (0..full.rows()).filter(|&i| keep(i)).collect();
+    let mut index = vec![usize::MAX; full.rows()];
+    for (k, &i) in kept.iter().enumerate() {
+        index[i] = k;
+    }
+    let mut t = Triplets::default();
+    for (&v, (i, j)) in full.iter() {
+        if index[i] != usize::MAX && index[j] != usize::MAX {
+            t.push(index[i] as u32, index[j] as u32, v);
+        }
+    }
+    let a = t.to_csr(kept.len(), kept.len());
+    let points: Vec<[f64; 3]> = kept
+        .iter()
+        .map(|&i| [coords[2 * (i / 2)], coords[2 * (i / 2) + 1], 0.0])
+        .collect();
+    let components: Vec<u8> = kept.iter().map(|&i| (i % 2) as u8).collect();
+    let info = SystemInfo {
+        displacements: told.then_some(UnknownPlaces {
+            dim: 2,
+            axisymmetric: false,
+            points: &points,
+            components: &components,
+        }),
+    };
+    let mut options = SolveOptions::new(KrylovMethod::Cg, Preconditioner::Gamg);
+    options.rtol = 1e-8;
+    let backend = PetscBackend::new(options);
+    let b = rhs(a.rows());
+    let x = backend
+        .factor_system(&a, MatrixKind::General, info)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let reference = solve_sparse_lu(&a, &b).unwrap();
+    assert!(relative_error(&x, &reference) < 1e-5);
+    let report = &backend.reports()[0];
+    println!("{m}x{m}, {} unknowns, told {told}: {report}", a.rows());
+    assert_eq!(report.near_null_space, told);
+    report.iterations
+}
+
+/// A displacement system's unknowns told to the backend through the solver interface
+/// (`SystemInfo::displacements`) give GAMG the rigid motions as its near null space, also
+/// where eliminated unknowns leave no block structure (every tenth y unknown held, a
+/// roller): as few iterations as the coordinates' rigid body modes give the full system,
+/// and fewer than without.
+#[test]
+fn the_solver_interface_gives_gamg_the_rigid_motions() {
+    let m = 32;
+    let full_modes = iterations(m)[0];
+    let all = |_: usize| true;
+    let rollers = |i: usize| i.is_multiple_of(2) || (i / 2) % 10 != 3;
+    let told_all = interface_iterations(m, all, true);
+    let told_rollers = interface_iterations(m, rollers, true);
+    let untold_rollers = interface_iterations(m, rollers, false);
+    println!(
+        "CG+GAMG iterations at m = {m}: rigid body modes {full_modes}, told through the \
+         interface {told_all}, with rollers {told_rollers} (untold {untold_rollers})"
+    );
+    assert!(
+        told_all <= full_modes + 2,
+        "{told_all} against {full_modes}"
+    );
+    assert!(told_rollers as f64 <= 1.5 * full_modes as f64 + 2.0);
+    assert!(
+        2 * told_rollers < untold_rollers,
+        "{told_rollers} against {untold_rollers}"
+    );
+}
