@@ -20,21 +20,68 @@ use mortar_fem::linalg::{
 
 #[cfg(feature = "petsc")]
 use crate::csr::csr_parts;
-use crate::{PetscError, PetscSolver, Preconditioner, SolveOptions, SolveReport};
+use crate::{
+    FieldSplit, KrylovMethod, PetscError, PetscSolver, Preconditioner, SolveOptions, SolveReport,
+};
 
-/// PETSc behind the solver interface, with the solve options it applies to every system.
+/// PETSc behind the solver interface, with the solve options it applies to every system
+/// ([`new`](Self::new)) or with the method it picks for each ([`automatic`](Self::automatic)).
 #[derive(Debug, Clone)]
 pub struct PetscBackend {
     solver: PetscSolver,
+    automatic: bool,
     reports: Arc<Mutex<Vec<SolveReport>>>,
 }
 
 impl PetscBackend {
-    /// A backend solving with `options`.
+    /// A backend solving every system with `options`.
     pub fn new(options: SolveOptions) -> Self {
         Self {
             solver: PetscSolver::new(options),
+            automatic: false,
             reports: Arc::default(),
+        }
+    }
+
+    /// A backend that picks the method for each system from what it is
+    /// ([`method_for`](Self::method_for)), to the relative tolerance `rtol`, with the further
+    /// PETSc options `petsc_options` (which may override the pick: `-ksp_type minres`).
+    pub fn automatic(rtol: f64, petsc_options: impl Into<String>) -> Self {
+        let mut options = SolveOptions::default();
+        options.rtol = rtol;
+        options.petsc_options = petsc_options.into();
+        Self {
+            automatic: true,
+            ..Self::new(options)
+        }
+    }
+
+    /// The options an automatic backend solves a system of `n` unknowns with: a saddle
+    /// point (multipliers last, `info.multipliers_last > 0`) by GMRES with the Schur
+    /// fieldsplit (GAMG on the primal block, Jacobi on PETSc's `selfp` Schur approximation);
+    /// a symmetric positive definite matrix by CG with GAMG; any other by GMRES with GAMG.
+    /// A displacement field's rigid motions reach GAMG through `info` (see
+    /// [`factor_system`](SparseSolver::factor_system)). The tolerance and the further
+    /// options are the backend's.
+    pub fn method_for(&self, kind: MatrixKind, info: &SystemInfo<'_>, n: usize) -> SolveOptions {
+        let base = self.solver.options();
+        let (method, preconditioner) = if info.multipliers_last > 0 && info.multipliers_last < n {
+            let first = (0..n - info.multipliers_last).collect();
+            (
+                KrylovMethod::Gmres,
+                Preconditioner::FieldSplitSchur(FieldSplit { first }),
+            )
+        } else if kind == MatrixKind::SymmetricPositiveDefinite {
+            (KrylovMethod::Cg, Preconditioner::Gamg)
+        } else {
+            (KrylovMethod::Gmres, Preconditioner::Gamg)
+        };
+        SolveOptions {
+            method,
+            preconditioner,
+            near_null_space: None,
+            block_size: 1,
+            ..base.clone()
         }
     }
 
@@ -203,7 +250,13 @@ impl SparseSolver for PetscBackend {
                 what: "columns of a square matrix",
             });
         }
-        let options = self.solver.options();
+        let picked;
+        let options = if self.automatic {
+            picked = self.method_for(kind, &info, rows);
+            &picked
+        } else {
+            self.solver.options()
+        };
         if !crate::is_built() {
             return Err(solver_error(PetscError::NotBuilt, options.rtol));
         }

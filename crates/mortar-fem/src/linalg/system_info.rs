@@ -3,11 +3,16 @@
 //! body's rigid motions (its near null space), which the matrix alone does not show once
 //! prescribed unknowns are eliminated.
 
-/// What a caller knows of a system beyond its matrix. A direct backend needs none of it.
+/// What a caller knows of a system beyond its matrix. A direct backend needs none of it; an
+/// iterative one picks its method by it (a saddle point's multipliers) and gives its
+/// preconditioner what it needs (a displacement field's rigid motions).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SystemInfo<'a> {
     /// For the system of a displacement field: where each unknown sits.
     pub displacements: Option<UnknownPlaces<'a>>,
+    /// How many of the last unknowns are Lagrange multipliers, the matrix a saddle point
+    /// `[A B^T; B C]` with them last (0: none).
+    pub multipliers_last: usize,
 }
 
 /// Where the unknowns of a displacement field's system sit: per unknown (in the system's

@@ -112,6 +112,7 @@ fn interface_iterations(m: usize, keep: impl Fn(usize) -> bool, told: bool) -> u
             points: &points,
             components: &components,
         }),
+        ..SystemInfo::default()
     };
     let mut options = SolveOptions::new(KrylovMethod::Cg, Preconditioner::Gamg);
     options.rtol = 1e-8;

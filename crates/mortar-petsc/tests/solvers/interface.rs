@@ -129,3 +129,61 @@ fn the_preconditioner_is_set_up_once_per_matrix() {
         assert!(r.setup_kept == (r.setup_seconds == 0.0), "{r}");
     }
 }
+
+/// An automatic backend picks the method by the system: CG with GAMG for the SPD Poisson
+/// matrix, GMRES with the Schur fieldsplit for the tied Poisson saddle point (told its
+/// multipliers are last); both match the direct solve to the tolerance, and the reports
+/// say what ran.
+#[test]
+fn an_automatic_backend_picks_the_method_by_the_system() {
+    use mortar_fem::linalg::SystemInfo;
+
+    use super::common::tied_poisson;
+
+    let petsc = PetscBackend::automatic(1e-10, "");
+    let a = poisson_2d(32);
+    let b = rhs(a.rows());
+    let x = petsc
+        .factor_system(
+            &a,
+            MatrixKind::SymmetricPositiveDefinite,
+            SystemInfo::default(),
+        )
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let reference = FaerSolver
+        .factor(&a, MatrixKind::General)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    assert!(relative_error(&x, &reference) < 1e-8);
+
+    let (k, primal) = tied_poisson(16);
+    let b = rhs(k.rows());
+    let info = SystemInfo {
+        multipliers_last: k.rows() - primal,
+        ..SystemInfo::default()
+    };
+    let x = petsc
+        .factor_system(&k, MatrixKind::General, info)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let reference = FaerSolver
+        .factor(&k, MatrixKind::General)
+        .unwrap()
+        .solve(&b)
+        .unwrap();
+    let err = relative_error(&x, &reference);
+    let reports = petsc.reports();
+    for r in &reports {
+        println!("{r}");
+    }
+    assert!(err < 1e-6, "saddle point: {err:e}");
+    let ran: Vec<(&str, &str)> = reports
+        .iter()
+        .map(|r| (r.ksp_type.as_str(), r.pc_type.as_str()))
+        .collect();
+    assert_eq!(ran, [("cg", "gamg"), ("gmres", "fieldsplit")]);
+}
