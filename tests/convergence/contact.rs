@@ -187,7 +187,10 @@ fn hertz_2d_newton_systems_by_body() {
     assert!(run.unknowns >= mortar::core::linalg::SUBSTRUCTURED_MIN);
     assert!(run.formulation.contains("by body"), "{}", run.formulation);
     hertz_2d_criteria(&run, "96 arc cells");
-    eprintln!("Hertz 2D, 96 arc cells: profile L2 error {:.2e}", run.profile_l2);
+    eprintln!(
+        "Hertz 2D, 96 arc cells: profile L2 error {:.2e}",
+        run.profile_l2
+    );
     assert!(
         run.profile_l2 <= crate::claims::claim("hertz2d.profile_96").bound,
         "96 arc cells: profile L2 error {:e}",

@@ -47,9 +47,11 @@ impl PetscBackend {
     /// ([`method_for`](Self::method_for)), to the relative tolerance `rtol`, with the further
     /// PETSc options `petsc_options` (which may override the pick: `-ksp_type minres`).
     pub fn automatic(rtol: f64, petsc_options: impl Into<String>) -> Self {
-        let mut options = SolveOptions::default();
-        options.rtol = rtol;
-        options.petsc_options = petsc_options.into();
+        let options = SolveOptions {
+            rtol,
+            petsc_options: petsc_options.into(),
+            ..SolveOptions::default()
+        };
         Self {
             automatic: true,
             ..Self::new(options)
