@@ -536,26 +536,11 @@ impl Layout {
         )
     }
 
-    /// The system matrix `Q^T A Q` on the free unknowns (with the constraint rows and columns
-    /// for the saddle point) and the columns of the Dirichlet unknowns, `A_fd`. Rows are built
-    /// independently, in parallel: row `r` gathers the rows of `A` that expand onto its
-    /// unknown (its own and those of the condensed unknowns whose expansion names it), in
-    /// ascending order, and sums each column's terms in that order (the order of a triplet
-    /// assembly of the same products, so the same bits).
-    fn system_matrix(&self, a: &SparseMatrix) -> (SparseMatrix, SparseMatrix) {
-        let saddle = self.formulation == Formulation::SaddlePoint;
-        let nrows = self.rows.rows();
-        let size = self.nfree + if saddle { nrows } else { 0 };
+    /// For each global unknown, the `(condensed unknown, expansion entry)` pairs of the
+    /// condensed unknowns whose expansion names it, condensed unknowns ascending, compressed
+    /// by unknown: the pointers and the pairs.
+    fn expanding_onto(&self) -> (Vec<usize>, Vec<(u32, usize)>) {
         let ndof = self.free.len();
-        // The global unknown of each free row.
-        let mut unknown_of = vec![0u32; self.nfree];
-        for (g, &f) in self.free.iter().enumerate() {
-            if f != NONE {
-                unknown_of[f as usize] = g as u32;
-            }
-        }
-        // For each retained unknown, the (row, expansion entry) pairs of the condensed
-        // unknowns that expand onto it, rows ascending.
         let condensed = |g: usize| {
             let (lo, hi) = (self.exp_ptr[g], self.exp_ptr[g + 1]);
             !(hi == lo + 1 && self.exp_dof[lo] as usize == g)
@@ -578,7 +563,29 @@ impl Layout {
                 next[k] += 1;
             }
         }
-        drop(next);
+        (onto_ptr, onto)
+    }
+
+    /// The system matrix `Q^T A Q` on the free unknowns (with the constraint rows and columns
+    /// for the saddle point) and the columns of the Dirichlet unknowns, `A_fd`. Rows are built
+    /// independently, in parallel: row `r` gathers the rows of `A` that expand onto its
+    /// unknown (its own and those of the condensed unknowns whose expansion names it), in
+    /// ascending order, and sums each column's terms in that order (the order of a triplet
+    /// assembly of the same products, so the same bits).
+    fn system_matrix(&self, a: &SparseMatrix) -> (SparseMatrix, SparseMatrix) {
+        let saddle = self.formulation == Formulation::SaddlePoint;
+        let nrows = self.rows.rows();
+        let size = self.nfree + if saddle { nrows } else { 0 };
+        // The global unknown of each free row.
+        let mut unknown_of = vec![0u32; self.nfree];
+        for (g, &f) in self.free.iter().enumerate() {
+            if f != NONE {
+                unknown_of[f as usize] = g as u32;
+            }
+        }
+        // For each retained unknown, the (row, expansion entry) pairs of the condensed
+        // unknowns that expand onto it, rows ascending.
+        let (onto_ptr, onto) = self.expanding_onto();
         // The saddle point's columns in the free rows: the constraint rows transposed.
         let constraint_t = if saddle {
             Some(self.rows.transpose_view().to_csr())
