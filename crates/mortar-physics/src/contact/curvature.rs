@@ -102,27 +102,14 @@ pub fn slave_surface_measures(
             let a = e.tangents(&x[..nn], xi);
             let point = e.map(&x[..nn], xi);
             let ds = e.jacobian_det(&x[..nn], xi) * w * geometry.weight(&point);
-            // The surface gradient of N_k: g^{ab} dN_k/dxi_a t_b (the inverse metric).
-            let inverse = if surface_dim == 1 {
-                [[1.0 / a[0].norm_squared(), 0.0], [0.0, 0.0]]
-            } else {
-                let (g11, g12, g22) = (a[0].dot(&a[0]), a[0].dot(&a[1]), a[1].dot(&a[1]));
-                let det = g11 * g22 - g12 * g12;
-                [[g22 / det, -g12 / det], [-g12 / det, g11 / det]]
-            };
-            let mut divergence = 0.0;
-            let mut n_h = Vector3::zeros();
-            for k in 0..nn {
-                let mut grad = Vector3::zeros();
-                for (p, row) in inverse.iter().enumerate().take(surface_dim) {
-                    for (q, t) in a.iter().enumerate().take(surface_dim) {
-                        grad += row[q] * grads[k][p] * t;
-                    }
-                }
-                divergence += normals[k].dot(&grad);
-                n_h += shape[k] * normals[k];
-                surface_grads[k] = grad;
-            }
+            let (mut divergence, n_h) = surface_gradients(
+                &a,
+                surface_dim,
+                &grads[..nn],
+                &shape[..nn],
+                &normals[..nn],
+                &mut surface_grads[..nn],
+            );
             // The hoop terms of the revolved surface.
             let hoop = if geometry.is_axisymmetric() && point.x > 0.0 {
                 1.0 / point.x
@@ -147,20 +134,74 @@ pub fn slave_surface_measures(
             }
         }
     }
-    let cols = body_nodes
-        .iter()
-        .map(|&n| n as usize + 1)
-        .max()
-        .unwrap_or(0)
-        * dim;
-    Ok(SlaveSurfaceMeasures {
-        curvature: sum
+    Ok(SlaveSurfaceMeasures::from_sums(
+        &sum, &area, change, body_nodes, dim,
+    ))
+}
+
+impl SlaveSurfaceMeasures {
+    /// The measures of the per-row sums `sum = int div_s(n_h) N_j dS` and
+    /// `area = int N_j dS` (a curvature of zero where the area is) and of the triplets
+    /// `change` of the area change, over the slave body's unknowns up to its largest node of
+    /// `body_nodes`, `dim` components each.
+    fn from_sums(
+        sum: &[f64],
+        area: &[f64],
+        change: Triplets,
+        body_nodes: &[u32],
+        dim: usize,
+    ) -> Self {
+        let cols = body_nodes
             .iter()
-            .zip(&area)
-            .map(|(s, a)| if *a > 0.0 { s / a } else { 0.0 })
-            .collect(),
-        area_change: change.to_csr(rows, cols),
-    })
+            .map(|&n| n as usize + 1)
+            .max()
+            .unwrap_or(0)
+            * dim;
+        Self {
+            curvature: sum
+                .iter()
+                .zip(area)
+                .map(|(s, a)| if *a > 0.0 { s / a } else { 0.0 })
+                .collect(),
+            area_change: change.to_csr(sum.len(), cols),
+        }
+    }
+}
+
+/// At a point of a face with the tangents `a` (the first `surface_dim` of them), the
+/// reference shape gradients `grads` and values `shape` of its nodes and their unit normals
+/// `normals`: the surface gradient of each shape function into `surface_grads`,
+/// `g^{ab} dN_k/dxi_a t_b` (the inverse metric), and the surface divergence (without the
+/// hoop term) and the value of the interpolated normal field `n_h = sum n_k N_k`.
+fn surface_gradients(
+    a: &[Vector3<f64>; 2],
+    surface_dim: usize,
+    grads: &[[f64; 2]],
+    shape: &[f64],
+    normals: &[Vector3<f64>],
+    surface_grads: &mut [Vector3<f64>],
+) -> (f64, Vector3<f64>) {
+    let inverse = if surface_dim == 1 {
+        [[1.0 / a[0].norm_squared(), 0.0], [0.0, 0.0]]
+    } else {
+        let (g11, g12, g22) = (a[0].dot(&a[0]), a[0].dot(&a[1]), a[1].dot(&a[1]));
+        let det = g11 * g22 - g12 * g12;
+        [[g22 / det, -g12 / det], [-g12 / det, g11 / det]]
+    };
+    let mut divergence = 0.0;
+    let mut n_h = Vector3::zeros();
+    for k in 0..grads.len() {
+        let mut grad = Vector3::zeros();
+        for (p, row) in inverse.iter().enumerate().take(surface_dim) {
+            for (q, t) in a.iter().enumerate().take(surface_dim) {
+                grad += row[q] * grads[k][p] * t;
+            }
+        }
+        divergence += normals[k].dot(&grad);
+        n_h += shape[k] * normals[k];
+        surface_grads[k] = grad;
+    }
+    (divergence, n_h)
 }
 
 #[cfg(test)]

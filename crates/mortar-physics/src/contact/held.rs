@@ -130,25 +130,9 @@ fn body_motions(
     if n == 0 {
         return HeldMotions::default();
     }
-    let (lo, hi) = coords
-        .iter()
-        .fold((coords[0], coords[0]), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
-    let centre = coords.iter().sum::<Vector3<f64>>() / n as f64;
-    let size = (hi - lo).norm().max(f64::MIN_POSITIVE);
-    let modes = if dim == 2 { 3 } else { 6 };
-    // The value of mode `k` at unknown `node * dim + a`.
-    let mode = |k: usize, node: usize, a: usize| -> f64 {
-        if k < dim {
-            return f64::from(u8::from(k == a));
-        }
-        let x = (coords[node] - centre) / size;
-        let w = if dim == 2 {
-            Vector3::z()
-        } else {
-            Vector3::ith(k - dim, 1.0)
-        };
-        w.cross(&x)[a]
-    };
+    let rigid = Modes::new(coords, dim);
+    let modes = rigid.count;
+    let mode = |k: usize, node: usize, a: usize| rigid.value(k, node, a);
     // Dirichlet: the Gram matrix of the modes over the prescribed unknowns.
     let rows_d: Vec<Vec<f64>> = dirichlet
         .iter()
@@ -181,26 +165,7 @@ fn body_motions(
     }
     let scale: f64 = gap.weights.iter().map(|w| w * w).sum();
     let free_c = null_space(&gram(&rows_c, free_d.ncols()), scale);
-    let motion = |c: &[f64]| {
-        let mut translation = Vector3::zeros();
-        let mut rotation = Vector3::zeros();
-        for k in 0..dim {
-            translation[k] = c[k];
-        }
-        if dim == 2 {
-            rotation.z = c[2] / size;
-        } else {
-            for k in 0..3 {
-                rotation[k] = c[3 + k] / size;
-            }
-        }
-        RigidMotion {
-            translation,
-            rotation,
-            centre,
-            dim,
-        }
-    };
+    let motion = |c: &[f64]| rigid.motion(c);
     let in_modes = |combination: &[f64]| -> Vec<f64> {
         (0..modes)
             .map(|k| {
@@ -219,6 +184,74 @@ fn body_motions(
     HeldMotions {
         by_contact_only,
         free,
+    }
+}
+
+/// The rigid modes of a body: the translations along the axes, then the rotations about
+/// its centre (about z in 2D, about x, y, z in 3D) scaled by its size, so that all are of
+/// the order of one.
+struct Modes<'a> {
+    coords: &'a [Vector3<f64>],
+    centre: Vector3<f64>,
+    size: f64,
+    dim: usize,
+    /// Their number: 3 in 2D, 6 in 3D.
+    count: usize,
+}
+
+impl<'a> Modes<'a> {
+    /// The modes of the body of nodes `coords` (not empty), `dim` components.
+    fn new(coords: &'a [Vector3<f64>], dim: usize) -> Self {
+        let (lo, hi) = coords
+            .iter()
+            .fold((coords[0], coords[0]), |(lo, hi), x| (lo.inf(x), hi.sup(x)));
+        let centre = coords.iter().sum::<Vector3<f64>>() / coords.len() as f64;
+        let size = (hi - lo).norm().max(f64::MIN_POSITIVE);
+        Self {
+            coords,
+            centre,
+            size,
+            dim,
+            count: if dim == 2 { 3 } else { 6 },
+        }
+    }
+
+    /// The value of mode `k` at unknown `node * dim + a`.
+    fn value(&self, k: usize, node: usize, a: usize) -> f64 {
+        let dim = self.dim;
+        if k < dim {
+            return f64::from(u8::from(k == a));
+        }
+        let x = (self.coords[node] - self.centre) / self.size;
+        let w = if dim == 2 {
+            Vector3::z()
+        } else {
+            Vector3::ith(k - dim, 1.0)
+        };
+        w.cross(&x)[a]
+    }
+
+    /// The motion of the combination `c` of the modes.
+    fn motion(&self, c: &[f64]) -> RigidMotion {
+        let dim = self.dim;
+        let mut translation = Vector3::zeros();
+        let mut rotation = Vector3::zeros();
+        for k in 0..dim {
+            translation[k] = c[k];
+        }
+        if dim == 2 {
+            rotation.z = c[2] / self.size;
+        } else {
+            for k in 0..3 {
+                rotation[k] = c[3 + k] / self.size;
+            }
+        }
+        RigidMotion {
+            translation,
+            rotation,
+            centre: self.centre,
+            dim,
+        }
     }
 }
 

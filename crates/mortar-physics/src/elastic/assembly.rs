@@ -153,21 +153,60 @@ pub fn assemble_elastic_load(
     options: &ElasticOptions,
 ) -> Result<Vec<f64>, PhysicsError> {
     check(body, options)?;
-    let mesh = &body.mesh;
-    let layout = body.layout();
-    let dim = layout.components;
-    let mut f = vec![0.0; layout.len()];
-    let beta = body.material.thermal_stress_coefficient();
-    let t_ref = body.material.reference_temperature;
-    let thermal = body.temperature.as_deref().filter(|_| beta != 0.0);
-    let axi = options.geometry.is_axisymmetric();
-    // The eigenstress C eps* as a tensor (the hoop component apart in r-z).
-    let eigen = body
-        .eigenstrain
-        .map(|e| voigt_tensor(&body.material.stress(&e, 0.0)));
-    if body.body_force.is_some() || thermal.is_some() || eigen.is_some() {
+    let mut f = vec![0.0; body.layout().len()];
+    let loads = CellLoads::new(body, options);
+    if loads.any() {
+        for ch in loads.chunks() {
+            for (d, v) in ch? {
+                f[d as usize] += v;
+            }
+        }
+    }
+    add_tractions(body, options, &mut f)?;
+    Ok(f)
+}
+
+/// The cell terms of [`assemble_elastic_load`]: the body force, the thermal strain of the
+/// body's temperature field (when it gives a stress) and the eigenstrain.
+struct CellLoads<'a> {
+    body: &'a ElasticBody,
+    options: &'a ElasticOptions,
+    /// `3 K alpha`.
+    beta: f64,
+    t_ref: f64,
+    /// The temperature field, when it gives a thermal stress.
+    thermal: Option<&'a [f64]>,
+    /// The eigenstress `C eps*` as a tensor (the hoop component apart in r-z).
+    eigen: Option<[[f64; 3]; 3]>,
+}
+
+impl<'a> CellLoads<'a> {
+    fn new(body: &'a ElasticBody, options: &'a ElasticOptions) -> Self {
+        let beta = body.material.thermal_stress_coefficient();
+        Self {
+            body,
+            options,
+            beta,
+            t_ref: body.material.reference_temperature,
+            thermal: body.temperature.as_deref().filter(|_| beta != 0.0),
+            eigen: body
+                .eigenstrain
+                .map(|e| voigt_tensor(&body.material.stress(&e, 0.0))),
+        }
+    }
+
+    /// Whether there is any cell term.
+    fn any(&self) -> bool {
+        self.body.body_force.is_some() || self.thermal.is_some() || self.eigen.is_some()
+    }
+
+    /// The cells' `(unknown, value)` terms, in parallel over fixed chunks of cells, in cell
+    /// order.
+    fn chunks(&self) -> Vec<Result<Vec<(u32, f64)>, PhysicsError>> {
+        let (mesh, layout) = (&self.body.mesh, self.body.layout());
+        let dim = layout.components;
         let cells = mesh.cell_count();
-        let chunks: Vec<Result<Vec<(u32, f64)>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+        (0..cells.div_ceil(CELL_CHUNK))
             .into_par_iter()
             .map(|ch| {
                 let mut out = Vec::new();
@@ -177,58 +216,15 @@ pub fn assemble_elastic_load(
                 let mut dt = [0.0; MAX_CELL_NODES];
                 for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
                     let cell = mesh.cell(c);
-                    let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
+                    let nn = reinit_cell(self.body, self.options, c, &mut cv, &mut x)?;
                     fe[..nn * dim].fill(0.0);
-                    if let Some(t) = thermal {
+                    if let Some(t) = self.thermal {
                         for (d, &n) in dt.iter_mut().zip(cell.nodes) {
-                            *d = t[n as usize] - t_ref;
+                            *d = t[n as usize] - self.t_ref;
                         }
                     }
                     for q in 0..cv.len() {
-                        let (n, w) = (cv.shape(q), cells::weight(&cv, q, options.geometry));
-                        if let Some(force) = &body.body_force {
-                            let b = force(&cv.point(q)) * w;
-                            for a in 0..nn {
-                                for i in 0..dim {
-                                    fe[a * dim + i] += b[i] * n[a];
-                                }
-                            }
-                        }
-                        if thermal.is_some() {
-                            let s = beta * cv.value(q, &dt[..nn]) * w;
-                            let g = cv.gradients(q);
-                            for a in 0..nn {
-                                for i in 0..dim {
-                                    fe[a * dim + i] += s * g[a][i];
-                                }
-                            }
-                            if axi {
-                                let inv_r = hoop_factor(&cv, q, axi);
-                                for a in 0..nn {
-                                    fe[a * dim] += s * n[a] * inv_r;
-                                }
-                            }
-                        }
-                        if let Some(sigma) = &eigen {
-                            // int sigma*_ij dN_a/dx_j, and sigma*_tt N_a / r on the radial
-                            // rows in r-z (the hoop stress is in the zz slot there).
-                            let g = cv.gradients(q);
-                            for a in 0..nn {
-                                for i in 0..dim {
-                                    let mut v = 0.0;
-                                    for j in 0..dim {
-                                        v += sigma[i][j] * g[a][j];
-                                    }
-                                    fe[a * dim + i] += v * w;
-                                }
-                            }
-                            if axi {
-                                let inv_r = hoop_factor(&cv, q, axi);
-                                for a in 0..nn {
-                                    fe[a * dim] += sigma[2][2] * n[a] * inv_r * w;
-                                }
-                            }
-                        }
+                        self.point(&cv, q, nn, &dt, &mut fe);
                     }
                     for (a, &na) in cell.nodes.iter().enumerate() {
                         for i in 0..dim {
@@ -238,13 +234,70 @@ pub fn assemble_elastic_load(
                 }
                 Ok(out)
             })
-            .collect();
-        for ch in chunks {
-            for (d, v) in ch? {
-                f[d as usize] += v;
+            .collect()
+    }
+
+    /// Adds the terms of quadrature point `q` of a cell of `nn` nodes (`cv`, nodal
+    /// temperature differences `dt`) to its load `fe`: body force, thermal strain,
+    /// eigenstrain, in this order.
+    fn point(&self, cv: &CellValues, q: usize, nn: usize, dt: &[f64], fe: &mut [f64]) {
+        let dim = self.body.layout().components;
+        let axi = self.options.geometry.is_axisymmetric();
+        let (n, w) = (cv.shape(q), cells::weight(cv, q, self.options.geometry));
+        if let Some(force) = &self.body.body_force {
+            let b = force(&cv.point(q)) * w;
+            for a in 0..nn {
+                for i in 0..dim {
+                    fe[a * dim + i] += b[i] * n[a];
+                }
+            }
+        }
+        if self.thermal.is_some() {
+            let s = self.beta * cv.value(q, &dt[..nn]) * w;
+            let g = cv.gradients(q);
+            for a in 0..nn {
+                for i in 0..dim {
+                    fe[a * dim + i] += s * g[a][i];
+                }
+            }
+            if axi {
+                let inv_r = hoop_factor(cv, q, axi);
+                for a in 0..nn {
+                    fe[a * dim] += s * n[a] * inv_r;
+                }
+            }
+        }
+        if let Some(sigma) = &self.eigen {
+            // int sigma*_ij dN_a/dx_j, and sigma*_tt N_a / r on the radial rows in r-z (the
+            // hoop stress is in the zz slot there).
+            let g = cv.gradients(q);
+            for a in 0..nn {
+                for i in 0..dim {
+                    let mut v = 0.0;
+                    for j in 0..dim {
+                        v += sigma[i][j] * g[a][j];
+                    }
+                    fe[a * dim + i] += v * w;
+                }
+            }
+            if axi {
+                let inv_r = hoop_factor(cv, q, axi);
+                for a in 0..nn {
+                    fe[a * dim] += sigma[2][2] * n[a] * inv_r * w;
+                }
             }
         }
     }
+}
+
+/// Adds the body's tractions to its load `f`, `int_faces t_i N_a`.
+fn add_tractions(
+    body: &ElasticBody,
+    options: &ElasticOptions,
+    f: &mut [f64],
+) -> Result<(), PhysicsError> {
+    let (mesh, layout) = (&body.mesh, body.layout());
+    let dim = layout.components;
     for cond in &body.tractions {
         for face in &cond.faces {
             cells::for_each_face_point(
@@ -269,7 +322,7 @@ pub fn assemble_elastic_load(
             })?;
         }
     }
-    Ok(f)
+    Ok(())
 }
 
 /// Assembles the matrix `G` of the thermal load, linear in the nodal temperatures:

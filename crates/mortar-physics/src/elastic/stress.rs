@@ -83,9 +83,7 @@ pub fn recover_stress_with_axial_strain(
             "an axial strain ({axial_strain}) is a 2D Cartesian body's generalized plane strain"
         )));
     }
-    let mesh = &body.mesh;
     let layout = body.layout();
-    let dim = layout.components;
     if displacement.len() != layout.len() {
         return Err(PhysicsError::WrongLength {
             what: format!("body {:?}: displacement", body.name),
@@ -93,87 +91,149 @@ pub fn recover_stress_with_axial_strain(
             got: displacement.len(),
         });
     }
-    let material = body.material;
-    let t_ref = material.reference_temperature;
-    let axi = options.geometry.is_axisymmetric();
-    let cells = mesh.cell_count();
+    let recovery = Recovery {
+        body,
+        displacement,
+        axial_strain,
+        options,
+    };
+    let cells = body.mesh.cell_count();
     let chunks: Vec<Result<Vec<CellMean>, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
         .map(|ch| {
             let mut out = Vec::with_capacity(CELL_CHUNK);
-            let mut cv = CellValues::new();
-            let mut x = [Vector3::zeros(); MAX_CELL_NODES];
-            let mut ue = [Vector3::zeros(); MAX_CELL_NODES];
-            let mut dt = [0.0; MAX_CELL_NODES];
+            let mut cell = CellScratch::new();
             for c in ch * CELL_CHUNK..((ch + 1) * CELL_CHUNK).min(cells) {
-                let cell = mesh.cell(c);
-                let nn = reinit_cell(body, options, c, &mut cv, &mut x)?;
-                for (u, &n) in ue.iter_mut().zip(cell.nodes) {
-                    *u = Vector3::zeros();
-                    for i in 0..dim {
-                        u[i] = displacement[layout.dof(n, i) as usize];
-                    }
-                }
-                if let Some(t) = &body.temperature {
-                    for (d, &n) in dt.iter_mut().zip(cell.nodes) {
-                        *d = t[n as usize] - t_ref;
-                    }
-                } else {
-                    dt[..nn].fill(0.0);
-                }
-                let mut sum = [0.0; 6];
-                let mut volume = 0.0;
-                for q in 0..cv.len() {
-                    let (g, w) = (cv.gradients(q), cells::weight(&cv, q, options.geometry));
-                    // The displacement gradient h[i][j] = du_i/dx_j (zero third row and
-                    // column in 2D).
-                    let mut h = [[0.0; 3]; 3];
-                    h[2][2] = axial_strain;
-                    for (u, ga) in ue[..nn].iter().zip(g) {
-                        for i in 0..3 {
-                            for j in 0..3 {
-                                h[i][j] += u[i] * ga[j];
-                            }
-                        }
-                    }
-                    if axi {
-                        // The hoop strain u_r / r, in the zz slot.
-                        let ur: f64 = cv
-                            .shape(q)
-                            .iter()
-                            .zip(&ue[..nn])
-                            .map(|(n, u)| n * u.x)
-                            .sum();
-                        h[2][2] = ur * hoop_factor(&cv, q, axi);
-                    }
-                    let mut strain = [
-                        h[0][0],
-                        h[1][1],
-                        h[2][2],
-                        h[1][2] + h[2][1],
-                        h[0][2] + h[2][0],
-                        h[0][1] + h[1][0],
-                    ];
-                    if let Some(e) = &body.eigenstrain {
-                        for (s, e) in strain.iter_mut().zip(e) {
-                            *s -= e;
-                        }
-                    }
-                    let s = material.stress(&strain, cv.value(q, &dt[..nn]));
-                    for (acc, v) in sum.iter_mut().zip(s) {
-                        *acc += v * w;
-                    }
-                    volume += w;
-                }
-                out.push((sum.map(|v| v / volume), volume));
+                out.push(recovery.cell_mean(c, &mut cell)?);
             }
             Ok(out)
         })
         .collect();
+    let (nodal, cell_stress) = nodal_average(body, chunks)?;
+    let von_mises = nodal.iter().map(von_mises).collect();
+    Ok(StressField {
+        nodal,
+        von_mises,
+        cells: cell_stress,
+    })
+}
+
+/// The stress of one displacement of a body, cell by cell
+/// ([`recover_stress_with_axial_strain`]).
+struct Recovery<'a> {
+    body: &'a ElasticBody,
+    displacement: &'a [f64],
+    axial_strain: f64,
+    options: &'a ElasticOptions,
+}
+
+/// The values of one cell: its quadrature, node coordinates, nodal displacements and
+/// temperature differences.
+struct CellScratch {
+    cv: CellValues,
+    x: [Vector3<f64>; MAX_CELL_NODES],
+    ue: [Vector3<f64>; MAX_CELL_NODES],
+    dt: [f64; MAX_CELL_NODES],
+}
+
+impl CellScratch {
+    fn new() -> Self {
+        Self {
+            cv: CellValues::new(),
+            x: [Vector3::zeros(); MAX_CELL_NODES],
+            ue: [Vector3::zeros(); MAX_CELL_NODES],
+            dt: [0.0; MAX_CELL_NODES],
+        }
+    }
+}
+
+impl Recovery<'_> {
+    /// Cell `c`'s mean stress and volume (`cell`: the scratch values, reset here).
+    fn cell_mean(&self, c: usize, cell: &mut CellScratch) -> Result<CellMean, PhysicsError> {
+        let (body, options) = (self.body, self.options);
+        let layout = body.layout();
+        let dim = layout.components;
+        let t_ref = body.material.reference_temperature;
+        let nodes = body.mesh.cell(c).nodes;
+        let nn = reinit_cell(body, options, c, &mut cell.cv, &mut cell.x)?;
+        for (u, &n) in cell.ue.iter_mut().zip(nodes) {
+            *u = Vector3::zeros();
+            for i in 0..dim {
+                u[i] = self.displacement[layout.dof(n, i) as usize];
+            }
+        }
+        if let Some(t) = &body.temperature {
+            for (d, &n) in cell.dt.iter_mut().zip(nodes) {
+                *d = t[n as usize] - t_ref;
+            }
+        } else {
+            cell.dt[..nn].fill(0.0);
+        }
+        let cv = &cell.cv;
+        let mut sum = [0.0; 6];
+        let mut volume = 0.0;
+        for q in 0..cv.len() {
+            let w = cells::weight(cv, q, options.geometry);
+            let strain = self.strain(cv, q, &cell.ue[..nn]);
+            let s = body.material.stress(&strain, cv.value(q, &cell.dt[..nn]));
+            for (acc, v) in sum.iter_mut().zip(s) {
+                *acc += v * w;
+            }
+            volume += w;
+        }
+        Ok((sum.map(|v| v / volume), volume))
+    }
+
+    /// The strain at point `q` of a cell (`cv`) of nodal displacements `ue`, Voigt order
+    /// with engineering shears, less the body's eigenstrain: the axial strain in the zz
+    /// slot, or in r-z the hoop strain `u_r / r`.
+    fn strain(&self, cv: &CellValues, q: usize, ue: &[Vector3<f64>]) -> [f64; 6] {
+        let axi = self.options.geometry.is_axisymmetric();
+        let g = cv.gradients(q);
+        // The displacement gradient h[i][j] = du_i/dx_j (zero third row and column in 2D).
+        let mut h = [[0.0; 3]; 3];
+        h[2][2] = self.axial_strain;
+        for (u, ga) in ue.iter().zip(g) {
+            for i in 0..3 {
+                for j in 0..3 {
+                    h[i][j] += u[i] * ga[j];
+                }
+            }
+        }
+        if axi {
+            // The hoop strain u_r / r, in the zz slot.
+            let ur: f64 = cv.shape(q).iter().zip(ue).map(|(n, u)| n * u.x).sum();
+            h[2][2] = ur * hoop_factor(cv, q, axi);
+        }
+        let mut strain = [
+            h[0][0],
+            h[1][1],
+            h[2][2],
+            h[1][2] + h[2][1],
+            h[0][2] + h[2][0],
+            h[0][1] + h[1][0],
+        ];
+        if let Some(e) = &self.body.eigenstrain {
+            for (s, e) in strain.iter_mut().zip(e) {
+                *s -= e;
+            }
+        }
+        strain
+    }
+}
+
+/// The nodal stresses, the volume-weighted means of the cell means `chunks` (in cell
+/// order) of the cells around each node (NaN at a node of no cell), and the cell means.
+#[allow(clippy::type_complexity)]
+fn nodal_average(
+    body: &ElasticBody,
+    chunks: Vec<Result<Vec<CellMean>, PhysicsError>>,
+) -> Result<(Vec<[f64; 6]>, Vec<[f64; 6]>), PhysicsError> {
+    let mesh = &body.mesh;
     let n = mesh.node_count();
     let mut nodal = vec![[0.0; 6]; n];
     let mut weight = vec![0.0; n];
-    let mut cell_stress = Vec::with_capacity(cells);
+    let mut cell_stress = Vec::with_capacity(mesh.cell_count());
     let mut c = 0;
     for ch in chunks {
         for (s, volume) in ch? {
@@ -195,10 +255,5 @@ pub fn recover_stress_with_axial_strain(
             [f64::NAN; 6]
         };
     }
-    let von_mises = nodal.iter().map(von_mises).collect();
-    Ok(StressField {
-        nodal,
-        von_mises,
-        cells: cell_stress,
-    })
+    Ok((nodal, cell_stress))
 }

@@ -240,41 +240,26 @@ pub fn newton(
             }
             return Err(fail(NewtonFailureReason::MaxIterations, &report));
         }
-        if let Forcing::EisenstatWalker {
-            gamma, alpha, max, ..
-        } = options.forcing
-        {
-            if report.iterations > 0 {
-                let mut e = gamma * (norm_r / norm_prev).powf(alpha);
-                let safeguard = gamma * eta.powf(alpha);
-                if safeguard > 0.1 {
-                    e = e.max(safeguard);
-                }
-                eta = e.min(max);
-            }
-            eta = eta.max(0.5 * tol / norm_r).min(max);
-        }
+        eta = next_forcing(
+            &options.forcing,
+            report.iterations,
+            eta,
+            norm_r,
+            norm_prev,
+            tol,
+        );
         dx.fill(0.0);
         report.linear_iterations += problem.solve_linearized(x, &r, &mut dx, eta)?;
         report.iterations += 1;
-        // Backtracking line search.
-        let mut a = 1.0;
-        let mut accepted = false;
-        for halving in 0..=options.max_backtracks {
-            for i in 0..n {
-                trial[i] = x[i] - a * dx[i];
-            }
-            report.residual_evaluations += 1;
-            let ok = problem.residual(&trial, &mut r_trial).is_ok();
-            let nt = norm(&r_trial);
-            if ok && nt.is_finite() && nt <= (1.0 - 1e-4 * a) * norm_r {
-                accepted = true;
-                report.backtracks += halving;
-                break;
-            }
-            a *= 0.5;
-        }
-        if !accepted {
+        let search = LineSearch {
+            x,
+            dx: &dx,
+            norm_r,
+            max_backtracks: options.max_backtracks,
+        };
+        if let Some(halvings) = search.run(problem, &mut trial, &mut r_trial, &mut report) {
+            report.backtracks += halvings;
+        } else {
             if at_roundoff(problem, x, norm_r)? {
                 report.seconds = start.elapsed().as_secs_f64();
                 return Ok(report);
@@ -286,6 +271,71 @@ pub fn newton(
         norm_prev = norm_r;
         norm_r = norm(&r);
         report.residual_history.push(norm_r);
+    }
+}
+
+/// The forcing term of the next Newton step after `iterations` steps, from the last one
+/// `eta`: constant, or Eisenstat-Walker's of the residual norms `norm_r` (now) and
+/// `norm_prev` (before the last step) with its safeguard, kept above `0.5 tol / |F|`.
+fn next_forcing(
+    forcing: &Forcing,
+    iterations: usize,
+    mut eta: f64,
+    norm_r: f64,
+    norm_prev: f64,
+    tol: f64,
+) -> f64 {
+    if let Forcing::EisenstatWalker {
+        gamma, alpha, max, ..
+    } = *forcing
+    {
+        if iterations > 0 {
+            let mut e = gamma * (norm_r / norm_prev).powf(alpha);
+            let safeguard = gamma * eta.powf(alpha);
+            if safeguard > 0.1 {
+                e = e.max(safeguard);
+            }
+            eta = e.min(max);
+        }
+        eta = eta.max(0.5 * tol / norm_r).min(max);
+    }
+    eta
+}
+
+/// The backtracking line search of [`newton`] from `x` along `-dx` (`|F(x)| = norm_r`).
+struct LineSearch<'a> {
+    x: &'a [f64],
+    dx: &'a [f64],
+    norm_r: f64,
+    max_backtracks: usize,
+}
+
+impl LineSearch<'_> {
+    /// Tries the step lengths `1, 1/2, ...` (at most `max_backtracks` halvings) until
+    /// `|F(x - a dx)| <= (1 - 1e-4 a) |F(x)|`, counting each residual in `report`: the number
+    /// of halvings, `trial` the accepted point and `r_trial` its residual; `None` if none is
+    /// accepted.
+    fn run(
+        &self,
+        problem: &mut dyn NewtonProblem,
+        trial: &mut [f64],
+        r_trial: &mut [f64],
+        report: &mut NewtonReport,
+    ) -> Option<usize> {
+        let mut a = 1.0;
+        for halving in 0..=self.max_backtracks {
+            for i in 0..self.x.len() {
+                trial[i] = self.x[i] - a * self.dx[i];
+            }
+            report.residual_evaluations += 1;
+            let ok = problem.residual(trial, r_trial).is_ok();
+            let nt = norm(r_trial);
+            if ok && nt.is_finite() && nt <= (1.0 - 1e-4 * a) * self.norm_r {
+                return Some(halving);
+            }
+            a *= 0.5;
+        }
+        None
     }
 }
 

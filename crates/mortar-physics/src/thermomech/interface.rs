@@ -6,12 +6,13 @@
 use mortar_core::linalg::Triplets;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::{CouplingOptions, Interface, Tolerances};
+use sprs::CsVecView;
 
 use super::pair::{gap_column, nodal_gaps, ContactPair, GasSums, InterfaceView};
 use super::problem::GapThermoMechanics;
 use crate::contact::{slave_surface_measures, NormalGap};
 use crate::error::PhysicsError;
-use crate::laws::{evaluate, ConstraintLaw, LawPoint};
+use crate::laws::{evaluate, ConstraintLaw, LawPoint, LawTangent};
 use crate::tied::Tie;
 
 impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
@@ -166,7 +167,8 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
     /// The rows of one interface: each slave node's thermal law (flux row) and contact law
     /// (pressure row), the flux into the bodies' heat balances (`+D^T q` on the slave side,
     /// `-M^T q` on the master side), the pressure onto their equilibrium (`N^T p`), their
-    /// Jacobian entries when `lin`, and the gas-filled interfaces' sums.
+    /// Jacobian entries when `lin` ([`row_jacobian`](Self::row_jacobian)), and the
+    /// gas-filled interfaces' sums ([`gas_derivatives`](Self::gas_derivatives)).
     ///
     /// # Errors
     /// The errors of the laws.
@@ -193,20 +195,27 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         let u = &x[o.u[0]..o.u[2]];
         let gas = x[o.gas] * pu;
         let areas = self.moved_areas_of(view, x);
-        let area_offset = o.u[bs];
-        for (j, ((drow, mrow), nrow)) in
+        for (j, ((d, m), n)) in
             c.d.outer_iterator()
                 .zip(c.m.outer_iterator())
                 .zip(view.gap.matrix.outer_iterator())
                 .enumerate()
         {
-            let w = view.weights[j];
-            let gs: f64 = drow.iter().map(|(k, v)| v * ts[sn[k] as usize]).sum();
-            let gm: f64 = mrow.iter().map(|(l, v)| v * tm[mn[l] as usize]).sum();
-            let nu: f64 = nrow.iter().map(|(k, v)| v * u[k]).sum::<f64>() * uu;
+            let row = InterfaceRow {
+                j,
+                d,
+                m,
+                n,
+                w: view.weights[j],
+                rq: view.offsets[0] + j,
+                rp: view.offsets[1] + j,
+            };
+            let (w, rq, rp) = (row.w, row.rq, row.rp);
+            let gs: f64 = row.d.iter().map(|(k, v)| v * ts[sn[k] as usize]).sum();
+            let gm: f64 = row.m.iter().map(|(l, v)| v * tm[mn[l] as usize]).sum();
+            let nu: f64 = row.n.iter().map(|(k, v)| v * u[k]).sum::<f64>() * uu;
             let g = (view.gap.initial[j] - nu) / w;
             let (dt, tbar) = ((gs - gm) / w, 0.5 * (gs + gm) / w);
-            let (rq, rp) = (view.offsets[0] + j, view.offsets[1] + j);
             let q = fu * x[rq];
             let p = pu * x[rp];
             let point = LawPoint::new(dt, q, tbar).with_mechanics(g, p, gas);
@@ -216,14 +225,14 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             r[rq] = w * th.value;
             r[rp] = su * w * me.value;
             // Heat flux into the bodies, pressure onto the surfaces.
-            for (k, v) in drow.iter() {
+            for (k, v) in row.d.iter() {
                 r[o.t[bs] + sn[k] as usize] += v * q;
             }
-            for (l, v) in mrow.iter() {
+            for (l, v) in row.m.iter() {
                 r[o.t[bm] + mn[l] as usize] -= v * q;
             }
             // The contact pressure is an interaction: -p n on the slave, +p n on the master.
-            for (k, v) in nrow.iter() {
+            for (k, v) in row.n.iter() {
                 r[o.u[0] + k] += su * v * p;
             }
             let kappa = view.surface.curvature[j];
@@ -235,85 +244,154 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             if !lin {
                 continue;
             }
-            let push_t = |trip: &mut Triplets, row: usize, dg: f64, dtb: f64| {
-                for (k, v) in drow.iter() {
-                    trip.push(
-                        row as u32,
-                        (o.t[bs] + sn[k] as usize) as u32,
-                        (dg + 0.5 * dtb) * v,
-                    );
-                }
-                for (l, v) in mrow.iter() {
-                    trip.push(
-                        row as u32,
-                        (o.t[bm] + mn[l] as usize) as u32,
-                        (-dg + 0.5 * dtb) * v,
-                    );
-                }
-            };
-            // Flux row.
-            push_t(trip, rq, th.d_gap, th.d_temperature);
-            trip.push(rq as u32, rq as u32, w * th.d_multiplier * fu);
-            for (k, v) in nrow.iter() {
-                trip.push(rq as u32, (o.u[0] + k) as u32, -th.d_normal_gap * v * uu);
-            }
-            trip.push(rq as u32, rp as u32, w * th.d_contact_pressure * pu);
-            trip.push(rq as u32, o.gas as u32, w * th.d_gas_pressure * pu);
-            // Pressure row.
-            let dg = me.d_gap + me.d_normal_gap;
-            let dp = me.d_multiplier + me.d_contact_pressure;
-            push_t(trip, rp, 0.0, su * me.d_temperature);
-            for (k, v) in nrow.iter() {
-                trip.push(rp as u32, (o.u[0] + k) as u32, -su * dg * v * uu);
-            }
-            trip.push(rp as u32, rp as u32, su * w * dp * pu);
-            trip.push(rp as u32, o.gas as u32, su * w * me.d_gas_pressure * pu);
-            // The heat rows' flux columns, the equilibrium rows' pressure columns.
-            for (k, v) in drow.iter() {
-                let gi = o.t[bs] + sn[k] as usize;
-                if !self.heat.is_dirichlet(gi) {
-                    trip.push(gi as u32, rq as u32, v * fu);
-                }
-            }
-            for (l, v) in mrow.iter() {
-                let gi = o.t[bm] + mn[l] as usize;
-                if !self.heat.is_dirichlet(gi) {
-                    trip.push(gi as u32, rq as u32, -v * fu);
-                }
-            }
-            for (k, v) in nrow.iter() {
-                if !self.pinned[k] {
-                    let gi = (o.u[0] + k) as u32;
-                    trip.push(gi, rp as u32, su * v * pu);
-                }
-            }
-            if !view.gas {
-                continue;
-            }
-            // The gas equation's derivatives.
-            // (Zero entries where the gap is closed: the pattern stays the same.)
-            // dV_j = (A du)_j G(g_j) + W_j G'(g_j) dg_j, G(g) = g (1 + kappa g / 2).
-            let open = if g > 0.0 {
-                areas[j] / w * (1.0 + kappa * g)
-            } else {
-                0.0
-            };
-            sums.dvolume
-                .extend(nrow.iter().map(|(k, v)| (o.u[0] + k, -open * v * uu)));
-            let column = gap_column(1.0, g, kappa);
-            if column != 0.0 {
-                if let Some(arow) = view.surface.area_change.outer_view(j) {
-                    sums.dvolume
-                        .extend(arow.iter().map(|(k, v)| (area_offset + k, column * v * uu)));
-                }
-            }
-            for (k, v) in drow.iter() {
-                sums.dtemp.push((o.t[bs] + sn[k] as usize, 0.5 * v));
-            }
-            for (l, v) in mrow.iter() {
-                sums.dtemp.push((o.t[bm] + mn[l] as usize, 0.5 * v));
+            self.row_jacobian(view, &row, &th, &me, trip);
+            if view.gas {
+                self.gas_derivatives(view, &row, g, areas[j], sums);
             }
         }
         Ok(())
     }
+
+    /// The Jacobian entries of `row` of `view`, the thermal law's tangent `th` and the
+    /// contact law's `me` there: its flux row, its pressure row, and its flux's and
+    /// pressure's columns in the heat and equilibrium rows of the bodies.
+    fn row_jacobian(
+        &self,
+        view: &InterfaceView<'_, TL, ML>,
+        row: &InterfaceRow<'_>,
+        th: &LawTangent,
+        me: &LawTangent,
+        trip: &mut Triplets,
+    ) {
+        let o = &self.offsets;
+        let (uu, pu, fu) = (
+            self.options.displacement_unit,
+            self.options.pressure_unit,
+            self.options.flux_unit,
+        );
+        let su = self.row_scale;
+        let (sn, mn) = (view.tie.slave_nodes(), view.tie.master_nodes());
+        let [bs, bm] = view.bodies;
+        let (w, rq, rp) = (row.w, row.rq, row.rp);
+        // Flux row.
+        self.temperature_columns(view, row, rq, th.d_gap, th.d_temperature, trip);
+        trip.push(rq as u32, rq as u32, w * th.d_multiplier * fu);
+        for (k, v) in row.n.iter() {
+            trip.push(rq as u32, (o.u[0] + k) as u32, -th.d_normal_gap * v * uu);
+        }
+        trip.push(rq as u32, rp as u32, w * th.d_contact_pressure * pu);
+        trip.push(rq as u32, o.gas as u32, w * th.d_gas_pressure * pu);
+        // Pressure row.
+        let dg = me.d_gap + me.d_normal_gap;
+        let dp = me.d_multiplier + me.d_contact_pressure;
+        self.temperature_columns(view, row, rp, 0.0, su * me.d_temperature, trip);
+        for (k, v) in row.n.iter() {
+            trip.push(rp as u32, (o.u[0] + k) as u32, -su * dg * v * uu);
+        }
+        trip.push(rp as u32, rp as u32, su * w * dp * pu);
+        trip.push(rp as u32, o.gas as u32, su * w * me.d_gas_pressure * pu);
+        // The heat rows' flux columns, the equilibrium rows' pressure columns.
+        for (k, v) in row.d.iter() {
+            let gi = o.t[bs] + sn[k] as usize;
+            if !self.heat.is_dirichlet(gi) {
+                trip.push(gi as u32, rq as u32, v * fu);
+            }
+        }
+        for (l, v) in row.m.iter() {
+            let gi = o.t[bm] + mn[l] as usize;
+            if !self.heat.is_dirichlet(gi) {
+                trip.push(gi as u32, rq as u32, -v * fu);
+            }
+        }
+        for (k, v) in row.n.iter() {
+            if !self.pinned[k] {
+                let gi = (o.u[0] + k) as u32;
+                trip.push(gi, rp as u32, su * v * pu);
+            }
+        }
+    }
+
+    /// The entries of Jacobian row `target` in the temperatures of `row`'s slave and master
+    /// nodes, of a law with derivatives `dg` in the temperature jump and `dtb` in the mean
+    /// temperature.
+    fn temperature_columns(
+        &self,
+        view: &InterfaceView<'_, TL, ML>,
+        row: &InterfaceRow<'_>,
+        target: usize,
+        dg: f64,
+        dtb: f64,
+        trip: &mut Triplets,
+    ) {
+        let o = &self.offsets;
+        let (sn, mn) = (view.tie.slave_nodes(), view.tie.master_nodes());
+        let [bs, bm] = view.bodies;
+        for (k, v) in row.d.iter() {
+            trip.push(
+                target as u32,
+                (o.t[bs] + sn[k] as usize) as u32,
+                (dg + 0.5 * dtb) * v,
+            );
+        }
+        for (l, v) in row.m.iter() {
+            trip.push(
+                target as u32,
+                (o.t[bm] + mn[l] as usize) as u32,
+                (-dg + 0.5 * dtb) * v,
+            );
+        }
+    }
+
+    /// The gas equation's derivatives of `row` of a gas-filled `view` (nodal gap `g`, moved
+    /// area `area`) into `sums`: its gap volume's in the displacements, its temperature's.
+    fn gas_derivatives(
+        &self,
+        view: &InterfaceView<'_, TL, ML>,
+        row: &InterfaceRow<'_>,
+        g: f64,
+        area: f64,
+        sums: &mut GasSums,
+    ) {
+        let o = &self.offsets;
+        let uu = self.options.displacement_unit;
+        let (sn, mn) = (view.tie.slave_nodes(), view.tie.master_nodes());
+        let [bs, bm] = view.bodies;
+        let (j, w) = (row.j, row.w);
+        let kappa = view.surface.curvature[j];
+        let area_offset = o.u[bs];
+        // (Zero entries where the gap is closed: the pattern stays the same.)
+        // dV_j = (A du)_j G(g_j) + W_j G'(g_j) dg_j, G(g) = g (1 + kappa g / 2).
+        let open = if g > 0.0 {
+            area / w * (1.0 + kappa * g)
+        } else {
+            0.0
+        };
+        sums.dvolume
+            .extend(row.n.iter().map(|(k, v)| (o.u[0] + k, -open * v * uu)));
+        let column = gap_column(1.0, g, kappa);
+        if column != 0.0 {
+            if let Some(arow) = view.surface.area_change.outer_view(j) {
+                sums.dvolume
+                    .extend(arow.iter().map(|(k, v)| (area_offset + k, column * v * uu)));
+            }
+        }
+        for (k, v) in row.d.iter() {
+            sums.dtemp.push((o.t[bs] + sn[k] as usize, 0.5 * v));
+        }
+        for (l, v) in row.m.iter() {
+            sums.dtemp.push((o.t[bm] + mn[l] as usize, 0.5 * v));
+        }
+    }
+}
+
+/// One row `j` of an interface: its rows of D, M and N, its weight `w_j`, and its flux and
+/// pressure unknowns `rq`, `rp`.
+struct InterfaceRow<'m> {
+    j: usize,
+    d: CsVecView<'m, f64>,
+    m: CsVecView<'m, f64>,
+    n: CsVecView<'m, f64>,
+    w: f64,
+    rq: usize,
+    rp: usize,
 }

@@ -25,6 +25,7 @@ mod interface;
 mod pair;
 mod plenum;
 mod problem;
+mod residual;
 mod solve;
 
 pub use plenum::{GasPressure, Plenum, GAS_CONSTANT};

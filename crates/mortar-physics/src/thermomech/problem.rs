@@ -6,13 +6,13 @@ use std::collections::HashSet;
 use std::sync::Arc;
 
 use mortar_core::element::MAX_FACE_NODES;
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::SparseMatrix;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{CouplingOptions, ModelGeometry, Side, Tolerances};
 use nalgebra::Vector3;
 
-use super::pair::{gap_column, nodal_gaps, ContactPair, GasSums};
+use super::pair::{gap_column, nodal_gaps, ContactPair};
 use super::plenum::GasPressure;
 use crate::contact::{slave_surface_measures, NormalGap, SlaveSurfaceMeasures};
 use crate::elastic::{
@@ -20,7 +20,7 @@ use crate::elastic::{
     ElasticBody, ElasticOptions, GeneralizedPlaneStrain,
 };
 use crate::error::PhysicsError;
-use crate::heat::{Conductivity, GapHeat, HeatBody, HeatOptions, Linearization, StepData};
+use crate::heat::{Conductivity, GapHeat, HeatBody, HeatOptions};
 use crate::laws::ConstraintLaw;
 
 /// One body of a thermomechanical problem: its heat conduction (mesh, capacity, source,
@@ -111,6 +111,37 @@ pub(crate) struct Offsets {
 }
 
 impl Offsets {
+    /// The offsets of bodies of `nodes = [slave, master]` nodes with `dim` displacement
+    /// components, `rows` slave interface nodes, and an axial unknown per body with `axial`.
+    pub(crate) fn new(
+        nodes: [usize; 2],
+        dim: usize,
+        rows: usize,
+        axial: &[Option<Axial>; 2],
+    ) -> Self {
+        let [ns, nm] = nodes;
+        let nt = ns + nm;
+        let u = [nt, nt + dim * ns, nt + dim * (ns + nm)];
+        let gas = u[2] + 2 * rows;
+        let mut len = gas + 1;
+        let axial = [0, 1].map(|b| {
+            axial[b].as_ref().map(|_| {
+                len += 1;
+                len - 1
+            })
+        });
+        Self {
+            t: [0, ns, nt],
+            u,
+            flux: u[2],
+            pressure: u[2] + rows,
+            pairs: Vec::new(),
+            gas,
+            axial,
+            len,
+        }
+    }
+
     /// Adds a contact pair of `rows` slave nodes: its fluxes and pressures before the gas
     /// pressure, which and the axial unknowns move up.
     pub(crate) fn add_pair(&mut self, rows: usize) {
@@ -279,63 +310,12 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
         contact_law: ML,
         options: &ThermoMechOptions,
     ) -> Result<Self, PhysicsError> {
-        let invalid = |body: &str, what: String| PhysicsError::InvalidInput {
-            body: body.into(),
-            what,
-        };
-        for b in [&slave, &master] {
-            if b.heat.mesh.node_count() != b.elastic.mesh.node_count() {
-                return Err(invalid(
-                    &b.heat.name,
-                    format!(
-                        "the heat mesh has {} nodes, the elastic mesh {}",
-                        b.heat.mesh.node_count(),
-                        b.elastic.mesh.node_count()
-                    ),
-                ));
-            }
-            b.elastic.check()?;
-        }
+        check_bodies([&slave, &master])?;
         // Heat, elasticity and the coupling on one geometry (r-z: all three axisymmetric).
         crate::field::cells::check_same_geometry(coupling.geometry, options.heat.geometry)?;
         crate::field::cells::check_same_geometry(coupling.geometry, options.elastic.geometry)?;
-        for (what, v) in [
-            ("displacement unit", options.displacement_unit),
-            ("pressure unit", options.pressure_unit),
-            ("flux unit", options.flux_unit),
-        ] {
-            if !(v > 0.0 && v.is_finite()) {
-                return Err(invalid(
-                    "options",
-                    format!("{what} {v} is not positive and finite"),
-                ));
-            }
-        }
-        if let Some(g) = options.nominal_gap {
-            if !g.is_finite() {
-                return Err(invalid("options", format!("nominal gap {g} is not finite")));
-            }
-        }
-        match options.gas {
-            GasPressure::Fixed(p) if !(p >= 0.0 && p.is_finite()) => {
-                return Err(invalid(
-                    "options",
-                    format!("gas pressure {p} is not non-negative and finite"),
-                ))
-            }
-            GasPressure::Plenum(p) if !(p.volume >= 0.0 && p.gas_amount >= 0.0) => {
-                return Err(invalid("plenum", format!("{p:?} is not non-negative")))
-            }
-            _ => {}
-        }
-        let row_scale = slave.heat.material.conductivity
-            / (slave.elastic.material.youngs_modulus * options.displacement_unit);
-        if !(row_scale > 0.0 && row_scale.is_finite()) {
-            return Err(invalid(
-                &slave.heat.name,
-                format!("conductivity over Young's modulus gives the row scale {row_scale}"),
-            ));
-        }
+        check_options(options)?;
+        let row_scale = row_scale(&slave, options)?;
         let ThermoElasticBody {
             heat: hs,
             conductivity: ks,
@@ -363,39 +343,7 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
                 format!("a {}D body against a {dim}D one", em.components()),
             ));
         }
-        let (ns, nm) = (es.mesh.node_count(), em.mesh.node_count());
-        let mut gap = NormalGap::new(heat.tie(), dim, ns, nm)?;
-        let interface = heat.tie().interface();
-        let axis = rod_axis(coupling.geometry, dim);
-        let surface = slave_surface_measures(
-            interface,
-            heat.tie().coupling(),
-            coupling.geometry,
-            heat.tie().slave_nodes(),
-            dim,
-            axis,
-        )?;
-        let gas_load = [
-            surface_load(
-                interface.slave(),
-                &es,
-                Side::Slave,
-                dim,
-                options.elastic.geometry,
-            )?,
-            surface_load(
-                interface.master(),
-                &em,
-                Side::Master,
-                dim,
-                options.elastic.geometry,
-            )?,
-        ];
-        if let Some(g) = options.nominal_gap {
-            for (g0, w) in gap.initial.iter_mut().zip(&gap.weights) {
-                *g0 = g * w;
-            }
-        }
+        let (gap, surface, gas_load) = interface_operators(&heat, [&es, &em], coupling, options)?;
         let stiffness = [
             assemble_elastic_stiffness(&es, &options.elastic)?,
             assemble_elastic_stiffness(&em, &options.elastic)?,
@@ -409,57 +357,14 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             assemble_elastic_load(&without_temperature(&es), &options.elastic)?,
             assemble_elastic_load(&without_temperature(&em), &options.elastic)?,
         ];
-        let nt = ns + nm;
-        let rows = gap.weights.len();
-        let u = [nt, nt + dim * ns, nt + dim * (ns + nm)];
-        let gas_index = u[2] + 2 * rows;
         let axial = [
             axial_freedom(&es, options.axial[0], &options.elastic)?,
             axial_freedom(&em, options.axial[1], &options.elastic)?,
         ];
-        let mut len = gas_index + 1;
-        let axial_index = [0, 1].map(|b| {
-            axial[b].as_ref().map(|_| {
-                len += 1;
-                len - 1
-            })
-        });
-        let offsets = Offsets {
-            t: [0, ns, nt],
-            u,
-            flux: u[2],
-            pressure: u[2] + rows,
-            pairs: Vec::new(),
-            gas: gas_index,
-            axial: axial_index,
-            len,
-        };
-        let mut pinned = vec![false; dim * (ns + nm)];
-        let mut pinned_values = Vec::new();
-        for (b, body) in [&es, &em].into_iter().enumerate() {
-            let (dofs, values) = body.dirichlet_dofs();
-            for (d, v) in dofs.into_iter().zip(values) {
-                let i = u[b] - u[0] + d as usize;
-                pinned[i] = true;
-                pinned_values.push((u[0] + i, v / options.displacement_unit));
-            }
-            if let Some(Axial {
-                freedom: AxialFreedom::PlaneEnd(dofs),
-                ..
-            }) = &axial[b]
-            {
-                if let Some(&d) = dofs.iter().find(|&&d| pinned[u[b] - u[0] + d]) {
-                    return Err(invalid(
-                        &body.name,
-                        format!(
-                            "node {} of the top end is held axially: a free end needs the \
-                             axial component of its nodes free",
-                            body.mesh.node_tags()[d / dim]
-                        ),
-                    ));
-                }
-            }
-        }
+        let (ns, nm) = (es.mesh.node_count(), em.mesh.node_count());
+        let offsets = Offsets::new([ns, nm], dim, gap.weights.len(), &axial);
+        let (pinned, pinned_values) =
+            pinned_displacements([&es, &em], &offsets.u, &axial, options.displacement_unit)?;
         Ok(Self {
             heat,
             elastic: [es, em],
@@ -660,7 +565,11 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
     }
 
     /// The factor of `e` at `t`, refused when not finite.
-    fn eigenstrain_scale(&self, e: &TimedEigenstrain, t: f64) -> Result<f64, PhysicsError> {
+    pub(super) fn eigenstrain_scale(
+        &self,
+        e: &TimedEigenstrain,
+        t: f64,
+    ) -> Result<f64, PhysicsError> {
         let s = (e.scale)(t);
         if s.is_finite() {
             Ok(s)
@@ -716,205 +625,166 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> GapThermoMechanics<TL, ML> {
             .map(|(row, w)| w + uu * row.iter().map(|(k, v)| v * us[k]).sum::<f64>())
             .collect()
     }
+}
 
-    /// The residual, and the matrix of `lin` if asked (temperature Jacobian of the
-    /// conduction exact or Picard; everything else exact).
-    pub(crate) fn evaluate(
-        &self,
-        x: &[f64],
-        data: &StepData,
-        r: &mut [f64],
-        lin: Option<Linearization>,
-    ) -> Result<Option<SparseMatrix>, PhysicsError> {
-        let o = &self.offsets;
-        let n = o.len;
-        if x.len() != n || r.len() != n {
-            return Err(PhysicsError::WrongLength {
-                what: "state vector".into(),
-                expected: n,
-                got: x.len().min(r.len()),
-            });
-        }
-        let (uu, pu) = (self.options.displacement_unit, self.options.pressure_unit);
-        let su = self.row_scale;
-        let mut trip = Triplets::default();
-        // Heat conduction in the bodies.
-        self.heat.body_terms(x, data, r, lin, &mut trip)?;
-        // The eigenstrains' factors at this time.
-        let mut eigen: [Vec<(&TimedEigenstrain, f64)>; 2] = [Vec::new(), Vec::new()];
-        for e in &self.eigenstrains {
-            eigen[e.body].push((e, self.eigenstrain_scale(e, data.time)?));
-        }
-        // Elasticity: s_u (K u - G (T - T_ref) - f).
-        for b in 0..2 {
-            let (k, g) = (&self.stiffness[b], &self.thermal_load[b]);
-            let t_ref = self.elastic[b].material.reference_temperature;
-            let ub = &x[o.u[b]..o.u[b + 1]];
-            let tb = &x[o.t[b]..o.t[b + 1]];
-            // Generalized plane strain: the in-plane rows gain c e.
-            let gps = match (&self.axial[b], o.axial[b]) {
-                (
-                    Some(Axial {
-                        freedom: AxialFreedom::Generalized(gps),
-                        ..
-                    }),
-                    Some(ia),
-                ) => Some((gps, ia, x[ia] * AXIAL_STRAIN_UNIT)),
-                _ => None,
-            };
-            for (i, (krow, grow)) in k.outer_iterator().zip(g.outer_iterator()).enumerate() {
-                let gi = o.u[b] + i;
-                let ku: f64 = krow.iter().map(|(c, v)| v * ub[c]).sum::<f64>() * uu;
-                let gt: f64 = grow.iter().map(|(c, v)| v * (tb[c] - t_ref)).sum();
-                // The gas pressure on the interface surface: nodal forces -P_o int N n.
-                let gas_force = x[o.gas] * pu * self.gas_load[b][i];
-                let axial = gps.map_or(0.0, |(gps, _, e)| gps.coupling[i] * e);
-                let eigen_force = eigen[b].iter().fold(0.0, |f, (e, s)| f + s * e.load[i]);
-                r[gi] = su * (ku - gt - self.load[b][i] + gas_force + axial - eigen_force);
-                if lin.is_some() && !self.pinned[gi - o.u[0]] {
-                    for (c, v) in krow.iter() {
-                        trip.push(gi as u32, (o.u[b] + c) as u32, su * uu * v);
-                    }
-                    for (c, v) in grow.iter() {
-                        trip.push(gi as u32, (o.t[b] + c) as u32, -su * v);
-                    }
-                    if self.gas_load[b][i] != 0.0 {
-                        trip.push(gi as u32, o.gas as u32, su * pu * self.gas_load[b][i]);
-                    }
-                    if let Some((gps, ia, _)) = gps {
-                        if gps.coupling[i] != 0.0 {
-                            let v = su * gps.coupling[i] * AXIAL_STRAIN_UNIT;
-                            trip.push(gi as u32, ia as u32, v);
-                        }
-                    }
-                }
-            }
-            // The axial balance of generalized plane strain:
-            // s_u (c . u + k e - h . (T - T_ref) - F(P_o)).
-            if let (Some((gps, ia, e)), Some(ax)) = (gps, &self.axial[b]) {
-                let dt: Vec<f64> = tb.iter().map(|t| t - t_ref).collect();
-                let u_si: Vec<f64> = ub.iter().map(|v| v * uu).collect();
-                let force = ax.force.at(x[o.gas] * pu);
-                let eigen_force = eigen[b].iter().fold(0.0, |f, (e, s)| f + s * e.axial);
-                r[ia] = su * (gps.axial_force(&u_si, e, &dt) - eigen_force - force);
-                if lin.is_some() {
-                    for (c, &v) in gps.coupling.iter().enumerate() {
-                        if v != 0.0 {
-                            trip.push(ia as u32, (o.u[b] + c) as u32, su * uu * v);
-                        }
-                    }
-                    for (c, &v) in gps.thermal.iter().enumerate() {
-                        if v != 0.0 {
-                            trip.push(ia as u32, (o.t[b] + c) as u32, -su * v);
-                        }
-                    }
-                    let (ia32, kzz) = (ia as u32, gps.stiffness * AXIAL_STRAIN_UNIT);
-                    trip.push(ia32, ia32, su * kzz);
-                    let dgas = -su * ax.force.per_gas_pressure * pu;
-                    trip.push(ia32, o.gas as u32, dgas);
-                }
-            }
-        }
-        // The interfaces: the gap, then the contact pairs.
-        let gas = x[o.gas] * pu;
-        let mut sums = GasSums::default();
-        for view in self.interface_views() {
-            self.interface_terms(&view, x, r, lin.is_some(), &mut trip, &mut sums)?;
-        }
-        let GasSums {
-            length,
-            volume,
-            t_sum,
-            dvolume,
-            dtemp,
-        } = sums;
-        // The gas pressure.
-        let rg = o.gas;
-        match self.options.gas {
-            GasPressure::Fixed(p) => {
-                r[rg] = su * length * (gas - p);
-                if lin.is_some() {
-                    trip.push(rg as u32, rg as u32, su * length * pu);
-                }
-            }
-            GasPressure::Plenum(plenum) => {
-                let t_gap = t_sum / length;
-                let v = plenum.volume + volume;
-                r[rg] = su * length * (gas - plenum.gas_amount * t_gap / v);
-                if lin.is_some() {
-                    trip.push(rg as u32, rg as u32, su * length * pu);
-                    // d/dT: -n R / V dT_gap/dT, dT_gap/dT = dtemp / L.
-                    for (i, d) in dtemp {
-                        trip.push(rg as u32, i as u32, -su * plenum.gas_amount / v * d);
-                    }
-                    // d/du: n R T_gap / V^2 dV/du.
-                    let f = su * length * plenum.gas_amount * t_gap / (v * v);
-                    for (i, d) in dvolume {
-                        trip.push(rg as u32, i as u32, f * d);
-                    }
-                }
-            }
-        }
-        // Prescribed temperatures and displacements.
-        self.heat.dirichlet_terms(x, data, r, lin, &mut trip);
-        for &(i, v) in &self.pinned_values {
-            r[i] = x[i] - v;
-            if lin.is_some() {
-                trip.push(i as u32, i as u32, 1.0);
-            }
-        }
-        self.plane_end_terms(x, r, lin.is_some().then_some(&mut trip));
-        Ok(lin.map(|_| trip.to_csr(n, n)))
+/// The error of an input of `body` (or "options") that is not as it must be.
+fn invalid(body: &str, what: String) -> PhysicsError {
+    PhysicsError::InvalidInput {
+        body: body.into(),
+        what,
     }
+}
 
-    /// A free plane end (r-z, 3D): its nodes' axial equilibrium rows summed into the axial
-    /// unknown's row, the balance of the end's axial force, `sum_d r_d - s_u F(P_o)`; each of
-    /// those rows becomes `x_d - w` (the end stays plane, moving by `w`).
-    fn plane_end_terms(&self, x: &[f64], r: &mut [f64], trip: Option<&mut Triplets>) {
-        let o = &self.offsets;
-        let su = self.row_scale;
-        let pu = self.options.pressure_unit;
-        // (row, axial unknown) of each end's axial rows, and (axial unknown, its force's
-        // derivative in the gas pressure) of each end.
-        let mut rows: Vec<(usize, usize)> = Vec::new();
-        let mut ends: Vec<(usize, f64)> = Vec::new();
-        for b in 0..2 {
-            let (Some(ax), Some(ia)) = (&self.axial[b], o.axial[b]) else {
-                continue;
-            };
-            let AxialFreedom::PlaneEnd(dofs) = &ax.freedom else {
-                continue;
-            };
-            let mut sum = 0.0;
-            for &d in dofs {
-                let gi = o.u[b] + d;
-                sum += r[gi];
-                r[gi] = x[gi] - x[ia];
-                rows.push((gi, ia));
-            }
-            r[ia] = sum - su * ax.force.at(x[o.gas] * pu);
-            ends.push((ia, -su * pu * ax.force.per_gas_pressure));
+/// Refuses a body whose heat and elastic meshes differ in size, and an elastic body that
+/// its own check refuses; the slave first.
+fn check_bodies(bodies: [&ThermoElasticBody; 2]) -> Result<(), PhysicsError> {
+    for b in bodies {
+        if b.heat.mesh.node_count() != b.elastic.mesh.node_count() {
+            return Err(invalid(
+                &b.heat.name,
+                format!(
+                    "the heat mesh has {} nodes, the elastic mesh {}",
+                    b.heat.mesh.node_count(),
+                    b.elastic.mesh.node_count()
+                ),
+            ));
         }
-        let Some(trip) = trip else {
-            return;
-        };
-        if ends.is_empty() {
-            return;
-        }
-        // The end's rows move into the axial unknown's row.
-        let mut target: Vec<u32> = (0..o.len as u32).collect();
-        for &(gi, ia) in &rows {
-            target[gi] = ia as u32;
-        }
-        trip.map_rows(|row| target[row as usize]);
-        for (gi, ia) in rows {
-            trip.push(gi as u32, gi as u32, 1.0);
-            trip.push(gi as u32, ia as u32, -1.0);
-        }
-        for (ia, dgas) in ends {
-            trip.push(ia as u32, o.gas as u32, dgas);
+        b.elastic.check()?;
+    }
+    Ok(())
+}
+
+/// Refuses units that are not positive and finite, a nominal gap that is not finite, a
+/// negative or non-finite fixed gas pressure and a negative plenum.
+fn check_options(options: &ThermoMechOptions) -> Result<(), PhysicsError> {
+    for (what, v) in [
+        ("displacement unit", options.displacement_unit),
+        ("pressure unit", options.pressure_unit),
+        ("flux unit", options.flux_unit),
+    ] {
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(invalid(
+                "options",
+                format!("{what} {v} is not positive and finite"),
+            ));
         }
     }
+    if let Some(g) = options.nominal_gap {
+        if !g.is_finite() {
+            return Err(invalid("options", format!("nominal gap {g} is not finite")));
+        }
+    }
+    match options.gas {
+        GasPressure::Fixed(p) if !(p >= 0.0 && p.is_finite()) => Err(invalid(
+            "options",
+            format!("gas pressure {p} is not non-negative and finite"),
+        )),
+        GasPressure::Plenum(p) if !(p.volume >= 0.0 && p.gas_amount >= 0.0) => {
+            Err(invalid("plenum", format!("{p:?} is not non-negative")))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// The scale of the equilibrium rows, `s_u = k / (E u_unit)` of the slave body, refused
+/// when not positive and finite.
+fn row_scale(slave: &ThermoElasticBody, options: &ThermoMechOptions) -> Result<f64, PhysicsError> {
+    let row_scale = slave.heat.material.conductivity
+        / (slave.elastic.material.youngs_modulus * options.displacement_unit);
+    if !(row_scale > 0.0 && row_scale.is_finite()) {
+        return Err(invalid(
+            &slave.heat.name,
+            format!("conductivity over Young's modulus gives the row scale {row_scale}"),
+        ));
+    }
+    Ok(row_scale)
+}
+
+/// The mechanical operators of the interface of `heat` between the elastic `bodies`: the
+/// normal gap (its reference gaps the nominal gap where given), the slave surface's
+/// measures, and per body `int N n` over its interface surface.
+fn interface_operators<TL: ConstraintLaw>(
+    heat: &GapHeat<TL>,
+    [es, em]: [&ElasticBody; 2],
+    coupling: &CouplingOptions,
+    options: &ThermoMechOptions,
+) -> Result<(NormalGap, SlaveSurfaceMeasures, [Vec<f64>; 2]), PhysicsError> {
+    let dim = es.components();
+    let (ns, nm) = (es.mesh.node_count(), em.mesh.node_count());
+    let mut gap = NormalGap::new(heat.tie(), dim, ns, nm)?;
+    let interface = heat.tie().interface();
+    let axis = rod_axis(coupling.geometry, dim);
+    let surface = slave_surface_measures(
+        interface,
+        heat.tie().coupling(),
+        coupling.geometry,
+        heat.tie().slave_nodes(),
+        dim,
+        axis,
+    )?;
+    let gas_load = [
+        surface_load(
+            interface.slave(),
+            es,
+            Side::Slave,
+            dim,
+            options.elastic.geometry,
+        )?,
+        surface_load(
+            interface.master(),
+            em,
+            Side::Master,
+            dim,
+            options.elastic.geometry,
+        )?,
+    ];
+    if let Some(g) = options.nominal_gap {
+        for (g0, w) in gap.initial.iter_mut().zip(&gap.weights) {
+            *g0 = g * w;
+        }
+    }
+    Ok((gap, surface, gas_load))
+}
+
+/// The prescribed displacements of both `bodies` (state offsets `u`, values in `unit`):
+/// per displacement unknown whether it is prescribed, and each prescribed one's state
+/// index and value. A free axial end ([`AxialFreedom::PlaneEnd`]) is refused where a node of
+/// it is held axially.
+#[allow(clippy::type_complexity)]
+fn pinned_displacements(
+    bodies: [&ElasticBody; 2],
+    u: &[usize; 3],
+    axial: &[Option<Axial>; 2],
+    unit: f64,
+) -> Result<(Vec<bool>, Vec<(usize, f64)>), PhysicsError> {
+    let dim = bodies[0].components();
+    let mut pinned = vec![false; u[2] - u[0]];
+    let mut pinned_values = Vec::new();
+    for (b, body) in bodies.into_iter().enumerate() {
+        let (dofs, values) = body.dirichlet_dofs();
+        for (d, v) in dofs.into_iter().zip(values) {
+            let i = u[b] - u[0] + d as usize;
+            pinned[i] = true;
+            pinned_values.push((u[0] + i, v / unit));
+        }
+        if let Some(Axial {
+            freedom: AxialFreedom::PlaneEnd(dofs),
+            ..
+        }) = &axial[b]
+        {
+            if let Some(&d) = dofs.iter().find(|&&d| pinned[u[b] - u[0] + d]) {
+                return Err(invalid(
+                    &body.name,
+                    format!(
+                        "node {} of the top end is held axially: a free end needs the \
+                         axial component of its nodes free",
+                        body.mesh.node_tags()[d / dim]
+                    ),
+                ));
+            }
+        }
+    }
+    Ok((pinned, pinned_values))
 }
 
 /// The axial unknown of `body` for the force `force` (none without one): generalized plane

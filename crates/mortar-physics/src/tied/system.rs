@@ -184,57 +184,10 @@ impl TiedSystem {
         options: &TiedOptions,
     ) -> Result<Self, PhysicsError> {
         let t0 = Instant::now();
-        let n = [matrices[0].rows(), matrices[1].rows()];
-        for (b, m) in matrices.iter().enumerate() {
-            if m.cols() != n[b] {
-                return Err(PhysicsError::WrongLength {
-                    what: format!("columns of body {b}'s matrix"),
-                    expected: n[b],
-                    got: m.cols(),
-                });
-            }
-        }
+        let n = check_columns(matrices)?;
         let ndof = n[0] + n[1];
-        let mut dirichlet_pos = vec![NONE; ndof];
-        let mut dlist = Vec::with_capacity(dirichlet[0].len() + dirichlet[1].len());
-        for (b, list) in dirichlet.iter().enumerate() {
-            let offset = if b == 0 { 0 } else { n[0] };
-            for &node in *list {
-                if node as usize >= n[b] {
-                    return Err(PhysicsError::InvalidInput {
-                        body: format!("body {b}"),
-                        what: format!("Dirichlet node index {node} out of range ({})", n[b]),
-                    });
-                }
-                let g = offset + node as usize;
-                if dirichlet_pos[g] != NONE {
-                    return Err(PhysicsError::InvalidInput {
-                        body: format!("body {b}"),
-                        what: format!("Dirichlet node index {node} listed twice"),
-                    });
-                }
-                dirichlet_pos[g] = dlist.len() as u32;
-                dlist.push(g as u32);
-            }
-        }
-        for (r, &s) in tie.slave_dofs().iter().enumerate() {
-            if s as usize >= n[0] {
-                return Err(PhysicsError::WrongLength {
-                    what: format!("slave body matrix (interface row {r} is node {s})"),
-                    expected: s as usize + 1,
-                    got: n[0],
-                });
-            }
-        }
-        if let Some(&m) = tie.master_dofs().iter().max() {
-            if m as usize >= n[1] {
-                return Err(PhysicsError::WrongLength {
-                    what: "master body matrix".into(),
-                    expected: m as usize + 1,
-                    got: n[1],
-                });
-            }
-        }
+        let (dirichlet_pos, dlist) = dirichlet_positions(dirichlet, n)?;
+        check_tie_sizes(tie, n)?;
 
         let crossing = modified_rows(tie, n[0], &dirichlet_pos, options.slave_dirichlet)?;
         let a = block_diagonal(matrices[0], matrices[1]);
@@ -247,64 +200,12 @@ impl TiedSystem {
             own_row[s as usize] = j as u32;
         }
         let check = check_diagonal(&crossing, &own_row, options.diagonal_tolerance, tie);
-        let (formulation, reason) = match (options.formulation, check) {
-            (FormulationChoice::SaddlePoint, _) => (
-                Formulation::SaddlePoint,
-                "the saddle point was requested".to_string(),
-            ),
-            (FormulationChoice::DualCondensed, Err(e)) => return Err(e.into()),
-            (_, Ok(())) if nrows == 0 => (
-                Formulation::DualCondensed,
-                "no multiplier is left (every slave interface node is a Dirichlet node)"
-                    .to_string(),
-            ),
-            (FormulationChoice::DualCondensed, Ok(())) => (
-                Formulation::DualCondensed,
-                "the condensation was requested, and D is diagonal".to_string(),
-            ),
-            (FormulationChoice::Auto, Ok(())) => (
-                Formulation::DualCondensed,
-                "D is diagonal on the unknowns that carry the rows (dual multipliers on a fully \
-                 covered interface, or linear multipliers on straight Line3 faces), so the \
-                 slave unknowns condense out (T_s = D^-1 M T_m) into a symmetric positive \
-                 definite system"
-                    .to_string(),
-            ),
-            (FormulationChoice::Auto, Err(e)) => (
-                Formulation::SaddlePoint,
-                why_not_diagonal(&e, options.diagonal_tolerance),
-            ),
-        };
+        let (formulation, reason) = choose_formulation(options, check, nrows)?;
 
-        // Unknowns of the factorised system.
-        let condensed = |g: usize| formulation == Formulation::DualCondensed && own_row[g] != NONE;
-        let mut free = vec![NONE; ndof];
-        let mut nfree = 0usize;
-        for g in 0..ndof {
-            if dirichlet_pos[g] == NONE && !condensed(g) {
-                free[g] = nfree as u32;
-                nfree += 1;
-            }
-        }
-        // Expansions T_g = sum w T_r.
-        let (mut exp_ptr, mut exp_dof, mut exp_w) = (vec![0usize], Vec::new(), Vec::new());
-        for g in 0..ndof {
-            if condensed(g) {
-                let j = own_row[g] as usize;
-                let row = crossing.rows.outer_view(j).expect("row in range");
-                let d = row.get(g).copied().unwrap_or(0.0);
-                for (k, v) in row.iter() {
-                    if k != g && own_row[k] == NONE {
-                        exp_dof.push(k as u32);
-                        exp_w.push(-v / d);
-                    }
-                }
-            } else {
-                exp_dof.push(g as u32);
-                exp_w.push(1.0);
-            }
-            exp_ptr.push(exp_dof.len());
-        }
+        // Unknowns of the factorised system, and the expansions of all.
+        let condense = formulation == Formulation::DualCondensed;
+        let (free, nfree) = system_unknowns(&dirichlet_pos, &own_row, condense);
+        let (exp_ptr, exp_dof, exp_w) = expansions(&crossing.rows, &own_row, condense);
 
         let layout = Layout {
             formulation,
@@ -635,26 +536,11 @@ impl Layout {
         )
     }
 
-    /// The system matrix `Q^T A Q` on the free unknowns (with the constraint rows and columns
-    /// for the saddle point) and the columns of the Dirichlet unknowns, `A_fd`. Rows are built
-    /// independently, in parallel: row `r` gathers the rows of `A` that expand onto its
-    /// unknown (its own and those of the condensed unknowns whose expansion names it), in
-    /// ascending order, and sums each column's terms in that order (the order of a triplet
-    /// assembly of the same products, so the same bits).
-    fn system_matrix(&self, a: &SparseMatrix) -> (SparseMatrix, SparseMatrix) {
-        let saddle = self.formulation == Formulation::SaddlePoint;
-        let nrows = self.rows.rows();
-        let size = self.nfree + if saddle { nrows } else { 0 };
+    /// For each global unknown, the `(condensed unknown, expansion entry)` pairs of the
+    /// condensed unknowns whose expansion names it, condensed unknowns ascending, compressed
+    /// by unknown: the pointers and the pairs.
+    fn expanding_onto(&self) -> (Vec<usize>, Vec<(u32, usize)>) {
         let ndof = self.free.len();
-        // The global unknown of each free row.
-        let mut unknown_of = vec![0u32; self.nfree];
-        for (g, &f) in self.free.iter().enumerate() {
-            if f != NONE {
-                unknown_of[f as usize] = g as u32;
-            }
-        }
-        // For each retained unknown, the (row, expansion entry) pairs of the condensed
-        // unknowns that expand onto it, rows ascending.
         let condensed = |g: usize| {
             let (lo, hi) = (self.exp_ptr[g], self.exp_ptr[g + 1]);
             !(hi == lo + 1 && self.exp_dof[lo] as usize == g)
@@ -677,7 +563,29 @@ impl Layout {
                 next[k] += 1;
             }
         }
-        drop(next);
+        (onto_ptr, onto)
+    }
+
+    /// The system matrix `Q^T A Q` on the free unknowns (with the constraint rows and columns
+    /// for the saddle point) and the columns of the Dirichlet unknowns, `A_fd`. Rows are built
+    /// independently, in parallel: row `r` gathers the rows of `A` that expand onto its
+    /// unknown (its own and those of the condensed unknowns whose expansion names it), in
+    /// ascending order, and sums each column's terms in that order (the order of a triplet
+    /// assembly of the same products, so the same bits).
+    fn system_matrix(&self, a: &SparseMatrix) -> (SparseMatrix, SparseMatrix) {
+        let saddle = self.formulation == Formulation::SaddlePoint;
+        let nrows = self.rows.rows();
+        let size = self.nfree + if saddle { nrows } else { 0 };
+        // The global unknown of each free row.
+        let mut unknown_of = vec![0u32; self.nfree];
+        for (g, &f) in self.free.iter().enumerate() {
+            if f != NONE {
+                unknown_of[f as usize] = g as u32;
+            }
+        }
+        // For each retained unknown, the (row, expansion entry) pairs of the condensed
+        // unknowns that expand onto it, rows ascending.
+        let (onto_ptr, onto) = self.expanding_onto();
         // The saddle point's columns in the free rows: the constraint rows transposed.
         let constraint_t = if saddle {
             Some(self.rows.transpose_view().to_csr())
@@ -950,6 +858,160 @@ fn modified_rows(
         redistributed,
         dropped,
     })
+}
+
+/// The unknown counts of the body matrices `[slave, master]`, refused when one is not
+/// square.
+fn check_columns(matrices: [&SparseMatrix; 2]) -> Result<[usize; 2], PhysicsError> {
+    let n = [matrices[0].rows(), matrices[1].rows()];
+    for (b, m) in matrices.iter().enumerate() {
+        if m.cols() != n[b] {
+            return Err(PhysicsError::WrongLength {
+                what: format!("columns of body {b}'s matrix"),
+                expected: n[b],
+                got: m.cols(),
+            });
+        }
+    }
+    Ok(n)
+}
+
+/// Per global unknown (slave body first, bodies of `n` unknowns), its position in the list
+/// of Dirichlet unknowns or NONE, and that list (global indices): `dirichlet` refused where
+/// an unknown is out of range or listed twice.
+fn dirichlet_positions(
+    dirichlet: [&[u32]; 2],
+    n: [usize; 2],
+) -> Result<(Vec<u32>, Vec<u32>), PhysicsError> {
+    let mut dirichlet_pos = vec![NONE; n[0] + n[1]];
+    let mut dlist = Vec::with_capacity(dirichlet[0].len() + dirichlet[1].len());
+    for (b, list) in dirichlet.iter().enumerate() {
+        let offset = if b == 0 { 0 } else { n[0] };
+        for &node in *list {
+            if node as usize >= n[b] {
+                return Err(PhysicsError::InvalidInput {
+                    body: format!("body {b}"),
+                    what: format!("Dirichlet node index {node} out of range ({})", n[b]),
+                });
+            }
+            let g = offset + node as usize;
+            if dirichlet_pos[g] != NONE {
+                return Err(PhysicsError::InvalidInput {
+                    body: format!("body {b}"),
+                    what: format!("Dirichlet node index {node} listed twice"),
+                });
+            }
+            dirichlet_pos[g] = dlist.len() as u32;
+            dlist.push(g as u32);
+        }
+    }
+    Ok((dirichlet_pos, dlist))
+}
+
+/// Refuses a tie whose slave or master unknowns lie beyond the bodies' `n` unknowns.
+fn check_tie_sizes(tie: &Tie, n: [usize; 2]) -> Result<(), PhysicsError> {
+    for (r, &s) in tie.slave_dofs().iter().enumerate() {
+        if s as usize >= n[0] {
+            return Err(PhysicsError::WrongLength {
+                what: format!("slave body matrix (interface row {r} is node {s})"),
+                expected: s as usize + 1,
+                got: n[0],
+            });
+        }
+    }
+    if let Some(&m) = tie.master_dofs().iter().max() {
+        if m as usize >= n[1] {
+            return Err(PhysicsError::WrongLength {
+                what: "master body matrix".into(),
+                expected: m as usize + 1,
+                got: n[1],
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The formulation of the options' choice given whether the `nrows` rows can be condensed
+/// (`check`), and why.
+///
+/// # Errors
+/// The reason the rows cannot be condensed when the condensation is forced.
+fn choose_formulation(
+    options: &TiedOptions,
+    check: Result<(), TyingError>,
+    nrows: usize,
+) -> Result<(Formulation, String), PhysicsError> {
+    Ok(match (options.formulation, check) {
+        (FormulationChoice::SaddlePoint, _) => (
+            Formulation::SaddlePoint,
+            "the saddle point was requested".to_string(),
+        ),
+        (FormulationChoice::DualCondensed, Err(e)) => return Err(e.into()),
+        (_, Ok(())) if nrows == 0 => (
+            Formulation::DualCondensed,
+            "no multiplier is left (every slave interface node is a Dirichlet node)".to_string(),
+        ),
+        (FormulationChoice::DualCondensed, Ok(())) => (
+            Formulation::DualCondensed,
+            "the condensation was requested, and D is diagonal".to_string(),
+        ),
+        (FormulationChoice::Auto, Ok(())) => (
+            Formulation::DualCondensed,
+            "D is diagonal on the unknowns that carry the rows (dual multipliers on a fully \
+             covered interface, or linear multipliers on straight Line3 faces), so the \
+             slave unknowns condense out (T_s = D^-1 M T_m) into a symmetric positive \
+             definite system"
+                .to_string(),
+        ),
+        (FormulationChoice::Auto, Err(e)) => (
+            Formulation::SaddlePoint,
+            why_not_diagonal(&e, options.diagonal_tolerance),
+        ),
+    })
+}
+
+/// Per global unknown its index among the factorised system's unknowns (NONE for the
+/// Dirichlet ones and, when `condense`, the rows' own unknowns), and their count.
+fn system_unknowns(dirichlet_pos: &[u32], own_row: &[u32], condense: bool) -> (Vec<u32>, usize) {
+    let mut free = vec![NONE; dirichlet_pos.len()];
+    let mut nfree = 0usize;
+    for g in 0..dirichlet_pos.len() {
+        if dirichlet_pos[g] == NONE && !(condense && own_row[g] != NONE) {
+            free[g] = nfree as u32;
+            nfree += 1;
+        }
+    }
+    (free, nfree)
+}
+
+/// The expansions `T_g = sum w T_r` of every global unknown, compressed by unknown
+/// (`ptr`, unknowns, weights): a row's own unknown, when `condense`, from the rest of its
+/// row `rows` (`own_row`: per unknown the row it is own to, or NONE); every other one
+/// itself.
+fn expansions(
+    rows: &SparseMatrix,
+    own_row: &[u32],
+    condense: bool,
+) -> (Vec<usize>, Vec<u32>, Vec<f64>) {
+    let (mut exp_ptr, mut exp_dof, mut exp_w) = (vec![0usize], Vec::new(), Vec::new());
+    for g in 0..own_row.len() {
+        if condense && own_row[g] != NONE {
+            let j = own_row[g] as usize;
+            let row = rows.outer_view(j).expect("row in range");
+            let d = row.get(g).copied().unwrap_or(0.0);
+            for (k, v) in row.iter() {
+                if k != g && own_row[k] == NONE {
+                    exp_dof.push(k as u32);
+                    exp_w.push(-v / d);
+                }
+            }
+        } else {
+            exp_dof.push(g as u32);
+            exp_w.push(1.0);
+        }
+        exp_ptr.push(exp_dof.len());
+    }
+    (exp_ptr, exp_dof, exp_w)
 }
 
 /// Whether the rows can be condensed: each row's own entry positive, and its entries on other
