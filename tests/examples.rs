@@ -10,7 +10,7 @@
 //!
 //! Not run here, only compiled (`cargo test` builds every example): the benchmarks
 //! (`bench_contact`, `bench_coupling`, `bench_pellet`, `bench_tied_heat`; their `--quick` runs
-//! take 4 to 9 s each; `bench_small_calls`, about 3 s) and `curved_segmentation` (48 s at its
+//! take 4 to 9 s each; `bench_small_calls`, about 3 s; `bench_pellet_dials`, about 3 s) and `curved_segmentation` (48 s at its
 //! default, n = 4; run by `bench_coupling --tradeoff`), which print figures and check
 //! nothing; what they measure is checked in `tests/` (the curved segmentation in
 //! `tests/integration/second_order.rs` and `tests/convergence/curved_reference.rs`).
