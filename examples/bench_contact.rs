@@ -13,6 +13,11 @@
 //!   out), the exact law with automatic `c`. Phases: meshes, assembly (stiffness and loads),
 //!   coupling (D, M), then per Newton step the linear solve (building the condensed system,
 //!   Cholesky, solve) and the rest (residuals, law).
+//! - `blocks3d_petsc`: the same with the Newton systems solved by PETSc
+//!   (`PetscBackend::automatic`: CG with GAMG, the bodies' rigid motions as its near null
+//!   space, relative tolerance `mortar_scenes::linear_solver::DEFAULT_LINEAR_TOLERANCE`), in
+//!   a build with the `petsc` feature (`--features petsc`); the record adds PETSc's
+//!   iterations per solve.
 //! - `hertz2d`: the 2D Hertz scene (`mortar_scenes::hertz`) with `n` arc cells; its build
 //!   (meshes, coupling, assembly) is timed as one phase.
 //!
@@ -24,9 +29,12 @@ use std::time::Instant;
 
 use clap::Parser;
 use mortar::core::mesh::BoundaryFace;
+use mortar::fem::linalg::SparseSolver;
 use mortar::generate::{box_mesh, CellShape};
+use mortar::petsc::PetscBackend;
 use mortar::physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, NormalGap,
+    automatic_complementarity, solve_contact, solve_contact_on, ContactOptions, ContactSolution,
+    NormalGap,
 };
 use mortar::physics::elastic::{
     assemble_elastic_load, assemble_elastic_stiffness, ComponentSet, ElasticBody, ElasticMaterial,
@@ -34,6 +42,7 @@ use mortar::physics::elastic::{
 };
 use mortar::physics::laws::ContactComplementarity;
 use mortar::physics::tied::Tie;
+use mortar::physics::LinearSolve;
 use mortar::CouplingOptions;
 use mortar_scenes::hertz::HertzScene;
 use nalgebra::Vector3;
@@ -84,7 +93,9 @@ fn newton_record(sol: &ContactSolution) -> Value {
     })
 }
 
-fn blocks3d(n: usize) -> Res<Value> {
+/// The stacked blocks at size `n`, the Newton systems solved by `petsc` if given (else by
+/// the direct solves).
+fn blocks3d(n: usize, petsc: Option<&PetscBackend>) -> Res<Value> {
     let t0 = Instant::now();
     let m = (4 * n).div_ceil(3);
     let lower = box_mesh([0.0; 3], [1.0; 3], [n, n, n], CellShape::Tensor, 1)?;
@@ -134,14 +145,23 @@ fn blocks3d(n: usize) -> Res<Value> {
     let t_coupling = t2.elapsed().as_secs_f64();
     let dir = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
     let law = ContactComplementarity::try_new(automatic_complementarity(&k[0], &tie, &gap, 3))?;
-    let sol = solve_contact(
+    let linear = match petsc {
+        Some(p) => LinearSolve::on(
+            p as &dyn SparseSolver,
+            [slave.mesh.coords(), master.mesh.coords()],
+        ),
+        None => LinearSolve::default(),
+    };
+    let sol = solve_contact_on(
         [&k[0], &k[1]],
         [&f[0], &f[1]],
         [(&dir[0].0, &dir[0].1), (&dir[1].0, &dir[1].1)],
         &gap,
         &law,
         &ContactOptions::default(),
+        linear,
     )?;
+    let reports = petsc.map(PetscBackend::reports).unwrap_or_default();
     let worst = sol
         .pressure
         .iter()
@@ -155,6 +175,12 @@ fn blocks3d(n: usize) -> Res<Value> {
                     "total": t0.elapsed().as_secs_f64()},
         "newton": newton_record(&sol),
         "pressure_error": worst,
+        "backend": if petsc.is_some() { "petsc" } else { "direct" },
+        "krylov_iterations": reports.iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        "krylov_setup_seconds": reports.iter().map(|r| r.setup_seconds).collect::<Vec<_>>(),
+        "krylov_solve_seconds": reports.iter().map(|r| r.solve_seconds).collect::<Vec<_>>(),
+        "krylov_methods": reports.first().map(|r| format!("{}+{}{}", r.ksp_type, r.pc_type,
+            if r.near_null_space { " (rigid body modes)" } else { "" })),
         "peak_memory_bytes": peak_memory(),
     }))
 }
@@ -190,7 +216,11 @@ fn main() -> Res<()> {
     if let Some(s) = &args.single {
         let n: usize = s[1].parse()?;
         let record = match s[0].as_str() {
-            "blocks3d" => blocks3d(n)?,
+            "blocks3d" => blocks3d(n, None)?,
+            "blocks3d_petsc" => {
+                let rtol = mortar_scenes::linear_solver::DEFAULT_LINEAR_TOLERANCE;
+                blocks3d(n, Some(&PetscBackend::automatic(rtol, "")))?
+            }
             "hertz2d" => hertz2d(n)?,
             c => return Err(format!("unknown case {c:?}").into()),
         };
@@ -198,10 +228,15 @@ fn main() -> Res<()> {
         return Ok(());
     }
     let sizes: Vec<(&str, Vec<usize>)> = if args.quick {
-        vec![("blocks3d", vec![6, 12]), ("hertz2d", vec![48, 96])]
+        vec![
+            ("blocks3d", vec![6, 12]),
+            ("blocks3d_petsc", vec![6, 12]),
+            ("hertz2d", vec![48, 96]),
+        ]
     } else {
         vec![
             ("blocks3d", vec![12, 20, 30]),
+            ("blocks3d_petsc", vec![12, 20, 30, 46, 66]),
             ("hertz2d", vec![96, 192, 384, 640]),
         ]
     };

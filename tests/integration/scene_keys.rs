@@ -1164,6 +1164,9 @@ fn contact_full() -> toml::Table {
             load_steps: 2,
             max_newton_steps: 10,
             tolerance: 1e-8,
+            backend: mortar_scenes::linear_solver::BackendChoice::Direct,
+            linear_tolerance: Some(1e-10),
+            petsc_options: "-ksp_monitor".into(),
         },
         bodies: BTreeMap::from([("a".into(), body.clone()), ("b".into(), body)]),
         contact: ContactInterfaceSpec {
@@ -1270,6 +1273,52 @@ fn contact_rows() -> Vec<Row<Scenes>> {
             let tight = steps(f.ok(&EXPONENTIAL));
             let loose = steps(f.ok(&exponential(&[("solve.tolerance", "1e-4")])));
             assert!(loose < tight, "{loose} {tight}");
+        }),
+        ("solve.backend", |f| {
+            // The default (auto) is the direct solve at this size, as "direct" is; "petsc"
+            // gives the patch test's pressure through CG and GAMG, or, in a build without
+            // PETSc, an error saying how to get it.
+            assert_eq!(f.ok(&[]).text("linear_solver.backend"), "direct");
+            let direct = f.ok(&[("solve.backend", "\"direct\"")]);
+            assert!(direct.text("linear_solver.why").contains("asked for"));
+            if mortar::petsc::is_built() {
+                let o = f.ok(&[("solve.backend", "\"petsc\"")]);
+                assert_eq!(o.text("linear_solver.backend"), "petsc");
+                assert_eq!(o.text("linear_solver.methods.0"), "cg+gamg");
+                assert!(off(&pressures(&o), SIGMA) < 1e-10);
+            } else {
+                let e = f.err(&[("solve.backend", "\"petsc\"")]);
+                assert!(e.contains("solve.backend") && e.contains("--features petsc"), "{e}");
+            }
+        }),
+        ("solve.linear_tolerance", |f| {
+            let e = f.err(&[("solve.linear_tolerance", "0.0")]);
+            assert!(e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"), "{e}");
+            if mortar::petsc::is_built() {
+                let its = |tol: &str| {
+                    f.ok(&[("solve.backend", "\"petsc\""), ("solve.linear_tolerance", tol)])
+                        .num("linear_solver.iterations.0")
+                };
+                let (tight, loose) = (its("1e-12"), its("1e-4"));
+                assert!(loose < tight, "{loose} {tight}");
+            }
+        }),
+        ("solve.petsc_options", |f| {
+            // Read after the picked method's options: they override it.
+            if mortar::petsc::is_built() {
+                let o = f.ok(&[
+                    ("solve.backend", "\"petsc\""),
+                    ("solve.petsc_options", "\"-ksp_type minres\""),
+                ]);
+                assert_eq!(o.text("linear_solver.methods.0"), "minres+gamg");
+                assert!(off(&pressures(&o), SIGMA) < 1e-8);
+            } else {
+                let e = f.err(&[
+                    ("solve.backend", "\"petsc\""),
+                    ("solve.petsc_options", "\"-ksp_type minres\""),
+                ]);
+                assert!(e.contains("--features petsc"), "{e}");
+            }
         }),
         ("bodies.*.mesh", |f| {
             let o = f.ok(&[("bodies.lower.mesh", "\"lower_fine.msh\"")]);

@@ -18,10 +18,12 @@ use mortar_fem::linalg::{
     FactorStats, Factorization, MatrixKind, SolverError, SparseSolver, SystemInfo,
 };
 
+use crate::blocks::Blocks;
 #[cfg(feature = "petsc")]
 use crate::csr::csr_parts;
 use crate::{
-    FieldSplit, KrylovMethod, PetscError, PetscSolver, Preconditioner, SolveOptions, SolveReport,
+    FieldSplit, KrylovMethod, PetscError, PetscSolver, Preconditioner, RigidBodyModes,
+    SolveOptions, SolveReport,
 };
 
 /// PETSc behind the solver interface, with the solve options it applies to every system
@@ -97,9 +99,12 @@ impl PetscBackend {
 /// preconditioner built for it.
 #[derive(Debug)]
 struct PetscSystem {
+    /// The matrix PETSc solves: the caller's (full), or its blocked embedding.
     a: SparseMatrix,
     kind: MatrixKind,
     rtol: f64,
+    /// Where the caller's unknowns sit in the blocked system, if embedded.
+    blocks: Option<Blocks>,
     #[cfg(feature = "petsc")]
     prepared: crate::petsc::Prepared,
     reports: Arc<Mutex<Vec<SolveReport>>>,
@@ -147,22 +152,28 @@ fn solver_error(e: PetscError, rtol: f64) -> SolverError {
 
 impl Factorization for PetscSystem {
     fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
-        if x.len() != self.a.rows() {
+        let n = self.blocks.as_ref().map_or(self.a.rows(), |b| b.unknowns());
+        if x.len() != n {
             return Err(SolverError::DimensionMismatch {
-                expected: self.a.rows(),
+                expected: n,
                 found: x.len(),
                 what: "entries of the right-hand side",
             });
         }
         #[cfg(feature = "petsc")]
         {
+            let blocked = self.blocks.as_ref().map(|b| b.scatter(x));
+            let rhs = blocked.as_deref().unwrap_or(x);
             let (solution, report) =
-                crate::petsc::solve_prepared(&self.prepared, &csr_parts(&self.a), x)
+                crate::petsc::solve_prepared(&self.prepared, &csr_parts(&self.a), rhs)
                     .map_err(|e| solver_error(e, self.rtol))?;
             if solution.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::Singular { pivot: None });
             }
-            x.copy_from_slice(&solution);
+            match &self.blocks {
+                Some(b) => b.gather(&solution, x),
+                None => x.copy_from_slice(&solution),
+            }
             if let Ok(mut reports) = self.reports.lock() {
                 reports.push(report);
             }
@@ -177,6 +188,10 @@ impl Factorization for PetscSystem {
 
     fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
         let a = full(a, self.kind);
+        let a = match &self.blocks {
+            Some(b) if a.rows() == b.unknowns() => b.embed(&a),
+            _ => a,
+        };
         if a.shape() != self.a.shape()
             || a.indptr().raw_storage() != self.a.indptr().raw_storage()
             || a.indices() != self.a.indices()
@@ -197,7 +212,7 @@ impl Factorization for PetscSystem {
 
     fn stats(&self) -> FactorStats {
         FactorStats {
-            dim: self.a.rows(),
+            dim: self.blocks.as_ref().map_or(self.a.rows(), Blocks::unknowns),
             factor_entries: None,
             method: "PETSc Krylov solve (its reports say which method)",
         }
@@ -263,14 +278,32 @@ impl SparseSolver for PetscBackend {
             return Err(solver_error(PetscError::NotBuilt, options.rtol));
         }
         let a = full(a, kind);
-        crate::check_input(&a, &vec![0.0; rows], options)
+        // GAMG on a displacement field: the system in whole node blocks, the nodes' rigid
+        // body modes as the near null space (else the rigid motions as explicit vectors).
+        let gamg = matches!(options.preconditioner, Preconditioner::Gamg)
+            && options.near_null_space.is_none();
+        let places = info
+            .displacements
+            .filter(|p| gamg && p.points.len() == rows && p.components.len() == rows);
+        let blocks = places.as_ref().and_then(Blocks::of);
+        let blocked_options;
+        let (a, options) = match &blocks {
+            Some(b) => {
+                blocked_options = SolveOptions {
+                    near_null_space: Some(RigidBodyModes {
+                        dim: b.dim,
+                        coordinates: b.coordinates.clone(),
+                    }),
+                    ..options.clone()
+                };
+                (b.embed(&a), &blocked_options)
+            }
+            None => (a, options),
+        };
+        crate::check_input(&a, &vec![0.0; a.rows()], options)
             .map_err(|e| solver_error(e, options.rtol))?;
-        let modes = match (&options.preconditioner, &options.near_null_space) {
-            (Preconditioner::Gamg, None) => info
-                .displacements
-                .filter(|p| p.points.len() == rows && p.components.len() == rows)
-                .map(|p| orthonormal(p.rigid_body_modes()))
-                .unwrap_or_default(),
+        let modes = match (&blocks, places) {
+            (None, Some(p)) => orthonormal(p.rigid_body_modes()),
             _ => Vec::new(),
         };
         #[cfg(feature = "petsc")]
@@ -282,6 +315,7 @@ impl SparseSolver for PetscBackend {
             a,
             kind,
             rtol: options.rtol,
+            blocks,
             #[cfg(feature = "petsc")]
             prepared,
             reports: Arc::clone(&self.reports),

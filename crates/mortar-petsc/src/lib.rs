@@ -28,6 +28,7 @@
 //! ```
 
 mod backend;
+mod blocks;
 mod csr;
 mod error;
 mod options;

@@ -50,12 +50,14 @@ pub mod error;
 pub mod field;
 pub mod heat;
 pub mod laws;
+mod linear_solve;
 pub mod nonlinear;
 pub mod thermomech;
 pub mod tied;
 pub mod tying;
 
 pub use error::PhysicsError;
+pub use linear_solve::LinearSolve;
 
 /// The backend of the physics' solves through the solver interface of `mortar-fem` (direct
 /// factorisations of a general or a symmetric positive definite matrix, preconditioned GMRES).

@@ -22,6 +22,7 @@
 pub mod file;
 pub mod hertz;
 pub mod interrupt;
+pub mod linear_solver;
 mod named_law;
 mod parse;
 pub mod pellet;

@@ -41,5 +41,6 @@ pub use curvature::{slave_surface_measures, SlaveSurfaceMeasures};
 pub use held::{rigid_motions, HeldMotions, RigidMotion, FREE_MOTION_TOLERANCE};
 pub use normal::NormalGap;
 pub use solver::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
+    automatic_complementarity, solve_contact, solve_contact_on, ContactOptions, ContactSolution,
+    ContactStep,
 };

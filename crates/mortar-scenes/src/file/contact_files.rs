@@ -221,6 +221,7 @@ pub fn contact_scene_files(
             load_steps: contact.solve.load_steps,
             max_newton_steps: contact.solve.max_newton_steps,
             tolerance: contact.solve.tolerance,
+            ..ContactSolveSpec::default()
         },
         bodies,
         contact: ContactInterfaceSpec {

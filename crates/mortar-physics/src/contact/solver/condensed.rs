@@ -6,7 +6,7 @@ use mortar_fem::linalg::{
     fill_reducing_ordering, inf_norm, well_conditioned, SolverError, SparseMatrix, Triplets,
 };
 
-use super::linear::{solve_symmetric, Linearised, Step};
+use super::linear::{solve_symmetric, Backend, Linearised, Step};
 
 /// Marks "none" in the index maps of this file.
 const NONE: u32 = u32::MAX;
@@ -72,11 +72,21 @@ pub(super) fn condensed_step(
     pivot: &Pivots,
     order: &mut Option<Vec<u32>>,
     by_body: &mut usize,
+    backend: Option<Backend<'_>>,
 ) -> Result<Step, SolverError> {
     let sys = Condensed::new(lin, kff, pivot);
     let red = &sys.reduction;
     let master = red.master(lin.slave_free);
     let (s, mut b) = sys.reduced_system();
+    // Where the reduced unknowns sit, for the backend.
+    let places = backend.and_then(|b| b.free_places).map(|p| {
+        let keep = red
+            .reduced
+            .iter()
+            .map(|&r| (r != NONE).then_some(r as usize));
+        p.restricted(keep, red.nr)
+    });
+    let backend = backend.map(|b| (b.solver, places.as_ref()));
     let mut order = EliminationOrder {
         order,
         reduction: red,
@@ -85,7 +95,7 @@ pub(super) fn condensed_step(
     let mut perm = |s: &SparseMatrix| order.make(s);
     let b_norm = inf_norm(&b);
     let mut rhs_b = b.clone();
-    *by_body += usize::from(solve_symmetric(&s, &mut perm, &master, &mut b)?);
+    *by_body += usize::from(solve_symmetric(&s, &mut perm, &master, &mut b, backend)?);
     // A system without a correct digit has a rigid mode held by nothing (a body held only by
     // contact, before contact, or on a flat branch of a regularised law): each row without
     // stiffness gets a spring that pulls its gap shut ([`Condensed::springs`]), and the step
@@ -97,7 +107,7 @@ pub(super) fn condensed_step(
         let held = &s + &spring.to_csr(red.nr, red.nr);
         b = rhs_b;
         let b_norm = inf_norm(&b);
-        solve_symmetric(&held, &mut perm, &master, &mut b)?;
+        solve_symmetric(&held, &mut perm, &master, &mut b, backend)?;
         if !well_conditioned(&held, &b, b_norm) {
             return Err(SolverError::Singular { pivot: None });
         }

@@ -2,10 +2,20 @@
 //! sparse LU, and the symmetric solve of the condensed system.
 
 use mortar_fem::linalg::{
-    CholeskyFactorization, MatrixKind, SolverError, SparseMatrix, SubstructuredCholesky, Triplets,
+    CholeskyFactorization, MatrixKind, SolverError, SparseMatrix, SparseSolver,
+    SubstructuredCholesky, SystemInfo, Triplets,
 };
 
+use crate::linear_solve::Places;
 use crate::SOLVER;
+
+/// A backend of the solver interface for the Newton systems, instead of the direct solves,
+/// and where the free displacements sit (if told).
+#[derive(Clone, Copy)]
+pub(super) struct Backend<'a> {
+    pub solver: &'a dyn SparseSolver,
+    pub free_places: Option<&'a Places>,
+}
 
 /// A Newton step: the displacement and pressure increments, and whether its system had to be
 /// regularised (see [`condensed_step`](super::condensed::condensed_step)).
@@ -33,8 +43,25 @@ pub(super) fn solve_general(a: &SparseMatrix, b: &mut [f64]) -> Result<(), Solve
     SOLVER.factor(a, MatrixKind::General)?.solve_in_place(b)
 }
 
+/// Solves `a x = b` in place by `backend`: `kind` and `info` as the backend is told them.
+fn solve_by(
+    backend: &dyn SparseSolver,
+    a: &SparseMatrix,
+    kind: MatrixKind,
+    info: SystemInfo<'_>,
+    b: &mut [f64],
+) -> Result<(), SolverError> {
+    backend.factor_system(a, kind, info)?.solve_in_place(b)
+}
+
 /// The step by sparse LU of the whole system (any D).
-pub(super) fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<Step, SolverError> {
+///
+/// With a `backend`, the system goes to it as a saddle point with the pressures last.
+pub(super) fn saddle_step(
+    lin: &Linearised<'_>,
+    kff: &SparseMatrix,
+    backend: Option<Backend<'_>>,
+) -> Result<Step, SolverError> {
     let (nfree, rows) = (lin.nfree, lin.c.len());
     let mut t = Triplets::default();
     for (v, (i, k)) in kff.iter() {
@@ -58,7 +85,16 @@ pub(super) fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<St
         rhs[nfree + j] = -lin.c[j];
     }
     let jac = t.to_csr(size, size);
-    solve_general(&jac, &mut rhs)?;
+    match backend {
+        Some(backend) => {
+            let info = SystemInfo {
+                multipliers_last: rows,
+                ..SystemInfo::default()
+            };
+            solve_by(backend.solver, &jac, MatrixKind::General, info, &mut rhs)?;
+        }
+        None => solve_general(&jac, &mut rhs)?,
+    }
     let dp = rhs.split_off(nfree);
     Ok((rhs, dp, false))
 }
@@ -68,12 +104,27 @@ pub(super) fn saddle_step(lin: &Linearised<'_>, kff: &SparseMatrix) -> Result<St
 /// master body's: the two bodies factorised side by side, the unknowns between them last),
 /// else Cholesky in the elimination order that `perm` makes for `a` (asked for only then), or
 /// LU if `a` is not positive definite. Whether it was solved by body.
+///
+/// With a `backend` (and where `a`'s unknowns sit, if told), `a` goes to it as symmetric
+/// positive definite, or as a general matrix if that solve fails.
 pub(super) fn solve_symmetric(
     a: &SparseMatrix,
     perm: &mut dyn FnMut(&SparseMatrix) -> Result<Vec<usize>, SolverError>,
     master: &[bool],
     b: &mut [f64],
+    backend: Option<(&dyn SparseSolver, Option<&Places>)>,
 ) -> Result<bool, SolverError> {
+    if let Some((solver, places)) = backend {
+        let info = places.map(Places::info).unwrap_or_default();
+        let rhs = b.to_vec();
+        return match solve_by(solver, a, MatrixKind::SymmetricPositiveDefinite, info, b) {
+            Ok(()) => Ok(false),
+            Err(_) => {
+                b.copy_from_slice(&rhs);
+                solve_by(solver, a, MatrixKind::General, info, b).map(|()| false)
+            }
+        };
+    }
     if let Ok(Some(f)) = SubstructuredCholesky::try_new_if_worthwhile(a, master) {
         return f.solve_in_place(b).map(|()| true);
     }

@@ -15,6 +15,7 @@ use mortar_fem::linalg::SparseMatrix;
 use super::normal::NormalGap;
 use crate::error::PhysicsError;
 use crate::laws::ConstraintLaw;
+use crate::linear_solve::LinearSolve;
 use crate::tied::Tie;
 use newton::ContactNewton;
 use unknowns::Unknowns;
@@ -144,9 +145,38 @@ pub fn solve_contact<L: ConstraintLaw>(
     law: &L,
     options: &ContactOptions,
 ) -> Result<ContactSolution, PhysicsError> {
+    solve_contact_on(
+        stiffness,
+        load,
+        dirichlet,
+        gap,
+        law,
+        options,
+        LinearSolve::default(),
+    )
+}
+
+/// [`solve_contact`] with its Newton systems solved where `linear` says: by a backend of the
+/// solver interface (PETSc's, say) instead of the direct solves, told where the bodies'
+/// unknowns sit. The condensed systems go to it as symmetric positive definite (as general
+/// matrices if that solve fails), the saddle points of a non-diagonal D with the pressures
+/// last.
+///
+/// # Errors
+/// As [`solve_contact`], and the backend's errors (a Krylov solve that does not converge:
+/// [`PhysicsError::Newton`] naming the load step and iteration, with the solver's error).
+pub fn solve_contact_on<L: ConstraintLaw>(
+    stiffness: [&SparseMatrix; 2],
+    load: [&[f64]; 2],
+    dirichlet: [(&[u32], &[f64]); 2],
+    gap: &NormalGap,
+    law: &L,
+    options: &ContactOptions,
+    linear: LinearSolve<'_>,
+) -> Result<ContactSolution, PhysicsError> {
     check_sizes(stiffness, load, dirichlet, gap)?;
     let unknowns = Unknowns::new(stiffness, dirichlet, gap)?;
-    let mut newton = ContactNewton::new(stiffness, load, gap, law, options, unknowns);
+    let mut newton = ContactNewton::new(stiffness, load, gap, law, options, unknowns, linear);
     let load_steps = options.load_steps.max(1);
     let mut steps = Vec::with_capacity(options.load_steps.max(1));
     for s in 1..=load_steps {

@@ -7,13 +7,14 @@ use std::time::Instant;
 use mortar_fem::linalg::{SolverError, SparseMatrix};
 
 use super::condensed::{condensed_step, plan_pivots};
-use super::linear::{saddle_step, Linearised, Step};
+use super::linear::{saddle_step, Backend, Linearised, Step};
 use super::unknowns::Unknowns;
 use super::{formulation, ContactOptions, ContactSolution, ContactStep};
 use crate::contact::NormalGap;
 use crate::error::PhysicsError;
 use crate::field::free::{free_block, FIXED};
 use crate::laws::{evaluate, ConstraintLaw, LawPoint};
+use crate::linear_solve::{LinearSolve, Places};
 
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
@@ -28,6 +29,10 @@ pub(super) struct ContactNewton<'a, L> {
     law: &'a L,
     options: &'a ContactOptions,
     unknowns: Unknowns,
+    /// Where the Newton systems go.
+    linear: LinearSolve<'a>,
+    /// Where the free displacements sit, if a backend is told.
+    free_places: Option<Places>,
     /// The loads of both bodies, concatenated.
     f: Vec<f64>,
     /// K_ff, the stiffness on the free displacements (the same in every Newton step).
@@ -92,8 +97,10 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
         law: &'a L,
         options: &'a ContactOptions,
         unknowns: Unknowns,
+        linear: LinearSolve<'a>,
     ) -> Self {
         let f = load[0].iter().chain(load[1]).copied().collect();
+        let free_places = linear.backend.and(free_places(&unknowns, &linear, gap.dim));
         let kff = free_block(&stiffness, &unknowns.free, unknowns.nfree);
         let (u, p) = (vec![0.0; unknowns.ndof], vec![0.0; gap.weights.len()]);
         Self {
@@ -102,6 +109,8 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
             law,
             options,
             unknowns,
+            linear,
+            free_places,
             f,
             kff,
             order: None,
@@ -320,6 +329,10 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
             c: &at.c,
             c_p: &at.c_p,
         };
+        let backend = self.linear.backend.map(|solver| Backend {
+            solver,
+            free_places: self.free_places.as_ref(),
+        });
         let pivots = if self.gap.diagonal {
             plan_pivots(&lin, &self.unknowns.free_of_slave)
         } else {
@@ -334,9 +347,10 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
                     &pivots,
                     &mut self.order,
                     &mut self.by_body_steps,
+                    backend,
                 )
             }
-            None => saddle_step(&lin, &self.kff),
+            None => saddle_step(&lin, &self.kff, backend),
         }
     }
 
@@ -424,4 +438,14 @@ fn not_converged(
         iterations: taken,
         residual_history: residuals,
     })
+}
+
+/// Where the free displacements of `unknowns` sit (in the free numbering, `dim` components
+/// per node), if `linear` tells both bodies' nodes.
+fn free_places(unknowns: &Unknowns, linear: &LinearSolve<'_>, dim: usize) -> Option<Places> {
+    let n0 = unknowns.n[0];
+    let dofs = (0..unknowns.ndof)
+        .filter(|&g| unknowns.free[g] != FIXED)
+        .map(|g| if g < n0 { (0, g) } else { (1, g - n0) });
+    Places::of(linear, dim, dofs)
 }

@@ -326,6 +326,8 @@ pub struct SolvedContact {
     pub gap: NormalGap,
     /// The exact law's parameter `c` (Pa/m), automatic; `None` for another law.
     pub complementarity: Option<f64>,
+    /// The linear solver the Newton systems went to, and why.
+    pub linear_solver: crate::linear_solver::PickedSolver,
     seconds: [(&'static str, f64); 5],
     t_start: Instant,
 }

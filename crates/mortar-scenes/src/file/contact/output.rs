@@ -172,6 +172,7 @@ impl SolvedContact {
             "title": self.spec.title,
             "dimension": self.dimension,
             "formulation": sol.formulation,
+            "linear_solver": self.linear_solver.json(),
             "law": self.law,
             "interface": {
                 "slave": format!("{}#{}", c.slave.body, c.slave.group),
@@ -197,12 +198,13 @@ impl SolvedContact {
     fn summary(&self, pmax: f64) -> String {
         let sol = &self.solution;
         format!(
-            "contact, {}D, {} + {} nodes, {} slave interface nodes\nformulation: {}\nload steps: {} (Newton steps {:?}), active nodes {}, contact force {:.6e}, peak pressure {:.6e} Pa",
+            "contact, {}D, {} + {} nodes, {} slave interface nodes\nformulation: {}\n{}\nload steps: {} (Newton steps {:?}), active nodes {}, contact force {:.6e}, peak pressure {:.6e} Pa",
             self.dimension,
             self.bodies[0].mesh.node_count(),
             self.bodies[1].mesh.node_count(),
             self.tie.slave_nodes().len(),
             sol.formulation,
+            self.linear_solver.summary_line(),
             sol.steps.len(),
             sol.steps.iter().map(|s| s.newton_steps).collect::<Vec<_>>(),
             sol.steps.last().map_or(0, |s| s.active),

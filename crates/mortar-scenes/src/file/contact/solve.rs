@@ -13,7 +13,7 @@ use mortar_core::linalg::SparseMatrix;
 use mortar_core::{CouplingOptions, SurfaceMesh};
 use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{
-    automatic_complementarity, rigid_motions, solve_contact, ContactOptions, ContactSolution,
+    automatic_complementarity, rigid_motions, solve_contact_on, ContactOptions, ContactSolution,
     HeldMotions, NormalGap, RigidMotion,
 };
 use mortar_physics::elastic::{
@@ -22,7 +22,7 @@ use mortar_physics::elastic::{
 };
 use mortar_physics::laws::{ContactComplementarity, ExponentialPressure, LawRegistry};
 use mortar_physics::tied::Tie;
-use mortar_physics::PhysicsError;
+use mortar_physics::{LinearSolve, PhysicsError};
 use nalgebra::Vector3;
 
 use super::{Component, ComponentValue, ContactSpec, DisplacementSpec, LawSpec, SolvedContact};
@@ -72,6 +72,10 @@ impl ContactSpec {
         let (stiffness, load, dirichlet) = assemble(&errors, &bodies, &options)?;
         let t_assembly = t.elapsed().as_secs_f64();
         let held = held_motions(&errors, &bodies, &dirichlet, &gap)?;
+        let linear_solver = self
+            .solve
+            .linear_solver(stiffness[0].rows() + stiffness[1].rows())
+            .map_err(|(key, what)| errors.invalid(key.into(), what))?;
 
         let t = Instant::now();
         let system = ContactSystem {
@@ -79,6 +83,10 @@ impl ContactSpec {
             load: &load,
             dirichlet: &dirichlet,
             gap: &gap,
+            linear: linear_solver
+                .solver()
+                .map(|s| LinearSolve::on(s, [bodies[0].mesh.coords(), bodies[1].mesh.coords()]))
+                .unwrap_or_default(),
         };
         let (solution, law_description, complementarity) =
             self.solve_law(&errors, &system, &tie, dim, &registries.laws)?;
@@ -114,6 +122,7 @@ impl ContactSpec {
             dirichlet,
             gap,
             complementarity,
+            linear_solver,
             seconds: [
                 ("read", t_read),
                 ("coupling", t_coupling),
@@ -337,7 +346,7 @@ fn assemble(
     errors: &Errors,
     bodies: &[ElasticBody],
     options: &ElasticOptions,
-) -> Result<([SparseMatrix; 2], [Vec<f64>; 2], [Dofs; 2]), SceneError> {
+) -> Result<Assembled, SceneError> {
     let stiffness = [
         assemble_elastic_stiffness(&bodies[0], options).map_err(|e| errors.physics(e))?,
         assemble_elastic_stiffness(&bodies[1], options).map_err(|e| errors.physics(e))?,
@@ -425,6 +434,10 @@ fn dirichlet_value(
 
 type Dofs = (Vec<u32>, Vec<f64>);
 
+/// Per body (slave first): the stiffness matrix, the load vector, the Dirichlet unknowns
+/// with their values.
+type Assembled = ([SparseMatrix; 2], [Vec<f64>; 2], [Dofs; 2]);
+
 /// The load steps' solution, or the step (if one) and the error where they failed.
 type StepsResult = Result<ContactSolution, (Option<usize>, PhysicsError)>;
 
@@ -435,6 +448,8 @@ struct ContactSystem<'a> {
     load: &'a [Vec<f64>; 2],
     dirichlet: &'a [Dofs; 2],
     gap: &'a NormalGap,
+    /// Where the Newton systems go.
+    linear: LinearSolve<'a>,
 }
 
 impl ContactSystem<'_> {
@@ -451,6 +466,7 @@ impl ContactSystem<'_> {
             self.gap,
             law,
             options,
+            self.linear,
         )
     }
 }
@@ -509,11 +525,12 @@ fn solve_steps<L: mortar_physics::laws::ConstraintLaw>(
     gap: &NormalGap,
     law: &L,
     options: &ContactOptions,
+    linear: LinearSolve<'_>,
 ) -> StepsResult {
     let run = |scale: f64, steps: usize| {
         let l = [0, 1].map(|b| load[b].iter().map(|x| x * scale).collect::<Vec<_>>());
         let d = [0, 1].map(|b| dirichlet[b].1.iter().map(|x| x * scale).collect::<Vec<_>>());
-        solve_contact(
+        solve_contact_on(
             [&stiffness[0], &stiffness[1]],
             [&l[0], &l[1]],
             [(&dirichlet[0].0, &d[0]), (&dirichlet[1].0, &d[1])],
@@ -523,6 +540,7 @@ fn solve_steps<L: mortar_physics::laws::ConstraintLaw>(
                 load_steps: steps,
                 ..*options
             },
+            linear,
         )
     };
     match run(1.0, options.load_steps) {

@@ -4,11 +4,13 @@
 use mortar_physics::contact::ContactOptions;
 use serde::{Deserialize, Serialize};
 
+use crate::linear_solver::{BackendChoice, PickedSolver};
+
 use crate::file::error::Errors;
 use crate::file::SceneError;
 
 /// The settings of the solve.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSolveSpec {
     /// Load increments.
@@ -17,9 +19,18 @@ pub struct ContactSolveSpec {
     /// Newton steps allowed per load step.
     #[serde(default = "thirty")]
     pub max_newton_steps: usize,
-    /// The relative tolerance.
+    /// The relative tolerance of Newton's iteration.
     #[serde(default = "tol")]
     pub tolerance: f64,
+    /// Where the Newton systems go ([`crate::linear_solver`]).
+    #[serde(default, skip_serializing_if = "BackendChoice::is_auto")]
+    pub backend: BackendChoice,
+    /// The Krylov solves' relative tolerance (PETSc).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linear_tolerance: Option<f64>,
+    /// Further PETSc options (`-ksp_monitor ...`).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub petsc_options: String,
 }
 
 fn one() -> usize {
@@ -38,6 +49,9 @@ impl Default for ContactSolveSpec {
             load_steps: 1,
             max_newton_steps: 30,
             tolerance: 1e-10,
+            backend: BackendChoice::Auto,
+            linear_tolerance: None,
+            petsc_options: String::new(),
         }
     }
 }
@@ -59,7 +73,27 @@ impl ContactSolveSpec {
                 format!("{} is not positive and finite", self.tolerance),
             ));
         }
-        Ok(())
+        // The backend as it would be picked for a system of PETSc's size: PETSc asked for in
+        // a build without it, or a tolerance out of range, fails before the meshes are read.
+        self.linear_solver(usize::MAX)
+            .map(|_| ())
+            .map_err(|(key, what)| errors.invalid(key.into(), what))
+    }
+
+    /// The linear solver of these keys for a system of `unknowns` unknowns.
+    ///
+    /// # Errors
+    /// The key and what is wrong (see [`PickedSolver::pick`]).
+    pub(super) fn linear_solver(
+        &self,
+        unknowns: usize,
+    ) -> Result<PickedSolver, (&'static str, String)> {
+        PickedSolver::pick(
+            self.backend,
+            self.linear_tolerance,
+            &self.petsc_options,
+            unknowns,
+        )
     }
 
     /// The contact solver's options of these keys.

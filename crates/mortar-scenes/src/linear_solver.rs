@@ -1,0 +1,208 @@
+//! `[solve] backend`, `linear_tolerance` and `petsc_options`: which linear solver a scene's
+//! systems go to, picked and said.
+//!
+//! `backend = "direct"` is the sparse direct solve of `mortar-fem` (faer's Cholesky or LU,
+//! by body where that pays): exact to rounding, its memory growing as the fill (about
+//! `n^(4/3)` in 3D). `"petsc"` is PETSc's Krylov methods with algebraic multigrid
+//! ([`PetscBackend::automatic`]: CG with GAMG for a symmetric positive definite system, the
+//! rigid motions of a displacement field as GAMG's near null space; GMRES with a Schur
+//! fieldsplit for a saddle point), to the relative tolerance `linear_tolerance` (default
+//! [`DEFAULT_LINEAR_TOLERANCE`]), in a build with the `petsc` feature. `"auto"` (the default)
+//! is the direct solve below [`AUTO_PETSC_MIN`] unknowns, PETSc from there on when the build
+//! has it.
+
+use std::sync::Arc;
+
+use mortar::petsc::{PetscBackend, SolveReport};
+use mortar_fem::linalg::{FaerSolver, SparseSolver};
+use serde::{Deserialize, Serialize};
+use serde_json::{json, Value};
+
+/// `[solve] backend`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BackendChoice {
+    /// The direct solve below [`AUTO_PETSC_MIN`] unknowns, PETSc above when built with it.
+    #[default]
+    Auto,
+    /// The sparse direct solve.
+    Direct,
+    /// PETSc's Krylov methods with algebraic multigrid.
+    Petsc,
+}
+
+impl BackendChoice {
+    /// Whether this is the default, `"auto"`.
+    pub fn is_auto(&self) -> bool {
+        *self == BackendChoice::Auto
+    }
+}
+
+/// The unknowns from which `backend = "auto"` picks PETSc (when the build has it): below,
+/// the direct solve is quicker on the contact and tied benchmarks
+/// (`examples/bench_contact.rs --backend`, docs/performance.md).
+pub const AUTO_PETSC_MIN: usize = 200_000;
+
+/// The Krylov solves' relative tolerance unless `[solve] linear_tolerance` says otherwise:
+/// well below the Newton tolerance of the contact scenes (1e-10 of the residual), so that
+/// the Newton iteration counts stay the direct solve's.
+pub const DEFAULT_LINEAR_TOLERANCE: f64 = 1e-12;
+
+/// The linear solver a scene's systems go to, with why it was picked.
+#[derive(Debug, Clone)]
+pub struct PickedSolver {
+    /// `"direct"` or `"petsc"`.
+    pub name: &'static str,
+    /// Why.
+    pub why: String,
+    petsc: Option<Arc<PetscBackend>>,
+}
+
+impl PickedSolver {
+    /// The direct solve, for `why`.
+    pub fn direct(why: impl Into<String>) -> Self {
+        Self {
+            name: "direct",
+            why: why.into(),
+            petsc: None,
+        }
+    }
+
+    /// Picks the backend for `unknowns` unknowns: `choice` with the tolerance and options of
+    /// the scene (`None`: the defaults).
+    ///
+    /// # Errors
+    /// A message (for the key `solve.backend`) if PETSc is asked for in a build without it,
+    /// saying how to get it; for `solve.linear_tolerance` if it is not in (0, 1).
+    pub fn pick(
+        choice: BackendChoice,
+        linear_tolerance: Option<f64>,
+        petsc_options: &str,
+        unknowns: usize,
+    ) -> Result<Self, (&'static str, String)> {
+        let rtol = linear_tolerance.unwrap_or(DEFAULT_LINEAR_TOLERANCE);
+        if !(rtol > 0.0 && rtol < 1.0) {
+            return Err(("solve.linear_tolerance", format!("{rtol} is not in (0, 1)")));
+        }
+        let petsc = |why: String| Self {
+            name: "petsc",
+            why,
+            petsc: Some(Arc::new(PetscBackend::automatic(rtol, petsc_options))),
+        };
+        match choice {
+            BackendChoice::Direct => Ok(Self::direct("asked for (backend = \"direct\")")),
+            BackendChoice::Petsc if !mortar::petsc::is_built() => Err((
+                "solve.backend",
+                "\"petsc\": this build has no PETSc; install it (Debian: apt-get install \
+                 petsc-dev libclang-dev pkg-config) and build with `--features petsc` \
+                 (docs/solvers.md)"
+                    .into(),
+            )),
+            BackendChoice::Petsc => Ok(petsc(format!(
+                "asked for (backend = \"petsc\"), relative tolerance {rtol:e}"
+            ))),
+            BackendChoice::Auto if unknowns < AUTO_PETSC_MIN => Ok(Self::direct(format!(
+                "auto: {unknowns} unknowns, below {AUTO_PETSC_MIN}, where the direct solve is \
+                 the quicker"
+            ))),
+            BackendChoice::Auto if !mortar::petsc::is_built() => Ok(Self::direct(format!(
+                "auto: {unknowns} unknowns, PETSc's size, but this build has no PETSc \
+                 (`--features petsc`)"
+            ))),
+            BackendChoice::Auto => Ok(petsc(format!(
+                "auto: {unknowns} unknowns, at least {AUTO_PETSC_MIN}, where PETSc's multigrid \
+                 is the quicker and the leaner; relative tolerance {rtol:e}"
+            ))),
+        }
+    }
+
+    /// The solver to give the physics: `None` for the direct solve (the physics' own, by
+    /// body where that pays), PETSc otherwise.
+    pub fn solver(&self) -> Option<&dyn SparseSolver> {
+        self.petsc.as_deref().map(|p| p as &dyn SparseSolver)
+    }
+
+    /// The solver, the direct one included.
+    pub fn solver_or_direct(&self) -> &dyn SparseSolver {
+        self.solver().unwrap_or(&FaerSolver)
+    }
+
+    /// PETSc's reports of the solves so far (none for the direct solve).
+    pub fn reports(&self) -> Vec<SolveReport> {
+        self.petsc.as_ref().map(|p| p.reports()).unwrap_or_default()
+    }
+
+    /// The report's `"linear_solver"` entry: the backend, why, and per PETSc solve the
+    /// method, preconditioner, iterations and residual.
+    pub fn json(&self) -> Value {
+        let reports = self.reports();
+        let iterations: Vec<usize> = reports.iter().map(|r| r.iterations).collect();
+        json!({
+            "backend": self.name,
+            "why": self.why,
+            "solves": reports.len(),
+            "iterations": iterations,
+            "methods": reports
+                .iter()
+                .map(|r| format!("{}+{}", r.ksp_type, r.pc_type))
+                .collect::<std::collections::BTreeSet<_>>(),
+            "largest_relative_residual": reports
+                .iter()
+                .map(|r| r.relative_residual)
+                .fold(None, |m: Option<f64>, r| Some(m.map_or(r, |m| m.max(r)))),
+        })
+    }
+
+    /// One line for a summary: `linear solver: petsc (why): solves 12, cg+gamg, iterations 9
+    /// to 14`.
+    pub fn summary_line(&self) -> String {
+        let reports = self.reports();
+        let mut line = format!("linear solver: {} ({})", self.name, self.why);
+        if let (Some(lo), Some(hi)) = (
+            reports.iter().map(|r| r.iterations).min(),
+            reports.iter().map(|r| r.iterations).max(),
+        ) {
+            let methods: std::collections::BTreeSet<String> = reports
+                .iter()
+                .map(|r| format!("{}+{}", r.ksp_type, r.pc_type))
+                .collect();
+            line.push_str(&format!(
+                ": solves {}, {}, iterations {lo} to {hi}",
+                reports.len(),
+                methods.into_iter().collect::<Vec<_>>().join(", ")
+            ));
+        }
+        line
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pick_follows_the_choice_the_size_and_the_build() {
+        let direct = PickedSolver::pick(BackendChoice::Direct, None, "", 10_000_000).unwrap();
+        assert_eq!(direct.name, "direct");
+        assert!(direct.solver().is_none());
+        let small = PickedSolver::pick(BackendChoice::Auto, None, "", 1_000).unwrap();
+        assert_eq!(small.name, "direct");
+        assert!(small.why.contains("below"), "{}", small.why);
+        let large = PickedSolver::pick(BackendChoice::Auto, None, "", AUTO_PETSC_MIN).unwrap();
+        let asked = PickedSolver::pick(BackendChoice::Petsc, Some(1e-9), "", 10);
+        if mortar::petsc::is_built() {
+            assert_eq!(large.name, "petsc");
+            let asked = asked.unwrap();
+            assert_eq!(asked.name, "petsc");
+            assert!(asked.why.contains("1e-9"), "{}", asked.why);
+        } else {
+            assert_eq!(large.name, "direct");
+            assert!(large.why.contains("no PETSc"), "{}", large.why);
+            let (key, what) = asked.unwrap_err();
+            assert_eq!(key, "solve.backend");
+            assert!(what.contains("--features petsc"), "{what}");
+        }
+        let (key, _) = PickedSolver::pick(BackendChoice::Petsc, Some(0.0), "", 10).unwrap_err();
+        assert_eq!(key, "solve.linear_tolerance");
+    }
+}
