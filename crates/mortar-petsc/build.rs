@@ -46,6 +46,10 @@ mod petsc {
         "VecGetLocalSize",
         "VecRestoreArray",
         "VecDestroy",
+        "VecDuplicate",
+        "VecNorm",
+        "VecAYPX",
+        "MatMult",
         "ISCreateGeneral",
         "ISDestroy",
         "KSPCreate",
@@ -118,7 +122,7 @@ mod petsc {
             .clang_args(includes.iter().map(|p| format!("-I{}", p.display())))
             .allowlist_recursively(true)
             .allowlist_var("PETSC_DEFAULT|PETSC_VERSION_.*")
-            .allowlist_type("KSPConvergedReason|PetscErrorType|PetscCopyMode")
+            .allowlist_type("KSPConvergedReason|PetscErrorType|PetscCopyMode|NormType")
             .constified_enum_module("KSPConvergedReason")
             .layout_tests(false)
             .generate_comments(false)

@@ -13,12 +13,12 @@
 
 use std::sync::{Arc, Mutex};
 
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::SparseMatrix;
 use mortar_fem::linalg::{
     FactorStats, Factorization, MatrixKind, SolverError, SparseSolver, SystemInfo,
 };
 
-use crate::blocks::Blocks;
+use crate::blocks::{petsc_matrix, Blocks};
 #[cfg(feature = "petsc")]
 use crate::csr::csr_parts;
 use crate::{
@@ -99,8 +99,9 @@ impl PetscBackend {
 /// preconditioner built for it.
 #[derive(Debug)]
 struct PetscSystem {
-    /// The matrix PETSc solves: the caller's (full), or its blocked embedding.
-    a: SparseMatrix,
+    /// The pattern of the matrix PETSc solves (the caller's, full, or its blocked embedding),
+    /// which a refactor must keep; PETSc holds the values.
+    pattern: Pattern,
     kind: MatrixKind,
     rtol: f64,
     /// Where the caller's unknowns sit in the blocked system, if embedded.
@@ -110,23 +111,26 @@ struct PetscSystem {
     reports: Arc<Mutex<Vec<SolveReport>>>,
 }
 
-/// `a` as PETSc takes it: a symmetric positive definite matrix given by its upper triangle
-/// (the solver interface reads only that one) mirrored into the full matrix.
-fn full(a: &SparseMatrix, kind: MatrixKind) -> SparseMatrix {
-    match kind {
-        MatrixKind::SymmetricPositiveDefinite => {
-            let mut t = Triplets::default();
-            for (&v, (i, j)) in a.iter() {
-                if i <= j {
-                    t.push(i as u32, j as u32, v);
-                    if i < j {
-                        t.push(j as u32, i as u32, v);
-                    }
-                }
-            }
-            t.to_csr(a.rows(), a.cols())
+/// What a refactor must keep of a matrix: its size and its pattern (by a hash of the row
+/// pointers and column indices), so that no copy of the matrix is kept beside PETSc's.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Pattern {
+    rows: usize,
+    nnz: usize,
+    hash: u64,
+}
+
+impl Pattern {
+    fn of(a: &SparseMatrix) -> Self {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        a.indptr().raw_storage().hash(&mut h);
+        a.indices().hash(&mut h);
+        Self {
+            rows: a.rows(),
+            nnz: a.nnz(),
+            hash: h.finish(),
         }
-        _ => a.to_csr(),
     }
 }
 
@@ -152,7 +156,10 @@ fn solver_error(e: PetscError, rtol: f64) -> SolverError {
 
 impl Factorization for PetscSystem {
     fn solve_in_place(&self, x: &mut [f64]) -> Result<(), SolverError> {
-        let n = self.blocks.as_ref().map_or(self.a.rows(), |b| b.unknowns());
+        let n = self
+            .blocks
+            .as_ref()
+            .map_or(self.pattern.rows, |b| b.unknowns());
         if x.len() != n {
             return Err(SolverError::DimensionMismatch {
                 expected: n,
@@ -164,9 +171,8 @@ impl Factorization for PetscSystem {
         {
             let blocked = self.blocks.as_ref().map(|b| b.scatter(x));
             let rhs = blocked.as_deref().unwrap_or(x);
-            let (solution, report) =
-                crate::petsc::solve_prepared(&self.prepared, &csr_parts(&self.a), rhs)
-                    .map_err(|e| solver_error(e, self.rtol))?;
+            let (solution, report) = crate::petsc::solve_prepared(&self.prepared, rhs)
+                .map_err(|e| solver_error(e, self.rtol))?;
             if solution.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::Singular { pivot: None });
             }
@@ -187,32 +193,31 @@ impl Factorization for PetscSystem {
     }
 
     fn refactor(&mut self, a: &SparseMatrix) -> Result<(), SolverError> {
-        let a = full(a, self.kind);
-        let a = match &self.blocks {
-            Some(b) if a.rows() == b.unknowns() => b.embed(&a),
-            _ => a,
-        };
-        if a.shape() != self.a.shape()
-            || a.indptr().raw_storage() != self.a.indptr().raw_storage()
-            || a.indices() != self.a.indices()
-        {
+        let blocks = self.blocks.as_ref().filter(|b| a.rows() == b.unknowns());
+        let a = petsc_matrix(
+            a,
+            self.kind == MatrixKind::SymmetricPositiveDefinite,
+            blocks,
+        );
+        let pattern = Pattern::of(&a);
+        if pattern != self.pattern {
             return Err(SolverError::PatternMismatch(format!(
-                "{} entries of a {:?} matrix against {} analysed",
-                a.nnz(),
-                a.shape(),
-                self.a.nnz()
+                "{} entries of a {} x {} matrix against {} analysed",
+                pattern.nnz, pattern.rows, pattern.rows, self.pattern.nnz
             )));
         }
         #[cfg(feature = "petsc")]
         crate::petsc::update(&mut self.prepared, &csr_parts(&a))
             .map_err(|e| solver_error(e, self.rtol))?;
-        self.a = a;
         Ok(())
     }
 
     fn stats(&self) -> FactorStats {
         FactorStats {
-            dim: self.blocks.as_ref().map_or(self.a.rows(), Blocks::unknowns),
+            dim: self
+                .blocks
+                .as_ref()
+                .map_or(self.pattern.rows, Blocks::unknowns),
             factor_entries: None,
             method: "PETSc Krylov solve (its reports say which method)",
         }
@@ -277,7 +282,7 @@ impl SparseSolver for PetscBackend {
         if !crate::is_built() {
             return Err(solver_error(PetscError::NotBuilt, options.rtol));
         }
-        let a = full(a, kind);
+        let upper = kind == MatrixKind::SymmetricPositiveDefinite;
         // GAMG on a displacement field: the system in whole node blocks, the nodes' rigid
         // body modes as the near null space (else the rigid motions as explicit vectors).
         let gamg = matches!(options.preconditioner, Preconditioner::Gamg)
@@ -296,9 +301,9 @@ impl SparseSolver for PetscBackend {
                     }),
                     ..options.clone()
                 };
-                (b.embed(&a), &blocked_options)
+                (petsc_matrix(a, upper, Some(b)), &blocked_options)
             }
-            None => (a, options),
+            None => (petsc_matrix(a, upper, None), options),
         };
         crate::check_input(&a, &vec![0.0; a.rows()], options)
             .map_err(|e| solver_error(e, options.rtol))?;
@@ -306,13 +311,14 @@ impl SparseSolver for PetscBackend {
             (None, Some(p)) => orthonormal(p.rigid_body_modes()),
             _ => Vec::new(),
         };
+        let pattern = Pattern::of(&a);
         #[cfg(feature = "petsc")]
-        let prepared = crate::petsc::prepare(&csr_parts(&a), options, modes)
-            .map_err(|e| solver_error(e, options.rtol))?;
+        let prepared =
+            crate::petsc::prepare(a, options, modes).map_err(|e| solver_error(e, options.rtol))?;
         #[cfg(not(feature = "petsc"))]
-        let _ = modes;
+        let _ = (modes, a);
         Ok(Box::new(PetscSystem {
-            a,
+            pattern,
             kind,
             rtol: options.rtol,
             blocks,

@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::SparseMatrix;
 use mortar_fem::linalg::UnknownPlaces;
 
 /// Where each unknown of a system goes in the blocked system of its nodes.
@@ -67,33 +67,6 @@ impl Blocks {
         })
     }
 
-    /// The blocked matrix of `a` (rows and columns moved to their slots, the empty slots'
-    /// diagonals the mean of `a`'s).
-    pub fn embed(&self, a: &SparseMatrix) -> SparseMatrix {
-        let mut t = Triplets::default();
-        let (mut sum, mut count) = (0.0, 0usize);
-        for (&v, (i, j)) in a.iter() {
-            t.push(self.slot[i] as u32, self.slot[j] as u32, v);
-            if i == j {
-                sum += v.abs();
-                count += 1;
-            }
-        }
-        let fill = if count > 0 && sum > 0.0 {
-            sum / count as f64
-        } else {
-            1.0
-        };
-        let mut used = vec![false; self.size];
-        for &s in &self.slot {
-            used[s] = true;
-        }
-        for (s, _) in used.iter().enumerate().filter(|(_, &u)| !u) {
-            t.push(s as u32, s as u32, fill);
-        }
-        t.to_csr(self.size, self.size)
-    }
-
     /// The number of the caller's unknowns.
     pub fn unknowns(&self) -> usize {
         self.slot.len()
@@ -118,8 +91,88 @@ impl Blocks {
     }
 }
 
+/// The matrix PETSc solves for `a`: all of `a`, or (`upper`: a symmetric matrix given by its
+/// upper triangle, which is all the solver interface reads of it) its upper triangle mirrored;
+/// with `blocks`, its rows and columns moved to their slots, each empty slot's diagonal the
+/// mean of `a`'s. Built in compressed form in two passes (counts, then entries, each row
+/// sorted), no triplets: one copy of the matrix at a time.
+pub(crate) fn petsc_matrix(a: &SparseMatrix, upper: bool, blocks: Option<&Blocks>) -> SparseMatrix {
+    let n = blocks.map_or(a.rows(), |b| b.size);
+    let at = |i: usize| blocks.map_or(i, |b| b.slot[i]);
+    // Visits every entry of the result that comes from `a`, as (row, column, value).
+    let visit = |f: &mut dyn FnMut(usize, usize, f64)| {
+        for (&v, (i, j)) in a.iter() {
+            if upper && i > j {
+                continue;
+            }
+            f(at(i), at(j), v);
+            if upper && i < j {
+                f(at(j), at(i), v);
+            }
+        }
+    };
+    let mut used = vec![blocks.is_none(); n];
+    if let Some(b) = blocks {
+        for &s in &b.slot {
+            used[s] = true;
+        }
+    }
+    let mut count = vec![0usize; n + 1];
+    let (mut diagonal, mut diagonals) = (0.0, 0usize);
+    visit(&mut |r, c, v| {
+        count[r + 1] += 1;
+        if r == c {
+            diagonal += v.abs();
+            diagonals += 1;
+        }
+    });
+    for (s, _) in used.iter().enumerate().filter(|(_, &u)| !u) {
+        count[s + 1] += 1;
+    }
+    for r in 0..n {
+        count[r + 1] += count[r];
+    }
+    let nnz = count[n];
+    let mut indices = vec![0usize; nnz];
+    let mut values = vec![0.0; nnz];
+    let mut next = count.clone();
+    visit(&mut |r, c, v| {
+        indices[next[r]] = c;
+        values[next[r]] = v;
+        next[r] += 1;
+    });
+    let fill = if diagonals > 0 && diagonal > 0.0 {
+        diagonal / diagonals as f64
+    } else {
+        1.0
+    };
+    for (s, _) in used.iter().enumerate().filter(|(_, &u)| !u) {
+        indices[next[s]] = s;
+        values[next[s]] = fill;
+    }
+    let mut row: Vec<(usize, f64)> = Vec::new();
+    for r in 0..n {
+        let range = count[r]..count[r + 1];
+        row.clear();
+        row.extend(
+            indices[range.clone()]
+                .iter()
+                .copied()
+                .zip(values[range.clone()].iter().copied()),
+        );
+        row.sort_unstable_by_key(|e| e.0);
+        for (k, (c, v)) in range.zip(&row) {
+            indices[k] = *c;
+            values[k] = *v;
+        }
+    }
+    SparseMatrix::new((n, n), count, indices, values)
+}
+
 #[cfg(test)]
 mod tests {
+    use mortar_core::linalg::Triplets;
+
     use super::*;
 
     /// Three unknowns of two nodes in 2D (node B's x held): B's x slot is empty, decoupled
@@ -142,7 +195,14 @@ mod tests {
         }
         t.push(0, 2, 1.0);
         t.push(2, 0, 1.0);
-        let e = blocks.embed(&t.to_csr(3, 3));
+        let a = t.to_csr(3, 3);
+        let e = petsc_matrix(&a, false, Some(&blocks));
+        assert_eq!(
+            petsc_matrix(&a, true, Some(&blocks)),
+            e,
+            "the upper triangle mirrored"
+        );
+        assert_eq!(petsc_matrix(&a, false, None), a);
         assert_eq!(
             e.get(2, 2),
             Some(&4.0),

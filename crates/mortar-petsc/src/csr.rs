@@ -48,26 +48,3 @@ pub(crate) fn csr_parts(a: &SparseMatrix) -> CsrParts<'_> {
         data: Cow::Owned(data),
     }
 }
-
-impl CsrParts<'_> {
-    /// `|b - A x| / |b|` (0 for `b = 0` and `x` exact, infinite for `b = 0` otherwise).
-    #[cfg_attr(not(feature = "petsc"), allow(dead_code))]
-    pub fn relative_residual(&self, x: &[f64], b: &[f64]) -> f64 {
-        let mut r2 = 0.0;
-        for (row, &bi) in b.iter().enumerate() {
-            let range = self.indptr[row]..self.indptr[row + 1];
-            let ax: f64 = self.indices[range.clone()]
-                .iter()
-                .zip(&self.data[range])
-                .map(|(&c, &v)| v * x[c])
-                .sum();
-            r2 += (bi - ax) * (bi - ax);
-        }
-        let b2: f64 = b.iter().map(|v| v * v).sum();
-        if r2 == 0.0 {
-            0.0
-        } else {
-            (r2 / b2).sqrt()
-        }
-    }
-}

@@ -15,6 +15,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
 use std::time::Instant;
 
+use mortar_core::linalg::SparseMatrix;
+
 use crate::csr::CsrParts;
 use crate::error::PetscError;
 use crate::options::{KrylovMethod, Preconditioner, SolveOptions};
@@ -497,11 +499,10 @@ fn field_split(
 /// Sets up the Krylov solver and its preconditioner for `a` (PETSc started and locked, the
 /// solve's options pushed); the objects and the seconds of `KSPSetUp`.
 fn set_up(
-    a: &CsrParts<'_>,
+    (mat, near_null_space): (Mat, Option<NullSpace>),
+    n: usize,
     options: &SolveOptions,
-    modes: &[Vec<f64>],
 ) -> Result<(Objects, f64), PetscError> {
-    let (mat, near_null_space) = operator(a, options, modes)?;
     let mut ksp = Ksp(ptr::null_mut());
     call!(KSPCreate(comm_self(), &mut ksp.0))?;
     call!(KSPSetOperators(ksp.0, mat.0, mat.0))?;
@@ -520,7 +521,7 @@ fn set_up(
     call!(PCSetType(pc, pc_name.as_ptr()))?;
     // PETSc keeps its own references to the index sets; ours live as long as the solver.
     let splits = match &options.preconditioner {
-        Preconditioner::FieldSplitSchur(split) => field_split(pc, split, a.nrows)?,
+        Preconditioner::FieldSplitSchur(split) => field_split(pc, split, n)?,
         _ => Vec::new(),
     };
     call!(KSPSetFromOptions(ksp.0))?;
@@ -541,12 +542,25 @@ fn option_text(options: &SolveOptions) -> String {
     options.options_string_with_environment(environment.as_deref())
 }
 
+/// `|b - A x| / |b|` by PETSc's own product (0 for `b = 0` and `x` exact, infinite for
+/// `b = 0` otherwise).
+fn relative_residual(a: &Mat, b: &Vector, x: &Vector) -> Result<f64, PetscError> {
+    let mut r = Vector(ptr::null_mut());
+    call!(VecDuplicate(b.0, &mut r.0))?;
+    call!(MatMult(a.0, x.0, r.0))?;
+    // r = b - A x.
+    call!(VecAYPX(r.0, -1.0, b.0))?;
+    let (mut r_norm, mut b_norm) = (0.0, 0.0);
+    call!(VecNorm(r.0, sys::NormType_NORM_2, &mut r_norm))?;
+    call!(VecNorm(b.0, sys::NormType_NORM_2, &mut b_norm))?;
+    Ok(if r_norm == 0.0 { 0.0 } else { r_norm / b_norm })
+}
+
 /// What a set-up solver gives for `b` (PETSc started and locked, the options pushed):
 /// the solution and its report, `setup` the set-up seconds to report with it (`None`: the
 /// set-up of an earlier solve, kept).
 fn solve_set_up(
     objects: &Objects,
-    a: &CsrParts<'_>,
     b: &[f64],
     options: &SolveOptions,
     version: &str,
@@ -587,7 +601,7 @@ fn solve_set_up(
     }
     let mut solution = vec![0.0; b.len()];
     x.with_values(|v| solution.copy_from_slice(v))?;
-    let relative_residual = a.relative_residual(&solution, b);
+    let relative_residual = relative_residual(&objects.mat, &rhs, &x)?;
     // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
     // with a meaningless solution, which only the residual shows.
     if options.method == KrylovMethod::PreOnly
@@ -628,8 +642,8 @@ pub(crate) fn solve(
         let text = option_text(options);
         // Declared first, dropped last: every object below is destroyed while it is pushed.
         let _pushed = PushedOptions::push(&text)?;
-        let (objects, setup) = set_up(a, options, &[])?;
-        solve_set_up(&objects, a, b, options, version, &text, Some(setup))
+        let (objects, setup) = set_up(operator(a, options, &[])?, a.nrows, options)?;
+        solve_set_up(&objects, b, options, version, &text, Some(setup))
     })
 }
 
@@ -675,15 +689,21 @@ impl Drop for Prepared {
 ///
 /// Unless the options give rigid body modes, `modes` (orthonormal vectors over the unknowns,
 /// none if empty) is the near null space.
+///
+/// `a` is dropped once PETSc holds its copy, before the preconditioner is built: one copy of
+/// the matrix at a time.
 pub(crate) fn prepare(
-    a: &CsrParts<'_>,
+    a: SparseMatrix,
     options: &SolveOptions,
     modes: Vec<Vec<f64>>,
 ) -> Result<Prepared, PetscError> {
-    with_petsc(|_| {
+    with_petsc(move |_| {
         let text = option_text(options);
         let _pushed = PushedOptions::push(&text)?;
-        let (objects, setup_seconds) = set_up(a, options, &modes)?;
+        let n = a.rows();
+        let op = operator(&crate::csr::csr_parts(&a), options, &modes)?;
+        drop(a);
+        let (objects, setup_seconds) = set_up(op, n, options)?;
         Ok(Prepared {
             objects: Some(objects),
             options: options.clone(),
@@ -696,10 +716,9 @@ pub(crate) fn prepare(
 }
 
 /// Solves `a x = b` with the solver set up for `a` (the matrix `prepared` was made or
-/// updated with, whose rows give the reported residual).
+/// updated with).
 pub(crate) fn solve_prepared(
     prepared: &Prepared,
-    a: &CsrParts<'_>,
     b: &[f64],
 ) -> Result<(Vec<f64>, SolveReport), PetscError> {
     with_petsc(|version| {
@@ -709,7 +728,6 @@ pub(crate) fn solve_prepared(
         let setup = first.then_some(prepared.setup_seconds);
         solve_set_up(
             objects,
-            a,
             b,
             &prepared.options,
             version,
