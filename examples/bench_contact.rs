@@ -206,6 +206,7 @@ fn hertz2d(n: usize) -> Res<Value> {
         "unknowns": p.stiffness[0].rows() + p.stiffness[1].rows(),
         "slave_interface_nodes": sol.pressure.len(),
         "seconds": {"build": t_build, "total": t0.elapsed().as_secs_f64()},
+        "backend": "direct",
         "newton": newton_record(&sol),
         "peak_memory_bytes": peak_memory(),
     }))

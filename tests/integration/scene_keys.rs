@@ -1288,16 +1288,25 @@ fn contact_rows() -> Vec<Row<Scenes>> {
                 assert!(off(&pressures(&o), SIGMA) < 1e-10);
             } else {
                 let e = f.err(&[("solve.backend", "\"petsc\"")]);
-                assert!(e.contains("solve.backend") && e.contains("--features petsc"), "{e}");
+                assert!(
+                    e.contains("solve.backend") && e.contains("--features petsc"),
+                    "{e}"
+                );
             }
         }),
         ("solve.linear_tolerance", |f| {
             let e = f.err(&[("solve.linear_tolerance", "0.0")]);
-            assert!(e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"), "{e}");
+            assert!(
+                e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"),
+                "{e}"
+            );
             if mortar::petsc::is_built() {
                 let its = |tol: &str| {
-                    f.ok(&[("solve.backend", "\"petsc\""), ("solve.linear_tolerance", tol)])
-                        .num("linear_solver.iterations.0")
+                    f.ok(&[
+                        ("solve.backend", "\"petsc\""),
+                        ("solve.linear_tolerance", tol),
+                    ])
+                    .num("linear_solver.iterations.0")
                 };
                 let (tight, loose) = (its("1e-12"), its("1e-4"));
                 assert!(loose < tight, "{loose} {tight}");
