@@ -11,8 +11,8 @@ use mortar_physics::laws::{
 use serde_json::Value;
 
 use super::march::{history_plots, CoupledReport, March};
+use super::outputs::{progress_bar, write_scene_outputs};
 use super::problem::{complementarity, exponential_contact_law, problem_of, thermal_law};
-use super::run::{progress_bar, write_scene_outputs};
 use super::{ContactLawName, PelletError, PelletScene};
 
 /// Runs the coupled scene (see [`run`](super::run)).

@@ -191,7 +191,7 @@ impl FileGeometry {
             let (height, pellet_volume, land_area) = rz_measures(&pellet, &cladding, path)?;
             (height, pellet_volume, land_area, [0.0; 2])
         } else {
-            let area = super::run::mesh_area(&pellet).abs();
+            let area = super::outputs::mesh_area(&pellet).abs();
             let enclosed = [
                 enclosed_area(&cladding, &cladding_inner, path, CLADDING_INNER)?,
                 enclosed_area(&cladding, &cladding_outer, path, CLADDING_OUTER)?,

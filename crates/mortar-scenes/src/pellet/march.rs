@@ -17,7 +17,7 @@ use serde_json::{json, Value};
 
 use super::file_mesh::FileGeometry;
 use super::limits::{extremes, LimitWatch, When};
-use super::run::{nearest_node, pvd, write_scene_outputs};
+use super::outputs::{nearest_node, pvd, write_scene_outputs};
 use super::{PelletError, PelletScene, SolverChoice, SolverMethod};
 #[cfg(feature = "plots")]
 use crate::plot::{line_chart_png, Chart, Curve};

@@ -96,6 +96,7 @@ pub mod file_mesh;
 pub mod limits;
 mod march;
 mod mesh;
+mod outputs;
 mod problem;
 mod run;
 mod stress;
@@ -105,8 +106,9 @@ pub use closed_form::{closed_form, ClosedForm};
 pub use coupled::{run_coupled, run_coupled_in, run_coupled_with, run_with_registry};
 pub use march::MAX_STEP_CUTS;
 pub use mesh::{annulus_mesh, pellet_mesh};
+pub use outputs::is_output;
 pub use problem::{coupled_problem, coupled_problem_with, exponential_contact_law, thermal_law};
-pub use run::{is_output, run, run_builtin, run_from_toml, run_from_toml_with, run_with_laws};
+pub use run::{run, run_builtin, run_from_toml, run_from_toml_with, run_with_laws};
 pub use thermal::run_thermal;
 
 use mortar_fem::mesh::VolumeMeshError;

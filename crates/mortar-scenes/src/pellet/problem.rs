@@ -21,7 +21,7 @@ use mortar_physics::thermomech::{
 use nalgebra::Vector3;
 
 use super::file_mesh::{contains, FaceSet, FileGeometry};
-use super::run::{mesh_area, nearest_node};
+use super::outputs::{mesh_area, nearest_node};
 use super::{annulus_mesh, pellet_mesh, AxialModel, Geometry, PelletError, PelletScene};
 use mortar::generate::{extrude_mesh, rectangle_mesh, CellShape};
 

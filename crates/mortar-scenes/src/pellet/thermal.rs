@@ -14,7 +14,7 @@ use mortar_physics::laws::GapConductance;
 use mortar_physics::nonlinear::{NewtonOptions, NewtonReport};
 use serde_json::{json, Value};
 
-use super::run::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
+use super::outputs::{mesh_area, nearest_node, progress_bar, pvd, write_scene_outputs};
 use super::{annulus_mesh, pellet_mesh, PelletError, PelletScene, SolverChoice, SolverMethod};
 use crate::progress::Progress;
 use mortar::io::vtu::{vtu_string, VtuPiece};
