@@ -569,7 +569,7 @@ impl SolverMethod {
 
 /// The size of a 2D cross-section (unknowns) above which `[solver] method = "auto"` takes
 /// Newton rather than JFNK ([`SolverData::choose`]).
-pub const AUTO_NEWTON_ABOVE_2D: usize = 20_000;
+pub const AUTO_NEWTON_ABOVE_2D: usize = 8_000;
 
 /// The method a run uses, and why ([`SolverData::choose`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -599,12 +599,12 @@ pub struct SolverData {
 impl SolverData {
     /// The method of a run: the one given, or for `"auto"` the cheapest measured for the
     /// scene, from the benchmark of every geometry (`examples/bench_pellet.rs`,
-    /// `docs/bench_pellet.json`; JFNK time over Newton's for the same states: 2D 0.37, 0.50,
-    /// 0.82 at 386, 2,730 and 10,206 unknowns; r-z 0.29 to 0.37 at 126 to 798; 3D 0.19 and 0.15 at
-    /// 1,503 and 5,103). The thermomechanical scene (`thermomechanical`) takes JFNK,
-    /// but Newton for a 2D cross-section above [`AUTO_NEWTON_ABOVE_2D`] unknowns, where the
-    /// 2D trend (the ratio rising with the size) crosses 1 (an extrapolation: the largest 2D
-    /// case measured is 10,206 unknowns). A picked JFNK whose solve fails hands it to Newton.
+    /// `docs/bench_pellet.json`; JFNK time over Newton's for the same states: 2D 0.68, 0.62,
+    /// 1.07 at 386, 2,730 and 10,206 unknowns; r-z 0.29 to 0.39 at 126 to 798; 3D 0.20 and 0.16
+    /// at 1,503 and 5,103). The thermomechanical scene (`thermomechanical`) takes JFNK, but
+    /// Newton for a 2D cross-section above [`AUTO_NEWTON_ABOVE_2D`] unknowns, where the
+    /// measured 2D ratio crosses 1 (interpolated in the logarithm of the size between 2,730
+    /// and 10,206 unknowns). A picked JFNK whose solve fails hands it to Newton.
     /// The heat-only scene takes Newton (not part of the benchmark).
     pub fn choose(&self, thermomechanical: bool, plane: bool, unknowns: usize) -> SolverChoice {
         match self.method {
@@ -614,8 +614,7 @@ impl SolverData {
                     picked: true,
                     reason: format!(
                         "auto: Newton for a 2D cross-section of {unknowns} unknowns (above \
-                         {AUTO_NEWTON_ABOVE_2D}, JFNK's advantage measured shrinking with the \
-                         size: docs/pellet.md)"
+                         {AUTO_NEWTON_ABOVE_2D}, where JFNK was measured no faster: docs/pellet.md)"
                     ),
                 }
             }
