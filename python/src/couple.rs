@@ -382,54 +382,10 @@ pub(crate) fn couple_arrays<'py>(
                 .unwrap_or_else(|m| Err(Failure::Panic(m)))
         })
         .map_err(Failure::into_py)?;
+    let stats = stats_dict(py, &out)?;
     let dim = out.dim;
     let c = out.coupling;
     let result = PyDict::new(py);
-    let stats = PyDict::new(py);
-    let st = &c.stats;
-    stats.set_item("pairs", st.pairs)?;
-    stats.set_item("candidates", st.candidates)?;
-    stats.set_item("segments", st.segments)?;
-    stats.set_item("area", st.area)?;
-    stats.set_item("back_facing", st.back_facing)?;
-    stats.set_item("skipped_pairs", st.skipped_pairs)?;
-    stats.set_item("uncovered_area", st.uncovered_area)?;
-    stats.set_item("faces_without_partner", st.faces_without_partner)?;
-    stats.set_item("faces_partly_covered", st.faces_partly_covered)?;
-    stats.set_item("overlapped_area", st.overlapped_area)?;
-    stats.set_item("faces_overlapped", st.faces_overlapped)?;
-    stats.set_item("fused_line_faces", st.fused_line_faces)?;
-    stats.set_item("straight_line_faces", st.straight_line_faces)?;
-    stats.set_item("closed_form_faces", st.closed_form_faces)?;
-    stats.set_item("slave_box_inflation", st.slave_box_inflation)?;
-    stats.set_item("master_box_inflation", st.master_box_inflation)?;
-    stats.set_item("d_roundoff_dropped", st.d_roundoff_dropped)?;
-    stats.set_item("d_off_diagonal", st.d_off_diagonal)?;
-    stats.set_item("d_off_diagonal_largest", st.d_off_diagonal_largest)?;
-    stats.set_item("threads", st.threads)?;
-    stats.set_item("degrees_used", c.degrees_used())?;
-    stats.set_item("formulation", c.formulation.as_str())?;
-    stats.set_item("seconds", out.seconds_total)?;
-    let phases = PyDict::new(py);
-    phases.set_item("meshes", out.seconds_meshes)?;
-    phases.set_item("orientation", out.seconds_orientation)?;
-    phases.set_item("interface", out.seconds_interface)?;
-    phases.set_item("tree", st.seconds.tree)?;
-    phases.set_item("faces", st.seconds.faces)?;
-    phases.set_item("assembly", st.seconds.assembly)?;
-    phases.set_item("coupling", st.seconds.total)?;
-    stats.set_item("seconds_by_phase", phases)?;
-    if let Some(o) = out.orientation {
-        let orientation = PyDict::new(py);
-        for (name, r) in [("slave", &o[0]), ("master", &o[1])] {
-            let side = PyDict::new(py);
-            side.set_item("pieces", r.components)?;
-            side.set_item("flipped", r.flipped)?;
-            side.set_item("kept_as_given", r.kept_as_given)?;
-            orientation.set_item(name, side)?;
-        }
-        stats.set_item("orientation", orientation)?;
-    }
     let warnings: Vec<String> = c.warnings.iter().map(|w| w.to_string()).collect();
     let normals: Vec<f64> = c
         .slave_normals
@@ -469,4 +425,56 @@ pub(crate) fn couple_arrays<'py>(
     result.set_item("stats", stats)?;
     result.set_item("dim", dim)?;
     Ok(result)
+}
+
+/// The `stats` entry of `couple_arrays`' result: the coupling's counts, areas and
+/// formulation, the seconds by phase, and each side's orientation.
+fn stats_dict<'py>(py: Python<'py>, out: &Output) -> PyResult<Bound<'py, PyDict>> {
+    let c = &out.coupling;
+    let stats = PyDict::new(py);
+    let st = &c.stats;
+    stats.set_item("pairs", st.pairs)?;
+    stats.set_item("candidates", st.candidates)?;
+    stats.set_item("segments", st.segments)?;
+    stats.set_item("area", st.area)?;
+    stats.set_item("back_facing", st.back_facing)?;
+    stats.set_item("skipped_pairs", st.skipped_pairs)?;
+    stats.set_item("uncovered_area", st.uncovered_area)?;
+    stats.set_item("faces_without_partner", st.faces_without_partner)?;
+    stats.set_item("faces_partly_covered", st.faces_partly_covered)?;
+    stats.set_item("overlapped_area", st.overlapped_area)?;
+    stats.set_item("faces_overlapped", st.faces_overlapped)?;
+    stats.set_item("fused_line_faces", st.fused_line_faces)?;
+    stats.set_item("straight_line_faces", st.straight_line_faces)?;
+    stats.set_item("closed_form_faces", st.closed_form_faces)?;
+    stats.set_item("slave_box_inflation", st.slave_box_inflation)?;
+    stats.set_item("master_box_inflation", st.master_box_inflation)?;
+    stats.set_item("d_roundoff_dropped", st.d_roundoff_dropped)?;
+    stats.set_item("d_off_diagonal", st.d_off_diagonal)?;
+    stats.set_item("d_off_diagonal_largest", st.d_off_diagonal_largest)?;
+    stats.set_item("threads", st.threads)?;
+    stats.set_item("degrees_used", c.degrees_used())?;
+    stats.set_item("formulation", c.formulation.as_str())?;
+    stats.set_item("seconds", out.seconds_total)?;
+    let phases = PyDict::new(py);
+    phases.set_item("meshes", out.seconds_meshes)?;
+    phases.set_item("orientation", out.seconds_orientation)?;
+    phases.set_item("interface", out.seconds_interface)?;
+    phases.set_item("tree", st.seconds.tree)?;
+    phases.set_item("faces", st.seconds.faces)?;
+    phases.set_item("assembly", st.seconds.assembly)?;
+    phases.set_item("coupling", st.seconds.total)?;
+    stats.set_item("seconds_by_phase", phases)?;
+    if let Some(o) = &out.orientation {
+        let orientation = PyDict::new(py);
+        for (name, r) in [("slave", &o[0]), ("master", &o[1])] {
+            let side = PyDict::new(py);
+            side.set_item("pieces", r.components)?;
+            side.set_item("flipped", r.flipped)?;
+            side.set_item("kept_as_given", r.kept_as_given)?;
+            orientation.set_item(name, side)?;
+        }
+        stats.set_item("orientation", orientation)?;
+    }
+    Ok(stats)
 }
