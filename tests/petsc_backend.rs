@@ -124,3 +124,39 @@ fn a_contact_scene_through_petsc_matches_the_direct_solve() {
         .iter()
         .all(|r| r.ksp_type == "cg" && r.pc_type == "gamg" && r.near_null_space));
 }
+
+/// A Krylov solve that stops short of its tolerance (here allowed 2 iterations) is a typed
+/// error naming the system, the load and Newton step, PETSc's method, the iterations and the
+/// residual, and what to change; nothing is written.
+#[test]
+fn a_krylov_solve_that_does_not_converge_names_the_system_and_the_step() {
+    use mortar_scenes::file::contact::ContactSpec;
+    use mortar_scenes::file::FileSystem;
+
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples/scenes/contact_blocks.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = format!("{text}\n[solve]\nbackend = \"petsc\"\npetsc_options = \"-ksp_max_it 2\"\n");
+    let spec = ContactSpec::parse(&text, &path);
+    if !mortar::petsc::is_built() {
+        // Without PETSc the scene is refused as it is read, saying how to get it.
+        let err = spec.map(|_| ()).unwrap_err().to_string();
+        assert!(err.contains("--features petsc"), "{err}");
+        return;
+    }
+    let err = spec
+        .unwrap()
+        .solve(&path, path.parent().unwrap(), &FileSystem)
+        .unwrap_err()
+        .to_string();
+    println!("{err}");
+    for needle in [
+        "contact Newton system at load step 1, Newton step 0",
+        "did not converge",
+        "after 2 iterations",
+        "relative residual",
+        "linear_tolerance",
+    ] {
+        assert!(err.contains(needle), "{needle:?} not in {err}");
+    }
+}

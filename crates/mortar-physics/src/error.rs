@@ -26,6 +26,15 @@ pub enum PhysicsError {
     /// A factorisation or solve failed.
     #[error(transparent)]
     Solver(#[from] SolverError),
+    /// The linear solve of a named system failed: an iterative backend that did not converge
+    /// (its method, iterations and residual in `source`), say.
+    #[error("{system}: {source}")]
+    LinearSolve {
+        /// Which system, and where in the solve (load step, Newton step).
+        system: String,
+        /// The backend's error.
+        source: SolverError,
+    },
     /// A cell's Jacobian determinant is not positive.
     #[error("body {body:?}: cell {cell} is inverted or degenerate: {source}")]
     InvertedCell {

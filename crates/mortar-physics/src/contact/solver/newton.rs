@@ -405,6 +405,17 @@ fn singular_system(e: SolverError, s: usize, it: usize, branch: &[bool]) -> Phys
                 ),
             }
         }
+        e @ SolverError::NotConverged { .. } => PhysicsError::LinearSolve {
+            system: format!(
+                "the contact Newton system at load step {s}, Newton step {it} ({} of {} slave \
+                 nodes in contact): its iterative solve did not converge; loosen \
+                 [solve] linear_tolerance, allow more iterations (petsc_options \
+                 \"-ksp_max_it N\"), or solve it directly (backend = \"direct\")",
+                branch.iter().filter(|&&a| a).count(),
+                branch.len()
+            ),
+            source: e,
+        },
         e => e.into(),
     }
 }
