@@ -143,10 +143,7 @@ impl PickedSolver {
             "why": self.why,
             "solves": reports.len(),
             "iterations": iterations,
-            "methods": reports
-                .iter()
-                .map(|r| format!("{}+{}", r.ksp_type, r.pc_type))
-                .collect::<std::collections::BTreeSet<_>>(),
+            "methods": methods(&reports),
             "largest_relative_residual": reports
                 .iter()
                 .map(|r| r.relative_residual)
@@ -163,18 +160,23 @@ impl PickedSolver {
             reports.iter().map(|r| r.iterations).min(),
             reports.iter().map(|r| r.iterations).max(),
         ) {
-            let methods: std::collections::BTreeSet<String> = reports
-                .iter()
-                .map(|r| format!("{}+{}", r.ksp_type, r.pc_type))
-                .collect();
             line.push_str(&format!(
                 ": solves {}, {}, iterations {lo} to {hi}",
                 reports.len(),
-                methods.into_iter().collect::<Vec<_>>().join(", ")
+                methods(&reports).join(", ")
             ));
         }
         line
     }
+}
+
+/// The methods that ran, `ksp+pc` as PETSc names them, each once, in order.
+fn methods(reports: &[SolveReport]) -> Vec<String> {
+    let set: std::collections::BTreeSet<String> = reports
+        .iter()
+        .map(|r| format!("{}+{}", r.ksp_type, r.pc_type))
+        .collect();
+    set.into_iter().collect()
 }
 
 #[cfg(test)]

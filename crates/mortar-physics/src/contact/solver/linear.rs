@@ -40,7 +40,7 @@ pub(super) struct Linearised<'a> {
 /// `a x = b` in place: the one step of the contact iteration that goes through the
 /// backend's general factorisation, so that the backend is named here only.
 pub(super) fn solve_general(a: &SparseMatrix, b: &mut [f64]) -> Result<(), SolverError> {
-    SOLVER.factor(a, MatrixKind::General)?.solve_in_place(b)
+    solve_by(SOLVER, a, MatrixKind::General, SystemInfo::default(), b)
 }
 
 /// Solves `a x = b` in place by `backend`: `kind` and `info` as the backend is told them.
