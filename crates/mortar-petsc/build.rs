@@ -57,6 +57,7 @@ mod petsc {
         "KSPSetType",
         "KSPGetType",
         "KSPSetTolerances",
+        "KSPGetTolerances",
         "KSPGetPC",
         "KSPSetFromOptions",
         "KSPSetUp",

@@ -50,16 +50,20 @@ pub enum PetscError {
         /// The preconditioner that ran.
         pc_type: String,
     },
-    /// A direct solve (`preonly`) finished, but its solution misses the tolerance: the
-    /// matrix is singular or too ill-conditioned for the factorisation.
+    /// A solve finished, but its solution misses the tolerance: a direct solve (`preonly`)
+    /// of a singular or too ill-conditioned matrix, or a Krylov method whose preconditioned
+    /// residual converged while the true one did not (a preconditioner with a near-zero
+    /// pivot); see [`accepted_residual`](crate::accepted_residual).
     #[error(
-        "{ksp_type}+{pc_type} gave |b - Ax|/|b| = {relative_residual:.3e}, above the tolerance \
-         {tolerance:.1e}: the matrix is singular or too ill-conditioned"
+        "{ksp_type}+{pc_type} gave |b - Ax|/|b| = {relative_residual:.3e}, above the accepted \
+         {tolerance:.1e}: the matrix is singular or too ill-conditioned, or the preconditioner \
+         does not fit it"
     )]
     Inaccurate {
         /// `|b - A x| / |b|` of the solution found.
         relative_residual: f64,
-        /// The tolerance it missed (`rtol`).
+        /// The bound it missed (`rtol` for a direct solve, else
+        /// [`accepted_residual`](crate::accepted_residual)).
         tolerance: f64,
         /// The Krylov method that ran.
         ksp_type: String,

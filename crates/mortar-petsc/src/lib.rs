@@ -38,7 +38,9 @@ mod report;
 
 pub use backend::PetscBackend;
 pub use error::PetscError;
-pub use options::{FieldSplit, KrylovMethod, Preconditioner, RigidBodyModes, SolveOptions};
+pub use options::{
+    accepted_residual, FieldSplit, KrylovMethod, Preconditioner, RigidBodyModes, SolveOptions,
+};
 pub use report::{ConvergedReason, SolveReport};
 
 use mortar_core::linalg::SparseMatrix;

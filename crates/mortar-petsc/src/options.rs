@@ -92,6 +92,21 @@ pub struct RigidBodyModes {
     pub coordinates: Vec<f64>,
 }
 
+/// The largest true relative residual `|b - A x| / |b|` a converged Krylov solve to the
+/// relative tolerance `rtol` may leave, above which its solution is refused: PETSc's test
+/// measures the preconditioned residual for CG and left-preconditioned GMRES, which differs
+/// from the true one by the preconditioner's conditioning, so the bound is `1000 rtol`, at
+/// most `sqrt(rtol)` and at least `rtol`.
+///
+/// ```
+/// use mortar_petsc::accepted_residual;
+/// assert_eq!(accepted_residual(1e-12), 1e-9);
+/// assert!((accepted_residual(1e-2) - 0.1).abs() < 1e-15);
+/// ```
+pub fn accepted_residual(rtol: f64) -> f64 {
+    (1e3 * rtol).min(rtol.sqrt()).max(rtol)
+}
+
 /// A solve's settings.
 ///
 /// PETSc reads them as its options (see [`SolveOptions::options_string`]); `petsc_options`

@@ -603,13 +603,26 @@ fn solve_set_up(
     x.with_values(|v| solution.copy_from_slice(v))?;
     let relative_residual = relative_residual(&objects.mat, &rhs, &x)?;
     // `preonly` has no convergence test: a factorisation of a singular matrix "succeeds"
-    // with a meaningless solution, which only the residual shows.
-    if options.method == KrylovMethod::PreOnly
-        && (relative_residual.is_nan() || relative_residual > options.rtol)
-    {
+    // with a meaningless solution, which only the residual shows. A Krylov method tests the
+    // preconditioned residual: a poor preconditioner (a near-zero pivot in it) lets that
+    // converge while the true residual does not.
+    // The tolerance PETSc solved to, after the options were read (`-ksp_rtol` may set it).
+    let (mut rtol, mut atol, mut dtol, mut max_it): (f64, f64, f64, PetscInt) = (0.0, 0.0, 0.0, 0);
+    call!(KSPGetTolerances(
+        ksp.0,
+        &mut rtol,
+        &mut atol,
+        &mut dtol,
+        &mut max_it
+    ))?;
+    let bound = match options.method {
+        KrylovMethod::PreOnly => options.rtol,
+        _ => crate::accepted_residual(rtol.max(options.rtol)),
+    };
+    if relative_residual.is_nan() || relative_residual > bound {
         return Err(PetscError::Inaccurate {
             relative_residual,
-            tolerance: options.rtol,
+            tolerance: bound,
             ksp_type,
             pc_type,
         });

@@ -76,3 +76,39 @@ fn too_few_iterations_is_a_typed_error_with_the_count() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A preconditioner with a near-zero pivot weights the preconditioned residual, which PETSc's
+/// test measures, by its inverse: left-preconditioned GMRES with Jacobi on `diag(1e-20, K)`
+/// (`K` a 2D Poisson matrix) removes the first component in one step, the preconditioned
+/// residual falls by about 1e-20 and PETSc reports convergence while the true residual of the
+/// Poisson part is untouched. The solve is refused, not returned.
+#[test]
+fn a_converged_preconditioned_residual_with_a_large_true_one_is_refused() {
+    let k = poisson_2d(8);
+    let n = k.rows() + 1;
+    let mut indptr = vec![0, 1];
+    let (mut indices, mut data) = (vec![0], vec![1e-20]);
+    for row in k.outer_iterator() {
+        for (j, v) in row.iter() {
+            indices.push(j + 1);
+            data.push(*v);
+        }
+        indptr.push(indices.len());
+    }
+    let a = SparseMatrix::new((n, n), indptr, indices, data);
+    let mut options = SolveOptions::new(KrylovMethod::Gmres, Preconditioner::Jacobi);
+    options.rtol = 1e-12;
+    let err = PetscSolver::new(options).solve(&a, &rhs(n)).unwrap_err();
+    println!("{err}");
+    match err {
+        PetscError::Inaccurate {
+            relative_residual,
+            tolerance,
+            ..
+        } => {
+            assert_eq!(tolerance, mortar_petsc::accepted_residual(1e-12));
+            assert!(relative_residual > 1e-3, "{relative_residual}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
