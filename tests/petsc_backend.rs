@@ -160,3 +160,59 @@ fn a_krylov_solve_that_does_not_converge_names_the_system_and_the_step() {
         assert!(err.contains(needle), "{needle:?} not in {err}");
     }
 }
+
+/// The tied heat convergence study (the sine solution on two non-matching bodies tied by dual
+/// mortar, `mortar_scenes::tied_heat`) with the condensed system solved by PETSc's CG with
+/// GAMG against the direct sparse Cholesky: the same L2 and H1 errors (to the Krylov
+/// tolerance's share) and so the same rates, 2.00 in L2 and 1.00 in H1 (the closed-form
+/// orders of linear elements, Wohlmuth 2001). Levels n = 8, 16, 32 in 2D; 4, 8 in 3D.
+#[test]
+fn tied_heat_rates_through_petsc_are_the_direct_ones() {
+    use mortar::physics::LinearSolve;
+    use mortar_scenes::tied_heat::{rate, Geometry, TiedHeatScene};
+    let backend = PetscBackend::automatic(1e-12, "");
+    let linear = LinearSolve {
+        backend: Some(&backend),
+        ..LinearSolve::default()
+    };
+    for (dim, levels) in [(2, &[8, 16, 32][..]), (3, &[4, 8][..])] {
+        let mut runs = Vec::new();
+        for &n in levels {
+            let scene = TiedHeatScene::new(dim, Geometry::Straight, n);
+            let direct = scene.run().unwrap();
+            let petsc = scene.run_on(&linear);
+            if !mortar::petsc::is_built() {
+                let e = petsc.unwrap_err().to_string();
+                assert!(e.contains("--features petsc"), "{e}");
+                return;
+            }
+            let petsc = petsc.unwrap();
+            let (dl2, dh1) = (
+                (petsc.l2 - direct.l2).abs() / direct.l2,
+                (petsc.h1 - direct.h1).abs() / direct.h1,
+            );
+            println!(
+                "{dim}D n = {n}: L2 {:.6e} (direct {:.6e}, off {dl2:.1e}), H1 {:.6e} (off {dh1:.1e})",
+                petsc.l2, direct.l2, petsc.h1
+            );
+            assert!(dl2 < 1e-9 && dh1 < 1e-9, "{dl2:e} {dh1:e}");
+            runs.push((direct, petsc));
+        }
+        for w in runs.windows(2) {
+            let (a, b) = (&w[0], &w[1]);
+            let (l2, h1) = (
+                rate(a.1.h, a.1.l2, b.1.h, b.1.l2),
+                rate(a.1.h, a.1.h1, b.1.h, b.1.h1),
+            );
+            let direct = rate(a.0.h, a.0.l2, b.0.h, b.0.l2);
+            println!("{dim}D rates through PETSc: L2 {l2:.3}, H1 {h1:.3} (direct L2 {direct:.3})");
+            assert!((l2 - direct).abs() < 1e-6, "{l2} {direct}");
+            assert!(l2 > 1.9 && h1 > 0.9, "{l2} {h1}");
+        }
+        let report = &backend.reports()[0];
+        assert_eq!(
+            (report.ksp_type.as_str(), report.pc_type.as_str()),
+            ("cg", "gamg")
+        );
+    }
+}

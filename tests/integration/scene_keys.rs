@@ -736,6 +736,9 @@ fn tied_heat_full() -> toml::Table {
             dt: Some(1.0),
             steps: Some(1),
             formulation: FormulationSpec::SaddlePoint,
+            backend: mortar_scenes::linear_solver::BackendChoice::Direct,
+            linear_tolerance: Some(1e-10),
+            petsc_options: "-ksp_monitor".into(),
         },
         bodies: BTreeMap::from([("a".into(), body.clone()), ("b".into(), body)]),
         interface: InterfaceSpec {
@@ -819,6 +822,80 @@ fn tied_heat_rows() -> Vec<Row<Scenes>> {
             assert_eq!(auto.text("formulation.name"), "dual-condensed SPD");
             assert_eq!(saddle.text("formulation.name"), "saddle point");
             assert!(rel_diff(&right_t(&saddle), &right_t(&auto)) < 1e-12);
+        }),
+        ("solve.backend", |f| {
+            // The direct solve below the size where PETSc pays; PETSc when asked for (CG with
+            // GAMG on the condensed system, GMRES with the Schur fieldsplit on the saddle
+            // point), the same temperatures to its tolerance; in a build without PETSc, an
+            // error saying how to get it.
+            let auto = f.ok(&[]);
+            assert_eq!(auto.text("linear_solver.backend"), "direct");
+            assert!(auto.text("linear_solver.why").contains("below"));
+            assert_eq!(auto.text("solver.kind"), "sparse direct");
+            let direct = f.ok(&[("solve.backend", "\"direct\"")]);
+            assert!(direct.text("linear_solver.why").contains("asked for"));
+            if mortar::petsc::is_built() {
+                let o = f.ok(&[("solve.backend", "\"petsc\"")]);
+                assert_eq!(o.text("linear_solver.backend"), "petsc");
+                assert_eq!(o.text("linear_solver.methods.0"), "cg+gamg");
+                assert_eq!(o.text("solver.kind"), "PETSc Krylov");
+                assert!(rel_diff(&right_t(&o), &right_t(&auto)) < 1e-9);
+                // The right body is held by the tie alone: its saddle point's primal block is
+                // singular, which PETSc's Schur fieldsplit cannot take.
+                let e = f.err(&[
+                    ("solve.backend", "\"petsc\""),
+                    ("solve.formulation", "\"saddle_point\""),
+                ]);
+                assert!(e.contains("singular primal block"), "{e}");
+                // Both bodies of the curved scene are held: its saddle point goes to GMRES
+                // with the Schur fieldsplit, the temperatures the direct solve's.
+                let t = |o: Out| o.field("core.vtu", "temperature");
+                let saddle = [("solve.formulation", "\"saddle_point\"")];
+                let direct = f.ok_on(&f.curved, &saddle);
+                let petsc = f.ok_on(&f.curved, &[saddle[0], ("solve.backend", "\"petsc\"")]);
+                assert_eq!(petsc.text("linear_solver.methods.0"), "gmres+fieldsplit");
+                assert!(rel_diff(&t(petsc), &t(direct)) < 1e-9);
+            } else {
+                let e = f.err(&[("solve.backend", "\"petsc\"")]);
+                assert!(
+                    e.contains("solve.backend") && e.contains("--features petsc"),
+                    "{e}"
+                );
+            }
+        }),
+        ("solve.linear_tolerance", |f| {
+            let e = f.err(&[("solve.linear_tolerance", "1.5")]);
+            assert!(
+                e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"),
+                "{e}"
+            );
+            if mortar::petsc::is_built() {
+                let its = |tol: &str| {
+                    f.ok(&[
+                        ("solve.backend", "\"petsc\""),
+                        ("solve.linear_tolerance", tol),
+                    ])
+                    .num("linear_solver.iterations.0")
+                };
+                let (tight, loose) = (its("1e-12"), its("1e-3"));
+                assert!(loose < tight, "{loose} {tight}");
+            }
+        }),
+        ("solve.petsc_options", |f| {
+            if mortar::petsc::is_built() {
+                let o = f.ok(&[
+                    ("solve.backend", "\"petsc\""),
+                    ("solve.petsc_options", "\"-ksp_type minres\""),
+                ]);
+                assert_eq!(o.text("linear_solver.methods.0"), "minres+gamg");
+                assert!(rel_diff(&right_t(&o), &right_t(&f.ok(&[]))) < 1e-9);
+            } else {
+                let e = f.err(&[
+                    ("solve.backend", "\"petsc\""),
+                    ("solve.petsc_options", "\"-ksp_type minres\""),
+                ]);
+                assert!(e.contains("--features petsc"), "{e}");
+            }
         }),
         ("bodies.*.mesh", |f| {
             let (a, b) = (

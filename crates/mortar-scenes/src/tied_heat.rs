@@ -26,7 +26,7 @@ use mortar_physics::heat::{
     error_norms, ErrorNorms, HeatBody, HeatMaterial, HeatOptions, TiedHeat, TiedHeatSolution,
 };
 use mortar_physics::tied::TiedOptions;
-use mortar_physics::PhysicsError;
+use mortar_physics::{LinearSolve, PhysicsError};
 use nalgebra::Vector3;
 
 use mortar::generate::{
@@ -296,9 +296,18 @@ impl TiedHeatScene {
     /// # Errors
     /// The errors of [`build`](Self::build) and of the solve.
     pub fn run(&self) -> Result<TiedHeatRun, PhysicsError> {
+        self.run_on(&LinearSolve::default())
+    }
+
+    /// [`run`](Self::run), the tied system solved by `linear`'s backend when it names one
+    /// (PETSc's Krylov methods, say).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_on(&self, linear: &LinearSolve<'_>) -> Result<TiedHeatRun, PhysicsError> {
         let t0 = Instant::now();
         let problem = self.build()?;
-        let solution = problem.solve_steady(&self.tied, 0.0)?;
+        let solution = problem.solve_steady_on(&self.tied, 0.0, linear)?;
         let seconds = t0.elapsed().as_secs_f64();
         let (dim, exact) = (self.dim, self.exact);
         let u = move |x: &Vector3<f64>| exact.value(dim, x);

@@ -10,6 +10,7 @@ use mortar_core::{CouplingOptions, Interface};
 use super::assembly::{assemble_heat_load, assemble_heat_matrices, HeatMatrices, HeatOptions};
 use super::body::HeatBody;
 use crate::error::PhysicsError;
+use crate::linear_solve::LinearSolve;
 use crate::tied::{FormulationReport, Tie, TiedOptions, TiedSystem};
 
 /// Wall-clock seconds of the phases of a tied heat solve.
@@ -234,11 +235,26 @@ impl TiedHeat {
         matrices: [&mortar_core::linalg::SparseMatrix; 2],
         tied: &TiedOptions,
     ) -> Result<TiedSystem, PhysicsError> {
-        TiedSystem::new(
+        self.system_on(matrices, tied, &LinearSolve::default())
+    }
+
+    /// [`system`](Self::system), solved by `linear`'s backend when it names one (see
+    /// [`TiedSystem::new_on`]).
+    ///
+    /// # Errors
+    /// See [`TiedSystem::new_on`].
+    pub fn system_on(
+        &self,
+        matrices: [&mortar_core::linalg::SparseMatrix; 2],
+        tied: &TiedOptions,
+        linear: &LinearSolve<'_>,
+    ) -> Result<TiedSystem, PhysicsError> {
+        TiedSystem::new_on(
             matrices,
             &self.tie,
             [&self.dirichlet[0].0, &self.dirichlet[1].0],
             tied,
+            linear,
         )
     }
 
@@ -251,9 +267,24 @@ impl TiedHeat {
         tied: &TiedOptions,
         t: f64,
     ) -> Result<TiedHeatSolution, PhysicsError> {
-        let system = self.system(
+        self.solve_steady_on(tied, t, &LinearSolve::default())
+    }
+
+    /// [`solve_steady`](Self::solve_steady), the system solved by `linear`'s backend when it
+    /// names one.
+    ///
+    /// # Errors
+    /// The errors of [`TiedSystem::new_on`] and [`TiedSystem::solve`].
+    pub fn solve_steady_on(
+        &self,
+        tied: &TiedOptions,
+        t: f64,
+        linear: &LinearSolve<'_>,
+    ) -> Result<TiedHeatSolution, PhysicsError> {
+        let system = self.system_on(
             [&self.matrices[0].stiffness, &self.matrices[1].stiffness],
             tied,
+            linear,
         )?;
         let (loads, g, seconds_loads) = self.loads(t)?;
         let fields = self.solve_levelled(&system, &loads, None, &g)?;
@@ -343,6 +374,22 @@ impl TiedHeat {
         t0: f64,
         dt: f64,
     ) -> Result<BackwardEuler<'_>, PhysicsError> {
+        self.backward_euler_on(tied, initial, t0, dt, &LinearSolve::default())
+    }
+
+    /// [`backward_euler`](Self::backward_euler), each step's system solved by `linear`'s
+    /// backend when it names one.
+    ///
+    /// # Errors
+    /// As [`backward_euler`](Self::backward_euler), with those of [`TiedSystem::new_on`].
+    pub fn backward_euler_on(
+        &self,
+        tied: &TiedOptions,
+        initial: [Vec<f64>; 2],
+        t0: f64,
+        dt: f64,
+        linear: &LinearSolve<'_>,
+    ) -> Result<BackwardEuler<'_>, PhysicsError> {
         check_dt(dt)?;
         for (b, field) in initial.iter().enumerate() {
             if field.len() != self.bodies[b].mesh.node_count() {
@@ -357,7 +404,7 @@ impl TiedHeat {
             self.matrices[0].backward_euler(dt),
             self.matrices[1].backward_euler(dt),
         ];
-        let system = self.system([&a[0], &a[1]], tied)?;
+        let system = self.system_on([&a[0], &a[1]], tied, linear)?;
         let solution = TiedHeatSolution {
             temperatures: initial,
             flux: vec![f64::NAN; self.tie.slave_nodes().len()],

@@ -7,8 +7,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use mortar_fem::linalg::{
-    CholeskyFactorization, Factorization, LuFactorization, SaddlePointFactorization, SolverError,
-    SparseMatrix, SubstructuredCholesky, Triplets,
+    CholeskyFactorization, Factorization, LuFactorization, MatrixKind, SaddlePointFactorization,
+    SolverError, SparseMatrix, SubstructuredCholesky, SystemInfo, Triplets,
 };
 
 use super::crosspoint::shares;
@@ -17,6 +17,7 @@ use super::formulation::{
 };
 use super::tie::Tie;
 use crate::error::PhysicsError;
+use crate::linear_solve::{LinearSolve, Places};
 use crate::tying::TyingError;
 
 /// Marks "none" in index maps.
@@ -47,12 +48,14 @@ pub struct SystemSeconds {
 }
 
 /// The factorisation of the chosen formulation.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 enum Factor {
     Lu(Box<LuFactorization>),
     Ldlt(Box<SaddlePointFactorization>),
     Cholesky(CholeskyFactorization),
     Substructured(Box<SubstructuredCholesky>),
+    /// A backend's solve of the system (PETSc's Krylov methods, say).
+    Backend(Box<dyn Factorization>),
 }
 
 impl Factor {
@@ -80,6 +83,7 @@ impl Factor {
             Factor::Ldlt(f) => &**f,
             Factor::Cholesky(f) => f,
             Factor::Substructured(f) => &**f,
+            Factor::Backend(f) => &**f,
         }
     }
 
@@ -92,6 +96,7 @@ impl Factor {
             Factor::Substructured(_) => {
                 "sparse Cholesky by body (the bodies factorised in parallel, the interface last)"
             }
+            Factor::Backend(f) => f.stats().method,
         }
     }
 }
@@ -122,8 +127,11 @@ impl Factor {
 ///   follow from the slave rows:
 ///   `lambda_j = (b - A T)_j / D_jj`.
 ///
-/// Both give the same solution up to round-off.
-#[derive(Debug, Clone)]
+/// Both give the same solution up to round-off. [`new_on`](Self::new_on) hands the system of
+/// either formulation to a backend of the solver interface instead (PETSc's Krylov methods
+/// with algebraic multigrid, say): the condensed one as symmetric positive definite, the
+/// saddle point with its multipliers last.
+#[derive(Debug)]
 pub struct TiedSystem {
     layout: Layout,
     /// The global block-diagonal matrix.
@@ -183,6 +191,23 @@ impl TiedSystem {
         dirichlet: [&[u32]; 2],
         options: &TiedOptions,
     ) -> Result<Self, PhysicsError> {
+        Self::new_on(matrices, tie, dirichlet, options, &LinearSolve::default())
+    }
+
+    /// [`new`](Self::new), the system solved by `linear.backend` when it names one (told, for
+    /// a field of several components, where each unknown sits: `linear.nodes`, each body's
+    /// node coordinates), by the direct factorisations otherwise.
+    ///
+    /// # Errors
+    /// As [`new`](Self::new); [`PhysicsError::LinearSolve`] naming the system when the
+    /// backend fails to set it up.
+    pub fn new_on(
+        matrices: [&SparseMatrix; 2],
+        tie: &Tie,
+        dirichlet: [&[u32]; 2],
+        options: &TiedOptions,
+        linear: &LinearSolve<'_>,
+    ) -> Result<Self, PhysicsError> {
         let t0 = Instant::now();
         let n = check_columns(matrices)?;
         let ndof = n[0] + n[1];
@@ -228,11 +253,12 @@ impl TiedSystem {
         let scale = layout.scaling(&matrix);
         scale_symmetric(&mut matrix, &scale);
         let t1 = Instant::now();
-        let factor = match formulation {
-            Formulation::SaddlePoint => {
+        let factor = match (linear.backend, formulation) {
+            (Some(_), _) => layout.backend_factor(&matrix, linear)?,
+            (None, Formulation::SaddlePoint) => {
                 Factor::saddle_point(&matrix, nrows, &layout.eliminated_last())?
             }
-            Formulation::DualCondensed => layout.condensed_factor(&matrix)?,
+            (None, Formulation::DualCondensed) => layout.condensed_factor(&matrix)?,
         };
         let factorisation = factor.name();
         Ok(Self {
@@ -295,6 +321,7 @@ impl TiedSystem {
             },
             Factor::Cholesky(f) => f.refactor(&matrix),
             Factor::Substructured(f) => f.refactor(&matrix),
+            Factor::Backend(f) => f.refactor(&matrix),
         };
         self.report.factorisation = self.factor.name();
         if let Err(e) = done {
@@ -376,7 +403,13 @@ impl TiedSystem {
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
-        self.factor.factorization().solve_in_place(&mut x)?;
+        self.factor
+            .factorization()
+            .solve_in_place(&mut x)
+            .map_err(|e| match self.factor {
+                Factor::Backend(_) => self.layout.backend_error(e),
+                _ => e.into(),
+            })?;
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
@@ -534,6 +567,75 @@ impl Layout {
                 None => Factor::Cholesky(CholeskyFactorization::try_new(matrix)?),
             },
         )
+    }
+
+    /// The system `matrix` set up by `linear`'s backend: the condensed one as symmetric
+    /// positive definite (told where its unknowns sit, for a field of several components
+    /// whose nodes `linear` gives), the saddle point as a general matrix with its
+    /// multipliers last; refused for the saddle point of a body without Dirichlet condition,
+    /// whose primal block is singular.
+    fn backend_factor(
+        &self,
+        matrix: &SparseMatrix,
+        linear: &LinearSolve<'_>,
+    ) -> Result<Factor, PhysicsError> {
+        let backend = linear.backend.expect("a backend");
+        let condensed = self.formulation == Formulation::DualCondensed;
+        if let Some(b) = (0..2).find(|&b| !condensed && self.nd[b] == 0) {
+            return Err(PhysicsError::InvalidInput {
+                body: "options".into(),
+                what: format!(
+                    "the saddle point of a tie whose {} body has no Dirichlet condition (the \
+                     tie alone holds it) has a singular primal block, which the backend's \
+                     block preconditioner cannot invert: use dual multipliers (the condensed \
+                     system) or the direct solve",
+                    ["slave", "master"][b]
+                ),
+            });
+        }
+        let places = (condensed && self.comps > 1)
+            .then(|| {
+                let mut dofs = vec![(0, 0); self.nfree];
+                for (g, &f) in self.free.iter().enumerate() {
+                    if f != NONE {
+                        let body = usize::from(g >= self.n[0]);
+                        dofs[f as usize] = (body, g - body * self.n[0]);
+                    }
+                }
+                Places::of(linear, self.comps, dofs.into_iter())
+            })
+            .flatten();
+        let (kind, info) = match (&places, condensed) {
+            (Some(p), _) => (MatrixKind::SymmetricPositiveDefinite, p.info()),
+            (None, true) => (MatrixKind::SymmetricPositiveDefinite, SystemInfo::default()),
+            (None, false) => (
+                MatrixKind::General,
+                SystemInfo {
+                    multipliers_last: self.rows.rows(),
+                    ..SystemInfo::default()
+                },
+            ),
+        };
+        backend
+            .factor_system(matrix, kind, info)
+            .map(Factor::Backend)
+            .map_err(|e| self.backend_error(e))
+    }
+
+    /// A backend's failure to set up or solve the system, naming the system and what to
+    /// change.
+    fn backend_error(&self, e: SolverError) -> PhysicsError {
+        PhysicsError::LinearSolve {
+            system: format!(
+                "the tied system ({:?}, {} unknowns, {} multipliers) through its backend: \
+                 loosen [solve] linear_tolerance, allow more iterations (petsc_options \
+                 \"-ksp_max_it N\"), or solve it directly (backend = \"direct\")",
+                self.formulation,
+                self.nfree,
+                self.rows.rows()
+            ),
+            source: e,
+        }
     }
 
     /// For each global unknown, the `(condensed unknown, expansion entry)` pairs of the

@@ -26,7 +26,9 @@
 //! - `[solve]` (optional): `mode = "steady" | "transient"` (default steady); `dt` and `steps`
 //!   (at most [`MAX_STEPS`])
 //!   for a transient solve; `formulation = "auto" | "saddle_point" | "dual_condensed"`
-//!   (default auto: the dual condensation when D is diagonal).
+//!   (default auto: the dual condensation when D is diagonal); `backend = "auto" | "direct" |
+//!   "petsc"`, `linear_tolerance` and `petsc_options` (where the system goes: see
+//!   [`crate::linear_solver`]).
 //!
 //! Outputs: `NAME.vtu` per body (nodal `temperature`, at the end of a transient solve) and
 //! `report.json` (formulation and why, unknowns, seconds per phase, solver iterations).
@@ -283,6 +285,8 @@ pub struct SolvedTiedHeat {
     pub steps: usize,
     /// The final time (0 for a steady solve).
     pub time: f64,
+    /// The linear solver the system went to, and why.
+    pub linear_solver: crate::linear_solver::PickedSolver,
     t_start: Instant,
     t_read: f64,
 }

@@ -90,6 +90,18 @@ impl SolvedTiedHeat {
             .sum()
     }
 
+    /// The report's `"solver"` entry: the direct solve (no iterations), or the Krylov
+    /// solves' iterations.
+    fn solver_entry(&self) -> Value {
+        let reports = self.linear_solver.reports();
+        if reports.is_empty() {
+            serde_json::json!({ "kind": "sparse direct", "iterations": Value::Null })
+        } else {
+            let iterations: Vec<usize> = reports.iter().map(|r| r.iterations).collect();
+            serde_json::json!({ "kind": "PETSc Krylov", "iterations": iterations })
+        }
+    }
+
     /// `report.json`'s value: the scene and its solve, the formulation, the interface, the
     /// bodies' entries, the warnings and the seconds per phase (`seconds_output` rendering
     /// the VTU files).
@@ -119,7 +131,8 @@ impl SolvedTiedHeat {
                 "redistributed": f.redistributed,
                 "dropped": f.dropped,
             },
-            "solver": { "kind": "sparse direct", "iterations": serde_json::Value::Null },
+            "solver": self.solver_entry(),
+            "linear_solver": self.linear_solver.json(),
             "interface": {
                 "slave": format!("{}#{}", self.files[0].display(), interface.slave.group),
                 "master": format!("{}#{}", self.files[1].display(), interface.master.group),
@@ -153,7 +166,7 @@ impl SolvedTiedHeat {
         let s = self.solution.seconds;
         let bodies = self.problem.bodies();
         format!(
-            "tied heat, {}D, {} unknowns ({} + {} nodes){}\nformulation: {}\ntemperature: {}\nseconds: read {:.3}, assembly {:.3}, coupling {:.3}, factorisation {:.3}, solve {:.3}, total {:.3}",
+            "tied heat, {}D, {} unknowns ({} + {} nodes){}\nformulation: {}\n{}\ntemperature: {}\nseconds: read {:.3}, assembly {:.3}, coupling {:.3}, factorisation {:.3}, solve {:.3}, total {:.3}",
             self.dimension,
             self.dofs(),
             bodies[0].mesh.node_count(),
@@ -164,6 +177,7 @@ impl SolvedTiedHeat {
                 String::new()
             },
             self.solution.formulation,
+            self.linear_solver.summary_line(),
             body_reports
                 .iter()
                 .map(|b| format!(

@@ -13,6 +13,7 @@ use mortar_physics::heat::{
     HeatBody, HeatMaterial, HeatOptions, NeumannCondition, TiedHeat, TiedHeatSolution,
 };
 use mortar_physics::tied::TiedOptions;
+use mortar_physics::LinearSolve;
 
 use super::{Mode, SolvedTiedHeat, TiedHeatSpec};
 use crate::file::error::Errors;
@@ -66,7 +67,16 @@ impl TiedHeatSpec {
         let slave = bodies.pop().expect("two bodies");
         let (coupling, problem) =
             self.problem_of(&errors, [slave, master], [slave_surface, master_surface])?;
-        let (solution, steps, time) = self.solve_problem(&errors, &problem)?;
+        let unknowns = problem.bodies().iter().map(|b| b.mesh.node_count()).sum();
+        let linear_solver = self
+            .solve
+            .linear_solver(unknowns)
+            .map_err(|(key, what)| errors.invalid(key.into(), what))?;
+        let linear = LinearSolve {
+            backend: linear_solver.solver(),
+            ..LinearSolve::default()
+        };
+        let (solution, steps, time) = self.solve_problem(&errors, &problem, &linear)?;
 
         Ok(SolvedTiedHeat {
             spec: self.clone(),
@@ -79,6 +89,7 @@ impl TiedHeatSpec {
             solution,
             steps,
             time,
+            linear_solver,
             t_start,
             t_read,
         })
@@ -201,17 +212,18 @@ impl TiedHeatSpec {
         &self,
         errors: &Errors,
         problem: &TiedHeat,
+        linear: &LinearSolve<'_>,
     ) -> Result<(TiedHeatSolution, usize, f64), SceneError> {
         let tied = self.solve.tied_options();
         Ok(match self.solve.mode {
             Mode::Steady => (
                 problem
-                    .solve_steady(&tied, 0.0)
+                    .solve_steady_on(&tied, 0.0, linear)
                     .map_err(|e| errors.physics(e))?,
                 0,
                 0.0,
             ),
-            Mode::Transient => self.march(errors, problem, &tied)?,
+            Mode::Transient => self.march(errors, problem, &tied, linear)?,
         })
     }
 
@@ -223,6 +235,7 @@ impl TiedHeatSpec {
         errors: &Errors,
         problem: &TiedHeat,
         tied: &TiedOptions,
+        linear: &LinearSolve<'_>,
     ) -> Result<(TiedHeatSolution, usize, f64), SceneError> {
         let (dt, steps) = self.solve.time_steps();
         let initial = [0, 1].map(|i| {
@@ -230,7 +243,7 @@ impl TiedHeatSpec {
             vec![self.bodies[&b.name].initial; b.mesh.node_count()]
         });
         let mut stepper = problem
-            .backward_euler(tied, initial, 0.0, dt)
+            .backward_euler_on(tied, initial, 0.0, dt, linear)
             .map_err(|e| errors.physics(e))?;
         let mut seconds = stepper.solution().seconds;
         let (mut loads, mut solve) = (0.0, 0.0);

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::MAX_STEPS;
 use crate::file::error::Errors;
 use crate::file::SceneError;
+use crate::linear_solver::{BackendChoice, PickedSolver};
 
 /// Steady or transient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -33,7 +34,7 @@ pub enum FormulationSpec {
 }
 
 /// The settings of the solve.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolveSpec {
     /// Steady or transient.
@@ -48,11 +49,22 @@ pub struct SolveSpec {
     /// The formulation.
     #[serde(default)]
     pub formulation: FormulationSpec,
+    /// Where the system goes ([`crate::linear_solver`]).
+    #[serde(default, skip_serializing_if = "BackendChoice::is_auto")]
+    pub backend: BackendChoice,
+    /// The Krylov solve's relative tolerance (PETSc).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub linear_tolerance: Option<f64>,
+    /// Further PETSc options (`-ksp_monitor ...`).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub petsc_options: String,
 }
 
 impl SolveSpec {
     /// `[solve]`: a steady solve has no time step; a transient one has a positive finite
-    /// `dt` and from 1 to [`MAX_STEPS`] steps.
+    /// `dt` and from 1 to [`MAX_STEPS`] steps; the linear solver's keys as
+    /// picked for a system of PETSc's size (PETSc asked for in a build without it, or a
+    /// tolerance out of range, fails before the meshes are read).
     pub(super) fn check(&self, errors: &Errors) -> Result<(), SceneError> {
         match self.mode {
             Mode::Steady => {
@@ -98,7 +110,21 @@ impl SolveSpec {
                 }
             }
         }
-        Ok(())
+        self.linear_solver(usize::MAX)
+            .map(|_| ())
+            .map_err(|(key, what)| errors.invalid(key.into(), what))
+    }
+
+    /// The linear solver of these keys for a system of `unknowns` unknowns.
+    ///
+    /// # Errors
+    /// The key and what is wrong (see [`PickedSolver::pick`]).
+    pub(super) fn linear_solver(
+        &self,
+        unknowns: usize,
+    ) -> Result<PickedSolver, (&'static str, String)> {
+        let (tolerance, options) = (self.linear_tolerance, &self.petsc_options);
+        PickedSolver::pick(self.backend, tolerance, options, unknowns)
     }
 
     /// The tied system's options of these keys: the formulation.
