@@ -2,11 +2,16 @@
 //! (assembly, coupling, system build and factorisation, solve; mesh generation excluded),
 //! solved both ways: the dual-condensed SPD system (sparse Cholesky, by body) and the saddle-point
 //! system (sparse LDL^T in an order that needs no pivoting, LU if refused). Time and peak
-//! memory per phase.
+//! memory per phase. With `--dim 3` the same scene in 3D (Hex8 against Tet4), and the path
+//! `petsc`: the condensed system through PETSc's CG with GAMG (a build with `--features
+//! mortar-petsc/petsc`), against the direct `dual` at one size and alone at the sizes the
+//! direct solve cannot reach.
 //!
 //! ```text
 //! cargo run --release --example bench_tied_heat -- --json docs/bench_tied_heat.json
 //! cargo run --release --example bench_tied_heat -- --n 256            # a smaller problem
+//! cargo run --release --features mortar-petsc/petsc --example bench_tied_heat -- \
+//!     --dim 3 --sizes 48,80,164 --paths dual,petsc --json docs/bench_tied_heat_3d.json
 //! ```
 //!
 //! The scene is `mortar_scenes::tied_heat`'s straight 2D one: the unit square cut at
@@ -28,11 +33,15 @@ use std::time::Instant;
 
 use clap::Parser;
 use mortar::core::mesh::BoundaryFace;
-use mortar::generate::{rectangle_mesh, CellShape};
+use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
+use mortar::fem::linalg::SparseSolver;
+use mortar::petsc::PetscBackend;
+use mortar::physics::LinearSolve;
 use mortar::physics::heat::{
     assemble_heat_load, assemble_heat_stiffness, HeatBody, HeatMaterial, HeatOptions,
 };
 use mortar::physics::tied::{FormulationChoice, Tie, TiedOptions, TiedSystem};
+use mortar_scenes::linear_solver::DEFAULT_LINEAR_TOLERANCE;
 use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
 use serde_json::{json, Value};
 
@@ -45,10 +54,20 @@ struct Args {
     /// unknowns.
     #[arg(long, default_value_t = 784)]
     n: usize,
+    /// The dimension (2 or 3).
+    #[arg(long, default_value_t = 2)]
+    dim: usize,
+    /// Several sizes `n` in one run (each path at each; the direct paths are skipped above
+    /// `--direct-max` unknowns' worth of `n`).
+    #[arg(long, value_delimiter = ',')]
+    sizes: Vec<usize>,
+    /// The largest `n` the direct paths run at, with `--sizes`.
+    #[arg(long, default_value_t = usize::MAX)]
+    direct_max: usize,
     /// Write the JSON report here.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Which paths to run (dual, saddle).
+    /// Which paths to run (dual, saddle, petsc).
     #[arg(long, value_delimiter = ',', default_value = "dual,saddle")]
     paths: Vec<String>,
     /// Internal: run one path in this process and print its JSON on stdout.
@@ -59,7 +78,7 @@ struct Args {
 fn main() -> Res<()> {
     let args = Args::parse();
     if let Some(path) = &args.child {
-        let report = run_path(path, args.n)?;
+        let report = run_path(path, args.n, args.dim)?;
         println!("{report}");
         return Ok(());
     }
@@ -68,31 +87,48 @@ fn main() -> Res<()> {
         .unwrap_or_default();
     let exe = std::env::current_exe()?;
     let mut runs = Vec::new();
-    for path in &args.paths {
-        eprintln!(
-            "running the {path} path (n = {}) in a child process ...",
-            args.n
-        );
-        let out = Command::new(&exe)
-            .args(["--child", path, "--n", &args.n.to_string()])
-            .output()?;
-        if !out.status.success() {
-            return Err(format!(
-                "the {path} path failed: {}",
-                String::from_utf8_lossy(&out.stderr)
-            )
-            .into());
+    let sizes = if args.sizes.is_empty() {
+        vec![args.n]
+    } else {
+        args.sizes.clone()
+    };
+    for &n in &sizes {
+        for path in &args.paths {
+            if path != "petsc" && n > args.direct_max {
+                continue;
+            }
+            eprintln!("running the {path} path (n = {n}) in a child process ...");
+            let out = Command::new(&exe)
+                .args(["--child", path, "--n", &n.to_string()])
+                .args(["--dim", &args.dim.to_string()])
+                .output()?;
+            if !out.status.success() {
+                // Kept in the report (a child killed for its memory, say), the other runs
+                // go on.
+                let why = format!(
+                    "{} {}",
+                    out.status,
+                    String::from_utf8_lossy(&out.stderr).trim()
+                );
+                eprintln!("the {path} path failed at n = {n}: {why}");
+                runs.push(json!({ "path": path, "n": n, "dim": args.dim, "failed": why }));
+                continue;
+            }
+            let v: Value = serde_json::from_slice(&out.stdout)?;
+            runs.push(v);
         }
-        let v: Value = serde_json::from_slice(&out.stdout)?;
-        runs.push(v);
     }
     print_table(&runs);
     let report = json!({
-        "benchmark": "tied heat conduction, 2D, end to end (mesh generation excluded)",
+        "benchmark": format!(
+            "tied heat conduction, {}D, end to end (mesh generation excluded)",
+            args.dim
+        ),
         "machine": machine(),
         "threads": rayon_threads(),
         "load_average_at_start": load_average,
         "n": args.n,
+        "dim": args.dim,
         "target": { "dual_seconds": 4.0, "saddle_over_dual": 2.0, "issue": 13 },
         "paths": runs,
         "how": "cargo run --release --example bench_tied_heat -- --json docs/bench_tied_heat.json",
@@ -157,13 +193,18 @@ impl Phases {
     }
 }
 
-fn run_path(path: &str, n: usize) -> Res<Value> {
+fn run_path(path: &str, n: usize, dim: usize) -> Res<Value> {
     let choice = match path {
-        "dual" => FormulationChoice::DualCondensed,
+        "dual" | "petsc" => FormulationChoice::DualCondensed,
         "saddle" => FormulationChoice::SaddlePoint,
-        _ => return Err(format!("unknown path {path:?} (dual, saddle)").into()),
+        _ => return Err(format!("unknown path {path:?} (dual, saddle, petsc)").into()),
     };
-    let mut scene = TiedHeatScene::new(2, Geometry::Straight, n);
+    let petsc = PetscBackend::automatic(DEFAULT_LINEAR_TOLERANCE, "");
+    let linear = LinearSolve {
+        backend: (path == "petsc").then_some(&petsc as &dyn SparseSolver),
+        ..LinearSolve::default()
+    };
+    let mut scene = TiedHeatScene::new(dim, Geometry::Straight, n);
     scene.exact = Exact::Sine;
     let tied = TiedOptions::default().with_formulation(choice);
 
@@ -207,11 +248,12 @@ fn run_path(path: &str, n: usize) -> Res<Value> {
         master.dirichlet_values(&dirichlet[1].0, &dirichlet[1].1, 0.0),
     ];
     let (system, _) = phases.measure("system and factorisation", || {
-        Ok(TiedSystem::new(
+        Ok(TiedSystem::new_on(
             [&matrices[0], &matrices[1]],
             &tie,
             [&dirichlet[0].0, &dirichlet[1].0],
             &tied,
+            &linear,
         )?)
     })?;
     let (fields, _) = phases.measure("solve", || {
@@ -219,7 +261,7 @@ fn run_path(path: &str, n: usize) -> Res<Value> {
     })?;
 
     // Check the solution (not timed).
-    let (dim, exact) = (2, scene.exact);
+    let exact = scene.exact;
     let mut max_err: f64 = 0.0;
     for (b, body) in [&slave, &master].iter().enumerate() {
         for (x, t) in body.mesh.coords().iter().zip(&fields.fields[b]) {
@@ -255,6 +297,15 @@ fn run_path(path: &str, n: usize) -> Res<Value> {
         "peak_bytes": peak,
         "per_phase_peaks": phases.reset_ok,
         "max_nodal_error": max_err,
+        "dim": dim,
+        "n": n,
+        "krylov": petsc.reports().iter().map(|r| json!({
+            "method": format!("{}+{}", r.ksp_type, r.pc_type),
+            "iterations": r.iterations,
+            "relative_residual": r.relative_residual,
+            "setup_seconds": r.setup_seconds,
+            "solve_seconds": r.solve_seconds,
+        })).collect::<Vec<_>>(),
     }))
 }
 
@@ -262,24 +313,39 @@ fn on_interface(f: &BoundaryFace) -> bool {
     (f.centroid.x - 0.5).abs() < 1e-9
 }
 
-/// The two bodies of the straight 2D scene (as `TiedHeatScene::build` makes them), with the
+/// The two bodies of the straight scene (as `TiedHeatScene::build` makes them), with the
 /// source and the Dirichlet data of the exact solution; slave first.
 fn bodies(scene: &TiedHeatScene) -> Res<(HeatBody, HeatBody)> {
-    let (n, m) = (scene.n, 3 * scene.n / 2);
-    let master = rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1)?;
-    let slave = rectangle_mesh(
-        [0.5, 0.0],
-        [1.0, 1.0],
-        [m / 2, m],
-        CellShape::Simplex,
-        1_000_001,
-    )?;
+    let (n, m, dim) = (scene.n, 3 * scene.n / 2, scene.dim);
+    let (master, slave) = if dim == 2 {
+        (
+            rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1)?,
+            rectangle_mesh(
+                [0.5, 0.0],
+                [1.0, 1.0],
+                [m / 2, m],
+                CellShape::Simplex,
+                1_000_001,
+            )?,
+        )
+    } else {
+        (
+            box_mesh([0.0; 3], [0.5, 1.0, 1.0], [n / 2, n, n], CellShape::Tensor, 1)?,
+            box_mesh(
+                [0.5, 0.0, 0.0],
+                [1.0; 3],
+                [m / 2, m, m],
+                CellShape::Simplex,
+                1_000_001,
+            )?,
+        )
+    };
     let (k, exact) = (scene.conductivity, scene.exact);
     let body = |name: &str, mesh| -> Res<HeatBody> {
         let b = HeatBody::new(name, mesh, HeatMaterial::new(k, 1.0))
-            .with_source(move |x, _| exact.source(2, k, x));
+            .with_source(move |x, _| exact.source(dim, k, x));
         let outer = b.mesh.boundary_nodes(|f| !on_interface(f))?;
-        Ok(b.with_dirichlet_nodes(outer, move |x, _| exact.value(2, x)))
+        Ok(b.with_dirichlet_nodes(outer, move |x, _| exact.value(dim, x)))
     };
     Ok((body("slave", slave)?, body("master", master)?))
 }
@@ -292,6 +358,10 @@ fn print_table(runs: &[Value]) {
     );
     for r in runs {
         let path = r["path"].as_str().unwrap_or("?");
+        if let Some(why) = r["failed"].as_str() {
+            println!("{path:<8} failed at n = {}: {why}", r["n"]);
+            continue;
+        }
         for p in r["phases"].as_array().into_iter().flatten() {
             println!(
                 "{:<8} {:<26} {:>9.3} {:>10.3}",
@@ -302,7 +372,7 @@ fn print_table(runs: &[Value]) {
             );
         }
         println!(
-            "{:<8} {:<26} {:>9.3} {:>10.3}   ({} unknowns; system {} x {}, {} nonzeros; max error {:.2e})",
+            "{:<8} {:<26} {:>9.3} {:>10.3}   ({} unknowns; system {} x {}, {} nonzeros; max error {:.2e}{})",
             path,
             "total",
             r["total_seconds"].as_f64().unwrap_or(f64::NAN),
@@ -312,6 +382,11 @@ fn print_table(runs: &[Value]) {
             r["system_unknowns"],
             r["system_nonzeros"],
             r["max_nodal_error"].as_f64().unwrap_or(f64::NAN),
+            r["krylov"]
+                .as_array()
+                .and_then(|k| k.first())
+                .map(|k| format!("; {} {} iterations", k["method"], k["iterations"]))
+                .unwrap_or_default(),
         );
     }
 }
