@@ -9,7 +9,7 @@ use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 use super::tied_heat::{
     BodySpec, DirichletSpec, InterfaceSpec, NeumannSpec, SideSpec, SolveSpec, TiedHeatSpec,
 };
-use super::SceneError;
+use super::{FileScene, SceneError};
 use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 

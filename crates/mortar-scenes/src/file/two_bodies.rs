@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use mortar::extend::VolumeRegistry;
+use mortar::extend::{Registries, VolumeRegistry};
 use mortar::io::{parse_gmsh_volume, CouplingSettings, GmshVolume};
 use mortar_core::{CouplingOptions, CouplingWarning, Interface, SurfaceMesh};
 
@@ -52,6 +52,17 @@ pub(super) fn check_search_radius(
     Ok(())
 }
 
+/// Checks that the scene file's `kind` is `expected`.
+///
+/// # Errors
+/// [`SceneError::Invalid`] (key `kind`) otherwise.
+pub(super) fn check_kind(errors: &Errors, kind: &str, expected: &str) -> Result<(), SceneError> {
+    if kind != expected {
+        return Err(errors.invalid("kind".into(), format!("\"{kind}\" is not \"{expected}\"")));
+    }
+    Ok(())
+}
+
 /// The names of a scene's bodies joined by `", "`, for a message that lists them.
 pub(super) fn body_names<B>(bodies: &BTreeMap<String, B>) -> String {
     bodies.keys().cloned().collect::<Vec<_>>().join(", ")
@@ -69,7 +80,21 @@ pub(super) struct MeshSource<'a> {
     pub(super) registry: &'a VolumeRegistry,
 }
 
-impl MeshSource<'_> {
+impl<'a> MeshSource<'a> {
+    /// The meshes of a scene file in the folder `base`, read through `source`, of the cells of
+    /// `registries`.
+    pub(super) fn new(
+        base: &'a Path,
+        source: &'a dyn SceneSource,
+        registries: &'a Registries,
+    ) -> Self {
+        MeshSource {
+            base,
+            source,
+            registry: &registries.cells,
+        }
+    }
+
     /// Body `name`'s cells: the physical group `group` of the Gmsh file `mesh`.
     ///
     /// # Errors

@@ -10,22 +10,17 @@ use super::{
     Component, ComponentValue, ContactInterfaceSpec, ContactSpec, ElasticBodySpec, LawSpec,
 };
 use crate::file::error::Errors;
-use crate::file::two_bodies::{body_names, check_body_name, check_search_radius};
-use crate::file::SceneError;
+use crate::file::two_bodies::{body_names, check_body_name, check_kind, check_search_radius};
+use crate::file::{FileScene, SceneError};
 
 impl ContactSpec {
     /// Checks values and cross-references that do not need the meshes.
     ///
     /// # Errors
     /// [`SceneError::Invalid`] naming the key.
-    pub fn check(&self, path: &Path) -> Result<(), SceneError> {
+    pub(super) fn check_keys(&self, path: &Path) -> Result<(), SceneError> {
         let errors = Errors { path };
-        if self.kind != "contact" {
-            return Err(errors.invalid(
-                "kind".into(),
-                format!("\"{}\" is not \"contact\"", self.kind),
-            ));
-        }
+        check_kind(&errors, &self.kind, Self::KIND)?;
         if self.bodies.len() != 2 {
             return Err(errors.invalid(
                 "bodies".into(),

@@ -6,8 +6,8 @@ use std::path::Path;
 
 use super::{BodySpec, Mode, TiedHeatSpec};
 use crate::file::error::Errors;
-use crate::file::two_bodies::{body_names, check_body_name, check_search_radius};
-use crate::file::SceneError;
+use crate::file::two_bodies::{body_names, check_body_name, check_kind, check_search_radius};
+use crate::file::{FileScene, SceneError};
 
 impl TiedHeatSpec {
     /// Checks values and cross-references: the kind, two bodies with file-safe names,
@@ -16,14 +16,9 @@ impl TiedHeatSpec {
     ///
     /// # Errors
     /// [`SceneError::Invalid`] naming the key.
-    pub fn check(&self, path: &Path) -> Result<(), SceneError> {
+    pub(super) fn check_keys(&self, path: &Path) -> Result<(), SceneError> {
         let errors = Errors { path };
-        if self.kind != "tied_heat" {
-            return Err(errors.invalid(
-                "kind".into(),
-                format!("\"{}\" is not \"tied_heat\"", self.kind),
-            ));
-        }
+        check_kind(&errors, &self.kind, Self::KIND)?;
         if let Some(d) = self.dimension {
             if d != 2 && d != 3 {
                 return Err(errors.invalid("dimension".into(), format!("{d} is not 2 or 3")));
