@@ -11,6 +11,7 @@ use mortar::io::{parse_gmsh_volume, CouplingSettings, GmshVolume};
 use mortar_core::{CouplingOptions, CouplingWarning, Interface, SurfaceMesh};
 
 use super::error::Errors;
+use super::tied_heat::SideSpec;
 use super::{coupling_of, widen_hint, SceneError, SceneSource};
 
 /// Checks that body `name` can name its VTU file: letters, digits, `_` and `-`, at least one.
@@ -59,6 +60,34 @@ pub(super) fn check_search_radius(
 pub(super) fn check_kind(errors: &Errors, kind: &str, expected: &str) -> Result<(), SceneError> {
     if kind != expected {
         return Err(errors.invalid("kind".into(), format!("\"{kind}\" is not \"{expected}\"")));
+    }
+    Ok(())
+}
+
+/// Checks that the `slave` and `master` sides of `section` (`interface` or `contact`) name
+/// bodies of the scene; a message lists the bodies after `listed` (the kinds word it apart).
+///
+/// # Errors
+/// [`SceneError::Invalid`] (key `SECTION.slave.body` or `SECTION.master.body`) for the first
+/// side that names no body of the scene.
+pub(super) fn check_side_bodies<B>(
+    errors: &Errors,
+    section: &str,
+    [slave, master]: [&SideSpec; 2],
+    bodies: &BTreeMap<String, B>,
+    listed: &str,
+) -> Result<(), SceneError> {
+    for (which, side) in [("slave", slave), ("master", master)] {
+        if !bodies.contains_key(&side.body) {
+            return Err(errors.invalid(
+                format!("{section}.{which}.body"),
+                format!(
+                    "no body named \"{}\" ({listed}{})",
+                    side.body,
+                    body_names(bodies)
+                ),
+            ));
+        }
     }
     Ok(())
 }

@@ -6,7 +6,9 @@ use std::path::Path;
 
 use super::{BodySpec, Mode, TiedHeatSpec};
 use crate::file::error::Errors;
-use crate::file::two_bodies::{body_names, check_body_name, check_kind, check_search_radius};
+use crate::file::two_bodies::{
+    body_names, check_body_name, check_kind, check_search_radius, check_side_bodies,
+};
 use crate::file::{FileScene, SceneError};
 
 impl TiedHeatSpec {
@@ -99,21 +101,8 @@ impl TiedHeatSpec {
     /// `[interface]`: its sides name bodies of the scene, two different ones, and its search
     /// radius is in range.
     fn check_interface(&self, errors: &Errors) -> Result<(), SceneError> {
-        for (side, s) in [
-            ("interface.slave", &self.interface.slave),
-            ("interface.master", &self.interface.master),
-        ] {
-            if !self.bodies.contains_key(&s.body) {
-                return Err(errors.invalid(
-                    format!("{side}.body"),
-                    format!(
-                        "no body named \"{}\" (the bodies are {})",
-                        s.body,
-                        body_names(&self.bodies)
-                    ),
-                ));
-            }
-        }
+        let sides = [&self.interface.slave, &self.interface.master];
+        check_side_bodies(errors, "interface", sides, &self.bodies, "the bodies are ")?;
         check_search_radius(errors, "interface", self.interface.search_radius)?;
         if self.interface.slave.body == self.interface.master.body {
             return Err(errors.invalid(
