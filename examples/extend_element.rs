@@ -109,7 +109,7 @@ pub fn run(out: &std::path::Path) -> Res<()> {
 /// Solves the scene file through the library with the same registries and checks the
 /// temperature against the exact one.
 fn check_scene(out: &std::path::Path, registries: &Registries) -> Res<()> {
-    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileScene, FileSystem};
     let path = out.join("scene.toml");
     let text = SCENE.replace("MESH", MESH);
     let solved =

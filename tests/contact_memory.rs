@@ -13,7 +13,7 @@
 use std::path::Path;
 
 use mortar_scenes::file::contact::ContactSpec;
-use mortar_scenes::file::FileSystem;
+use mortar_scenes::file::{FileScene, FileSystem};
 
 /// The peak resident size of this process (`VmHWM` of `/proc/self/status`), in bytes.
 #[cfg(target_os = "linux")]

@@ -66,7 +66,7 @@ fn an_elastic_solve_through_petsc_matches_the_direct_one() {
 #[test]
 fn a_contact_scene_through_petsc_matches_the_direct_solve() {
     use mortar_scenes::file::contact::ContactSpec;
-    use mortar_scenes::file::FileSystem;
+    use mortar_scenes::file::{FileScene, FileSystem};
     use mortar_scenes::linear_solver::BackendChoice;
 
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -131,7 +131,7 @@ fn a_contact_scene_through_petsc_matches_the_direct_solve() {
 #[test]
 fn a_krylov_solve_that_does_not_converge_names_the_system_and_the_step() {
     use mortar_scenes::file::contact::ContactSpec;
-    use mortar_scenes::file::FileSystem;
+    use mortar_scenes::file::{FileScene, FileSystem};
 
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples/scenes/contact_blocks.toml");

@@ -8,7 +8,7 @@ use mortar::core::mesh::{BoundaryFace, VolumeMesh};
 use mortar::generate::{rectangle_mesh, CellShape};
 use mortar::io::{msh41_volume_bytes, MshFormat};
 use mortar_scenes::file::contact::ContactSpec;
-use mortar_scenes::file::FileSystem;
+use mortar_scenes::file::{FileScene, FileSystem};
 use serde_json::Value;
 
 use crate::common::{mortar, TempDir};

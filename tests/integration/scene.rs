@@ -5,7 +5,7 @@ use std::path::Path;
 
 use mortar::io::{Endianness, MshFormat};
 use mortar_scenes::file::tied_heat::TiedHeatSpec;
-use mortar_scenes::file::{tied_block, tied_block_exact, FileSystem};
+use mortar_scenes::file::{tied_block, tied_block_exact, FileScene, FileSystem};
 use serde_json::Value;
 
 use crate::common::{mortar, TempDir};

@@ -36,7 +36,7 @@ use mortar_scenes::file::tied_heat::{
     BodySpec, DirichletSpec, FormulationSpec, InterfaceSpec, Mode, NeumannSpec, SideSpec,
     SolveSpec, TiedHeatSpec,
 };
-use mortar_scenes::file::FileSystem;
+use mortar_scenes::file::{FileScene, FileSystem};
 use mortar_scenes::pellet::{AxialModel, PelletScene};
 use mortar_scenes::NamedLaw;
 use nalgebra::Vector3;

@@ -453,7 +453,7 @@ fn vtu_writes_second_order_cells_in_vtk_order() {
 /// elements and the mortar tie reproduce to round-off.
 #[test]
 fn tied_heat_scene_on_second_order_bodies_is_exact() {
-    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileSystem};
+    use mortar_scenes::file::{tied_heat::TiedHeatSpec, FileScene, FileSystem};
     let dir = mesh("");
     let scenes = [
         (

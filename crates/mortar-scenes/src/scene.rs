@@ -37,7 +37,7 @@ use serde_json::Value;
 
 use crate::file::contact::ContactSpec;
 use crate::file::tied_heat::TiedHeatSpec;
-use crate::file::{scene_kind, SceneError, SceneOutput, SceneSource};
+use crate::file::{scene_kind, FileScene, SceneError, SceneOutput, SceneSource};
 use crate::pellet::PelletScene;
 
 /// Where and how a scene runs.
@@ -86,17 +86,17 @@ pub trait Scene: Sized {
     ///
     /// # Errors
     /// [`SceneError`] naming the key or the line of what does not fit.
-    fn parse(text: &str, ctx: &SceneContext) -> Result<Self, SceneError>;
+    fn parse_in(text: &str, ctx: &SceneContext) -> Result<Self, SceneError>;
 
     /// Runs the scene, writing its outputs into `ctx.out`.
     ///
     /// # Errors
     /// [`SceneError`] naming the file, the key, the mesh and group, or the solve that failed.
-    fn run(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError>;
+    fn run_in(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError>;
 }
 
 /// Writes a scene's output held in memory (its files, among them `report.json`) into
-/// `ctx.out`, all or none, as the run of a scene of `kind`: what [`Scene::run`] gives for the
+/// `ctx.out`, all or none, as the run of a scene of `kind`: what [`Scene::run_in`] gives for the
 /// scene files, and for a built-in scene run apart (the contact benchmarks of
 /// [`run_builtin_contact`](crate::file::run_builtin_contact)).
 ///
@@ -129,42 +129,33 @@ pub fn write_scene_output(
     })
 }
 
-impl Scene for TiedHeatSpec {
-    const KIND: &'static str = "tied_heat";
+/// Every scene file of two bodies is a scene: parsed and checked by [`FileScene::parse`], run
+/// by [`FileScene::run_with`] with the context's cells and laws, its output written into
+/// `ctx.out`.
+impl<S: FileScene> Scene for S {
+    const KIND: &'static str = <S as FileScene>::KIND;
 
-    fn parse(text: &str, ctx: &SceneContext) -> Result<Self, SceneError> {
-        TiedHeatSpec::parse(text, ctx.path)
+    fn parse_in(text: &str, ctx: &SceneContext) -> Result<Self, SceneError> {
+        <S as FileScene>::parse(text, ctx.path)
     }
 
-    fn run(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
-        let output = self.run_with(ctx.path, ctx.base, ctx.source, ctx.registries)?;
-        write_scene_output(Self::KIND, output, ctx)
-    }
-}
-
-impl Scene for ContactSpec {
-    const KIND: &'static str = "contact";
-
-    fn parse(text: &str, ctx: &SceneContext) -> Result<Self, SceneError> {
-        ContactSpec::parse(text, ctx.path)
-    }
-
-    fn run(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
-        let output = self.run_with(ctx.path, ctx.base, ctx.source, ctx.registries)?;
-        write_scene_output(Self::KIND, output, ctx)
+    fn run_in(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
+        let output =
+            <S as FileScene>::run_with(self, ctx.path, ctx.base, ctx.source, ctx.registries)?;
+        write_scene_output(<S as Scene>::KIND, output, ctx)
     }
 }
 
 impl Scene for PelletScene {
     const KIND: &'static str = "pellet";
 
-    fn parse(text: &str, ctx: &SceneContext) -> Result<Self, SceneError> {
+    fn parse_in(text: &str, ctx: &SceneContext) -> Result<Self, SceneError> {
         PelletScene::from_toml_in(text, ctx.base).map_err(|e| pellet_error(ctx, e))
     }
 
     /// The pellet writes as it goes (its snapshots over time, and on a failure what it had
     /// with `"status": "failed"`); its mesh file, if any, is read from the file system.
-    fn run(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
+    fn run_in(&self, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
         let report =
             crate::pellet::run_with_laws(self, &ctx.registries.laws, ctx.out, ctx.progress)
                 .map_err(|e| pellet_error(ctx, e))?;
@@ -207,23 +198,23 @@ fn pellet_error(ctx: &SceneContext, e: crate::pellet::PelletError) -> SceneError
 ///
 /// # Errors
 /// [`SceneError::Invalid`] (key `kind`) for a missing or unknown kind, listing the known
-/// ones; the errors of the scene's [`Scene::parse`] and [`Scene::run`].
+/// ones; the errors of the scene's [`Scene::parse_in`] and [`Scene::run_in`].
 pub fn run_scene(text: &str, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
     fn go<S: Scene>(text: &str, ctx: &SceneContext) -> Result<SceneRun, SceneError> {
-        S::parse(text, ctx)?.run(ctx)
+        S::parse_in(text, ctx)?.run_in(ctx)
     }
     match scene_kind(text, ctx.path)?.as_str() {
-        TiedHeatSpec::KIND => go::<TiedHeatSpec>(text, ctx),
-        ContactSpec::KIND => go::<ContactSpec>(text, ctx),
-        PelletScene::KIND => go::<PelletScene>(text, ctx),
+        <TiedHeatSpec as Scene>::KIND => go::<TiedHeatSpec>(text, ctx),
+        <ContactSpec as Scene>::KIND => go::<ContactSpec>(text, ctx),
+        <PelletScene as Scene>::KIND => go::<PelletScene>(text, ctx),
         other => Err(SceneError::Invalid {
             path: ctx.path.to_path_buf(),
             key: "kind".into(),
             what: format!(
                 "unknown scene kind \"{other}\" (known kinds: {}, {}, {})",
-                TiedHeatSpec::KIND,
-                ContactSpec::KIND,
-                PelletScene::KIND
+                <TiedHeatSpec as Scene>::KIND,
+                <ContactSpec as Scene>::KIND,
+                <PelletScene as Scene>::KIND
             ),
         }),
     }

@@ -31,16 +31,12 @@
 
 use std::time::Instant;
 
-use mortar_core::interface::Interface;
-use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
+use mortar_core::{CouplingOptions, SearchRadius, Tolerances};
 use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, ContactStep,
-    NormalGap,
+    solve_contact, ContactOptions, ContactSolution, ContactStep, NormalGap,
 };
-use mortar_physics::elastic::{
-    assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticMaterial, ElasticOptions,
-};
+use mortar_physics::elastic::{ElasticBody, ElasticMaterial};
 use mortar_physics::laws::ContactComplementarity;
 use mortar_physics::tied::Tie;
 use mortar_physics::PhysicsError;
@@ -49,6 +45,7 @@ use nalgebra::Vector3;
 use crate::file::contact::Component;
 use crate::file::contact_files::{contact_scene_files, ContactSceneFiles, SceneBody, SceneContact};
 use crate::file::SceneError;
+use crate::hertz::exact_contact;
 use mortar::generate::{
     quarter_annulus_mesh, quarter_disc_mesh, second_order_mesh, CellShape, SecondOrder,
 };
@@ -262,23 +259,10 @@ impl ShrinkFitScene {
             search_radius: parts.search,
             ..Tolerances::default()
         };
-        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
-        let coupling = assemble_coupling(&interface, &self.coupling)?;
-        let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
-
-        let options = ElasticOptions::default();
-        let k = [
-            assemble_elastic_stiffness(&slave, &options)?,
-            assemble_elastic_stiffness(&master, &options)?,
-        ];
-        let f = [
-            assemble_elastic_load(&slave, &options)?,
-            assemble_elastic_load(&master, &options)?,
-        ];
-        let dir = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
-        let (ns, nm) = (slave.mesh.node_count(), master.mesh.node_count());
-        let gap = NormalGap::new(&tie, 2, ns, nm)?;
-        let cpar = automatic_complementarity(&k[0], &tie, &gap, 2);
+        let surfaces = [slave_surface, master_surface];
+        let ((k, f, dir), tie, gap, cpar) =
+            exact_contact([&slave, &master], surfaces, tolerances, &self.coupling, 2)?;
+        let nm = master.mesh.node_count();
         let law = ContactComplementarity::try_new(cpar)?;
         let sol = solve_contact(
             [&k[0], &k[1]],

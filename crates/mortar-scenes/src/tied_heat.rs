@@ -21,6 +21,7 @@
 use std::time::Instant;
 
 use mortar_core::CouplingOptions;
+use mortar_fem::mesh::VolumeMeshError;
 use mortar_fem::VolumeMesh;
 use mortar_physics::heat::{
     error_norms, ErrorNorms, HeatBody, HeatMaterial, HeatOptions, TiedHeat, TiedHeatSolution,
@@ -33,6 +34,50 @@ use mortar::generate::{
     ball_mesh, box_mesh, box_with_hole_mesh, onto_sphere, rectangle_mesh, second_order_mesh,
     CellShape, Inclusion, SecondOrder,
 };
+
+/// The two blocks of the straight tied geometry (`n` cells across on the left, `m = 3 n / 2` on
+/// the right): `[0, 0.5] x [0, 1]^(dim - 1)` of `n / 2 x n (x n)` tensor cells, node tags from
+/// 1, and `[0.5, 1] x [0, 1]^(dim - 1)` of `m / 2 x m (x m)` simplices, node tags from
+/// `right_tag`; the left block is made first.
+///
+/// # Errors
+/// The generators' error for a cell count of zero.
+pub(crate) fn straight_blocks(
+    dim: usize,
+    n: usize,
+    right_tag: u64,
+) -> Result<(VolumeMesh, VolumeMesh), VolumeMeshError> {
+    let m = 3 * n / 2;
+    Ok(if dim == 2 {
+        (
+            rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1)?,
+            rectangle_mesh(
+                [0.5, 0.0],
+                [1.0, 1.0],
+                [m / 2, m],
+                CellShape::Simplex,
+                right_tag,
+            )?,
+        )
+    } else {
+        (
+            box_mesh(
+                [0.0; 3],
+                [0.5, 1.0, 1.0],
+                [n / 2, n, n],
+                CellShape::Tensor,
+                1,
+            )?,
+            box_mesh(
+                [0.5, 0.0, 0.0],
+                [1.0; 3],
+                [m / 2, m, m],
+                CellShape::Simplex,
+                right_tag,
+            )?,
+        )
+    })
+}
 
 /// The interface of a scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -191,61 +236,32 @@ impl TiedHeatScene {
                 self.n
             )));
         }
-        let (dim, n, m) = (self.dim, self.n, 3 * self.n / 2);
-        let (master, slave, on_interface): (VolumeMesh, VolumeMesh, InterfaceTest) = match self
-            .geometry
-        {
-            Geometry::Straight => {
-                let (master, slave) = if dim == 2 {
+        let (dim, n) = (self.dim, self.n);
+        let (master, slave, on_interface): (VolumeMesh, VolumeMesh, InterfaceTest) =
+            match self.geometry {
+                Geometry::Straight => {
+                    let (master, slave) = straight_blocks(dim, n, 1_000_001)?;
                     (
-                        rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1)?,
-                        rectangle_mesh(
-                            [0.5, 0.0],
-                            [1.0, 1.0],
-                            [m / 2, m],
-                            CellShape::Simplex,
-                            1_000_001,
-                        )?,
+                        master,
+                        slave,
+                        Box::new(|x: &Vector3<f64>| (x.x - 0.5).abs() < 1e-9),
                     )
-                } else {
+                }
+                Geometry::Curved => {
+                    let g = Inclusion::unit(dim, INCLUSION_RADIUS);
+                    let (nb, mb) = (n / 2, 3 * n / 4);
+                    let master = ball_mesh(&g, nb, (nb / 2).max(1), 1)?;
+                    let slave =
+                        box_with_hole_mesh(&g, mb, (mb / 2).max(1), CellShape::Simplex, 1_000_001)?;
+                    let c = Vector3::from(g.centre);
+                    let cut = 0.5 * (g.radius + g.half_width);
                     (
-                        box_mesh(
-                            [0.0; 3],
-                            [0.5, 1.0, 1.0],
-                            [n / 2, n, n],
-                            CellShape::Tensor,
-                            1,
-                        )?,
-                        box_mesh(
-                            [0.5, 0.0, 0.0],
-                            [1.0; 3],
-                            [m / 2, m, m],
-                            CellShape::Simplex,
-                            1_000_001,
-                        )?,
+                        master,
+                        slave,
+                        Box::new(move |x: &Vector3<f64>| (x - c).norm() < cut),
                     )
-                };
-                (
-                    master,
-                    slave,
-                    Box::new(|x: &Vector3<f64>| (x.x - 0.5).abs() < 1e-9),
-                )
-            }
-            Geometry::Curved => {
-                let g = Inclusion::unit(dim, INCLUSION_RADIUS);
-                let (nb, mb) = (n / 2, 3 * n / 4);
-                let master = ball_mesh(&g, nb, (nb / 2).max(1), 1)?;
-                let slave =
-                    box_with_hole_mesh(&g, mb, (mb / 2).max(1), CellShape::Simplex, 1_000_001)?;
-                let c = Vector3::from(g.centre);
-                let cut = 0.5 * (g.radius + g.half_width);
-                (
-                    master,
-                    slave,
-                    Box::new(move |x: &Vector3<f64>| (x - c).norm() < cut),
-                )
-            }
-        };
+                }
+            };
         let (master, slave) = match self.order {
             None => (master, slave),
             Some(family) => match self.geometry {

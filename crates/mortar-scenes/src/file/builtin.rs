@@ -9,8 +9,7 @@ use mortar_fem::mesh::{BoundaryFace, VolumeMesh};
 use super::tied_heat::{
     BodySpec, DirichletSpec, InterfaceSpec, NeumannSpec, SideSpec, SolveSpec, TiedHeatSpec,
 };
-use super::SceneError;
-use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
+use super::{FileScene, SceneError};
 use mortar::io::{msh41_volume_bytes, Integration, MshFormat, Multipliers};
 
 /// The names of the built-in scenes (`mortar run --scene NAME`): `tied_heat` (this module),
@@ -87,31 +86,7 @@ pub fn tied_block(dim: usize, n: usize, format: MshFormat) -> Result<BuiltinScen
         )));
     }
     let other = |e: &dyn std::fmt::Display| SceneError::Other(e.to_string());
-    let m = 3 * n / 2;
-    let (left, right) = if dim == 2 {
-        (
-            rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1),
-            rectangle_mesh([0.5, 0.0], [1.0, 1.0], [m / 2, m], CellShape::Simplex, 1),
-        )
-    } else {
-        (
-            box_mesh(
-                [0.0; 3],
-                [0.5, 1.0, 1.0],
-                [n / 2, n, n],
-                CellShape::Tensor,
-                1,
-            ),
-            box_mesh(
-                [0.5, 0.0, 0.0],
-                [1.0; 3],
-                [m / 2, m, m],
-                CellShape::Simplex,
-                1,
-            ),
-        )
-    };
-    let (left, right) = (left.map_err(|e| other(&e))?, right.map_err(|e| other(&e))?);
+    let (left, right) = crate::tied_heat::straight_blocks(dim, n, 1).map_err(|e| other(&e))?;
     let meshes = vec![
         (
             "left.msh".to_string(),

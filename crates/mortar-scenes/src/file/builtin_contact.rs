@@ -10,7 +10,7 @@ use mortar_physics::PhysicsError;
 use super::contact::{steps_json, SolvedContact};
 use super::contact_files::ContactSceneFiles;
 use super::two_bodies::report_bytes;
-use super::{SceneError, SceneOutput};
+use super::{SceneError, SceneOutput, SolvedScene};
 use crate::hertz::HertzProblem;
 use crate::shrink_fit::ShrinkFitSolved;
 

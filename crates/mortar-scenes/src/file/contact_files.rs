@@ -21,7 +21,7 @@ use super::contact::{
 };
 use super::face_nodes;
 use super::tied_heat::SideSpec;
-use super::{InMemory, SceneError};
+use super::{FileScene, InMemory, SceneError};
 use mortar::extend::Registries;
 use mortar::io::{msh41_volume_bytes, CouplingSettings, Integration, MshFormat, Multipliers};
 

@@ -36,6 +36,7 @@ mod builtin_contact;
 pub mod contact;
 pub mod contact_files;
 pub(crate) mod error;
+mod file_scene;
 pub mod tied_heat;
 mod two_bodies;
 
@@ -47,6 +48,7 @@ pub use builtin::{
 };
 pub use builtin_contact::{run_builtin_contact, HERTZ_ARC_CELLS};
 pub use error::SceneError;
+pub use file_scene::{FileScene, SolvedScene};
 
 use mortar::io::IoError;
 

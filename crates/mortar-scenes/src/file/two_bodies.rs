@@ -6,11 +6,12 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use mortar::extend::VolumeRegistry;
+use mortar::extend::{Registries, VolumeRegistry};
 use mortar::io::{parse_gmsh_volume, CouplingSettings, GmshVolume};
 use mortar_core::{CouplingOptions, CouplingWarning, Interface, SurfaceMesh};
 
 use super::error::Errors;
+use super::tied_heat::SideSpec;
 use super::{coupling_of, widen_hint, SceneError, SceneSource};
 
 /// Checks that body `name` can name its VTU file: letters, digits, `_` and `-`, at least one.
@@ -52,6 +53,45 @@ pub(super) fn check_search_radius(
     Ok(())
 }
 
+/// Checks that the scene file's `kind` is `expected`.
+///
+/// # Errors
+/// [`SceneError::Invalid`] (key `kind`) otherwise.
+pub(super) fn check_kind(errors: &Errors, kind: &str, expected: &str) -> Result<(), SceneError> {
+    if kind != expected {
+        return Err(errors.invalid("kind".into(), format!("\"{kind}\" is not \"{expected}\"")));
+    }
+    Ok(())
+}
+
+/// Checks that the `slave` and `master` sides of `section` (`interface` or `contact`) name
+/// bodies of the scene; a message lists the bodies after `listed` (the kinds word it apart).
+///
+/// # Errors
+/// [`SceneError::Invalid`] (key `SECTION.slave.body` or `SECTION.master.body`) for the first
+/// side that names no body of the scene.
+pub(super) fn check_side_bodies<B>(
+    errors: &Errors,
+    section: &str,
+    [slave, master]: [&SideSpec; 2],
+    bodies: &BTreeMap<String, B>,
+    listed: &str,
+) -> Result<(), SceneError> {
+    for (which, side) in [("slave", slave), ("master", master)] {
+        if !bodies.contains_key(&side.body) {
+            return Err(errors.invalid(
+                format!("{section}.{which}.body"),
+                format!(
+                    "no body named \"{}\" ({listed}{})",
+                    side.body,
+                    body_names(bodies)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The names of a scene's bodies joined by `", "`, for a message that lists them.
 pub(super) fn body_names<B>(bodies: &BTreeMap<String, B>) -> String {
     bodies.keys().cloned().collect::<Vec<_>>().join(", ")
@@ -69,7 +109,21 @@ pub(super) struct MeshSource<'a> {
     pub(super) registry: &'a VolumeRegistry,
 }
 
-impl MeshSource<'_> {
+impl<'a> MeshSource<'a> {
+    /// The meshes of a scene file in the folder `base`, read through `source`, of the cells of
+    /// `registries`.
+    pub(super) fn new(
+        base: &'a Path,
+        source: &'a dyn SceneSource,
+        registries: &'a Registries,
+    ) -> Self {
+        MeshSource {
+            base,
+            source,
+            registry: &registries.cells,
+        }
+    }
+
     /// Body `name`'s cells: the physical group `group` of the Gmsh file `mesh`.
     ///
     /// # Errors

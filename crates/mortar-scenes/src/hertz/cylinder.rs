@@ -34,7 +34,10 @@ use mortar_physics::contact::{ContactOptions, ContactSolution, ContactStep};
 use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 
-use super::{contact_modulus, first_cell, hertz_scene_files, HalfWidth, HertzProblem};
+use super::{
+    contact_modulus, first_cell, hertz_scene_files, near_to, vertical_force, HalfWidth,
+    HertzProblem,
+};
 use crate::file::contact::Component;
 use crate::file::contact_files::{ContactSceneFiles, SceneBody};
 use crate::file::SceneError;
@@ -207,12 +210,9 @@ impl HertzScene {
     /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
     /// coupling a scene file cannot state.
     pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
-        let bodies = self
-            .bodies()
-            .map_err(|e| SceneError::Other(e.to_string()))?;
         hertz_scene_files(
             "2D Hertz contact: a cylinder on a block (plane strain, half model)",
-            bodies,
+            self.bodies(),
             self.contact_zone * self.radius,
             &self.coupling,
             &self.contact,
@@ -255,8 +255,7 @@ impl HertzScene {
             ),
         };
 
-        let tol = 1e-12 * r;
-        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let near = near_to(r);
         // The slave surface: the arc faces near the contact. The gap grows to
         // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
         let coords = disc.coords().to_vec();
@@ -307,8 +306,7 @@ impl HertzScene {
     ) -> HertzRun {
         let r = self.radius;
         let h = self.block_size * r;
-        let tol = 1e-12 * r;
-        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let near = near_to(r);
         let HertzProblem {
             bodies: [slave, master],
             tie,
@@ -340,10 +338,8 @@ impl HertzScene {
             })
             .collect();
         nodes.sort_by(|a, b| a.x.total_cmp(&b.x));
-        let vertical_force: f64 = nodes
-            .iter()
-            .map(|n| -n.weight * n.pressure * n.normal[1])
-            .sum();
+        let vertical_force =
+            vertical_force(nodes.iter().map(|n| (n.weight, n.pressure, n.normal[1])));
         let load = 2.0 * vertical_force;
         let hertz = self.closed_form();
         let a_exact = hertz.half_width(load);

@@ -33,16 +33,20 @@ use crate::file::SceneError;
 /// The scene file of a Hertz scene's bodies: the slave's group `contact` against the master's
 /// group `top` with the exact law, the slave's full coverage required, the search as far as
 /// `search_distance`.
+///
+/// # Errors
+/// [`SceneError::Other`] for bodies that could not be made (`bodies`' error) and for a
+/// coupling a scene file cannot state.
 pub(crate) fn hertz_scene_files(
     title: &str,
-    bodies: [SceneBody; 2],
+    bodies: Result<[SceneBody; 2], PhysicsError>,
     search_distance: f64,
     coupling: &CouplingOptions,
     solve: &ContactOptions,
 ) -> Result<ContactSceneFiles, SceneError> {
     contact_scene_files(
         title,
-        bodies,
+        bodies.map_err(|e| SceneError::Other(e.to_string()))?,
         &SceneContact {
             slave: "contact",
             master: "top",
@@ -52,6 +56,19 @@ pub(crate) fn hertz_scene_files(
             solve,
         },
     )
+}
+
+/// Whether two coordinates are the same to `1e-12` of the radius `r`: how the scenes find the
+/// faces of their groups and the nodes of their reactions.
+pub(crate) fn near_to(r: f64) -> impl Fn(f64, f64) -> bool + Copy {
+    let tol = 1e-12 * r;
+    move |a: f64, b: f64| (a - b).abs() <= tol
+}
+
+/// The vertical force of the contact pressure on the slave nodes, of their `(weight, pressure,
+/// vertical normal component)`: the sum of `-weight pressure normal`.
+pub(crate) fn vertical_force(nodes: impl Iterator<Item = (f64, f64, f64)>) -> f64 {
+    nodes.map(|(w, p, n)| -w * p * n).sum()
 }
 
 pub mod cylinder;
@@ -106,59 +123,51 @@ pub struct HertzProblem {
     pub block_cells: usize,
 }
 
+/// Two bodies' assembly: their stiffness matrices, load vectors and Dirichlet data.
+type Assembly = ([SparseMatrix; 2], [Vec<f64>; 2], [(Vec<u32>, Vec<f64>); 2]);
+
+/// Two elastic bodies in contact across the mortar tie of their surfaces (the interface under
+/// `tolerances`, coupled as `coupling` says), assembled in `dim` dimensions: their assembly,
+/// the tie, the normal gap and the exact law's automatic parameter `c`. The Hertz scenes and
+/// the shrink fit share it.
+///
+/// # Errors
+/// The errors of the interface, the coupling, the tie, the assembly and the gap.
+pub(crate) fn exact_contact(
+    [slave, master]: [&ElasticBody; 2],
+    [slave_surface, master_surface]: [SurfaceMesh; 2],
+    tolerances: Tolerances,
+    coupling: &CouplingOptions,
+    dim: usize,
+) -> Result<(Assembly, Tie, NormalGap, f64), PhysicsError> {
+    let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
+    let coupling = assemble_coupling(&interface, coupling)?;
+    let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
+
+    let options = ElasticOptions::default();
+    let stiffness = [
+        assemble_elastic_stiffness(slave, &options)?,
+        assemble_elastic_stiffness(master, &options)?,
+    ];
+    let load = [
+        assemble_elastic_load(slave, &options)?,
+        assemble_elastic_load(master, &options)?,
+    ];
+    let dirichlet = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
+    let gap = NormalGap::new(&tie, dim, slave.mesh.node_count(), master.mesh.node_count())?;
+    let c = automatic_complementarity(&stiffness[0], &tie, &gap, dim);
+    Ok(((stiffness, load, dirichlet), tie, gap, c))
+}
+
 impl HertzProblem {
-    /// Couples `slave_surface` of `slave` to `master_surface` of `master` (full coverage of
-    /// the slave surface required, whatever `coupling` says; candidates searched within
-    /// `search_distance`), assembles both bodies in `dim` dimensions and sets up the normal gap
-    /// and the exact law with automatic `c`.
+    /// The problem of a Hertz scene's bodies: the slave's group `contact` coupled to the
+    /// master's group `top` (full coverage of the slave surface required, whatever `coupling`
+    /// says; candidates searched within `search_distance`), both bodies assembled in `dim`
+    /// dimensions, the normal gap and the exact law with automatic `c`.
     ///
     /// # Errors
-    /// The errors of the interface, the coupling, the tie and the assembly.
-    pub(crate) fn assemble(
-        [slave, master]: [ElasticBody; 2],
-        [slave_surface, master_surface]: [SurfaceMesh; 2],
-        search_distance: f64,
-        coupling: &CouplingOptions,
-        dim: usize,
-        block_cells: usize,
-    ) -> Result<Self, PhysicsError> {
-        let tolerances = Tolerances {
-            search_radius: SearchRadius::Distance(search_distance),
-            ..Tolerances::default()
-        };
-        let interface = Interface::with_tolerances(slave_surface, master_surface, tolerances)?;
-        let mut coupling_options = coupling.clone();
-        coupling_options.require_full_coverage = true;
-        let coupling = assemble_coupling(&interface, &coupling_options)?;
-        let tie = Tie::from_coupling(&slave.mesh, &master.mesh, interface, coupling)?;
-
-        let options = ElasticOptions::default();
-        let stiffness = [
-            assemble_elastic_stiffness(&slave, &options)?,
-            assemble_elastic_stiffness(&master, &options)?,
-        ];
-        let load = [
-            assemble_elastic_load(&slave, &options)?,
-            assemble_elastic_load(&master, &options)?,
-        ];
-        let dirichlet = [slave.dirichlet_dofs(), master.dirichlet_dofs()];
-        let gap = NormalGap::new(&tie, dim, slave.mesh.node_count(), master.mesh.node_count())?;
-        let c = automatic_complementarity(&stiffness[0], &tie, &gap, dim);
-        let law = ContactComplementarity::try_new(c)?;
-        Ok(Self {
-            bodies: [slave, master],
-            stiffness,
-            load,
-            dirichlet,
-            tie,
-            gap,
-            law,
-            block_cells,
-        })
-    }
-
-    /// The problem of a Hertz scene's bodies: the slave's group `contact` against the master's
-    /// group `top` (see [`assemble`](Self::assemble)).
+    /// The errors of the bodies' groups, of the interface, the coupling, the tie and the
+    /// assembly.
     pub(crate) fn of_bodies(
         [slave, master]: [SceneBody; 2],
         search_distance: f64,
@@ -168,14 +177,46 @@ impl HertzProblem {
     ) -> Result<Self, PhysicsError> {
         let (slave, slave_surface) = slave.elastic("contact")?;
         let (master, master_surface) = master.elastic("top")?;
-        Self::assemble(
-            [slave, master],
-            [slave_surface, master_surface],
-            search_distance,
-            coupling,
+        let tolerances = Tolerances {
+            search_radius: SearchRadius::Distance(search_distance),
+            ..Tolerances::default()
+        };
+        let mut coupling_options = coupling.clone();
+        coupling_options.require_full_coverage = true;
+        let surfaces = [slave_surface, master_surface];
+        let (assembly, tie, gap, c) = exact_contact(
+            [&slave, &master],
+            surfaces,
+            tolerances,
+            &coupling_options,
             dim,
+        )?;
+        Self::with_law([slave, master], assembly, tie, gap, c, block_cells)
+    }
+
+    /// The problem of its parts: the bodies, their assembly (stiffness matrices, loads,
+    /// Dirichlet data), the tie and the normal gap, with the exact law of parameter `c`.
+    ///
+    /// # Errors
+    /// The error of [`ContactComplementarity::try_new`] for a `c` it refuses.
+    fn with_law(
+        bodies: [ElasticBody; 2],
+        (stiffness, load, dirichlet): Assembly,
+        tie: Tie,
+        gap: NormalGap,
+        c: f64,
+        block_cells: usize,
+    ) -> Result<Self, PhysicsError> {
+        Ok(Self {
+            bodies,
+            stiffness,
+            load,
+            dirichlet,
+            tie,
+            gap,
+            law: ContactComplementarity::try_new(c)?,
             block_cells,
-        )
+        })
     }
 
     /// The problem a Hertz scene's [scene file](HertzScene::scene_files) was solved as, and
@@ -203,20 +244,15 @@ impl HertzProblem {
             body: "hertz scene".into(),
             what: "solved with another law than the exact one".into(),
         })?;
-        let law = ContactComplementarity::try_new(c)?;
-        Ok((
-            Self {
-                bodies,
-                stiffness,
-                load,
-                dirichlet,
-                tie,
-                gap,
-                law,
-                block_cells,
-            },
-            solution,
-        ))
+        let problem = Self::with_law(
+            bodies,
+            (stiffness, load, dirichlet),
+            tie,
+            gap,
+            c,
+            block_cells,
+        )?;
+        Ok((problem, solution))
     }
 
     /// Solves the contact problem.

@@ -53,7 +53,10 @@ use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
-use super::{contact_modulus, first_cell, hertz_scene_files, HalfWidth, HertzProblem};
+use super::{
+    contact_modulus, first_cell, hertz_scene_files, near_to, vertical_force, HalfWidth,
+    HertzProblem,
+};
 use crate::file::contact::Component;
 use crate::file::contact_files::{ContactSceneFiles, SceneBody};
 use crate::file::SceneError;
@@ -261,12 +264,9 @@ impl HertzSphereScene {
     /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
     /// coupling a scene file cannot state.
     pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
-        let bodies = self
-            .bodies()
-            .map_err(|e| SceneError::Other(e.to_string()))?;
         hertz_scene_files(
             "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
-            bodies,
+            self.bodies(),
             self.contact_zone * self.radius,
             &self.coupling,
             &self.contact,
@@ -294,8 +294,7 @@ impl HertzSphereScene {
         zs.reverse();
         let block = grid_box_mesh(&xs, &xs, &zs, CellShape::Tensor, 1_000_001)?;
 
-        let tol = 1e-12 * r;
-        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let near = near_to(r);
         // The slave surface: the sphere's faces near the pole. The gap grows to
         // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
         let coords = ball.coords().to_vec();
@@ -354,8 +353,7 @@ impl HertzSphereScene {
     ) -> HertzSphereRun {
         let r = self.radius;
         let h = self.block_size * r;
-        let tol = 1e-12 * r;
-        let near = move |a: f64, b: f64| (a - b).abs() <= tol;
+        let near = near_to(r);
         let [slave, master] = &problem.bodies;
         let (tie, gap) = (&problem.tie, &problem.gap);
 
@@ -382,10 +380,8 @@ impl HertzSphereScene {
             a.r.total_cmp(&b.r)
                 .then(a.position[0].total_cmp(&b.position[0]))
         });
-        let vertical_force: f64 = nodes
-            .iter()
-            .map(|n| -n.weight * n.pressure * n.normal[2])
-            .sum();
+        let vertical_force =
+            vertical_force(nodes.iter().map(|n| (n.weight, n.pressure, n.normal[2])));
         let load = 4.0 * vertical_force;
         let hertz = self.closed_form();
         let at_approach = hertz.at_approach(self.approach);

@@ -651,46 +651,47 @@ pub(super) fn history_plots(
         name,
         points: rows.iter().map(|r| (r.0, scale * f(&r.1))).collect(),
     };
+    // Each plot over time: its file, title, y axis and curves.
+    let over_time = |file: &'static str, title: &'static str, y_label, curves| {
+        let chart = Chart {
+            title,
+            x_label: "time (s)",
+            y_label,
+            curves,
+        };
+        (file, chart)
+    };
     let charts = [
-        (
+        over_time(
             "temperatures.png",
-            Chart {
-                title: "Pellet temperatures",
-                x_label: "time (s)",
-                y_label: "temperature (K)",
-                curves: vec![
-                    curve("centre", 1.0, |s| s.center),
-                    curve("pellet surface", 1.0, |s| s.pellet_surface),
-                    curve("cladding inner surface", 1.0, |s| s.cladding_inner),
-                ],
-            },
+            "Pellet temperatures",
+            "temperature (K)",
+            vec![
+                curve("centre", 1.0, |s| s.center),
+                curve("pellet surface", 1.0, |s| s.pellet_surface),
+                curve("cladding inner surface", 1.0, |s| s.cladding_inner),
+            ],
         ),
-        (
+        over_time(
             "gap.png",
-            Chart {
-                title: "Pellet-cladding gap",
-                x_label: "time (s)",
-                y_label: "gap (um)",
-                curves: vec![
-                    curve("mean gap", 1e6, |s| s.gap),
-                    curve("smallest gap", 1e6, |s| s.min_gap),
-                ],
-            },
+            "Pellet-cladding gap",
+            "gap (um)",
+            vec![
+                curve("mean gap", 1e6, |s| s.gap),
+                curve("smallest gap", 1e6, |s| s.min_gap),
+            ],
         ),
-        (
+        over_time(
             "pressures.png",
-            Chart {
-                title: "Pressures",
-                x_label: "time (s)",
-                y_label: "pressure (MPa)",
-                curves: vec![
-                    curve("interface pressure P_c (mean)", 1e-6, |s| {
-                        s.interface_pressure
-                    }),
-                    curve("interface pressure (peak)", 1e-6, |s| s.peak_pressure),
-                    curve("plenum pressure P_o", 1e-6, |s| s.plenum),
-                ],
-            },
+            "Pressures",
+            "pressure (MPa)",
+            vec![
+                curve("interface pressure P_c (mean)", 1e-6, |s| {
+                    s.interface_pressure
+                }),
+                curve("interface pressure (peak)", 1e-6, |s| s.peak_pressure),
+                curve("plenum pressure P_o", 1e-6, |s| s.plenum),
+            ],
         ),
     ];
     let mut out = Vec::new();

@@ -10,22 +10,19 @@ use super::{
     Component, ComponentValue, ContactInterfaceSpec, ContactSpec, ElasticBodySpec, LawSpec,
 };
 use crate::file::error::Errors;
-use crate::file::two_bodies::{body_names, check_body_name, check_search_radius};
-use crate::file::SceneError;
+use crate::file::two_bodies::{
+    check_body_name, check_kind, check_search_radius, check_side_bodies,
+};
+use crate::file::{FileScene, SceneError};
 
 impl ContactSpec {
     /// Checks values and cross-references that do not need the meshes.
     ///
     /// # Errors
     /// [`SceneError::Invalid`] naming the key.
-    pub fn check(&self, path: &Path) -> Result<(), SceneError> {
+    pub(super) fn check_keys(&self, path: &Path) -> Result<(), SceneError> {
         let errors = Errors { path };
-        if self.kind != "contact" {
-            return Err(errors.invalid(
-                "kind".into(),
-                format!("\"{}\" is not \"contact\"", self.kind),
-            ));
-        }
+        check_kind(&errors, &self.kind, Self::KIND)?;
         if self.bodies.len() != 2 {
             return Err(errors.invalid(
                 "bodies".into(),
@@ -46,21 +43,8 @@ impl ContactSpec {
 
     /// `[contact]`'s slave and master name two different bodies of the scene.
     fn check_sides(&self, errors: &Errors) -> Result<(), SceneError> {
-        for (which, side) in [
-            ("slave", &self.contact.slave),
-            ("master", &self.contact.master),
-        ] {
-            if !self.bodies.contains_key(&side.body) {
-                return Err(errors.invalid(
-                    format!("contact.{which}.body"),
-                    format!(
-                        "no body named \"{}\" (bodies: {})",
-                        side.body,
-                        body_names(&self.bodies)
-                    ),
-                ));
-            }
-        }
+        let sides = [&self.contact.slave, &self.contact.master];
+        check_side_bodies(errors, "contact", sides, &self.bodies, "bodies: ")?;
         if self.contact.slave.body == self.contact.master.body {
             return Err(errors.invalid(
                 "contact.master.body".into(),

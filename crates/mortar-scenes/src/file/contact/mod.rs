@@ -32,10 +32,9 @@ mod solve;
 mod solve_spec;
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
-use mortar::extend::Registries;
 use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar_core::linalg::SparseMatrix;
 use mortar_fem::mesh::BoundaryFace;
@@ -45,7 +44,6 @@ use mortar_physics::tied::Tie;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
-use super::{SceneError, SceneOutput, SceneSource};
 use crate::NamedLaw;
 
 pub(super) use output::steps_json;
@@ -157,10 +155,10 @@ pub struct ContactInterfaceSpec {
     /// The law.
     #[serde(default)]
     pub law: LawSpec,
-    /// A law by name from the shipped [`LawRegistry`](mortar_physics::laws::LawRegistry) (or a program's own, through
-    /// [`ContactSpec::solve_with`]), with its parameters, in place of `law`:
-    /// `named_law = { name = "exponential_pressure", base_pressure = 1e5, stiffness = 1e12,
-    /// onset = 1e-6 }`.
+    /// A law by name from the shipped [`LawRegistry`](mortar_physics::laws::LawRegistry) (or a
+    /// program's own, through [`ContactSpec::solve_with`](crate::file::FileScene::solve_with)),
+    /// with its parameters, in place of `law`: `named_law = { name = "exponential_pressure",
+    /// base_pressure = 1e5, stiffness = 1e12, onset = 1e-6 }`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub named_law: Option<NamedLaw>,
     /// `P_o` of the exponential law.
@@ -229,70 +227,6 @@ pub const STRESS_NAMES: [&str; 6] = [
     "stress_xz",
     "stress_xy",
 ];
-
-impl ContactSpec {
-    /// Parses a scene file's text; `path` names it in messages.
-    ///
-    /// # Errors
-    /// [`SceneError::Syntax`] for bad TOML or an unknown key; [`SceneError::Invalid`] naming
-    /// the key for values out of range (see [`check`](Self::check)).
-    pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
-        let spec: Self = SceneError::parse(path, text)?;
-        spec.check(path)?;
-        Ok(spec)
-    }
-
-    /// The TOML text of the scene.
-    ///
-    /// # Errors
-    /// [`SceneError::Other`] if a value cannot be written as TOML.
-    pub fn to_toml(&self) -> Result<String, SceneError> {
-        toml::to_string(self).map_err(|e| SceneError::Other(format!("scene as TOML: {e}")))
-    }
-
-    /// Reads the meshes, solves and renders the outputs (see the [module](self)).
-    ///
-    /// # Errors
-    /// [`SceneError::Mesh`] for a missing file or group, [`SceneError::Invalid`] for a
-    /// component or traction that does not fit the dimension and for a load step whose
-    /// Newton iteration fails (naming it), [`SceneError::Physics`] otherwise.
-    pub fn run(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-    ) -> Result<SceneOutput, SceneError> {
-        self.solve(path, base, source)?.output()
-    }
-
-    /// Reads the meshes and solves, without rendering.
-    ///
-    /// # Errors
-    /// As [`run`](Self::run).
-    pub fn solve(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-    ) -> Result<SolvedContact, SceneError> {
-        self.solve_with(path, base, source, &Registries::default())
-    }
-
-    /// [`run`](Self::run) with the cells and laws of `registries` (the shipped ones and a
-    /// program's own).
-    ///
-    /// # Errors
-    /// As [`solve_with`](Self::solve_with).
-    pub fn run_with(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-        registries: &Registries,
-    ) -> Result<SceneOutput, SceneError> {
-        self.solve_with(path, base, source, registries)?.output()
-    }
-}
 
 /// A solved contact scene.
 #[derive(Debug)]

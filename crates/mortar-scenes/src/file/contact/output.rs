@@ -13,19 +13,19 @@ use serde_json::Value;
 
 use super::{SolvedContact, STRESS_NAMES};
 use crate::file::two_bodies::{report_bytes, warning_texts};
-use crate::file::{SceneError, SceneOutput};
+use crate::file::{SceneError, SceneOutput, SolvedScene};
 
 /// A file that cannot be rendered.
 fn other(e: &dyn std::fmt::Display) -> SceneError {
     SceneError::Other(e.to_string())
 }
 
-impl SolvedContact {
+impl SolvedScene for SolvedContact {
     /// `NAME.vtu` per body, `interface.vtu`, `report.json` and a summary.
     ///
     /// # Errors
     /// [`SceneError::Other`] if a file cannot be rendered.
-    pub fn output(&self) -> Result<SceneOutput, SceneError> {
+    fn output(&self) -> Result<SceneOutput, SceneError> {
         let t_out = Instant::now();
         let mut files = Vec::with_capacity(4);
         let mut body_reports = Vec::with_capacity(2);
@@ -64,7 +64,9 @@ impl SolvedContact {
             warnings,
         })
     }
+}
 
+impl SolvedContact {
     /// Body `i`'s VTU file (`NAME.vtu`: its displacements as 3-vectors, its stresses and von
     /// Mises stress at the nodes) and its entry in the report.
     fn body_output(

@@ -28,16 +28,28 @@ use nalgebra::Vector3;
 use super::{Component, ComponentValue, ContactSpec, DisplacementSpec, LawSpec, SolvedContact};
 use crate::file::error::Errors;
 use crate::file::two_bodies::{interface_of, MeshSource};
-use crate::file::{face_nodes, SceneError, SceneSource};
+use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
 
-impl ContactSpec {
-    /// [`solve`](Self::solve), with the bodies' cells looked up in `registries.cells` and a
-    /// `named_law` made by `registries.laws` (the shipped ones and a program's own).
+impl FileScene for ContactSpec {
+    const KIND: &'static str = "contact";
+
+    type Solved = SolvedContact;
+
+    fn check(&self, path: &Path) -> Result<(), SceneError> {
+        self.check_keys(path)
+    }
+
+    /// Reads the meshes and solves (see the [module](super)), with the bodies' cells looked up
+    /// in `registries.cells` and a `named_law` made by `registries.laws` (the shipped ones and
+    /// a program's own).
     ///
     /// # Errors
-    /// As [`run`](Self::run); [`SceneError::Invalid`] (key `contact.named_law`) for a law the
-    /// registry does not know or whose parameters it refuses.
-    pub fn solve_with(
+    /// [`SceneError::Mesh`] for a missing file or group, [`SceneError::Invalid`] for a
+    /// component or traction that does not fit the dimension and for a load step whose
+    /// Newton iteration fails (naming it), [`SceneError::Invalid`] (key `contact.named_law`)
+    /// for a law the registry does not know or whose parameters it refuses,
+    /// [`SceneError::Physics`] otherwise.
+    fn solve_with(
         &self,
         path: &Path,
         base: &Path,
@@ -46,12 +58,7 @@ impl ContactSpec {
     ) -> Result<SolvedContact, SceneError> {
         let t_start = Instant::now();
         let errors = Errors { path };
-        let meshes = MeshSource {
-            base,
-            source,
-            registry: &registries.cells,
-        };
-        let volumes = self.read_volumes(&errors, meshes)?;
+        let volumes = self.read_volumes(&errors, MeshSource::new(base, source, registries))?;
         let dim = volumes[0].1.dimension as usize;
         let ReadBodies {
             bodies,
@@ -133,7 +140,9 @@ impl ContactSpec {
             t_start,
         })
     }
+}
 
+impl ContactSpec {
     /// The bodies of the meshes `volumes` (slave first, `dim` components): each elastic body
     /// with its conditions ([`elastic_body`](Self::elastic_body)), then its contact surface
     /// and faces, and its mesh's label.

@@ -6,8 +6,10 @@ use std::path::Path;
 
 use super::{BodySpec, Mode, TiedHeatSpec};
 use crate::file::error::Errors;
-use crate::file::two_bodies::{body_names, check_body_name, check_search_radius};
-use crate::file::SceneError;
+use crate::file::two_bodies::{
+    body_names, check_body_name, check_kind, check_search_radius, check_side_bodies,
+};
+use crate::file::{FileScene, SceneError};
 
 impl TiedHeatSpec {
     /// Checks values and cross-references: the kind, two bodies with file-safe names,
@@ -16,14 +18,9 @@ impl TiedHeatSpec {
     ///
     /// # Errors
     /// [`SceneError::Invalid`] naming the key.
-    pub fn check(&self, path: &Path) -> Result<(), SceneError> {
+    pub(super) fn check_keys(&self, path: &Path) -> Result<(), SceneError> {
         let errors = Errors { path };
-        if self.kind != "tied_heat" {
-            return Err(errors.invalid(
-                "kind".into(),
-                format!("\"{}\" is not \"tied_heat\"", self.kind),
-            ));
-        }
+        check_kind(&errors, &self.kind, Self::KIND)?;
         if let Some(d) = self.dimension {
             if d != 2 && d != 3 {
                 return Err(errors.invalid("dimension".into(), format!("{d} is not 2 or 3")));
@@ -104,21 +101,8 @@ impl TiedHeatSpec {
     /// `[interface]`: its sides name bodies of the scene, two different ones, and its search
     /// radius is in range.
     fn check_interface(&self, errors: &Errors) -> Result<(), SceneError> {
-        for (side, s) in [
-            ("interface.slave", &self.interface.slave),
-            ("interface.master", &self.interface.master),
-        ] {
-            if !self.bodies.contains_key(&s.body) {
-                return Err(errors.invalid(
-                    format!("{side}.body"),
-                    format!(
-                        "no body named \"{}\" (the bodies are {})",
-                        s.body,
-                        body_names(&self.bodies)
-                    ),
-                ));
-            }
-        }
+        let sides = [&self.interface.slave, &self.interface.master];
+        check_side_bodies(errors, "interface", sides, &self.bodies, "the bodies are ")?;
         check_search_radius(errors, "interface", self.interface.search_radius)?;
         if self.interface.slave.body == self.interface.master.body {
             return Err(errors.invalid(

@@ -39,15 +39,12 @@ mod solve;
 mod solve_spec;
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
-use mortar::extend::Registries;
 use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar_physics::heat::{TiedHeat, TiedHeatSolution};
 use serde::{Deserialize, Serialize};
-
-use super::{SceneError, SceneOutput, SceneSource};
 
 pub use solve_spec::{FormulationSpec, Mode, SolveSpec};
 
@@ -190,76 +187,6 @@ impl InterfaceSpec {
             require_full_coverage: self.require_full_coverage,
             threads: None,
         }
-    }
-}
-
-impl TiedHeatSpec {
-    /// Parses a scene file's text; `path` names it in messages.
-    ///
-    /// # Errors
-    /// [`SceneError::Syntax`] for bad TOML, an unknown or missing key or a wrong type (with
-    /// its line); [`SceneError::Invalid`] for values out of range or inconsistent (see
-    /// [`check`](Self::check)).
-    pub fn parse(text: &str, path: &Path) -> Result<Self, SceneError> {
-        let spec: Self = SceneError::parse(path, text)?;
-        spec.check(path)?;
-        Ok(spec)
-    }
-
-    /// The TOML text of the scene.
-    ///
-    /// # Errors
-    /// [`SceneError::Other`] if a value cannot be written as TOML (a NaN, say).
-    pub fn to_toml(&self) -> Result<String, SceneError> {
-        toml::to_string(self).map_err(|e| SceneError::Other(format!("scene as TOML: {e}")))
-    }
-
-    /// Reads the meshes (through `source`, paths relative to `base`, the scene file's
-    /// folder), builds and solves the problem, and renders the VTU files and `report.json`.
-    /// `path` names the scene file in messages and in the report.
-    ///
-    /// # Errors
-    /// [`SceneError::Mesh`] for a missing mesh file, a missing group or a group of the wrong
-    /// dimension (each naming the key, the file and the group); [`SceneError::Invalid`] for
-    /// bodies of different dimensions or not of `dimension`; [`SceneError::Physics`] for a
-    /// problem that cannot be built or solved (an inverted cell, an interface without
-    /// overlap, a singular system).
-    pub fn run(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-    ) -> Result<SceneOutput, SceneError> {
-        self.solve(path, base, source)?.output()
-    }
-
-    /// Reads the meshes and solves the problem (see [`run`](Self::run)), without rendering.
-    ///
-    /// # Errors
-    /// As [`run`](Self::run).
-    pub fn solve(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-    ) -> Result<SolvedTiedHeat, SceneError> {
-        self.solve_with(path, base, source, &Registries::default())
-    }
-
-    /// [`run`](Self::run) with the bodies' cells looked up in `registries.cells` (the shipped
-    /// cells and a program's own; the interface faces are the surface elements of their
-    /// faces).
-    ///
-    /// # Errors
-    /// As [`run`](Self::run).
-    pub fn run_with(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-        registries: &Registries,
-    ) -> Result<SceneOutput, SceneError> {
-        self.solve_with(path, base, source, registries)?.output()
     }
 }
 

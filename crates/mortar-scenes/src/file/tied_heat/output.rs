@@ -11,15 +11,15 @@ use serde_json::Value;
 
 use super::SolvedTiedHeat;
 use crate::file::two_bodies::{report_bytes, warning_texts};
-use crate::file::{SceneError, SceneOutput};
+use crate::file::{SceneError, SceneOutput, SolvedScene};
 
-impl SolvedTiedHeat {
+impl SolvedScene for SolvedTiedHeat {
     /// The VTU file of each body (`NAME.vtu`, nodal `temperature`), `report.json` and a
     /// readable summary.
     ///
     /// # Errors
     /// [`SceneError::Other`] if a file cannot be rendered.
-    pub fn output(&self) -> Result<SceneOutput, SceneError> {
+    fn output(&self) -> Result<SceneOutput, SceneError> {
         let t_out = Instant::now();
         let mut files = Vec::with_capacity(3);
         let mut body_reports = Vec::with_capacity(2);
@@ -45,7 +45,9 @@ impl SolvedTiedHeat {
             warnings,
         })
     }
+}
 
+impl SolvedTiedHeat {
     /// Body `i`'s VTU file (`NAME.vtu`, nodal `temperature`) and its entry in the report
     /// (with its temperature range).
     fn body_output(

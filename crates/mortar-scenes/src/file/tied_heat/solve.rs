@@ -18,14 +18,29 @@ use mortar_physics::LinearSolve;
 use super::{Mode, SolvedTiedHeat, TiedHeatSpec};
 use crate::file::error::Errors;
 use crate::file::two_bodies::{interface_of, MeshSource};
-use crate::file::{face_nodes, SceneError, SceneSource};
+use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
 
-impl TiedHeatSpec {
-    /// [`solve`](Self::solve) with the cells of `registries` (see [`run_with`](Self::run_with)).
+impl FileScene for TiedHeatSpec {
+    const KIND: &'static str = "tied_heat";
+
+    type Solved = SolvedTiedHeat;
+
+    fn check(&self, path: &Path) -> Result<(), SceneError> {
+        self.check_keys(path)
+    }
+
+    /// Reads the meshes (through `source`, paths relative to `base`, the scene file's
+    /// folder), with the bodies' cells looked up in `registries.cells` (the shipped cells and
+    /// a program's own; the interface faces are the surface elements of their faces), builds
+    /// and solves the problem. `path` names the scene file in messages and in the report.
     ///
     /// # Errors
-    /// As [`run`](Self::run).
-    pub fn solve_with(
+    /// [`SceneError::Mesh`] for a missing mesh file, a missing group or a group of the wrong
+    /// dimension (each naming the key, the file and the group); [`SceneError::Invalid`] for
+    /// bodies of different dimensions or not of `dimension`; [`SceneError::Physics`] for a
+    /// problem that cannot be built or solved (an inverted cell, an interface without
+    /// overlap, a singular system).
+    fn solve_with(
         &self,
         path: &Path,
         base: &Path,
@@ -34,12 +49,7 @@ impl TiedHeatSpec {
     ) -> Result<SolvedTiedHeat, SceneError> {
         let t_start = Instant::now();
         let errors = Errors { path };
-        let meshes = MeshSource {
-            base,
-            source,
-            registry: &registries.cells,
-        };
-        let volumes = self.read_volumes(&errors, meshes)?;
+        let volumes = self.read_volumes(&errors, MeshSource::new(base, source, registries))?;
         let dimension = self.dimension_of(&errors, &volumes)?;
 
         // Boundary conditions and interface sides.
@@ -94,7 +104,9 @@ impl TiedHeatSpec {
             t_read,
         })
     }
+}
 
+impl TiedHeatSpec {
     /// The bodies' meshes, slave first (from `meshes`).
     fn read_volumes(
         &self,
