@@ -2,7 +2,7 @@
 //! tractions, thermal strain) and the thermal load operator `G`, in parallel over fixed chunks
 //! of cells merged in order (the same bits for any thread count).
 
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::{PartList, SparseMatrix, Triplets};
 use mortar_core::ModelGeometry;
 use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
@@ -384,7 +384,7 @@ fn assemble_cell_matrix(
     let mesh = &body.mesh;
     let cells = mesh.cell_count();
     let (rc, cc) = (row_components, col_components);
-    let chunks: Vec<Result<Triplets, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+    let chunks: Vec<Result<PartList, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
         .map(|ch| {
             let mut out = Triplets::default();
@@ -409,7 +409,7 @@ fn assemble_cell_matrix(
                     }
                 }
             }
-            Ok(out)
+            Ok(cells::compressed_chunk(ch, out))
         })
         .collect();
     let mut parts = Vec::with_capacity(chunks.len());
@@ -417,7 +417,7 @@ fn assemble_cell_matrix(
         parts.push(ch?);
     }
     let n = mesh.node_count();
-    Ok(Triplets::to_csr_from_parts(parts, n * rc, n * cc))
+    Ok(cells::merged_csr(parts, n * rc, n * cc))
 }
 
 /// The symmetric tensor of a stress in Voigt order `[xx, yy, zz, yz, xz, xy]`.

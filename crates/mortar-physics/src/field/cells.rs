@@ -1,6 +1,7 @@
 //! Cell set-up shared by the assemblies of every field (heat, elasticity).
 
 use mortar_core::element::MAX_FACE_NODES;
+use mortar_core::linalg::{CompressWorkspace, PartList, SparseMatrix, Triplets};
 use mortar_core::quadrature::{Quadrature, QuadratureRule};
 use mortar_core::{ModelGeometry, MortarError};
 use mortar_fem::element::{CellValues, VolumeDomain, MAX_CELL_NODES};
@@ -13,6 +14,32 @@ use crate::error::PhysicsError;
 /// Cells per work chunk of the parallel assemblies. Fixed, so that the summation order (and
 /// every bit of the result) does not depend on the thread count.
 pub(crate) const CELL_CHUNK: usize = 512;
+
+/// The triplets `raw` of chunk `key` compressed into a part list of their own (sorted,
+/// duplicates summed in insertion order), so that a parallel assembly holds each chunk's
+/// compressed entries (12 bytes each, the chunk's duplicates summed) rather than every
+/// chunk's raw triplets (16 bytes each) until the end: on a 3D Tet4 body a third to a
+/// quarter of the memory. [`merged_csr`] of the chunks' lists is bit for bit the matrix
+/// `Triplets::to_csr_from_parts` makes of the raw chunks (the same compression of each
+/// part, the parts summed in key order).
+pub(crate) fn compressed_chunk(key: usize, mut raw: Triplets) -> PartList {
+    let mut list = PartList::default();
+    list.push_compressed(key as u64, &mut raw, &mut CompressWorkspace::default());
+    list
+}
+
+/// The `nrows x ncols` matrix of the chunks' part lists (see [`compressed_chunk`]).
+pub(crate) fn merged_csr(
+    chunks: impl IntoIterator<Item = PartList>,
+    nrows: usize,
+    ncols: usize,
+) -> SparseMatrix {
+    let mut list = PartList::default();
+    for chunk in chunks {
+        list.append(chunk);
+    }
+    list.to_csr(nrows, ncols)
+}
 
 /// The weight of point `q` of `cv` in the measure of `geometry`: `jxw(q)` (Cartesian) or
 /// `jxw(q) 2 pi r(x_q)` (axisymmetric).

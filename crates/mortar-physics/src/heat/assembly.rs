@@ -1,7 +1,7 @@
 //! Assembly of one body's heat conduction matrices (stiffness, capacity) and loads (source,
 //! Neumann flux), with `HeatOptions` for the quadrature degree and the model geometry.
 
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::{PartList, SparseMatrix, Triplets};
 use mortar_core::ModelGeometry;
 use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
@@ -89,6 +89,12 @@ struct ChunkMatrices {
     c: Triplets,
 }
 
+/// One chunk's entries, compressed ([`cells::compressed_chunk`]).
+struct ChunkParts {
+    k: PartList,
+    c: PartList,
+}
+
 /// Assembles the stiffness K and capacity C of a body, in parallel over fixed chunks of cells
 /// merged in order (bit-for-bit the same for any thread count). With the axisymmetric
 /// geometry the integrals take the weight `2 pi r` ([`HeatOptions::geometry`]).
@@ -131,7 +137,7 @@ fn assemble(
     let mesh = &body.mesh;
     let (k, rho_cp) = (body.material.conductivity, body.material.capacity);
     let cells = mesh.cell_count();
-    let chunks: Vec<Result<ChunkMatrices, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
+    let chunks: Vec<Result<ChunkParts, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
         .map(|ch| {
             let mut out = ChunkMatrices::default();
@@ -171,7 +177,10 @@ fn assemble(
                     }
                 }
             }
-            Ok(out)
+            Ok(ChunkParts {
+                k: cells::compressed_chunk(ch, out.k),
+                c: cells::compressed_chunk(ch, out.c),
+            })
         })
         .collect();
     let mut ks = Vec::with_capacity(chunks.len());
@@ -182,10 +191,7 @@ fn assemble(
         cs.push(ch.c);
     }
     let n = mesh.node_count();
-    Ok((
-        Triplets::to_csr_from_parts(ks, n, n),
-        Triplets::to_csr_from_parts(cs, n, n),
-    ))
+    Ok((cells::merged_csr(ks, n, n), cells::merged_csr(cs, n, n)))
 }
 
 /// Assembles the load vector of a body at time `t`: the source, `int Q(x, t) N_a`, plus the

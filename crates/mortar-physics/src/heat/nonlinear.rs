@@ -1,7 +1,7 @@
 //! Heat conduction with a temperature-dependent conductivity `k(T)`: the internal heat flow
 //! `f_a(T) = int k(T) grad T . grad N_a` of a body and its linearisations.
 
-use mortar_core::linalg::{SparseMatrix, Triplets};
+use mortar_core::linalg::{PartList, SparseMatrix, Triplets};
 use mortar_fem::element::{CellValues, MAX_CELL_NODES};
 use nalgebra::Vector3;
 use rayon::prelude::*;
@@ -102,7 +102,7 @@ pub fn assemble_conduction(
         });
     }
     let cells = mesh.cell_count();
-    type Chunk = (Vec<(u32, f64)>, Triplets);
+    type Chunk = (Vec<(u32, f64)>, PartList);
     let chunks: Vec<Result<Chunk, PhysicsError>> = (0..cells.div_ceil(CELL_CHUNK))
         .into_par_iter()
         .map(|ch| {
@@ -152,7 +152,7 @@ pub fn assemble_conduction(
                     }
                 }
             }
-            Ok((force, trip))
+            Ok((force, cells::compressed_chunk(ch, trip)))
         })
         .collect();
     let n = mesh.node_count();
@@ -165,6 +165,6 @@ pub fn assemble_conduction(
         }
         parts.push(trip);
     }
-    let k = matrix.map(|_| Triplets::to_csr_from_parts(parts, n, n));
+    let k = matrix.map(|_| cells::merged_csr(parts, n, n));
     Ok((f, k))
 }
