@@ -33,14 +33,14 @@ use std::time::Instant;
 
 use clap::Parser;
 use mortar::core::mesh::BoundaryFace;
-use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::fem::linalg::SparseSolver;
+use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::petsc::PetscBackend;
-use mortar::physics::LinearSolve;
 use mortar::physics::heat::{
     assemble_heat_load, assemble_heat_stiffness, HeatBody, HeatMaterial, HeatOptions,
 };
 use mortar::physics::tied::{FormulationChoice, Tie, TiedOptions, TiedSystem};
+use mortar::physics::LinearSolve;
 use mortar_scenes::linear_solver::DEFAULT_LINEAR_TOLERANCE;
 use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
 use serde_json::{json, Value};
@@ -330,7 +330,13 @@ fn bodies(scene: &TiedHeatScene) -> Res<(HeatBody, HeatBody)> {
         )
     } else {
         (
-            box_mesh([0.0; 3], [0.5, 1.0, 1.0], [n / 2, n, n], CellShape::Tensor, 1)?,
+            box_mesh(
+                [0.0; 3],
+                [0.5, 1.0, 1.0],
+                [n / 2, n, n],
+                CellShape::Tensor,
+                1,
+            )?,
             box_mesh(
                 [0.5, 0.0, 0.0],
                 [1.0; 3],

@@ -438,7 +438,11 @@ fn hertz_cylinder_on_block_2d_second_order() {
         hertz_2d_criteria(&run, &format!("second order, {name} multipliers"));
         let peak = crate::claims::claim("hertz2d.second_order_peak").bound;
         let half_width = crate::claims::claim("hertz2d.second_order_half_width").bound;
-        assert!(run.peak_error().abs() <= peak, "{name}: {}", run.peak_error());
+        assert!(
+            run.peak_error().abs() <= peak,
+            "{name}: {}",
+            run.peak_error()
+        );
         assert!(
             (run.half_width.estimate - a).abs() <= half_width,
             "{name}: half-width {} against {a}",

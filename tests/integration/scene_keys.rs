@@ -830,7 +830,7 @@ fn tied_heat_rows() -> Vec<Row<Scenes>> {
             // error saying how to get it.
             let auto = f.ok(&[]);
             assert_eq!(auto.text("linear_solver.backend"), "direct");
-            assert!(auto.text("linear_solver.why").contains("below"));
+            assert!(auto.text("linear_solver.why").contains("in 2D"));
             assert_eq!(auto.text("solver.kind"), "sparse direct");
             let direct = f.ok(&[("solve.backend", "\"direct\"")]);
             assert!(direct.text("linear_solver.why").contains("asked for"));

@@ -8,8 +8,8 @@
 //! rigid motions of a displacement field as GAMG's near null space; GMRES with a Schur
 //! fieldsplit for a saddle point), to the relative tolerance `linear_tolerance` (default
 //! [`DEFAULT_LINEAR_TOLERANCE`]), in a build with the `petsc` feature. `"auto"` (the default)
-//! is the direct solve below [`AUTO_PETSC_MIN`] unknowns, PETSc from there on when the build
-//! has it.
+//! is the direct solve below the [`AutoSwitch`] measured for the scene's kind and dimension,
+//! PETSc from there on when the build has it.
 
 use std::sync::Arc;
 
@@ -22,7 +22,7 @@ use serde_json::{json, Value};
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum BackendChoice {
-    /// The direct solve below [`AUTO_PETSC_MIN`] unknowns, PETSc above when built with it.
+    /// The direct solve below the scene's [`AutoSwitch`], PETSc above when built with it.
     #[default]
     Auto,
     /// The sparse direct solve.
@@ -38,11 +38,52 @@ impl BackendChoice {
     }
 }
 
-/// The unknowns from which `backend = "auto"` picks PETSc (when the build has it): on the 3D
-/// contact benchmark (`examples/bench_contact.rs`, docs/performance.md) the direct solve is
-/// the quicker at 9.4e4 unknowns and PETSc's CG with GAMG at 3.0e5 (about half the time,
-/// a third of the memory); the switch lies between.
+/// The unknowns from which `backend = "auto"` picks PETSc for a 3D contact scene (when the
+/// build has it): on the 3D contact benchmark (`examples/bench_contact.rs`,
+/// docs/performance.md) the direct solve is the quicker at 9.4e4 unknowns and PETSc's CG with
+/// GAMG at 3.0e5 (about half the time, a third of the memory); the switch lies between.
 pub const AUTO_PETSC_MIN: usize = 200_000;
+
+/// The unknowns from which `backend = "auto"` picks PETSc for a 3D tied heat scene: on the 3D
+/// tied heat benchmark (`examples/bench_tied_heat.rs --dim 3`) the direct solve is the quicker
+/// at 1.1e4 unknowns (0.09 s against 0.41 s) and PETSc's CG with GAMG at 3.4e4 (0.69 s against
+/// 0.80 s), 0.28 of the time at 2.6e5; the switch lies between.
+pub const AUTO_PETSC_MIN_TIED_HEAT_3D: usize = 25_000;
+
+/// Where `backend = "auto"` switches from the direct solve to PETSc for a kind of system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct AutoSwitch {
+    /// The unknowns from which PETSc is picked; `None`: the direct solve at every size.
+    pub min_unknowns: Option<usize>,
+    /// What the switch rests on, for the report.
+    pub measured: &'static str,
+}
+
+impl AutoSwitch {
+    /// The switch of a scene of `kind` (`"contact"`, `"tied_heat"`) in dimension `dim`: in 3D
+    /// from [`AUTO_PETSC_MIN`] (contact) or [`AUTO_PETSC_MIN_TIED_HEAT_3D`] (tied heat)
+    /// unknowns; in 2D never, the direct solve's fill growing only as `n log n` (tied heat
+    /// at 1.0e6 unknowns: 2.7 s direct against 5.6 s through PETSc, `bench_tied_heat`; 2D
+    /// contact through PETSc is not measured).
+    pub fn of(kind: &str, dim: usize) -> Self {
+        match (kind, dim) {
+            ("tied_heat", 3) => Self {
+                min_unknowns: Some(AUTO_PETSC_MIN_TIED_HEAT_3D),
+                measured: "3D tied heat, where PETSc's multigrid is the quicker from about 3e4",
+            },
+            (_, 3) => Self {
+                min_unknowns: Some(AUTO_PETSC_MIN),
+                measured: "3D contact, where PETSc's multigrid is the quicker and the leaner \
+                           from about 2e5",
+            },
+            _ => Self {
+                min_unknowns: None,
+                measured: "2D, the quicker at every size measured (tied heat at 1e6 unknowns: \
+                           2.7 s against PETSc's 5.6 s)",
+            },
+        }
+    }
+}
 
 /// The Krylov solves' relative tolerance unless `[solve] linear_tolerance` says otherwise:
 /// well below the Newton tolerance of the contact scenes (1e-10 of the residual), so that
@@ -70,7 +111,7 @@ impl PickedSolver {
     }
 
     /// Picks the backend for `unknowns` unknowns: `choice` with the tolerance and options of
-    /// the scene (`None`: the defaults).
+    /// the scene (`None`: the defaults), `"auto"` by `switch`.
     ///
     /// # Errors
     /// A message (for the key `solve.backend`) if PETSc is asked for in a build without it,
@@ -80,6 +121,7 @@ impl PickedSolver {
         linear_tolerance: Option<f64>,
         petsc_options: &str,
         unknowns: usize,
+        switch: AutoSwitch,
     ) -> Result<Self, (&'static str, String)> {
         let rtol = linear_tolerance.unwrap_or(DEFAULT_LINEAR_TOLERANCE);
         if !(rtol > 0.0 && rtol < 1.0) {
@@ -102,18 +144,25 @@ impl PickedSolver {
             BackendChoice::Petsc => Ok(petsc(format!(
                 "asked for (backend = \"petsc\"), relative tolerance {rtol:e}"
             ))),
-            BackendChoice::Auto if unknowns < AUTO_PETSC_MIN => Ok(Self::direct(format!(
-                "auto: {unknowns} unknowns, below {AUTO_PETSC_MIN}, where the direct solve is \
-                 the quicker"
-            ))),
-            BackendChoice::Auto if !mortar::petsc::is_built() => Ok(Self::direct(format!(
-                "auto: {unknowns} unknowns, PETSc's size, but this build has no PETSc \
-                 (`--features petsc`)"
-            ))),
-            BackendChoice::Auto => Ok(petsc(format!(
-                "auto: {unknowns} unknowns, at least {AUTO_PETSC_MIN}, where PETSc's multigrid \
-                 is the quicker and the leaner; relative tolerance {rtol:e}"
-            ))),
+            BackendChoice::Auto => match switch.min_unknowns {
+                None => Ok(Self::direct(format!(
+                    "auto: the direct solve in {}",
+                    switch.measured
+                ))),
+                Some(min) if unknowns < min => Ok(Self::direct(format!(
+                    "auto: {unknowns} unknowns, below {min}, where the direct solve is the \
+                     quicker ({})",
+                    switch.measured
+                ))),
+                Some(_) if !mortar::petsc::is_built() => Ok(Self::direct(format!(
+                    "auto: {unknowns} unknowns, PETSc's size, but this build has no PETSc \
+                     (`--features petsc`)"
+                ))),
+                Some(min) => Ok(petsc(format!(
+                    "auto: {unknowns} unknowns, at least {min} ({}); relative tolerance {rtol:e}",
+                    switch.measured
+                ))),
+            },
         }
     }
 
@@ -185,15 +234,26 @@ mod tests {
 
     #[test]
     fn the_pick_follows_the_choice_the_size_and_the_build() {
-        let direct = PickedSolver::pick(BackendChoice::Direct, None, "", 10_000_000).unwrap();
+        let contact = AutoSwitch::of("contact", 3);
+        let direct =
+            PickedSolver::pick(BackendChoice::Direct, None, "", 10_000_000, contact).unwrap();
         assert_eq!(direct.name, "direct");
         assert!(direct.solver().is_none());
-        let small = PickedSolver::pick(BackendChoice::Auto, None, "", 1_000).unwrap();
+        let small = PickedSolver::pick(BackendChoice::Auto, None, "", 1_000, contact).unwrap();
         assert_eq!(small.name, "direct");
         assert!(small.why.contains("below"), "{}", small.why);
-        let large = PickedSolver::pick(BackendChoice::Auto, None, "", AUTO_PETSC_MIN).unwrap();
-        let asked = PickedSolver::pick(BackendChoice::Petsc, Some(1e-9), "", 10);
+        let large =
+            PickedSolver::pick(BackendChoice::Auto, None, "", AUTO_PETSC_MIN, contact).unwrap();
+        let asked = PickedSolver::pick(BackendChoice::Petsc, Some(1e-9), "", 10, contact);
+        // In 2D the direct solve at any size; in 3D tied heat from its own switch.
+        let flat = AutoSwitch::of("tied_heat", 2);
+        let flat = PickedSolver::pick(BackendChoice::Auto, None, "", usize::MAX, flat).unwrap();
+        assert_eq!(flat.name, "direct");
+        assert!(flat.why.contains("2D"), "{}", flat.why);
+        let heat = AutoSwitch::of("tied_heat", 3);
+        let heat = PickedSolver::pick(BackendChoice::Auto, None, "", 30_000, heat).unwrap();
         if mortar::petsc::is_built() {
+            assert_eq!(heat.name, "petsc");
             assert_eq!(large.name, "petsc");
             let asked = asked.unwrap();
             assert_eq!(asked.name, "petsc");
@@ -205,7 +265,8 @@ mod tests {
             assert_eq!(key, "solve.backend");
             assert!(what.contains("--features petsc"), "{what}");
         }
-        let (key, _) = PickedSolver::pick(BackendChoice::Petsc, Some(0.0), "", 10).unwrap_err();
+        let (key, _) =
+            PickedSolver::pick(BackendChoice::Petsc, Some(0.0), "", 10, contact).unwrap_err();
         assert_eq!(key, "solve.linear_tolerance");
     }
 }

@@ -81,7 +81,7 @@ impl FileScene for ContactSpec {
         let held = held_motions(&errors, &bodies, &dirichlet, &gap)?;
         let linear_solver = self
             .solve
-            .linear_solver(stiffness[0].rows() + stiffness[1].rows())
+            .linear_solver(stiffness[0].rows() + stiffness[1].rows(), dim)
             .map_err(|(key, what)| errors.invalid(key.into(), what))?;
 
         let t = Instant::now();

@@ -4,7 +4,7 @@
 use mortar_physics::contact::ContactOptions;
 use serde::{Deserialize, Serialize};
 
-use crate::linear_solver::{BackendChoice, PickedSolver};
+use crate::linear_solver::{AutoSwitch, BackendChoice, PickedSolver};
 
 use crate::file::error::Errors;
 use crate::file::SceneError;
@@ -75,24 +75,27 @@ impl ContactSolveSpec {
         }
         // The backend as it would be picked for a system of PETSc's size: PETSc asked for in
         // a build without it, or a tolerance out of range, fails before the meshes are read.
-        self.linear_solver(usize::MAX)
+        self.linear_solver(usize::MAX, 3)
             .map(|_| ())
             .map_err(|(key, what)| errors.invalid(key.into(), what))
     }
 
-    /// The linear solver of these keys for a system of `unknowns` unknowns.
+    /// The linear solver of these keys for a system of `unknowns` unknowns in dimension `dim`
+    /// (`"auto"` by [`AutoSwitch::of`]).
     ///
     /// # Errors
     /// The key and what is wrong (see [`PickedSolver::pick`]).
     pub(super) fn linear_solver(
         &self,
         unknowns: usize,
+        dim: usize,
     ) -> Result<PickedSolver, (&'static str, String)> {
         PickedSolver::pick(
             self.backend,
             self.linear_tolerance,
             &self.petsc_options,
             unknowns,
+            AutoSwitch::of("contact", dim),
         )
     }
 

@@ -80,7 +80,7 @@ impl FileScene for TiedHeatSpec {
         let unknowns = problem.bodies().iter().map(|b| b.mesh.node_count()).sum();
         let linear_solver = self
             .solve
-            .linear_solver(unknowns)
+            .linear_solver(unknowns, usize::from(dimension))
             .map_err(|(key, what)| errors.invalid(key.into(), what))?;
         let linear = LinearSolve {
             backend: linear_solver.solver(),
