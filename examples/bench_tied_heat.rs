@@ -34,7 +34,6 @@ use std::time::Instant;
 use clap::Parser;
 use mortar::core::mesh::BoundaryFace;
 use mortar::fem::linalg::SparseSolver;
-use mortar::generate::{box_mesh, rectangle_mesh, CellShape};
 use mortar::petsc::PetscBackend;
 use mortar::physics::heat::{
     assemble_heat_load, assemble_heat_stiffness, HeatBody, HeatMaterial, HeatOptions,
@@ -42,7 +41,7 @@ use mortar::physics::heat::{
 use mortar::physics::tied::{FormulationChoice, Tie, TiedOptions, TiedSystem};
 use mortar::physics::LinearSolve;
 use mortar_scenes::linear_solver::DEFAULT_LINEAR_TOLERANCE;
-use mortar_scenes::tied_heat::{Exact, Geometry, TiedHeatScene};
+use mortar_scenes::tied_heat::{straight_blocks, Exact, Geometry, TiedHeatScene};
 use serde_json::{json, Value};
 
 type Res<T> = Result<T, Box<dyn std::error::Error>>;
@@ -316,36 +315,8 @@ fn on_interface(f: &BoundaryFace) -> bool {
 /// The two bodies of the straight scene (as `TiedHeatScene::build` makes them), with the
 /// source and the Dirichlet data of the exact solution; slave first.
 fn bodies(scene: &TiedHeatScene) -> Res<(HeatBody, HeatBody)> {
-    let (n, m, dim) = (scene.n, 3 * scene.n / 2, scene.dim);
-    let (master, slave) = if dim == 2 {
-        (
-            rectangle_mesh([0.0, 0.0], [0.5, 1.0], [n / 2, n], CellShape::Tensor, 1)?,
-            rectangle_mesh(
-                [0.5, 0.0],
-                [1.0, 1.0],
-                [m / 2, m],
-                CellShape::Simplex,
-                1_000_001,
-            )?,
-        )
-    } else {
-        (
-            box_mesh(
-                [0.0; 3],
-                [0.5, 1.0, 1.0],
-                [n / 2, n, n],
-                CellShape::Tensor,
-                1,
-            )?,
-            box_mesh(
-                [0.5, 0.0, 0.0],
-                [1.0; 3],
-                [m / 2, m, m],
-                CellShape::Simplex,
-                1_000_001,
-            )?,
-        )
-    };
+    let dim = scene.dim;
+    let (master, slave) = straight_blocks(dim, scene.n, 1_000_001)?;
     let (k, exact) = (scene.conductivity, scene.exact);
     let body = |name: &str, mesh| -> Res<HeatBody> {
         let b = HeatBody::new(name, mesh, HeatMaterial::new(k, 1.0))

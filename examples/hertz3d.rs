@@ -88,6 +88,14 @@ pub struct Args {
     /// Add each level's nodal pressures and the closed form's to the report.
     #[arg(long)]
     profile: bool,
+    /// Where the Newton systems go: `direct` (the sparse direct solves) or `petsc` (CG with
+    /// GAMG told the bodies' rigid motions, relative tolerance 1e-12; a build with
+    /// `--features mortar-petsc/petsc`).
+    #[arg(long, default_value = "direct")]
+    backend: String,
+    /// Further PETSc options with `--backend petsc` (`-pc_gamg_threshold 0.02`).
+    #[arg(long, default_value = "")]
+    petsc_options: String,
 }
 
 fn main() -> Res<()> {
@@ -121,13 +129,19 @@ pub fn run(args: Args) -> Res<()> {
         base.contact.load_steps = v.max(1);
     }
 
+    let petsc = mortar::petsc::PetscBackend::automatic(1e-12, args.petsc_options.clone());
+    let backend: Option<&dyn mortar::fem::linalg::SparseSolver> = match args.backend.as_str() {
+        "direct" => None,
+        "petsc" => Some(&petsc),
+        other => return Err(format!("--backend {other:?}: direct or petsc").into()),
+    };
     let mut runs: Vec<HertzSphereRun> = Vec::new();
     for level in 0..args.levels.max(1) {
         let mut scene = base.clone();
         scene.cells = n0 << level;
         // The block's cells double too (nested meshes).
         scene.block_cells = Some(base.block_cell_count() << level);
-        let run = scene.run()?;
+        let run = scene.run_on(backend)?;
         eprintln!(
             "n = {:3}: {:7} unknowns, {:3} of {:3} slave nodes in contact, h = {:.2e} R; \
              at d: a_h/a = {:.4}, p0_h/p0 = {:.4}, P_h/P = {:.4}; at P: a_h/a = {:.4}, \
@@ -186,6 +200,9 @@ pub fn run(args: Args) -> Res<()> {
         "load_steps": base.contact.load_steps,
         "levels": runs.iter().map(|r| level_json(r, args.profile)).collect::<Vec<Value>>(),
         "targets": targets,
+        "backend": args.backend,
+        "krylov_iterations": petsc.reports().iter().map(|r| r.iterations).collect::<Vec<_>>(),
+        "peak_memory_bytes": peak_memory(),
     });
     let text = serde_json::to_string_pretty(&report)?;
     match &args.json {
@@ -225,6 +242,13 @@ pub fn run(args: Args) -> Res<()> {
 
 fn closed_json(c: &mortar_scenes::hertz::HertzContact) -> Value {
     json!({ "a": c.radius, "p0": c.peak, "P": c.load, "d": c.approach })
+}
+
+/// The process's resident high-water mark (bytes), from /proc/self/status (Linux).
+fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    Some(line.split_whitespace().nth(1)?.parse::<u64>().ok()? * 1024)
 }
 
 fn level_json(r: &HertzSphereRun, profile: bool) -> Value {

@@ -18,6 +18,9 @@ use mortar_fem::linalg::{FaerSolver, SparseSolver};
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
 
+use crate::file::error::Errors;
+use crate::file::SceneError;
+
 /// `[solve] backend`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -216,6 +219,42 @@ impl PickedSolver {
             ));
         }
         line
+    }
+}
+
+/// A scene's `[solve]` with the keys `backend`, `linear_tolerance` and `petsc_options`: their
+/// pick and their check, written once for every scene kind that has them.
+pub(crate) trait LinearSolverKeys {
+    /// The scene kind, for its [`AutoSwitch`].
+    const KIND: &'static str;
+
+    /// `backend`, `linear_tolerance` and `petsc_options`.
+    fn linear_keys(&self) -> (BackendChoice, Option<f64>, &str);
+
+    /// The linear solver of these keys for a system of `unknowns` unknowns in dimension `dim`
+    /// (`"auto"` by [`AutoSwitch::of`]).
+    ///
+    /// # Errors
+    /// The key and what is wrong (see [`PickedSolver::pick`]).
+    fn linear_solver(
+        &self,
+        unknowns: usize,
+        dim: usize,
+    ) -> Result<PickedSolver, (&'static str, String)> {
+        let (backend, tolerance, options) = self.linear_keys();
+        let switch = AutoSwitch::of(Self::KIND, dim);
+        PickedSolver::pick(backend, tolerance, options, unknowns, switch)
+    }
+
+    /// The keys as they would be picked for a system of PETSc's size: PETSc asked for in a
+    /// build without it, or a tolerance out of range, fails before the meshes are read.
+    ///
+    /// # Errors
+    /// [`SceneError::Invalid`] naming the key.
+    fn check_linear_keys(&self, errors: &Errors) -> Result<(), SceneError> {
+        self.linear_solver(usize::MAX, 3)
+            .map(|_| ())
+            .map_err(|(key, what)| errors.invalid(key.into(), what))
     }
 }
 

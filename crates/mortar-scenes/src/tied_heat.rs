@@ -42,7 +42,7 @@ use mortar::generate::{
 ///
 /// # Errors
 /// The generators' error for a cell count of zero.
-pub(crate) fn straight_blocks(
+pub fn straight_blocks(
     dim: usize,
     n: usize,
     right_tag: u64,

@@ -6,7 +6,7 @@
 //! Both scenes are symmetric parts (the half of a 2D section, the quarter of a 3D body, with
 //! the body cut at its mid-plane) of two bodies refined towards the point of first contact,
 //! frictionless mortar contact with dual multipliers, segment-based integration and the exact
-//! complementarity law (semi-smooth Newton, [`solve_contact`]) with automatic `c`. What they
+//! complementarity law (semi-smooth Newton, [`solve_contact`](mortar_physics::contact::solve_contact)) with automatic `c`. What they
 //! share lives here: the contact modulus, the assembled problem ([`HertzProblem`], built from
 //! the two bodies and their surfaces by one function), the solve and its reactions, and the
 //! extent of the computed contact zone ([`HalfWidth`]), bracketed by the slave nodes.
@@ -15,15 +15,16 @@ use mortar_core::interface::Interface;
 use mortar_core::linalg::SparseMatrix;
 use mortar_core::mesh::SurfaceMesh;
 use mortar_core::{assemble_coupling, CouplingOptions, SearchRadius, Tolerances};
+use mortar_fem::linalg::SparseSolver;
 use mortar_physics::contact::{
-    automatic_complementarity, solve_contact, ContactOptions, ContactSolution, NormalGap,
+    automatic_complementarity, solve_contact_on, ContactOptions, ContactSolution, NormalGap,
 };
 use mortar_physics::elastic::{
     assemble_elastic_load, assemble_elastic_stiffness, ElasticBody, ElasticMaterial, ElasticOptions,
 };
 use mortar_physics::laws::ContactComplementarity;
 use mortar_physics::tied::Tie;
-use mortar_physics::PhysicsError;
+use mortar_physics::{LinearSolve, PhysicsError};
 use nalgebra::Vector3;
 
 use crate::file::contact::SolvedContact;
@@ -102,7 +103,7 @@ pub(crate) fn first_cell(length: f64, cells: f64, grading: f64) -> f64 {
 }
 
 /// The assembled scene (see [`HertzScene::build`] and [`HertzSphereScene::build`]): what
-/// [`solve_contact`] takes.
+/// [`solve_contact`](mortar_physics::contact::solve_contact) takes.
 #[derive(Debug, Clone)]
 pub struct HertzProblem {
     /// The cylinder or sphere (slave) and the block (master).
@@ -258,16 +259,36 @@ impl HertzProblem {
     /// Solves the contact problem.
     ///
     /// # Errors
-    /// The errors of [`solve_contact`].
+    /// The errors of [`solve_contact`](mortar_physics::contact::solve_contact).
     pub fn solve(&self, options: &ContactOptions) -> Result<ContactSolution, PhysicsError> {
+        self.solve_on(options, None)
+    }
+
+    /// [`solve`](Self::solve) with the Newton systems solved by `backend` when given (PETSc's
+    /// Krylov methods, say), told the bodies' node coordinates ([`solve_contact_on`]).
+    ///
+    /// # Errors
+    /// The errors of [`solve_contact_on`].
+    pub fn solve_on(
+        &self,
+        options: &ContactOptions,
+        backend: Option<&dyn SparseSolver>,
+    ) -> Result<ContactSolution, PhysicsError> {
         let (k, f, dir) = (&self.stiffness, &self.load, &self.dirichlet);
-        solve_contact(
+        let linear = backend.map_or_else(LinearSolve::default, |b| {
+            LinearSolve::on(
+                b,
+                [self.bodies[0].mesh.coords(), self.bodies[1].mesh.coords()],
+            )
+        });
+        solve_contact_on(
             [&k[0], &k[1]],
             [&f[0], &f[1]],
             [(&dir[0].0, &dir[0].1), (&dir[1].0, &dir[1].1)],
             &self.gap,
             &self.law,
             options,
+            linear,
         )
     }
 

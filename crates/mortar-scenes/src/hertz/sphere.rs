@@ -335,10 +335,22 @@ impl HertzSphereScene {
     /// # Errors
     /// The errors of [`build`](Self::build) and of [`solve_contact`].
     pub fn run(&self) -> Result<HertzSphereRun, PhysicsError> {
+        self.run_on(None)
+    }
+
+    /// [`run`](Self::run) with the Newton systems solved by `backend` when given (see
+    /// [`HertzProblem::solve_on`]).
+    ///
+    /// # Errors
+    /// As [`run`](Self::run).
+    pub fn run_on(
+        &self,
+        backend: Option<&dyn mortar_fem::linalg::SparseSolver>,
+    ) -> Result<HertzSphereRun, PhysicsError> {
         let t0 = Instant::now();
         let problem = self.build()?;
         let seconds_build = t0.elapsed().as_secs_f64();
-        let sol = problem.solve(&self.contact)?;
+        let sol = problem.solve_on(&self.contact, backend)?;
         Ok(self.evaluate(&problem, &sol, [seconds_build, t0.elapsed().as_secs_f64()]))
     }
 

@@ -29,6 +29,7 @@ use super::{Component, ComponentValue, ContactSpec, DisplacementSpec, LawSpec, S
 use crate::file::error::Errors;
 use crate::file::two_bodies::{interface_of, MeshSource};
 use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
+use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for ContactSpec {
     const KIND: &'static str = "contact";

@@ -4,7 +4,7 @@
 use mortar_physics::contact::ContactOptions;
 use serde::{Deserialize, Serialize};
 
-use crate::linear_solver::{AutoSwitch, BackendChoice, PickedSolver};
+use crate::linear_solver::{BackendChoice, LinearSolverKeys};
 
 use crate::file::error::Errors;
 use crate::file::SceneError;
@@ -73,30 +73,7 @@ impl ContactSolveSpec {
                 format!("{} is not positive and finite", self.tolerance),
             ));
         }
-        // The backend as it would be picked for a system of PETSc's size: PETSc asked for in
-        // a build without it, or a tolerance out of range, fails before the meshes are read.
-        self.linear_solver(usize::MAX, 3)
-            .map(|_| ())
-            .map_err(|(key, what)| errors.invalid(key.into(), what))
-    }
-
-    /// The linear solver of these keys for a system of `unknowns` unknowns in dimension `dim`
-    /// (`"auto"` by [`AutoSwitch::of`]).
-    ///
-    /// # Errors
-    /// The key and what is wrong (see [`PickedSolver::pick`]).
-    pub(super) fn linear_solver(
-        &self,
-        unknowns: usize,
-        dim: usize,
-    ) -> Result<PickedSolver, (&'static str, String)> {
-        PickedSolver::pick(
-            self.backend,
-            self.linear_tolerance,
-            &self.petsc_options,
-            unknowns,
-            AutoSwitch::of("contact", dim),
-        )
+        self.check_linear_keys(errors)
     }
 
     /// The contact solver's options of these keys.
@@ -106,5 +83,13 @@ impl ContactSolveSpec {
             max_newton_steps: self.max_newton_steps,
             tolerance: self.tolerance,
         }
+    }
+}
+
+impl LinearSolverKeys for ContactSolveSpec {
+    const KIND: &'static str = "contact";
+
+    fn linear_keys(&self) -> (BackendChoice, Option<f64>, &str) {
+        (self.backend, self.linear_tolerance, &self.petsc_options)
     }
 }

@@ -19,6 +19,7 @@ use super::{Mode, SolvedTiedHeat, TiedHeatSpec};
 use crate::file::error::Errors;
 use crate::file::two_bodies::{interface_of, MeshSource};
 use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
+use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for TiedHeatSpec {
     const KIND: &'static str = "tied_heat";

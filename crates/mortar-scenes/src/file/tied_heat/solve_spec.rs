@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::MAX_STEPS;
 use crate::file::error::Errors;
 use crate::file::SceneError;
-use crate::linear_solver::{AutoSwitch, BackendChoice, PickedSolver};
+use crate::linear_solver::{BackendChoice, LinearSolverKeys};
 
 /// Steady or transient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -110,24 +110,7 @@ impl SolveSpec {
                 }
             }
         }
-        self.linear_solver(usize::MAX, 3)
-            .map(|_| ())
-            .map_err(|(key, what)| errors.invalid(key.into(), what))
-    }
-
-    /// The linear solver of these keys for a system of `unknowns` unknowns in dimension `dim`
-    /// (`"auto"` by [`AutoSwitch::of`]).
-    ///
-    /// # Errors
-    /// The key and what is wrong (see [`PickedSolver::pick`]).
-    pub(super) fn linear_solver(
-        &self,
-        unknowns: usize,
-        dim: usize,
-    ) -> Result<PickedSolver, (&'static str, String)> {
-        let (tolerance, options) = (self.linear_tolerance, &self.petsc_options);
-        let switch = AutoSwitch::of("tied_heat", dim);
-        PickedSolver::pick(self.backend, tolerance, options, unknowns, switch)
+        self.check_linear_keys(errors)
     }
 
     /// The tied system's options of these keys: the formulation.
@@ -143,5 +126,13 @@ impl SolveSpec {
     /// otherwise).
     pub(super) fn time_steps(&self) -> (f64, usize) {
         (self.dt.unwrap_or(1.0), self.steps.unwrap_or(1))
+    }
+}
+
+impl LinearSolverKeys for SolveSpec {
+    const KIND: &'static str = "tied_heat";
+
+    fn linear_keys(&self) -> (BackendChoice, Option<f64>, &str) {
+        (self.backend, self.linear_tolerance, &self.petsc_options)
     }
 }
