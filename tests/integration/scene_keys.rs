@@ -864,38 +864,12 @@ fn tied_heat_rows() -> Vec<Row<Scenes>> {
             }
         }),
         ("solve.linear_tolerance", |f| {
-            let e = f.err(&[("solve.linear_tolerance", "1.5")]);
-            assert!(
-                e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"),
-                "{e}"
-            );
-            if mortar::petsc::is_built() {
-                let its = |tol: &str| {
-                    f.ok(&[
-                        ("solve.backend", "\"petsc\""),
-                        ("solve.linear_tolerance", tol),
-                    ])
-                    .num("linear_solver.iterations.0")
-                };
-                let (tight, loose) = (its("1e-12"), its("1e-3"));
-                assert!(loose < tight, "{loose} {tight}");
-            }
+            linear_tolerance_row(f, "1.5", "1e-3")
         }),
         ("solve.petsc_options", |f| {
-            if mortar::petsc::is_built() {
-                let o = f.ok(&[
-                    ("solve.backend", "\"petsc\""),
-                    ("solve.petsc_options", "\"-ksp_type minres\""),
-                ]);
-                assert_eq!(o.text("linear_solver.methods.0"), "minres+gamg");
-                assert!(rel_diff(&right_t(&o), &right_t(&f.ok(&[]))) < 1e-9);
-            } else {
-                let e = f.err(&[
-                    ("solve.backend", "\"petsc\""),
-                    ("solve.petsc_options", "\"-ksp_type minres\""),
-                ]);
-                assert!(e.contains("--features petsc"), "{e}");
-            }
+            petsc_options_row(f, |f, o| {
+                assert!(rel_diff(&right_t(o), &right_t(&f.ok(&[]))) < 1e-9);
+            })
         }),
         ("bodies.*.mesh", |f| {
             let (a, b) = (
@@ -1074,6 +1048,46 @@ fn tied_heat_rows() -> Vec<Row<Scenes>> {
             );
         }),
     ]
+}
+
+/// The row of `solve.linear_tolerance`, either scene kind: a tolerance `bad`, outside
+/// (0, 1), is refused naming the key; through PETSc the tolerance `loose` takes fewer
+/// iterations than 1e-12.
+fn linear_tolerance_row(f: &Scenes, bad: &str, loose: &str) {
+    let e = f.err(&[("solve.linear_tolerance", bad)]);
+    assert!(
+        e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"),
+        "{e}"
+    );
+    if mortar::petsc::is_built() {
+        let its = |tol: &str| {
+            f.ok(&[
+                ("solve.backend", "\"petsc\""),
+                ("solve.linear_tolerance", tol),
+            ])
+            .num("linear_solver.iterations.0")
+        };
+        let (tight, loose) = (its("1e-12"), its(loose));
+        assert!(loose < tight, "{loose} {tight}");
+    }
+}
+
+/// The row of `solve.petsc_options`, either scene kind: read after the picked method's
+/// options, they override it (`-ksp_type minres` runs MINRES), and `check` finds the solution
+/// the direct one's; in a build without PETSc, an error saying how to get it.
+fn petsc_options_row(f: &Scenes, check: fn(&Scenes, &Out)) {
+    let changes = [
+        ("solve.backend", "\"petsc\""),
+        ("solve.petsc_options", "\"-ksp_type minres\""),
+    ];
+    if mortar::petsc::is_built() {
+        let o = f.ok(&changes);
+        assert_eq!(o.text("linear_solver.methods.0"), "minres+gamg");
+        check(f, &o);
+    } else {
+        let e = f.err(&changes);
+        assert!(e.contains("--features petsc"), "{e}");
+    }
 }
 
 /// The rows of `interface.slave.body` and `interface.master.body`: the sides swap (both keys
@@ -1372,39 +1386,10 @@ fn contact_rows() -> Vec<Row<Scenes>> {
             }
         }),
         ("solve.linear_tolerance", |f| {
-            let e = f.err(&[("solve.linear_tolerance", "0.0")]);
-            assert!(
-                e.contains("solve.linear_tolerance") && e.contains("not in (0, 1)"),
-                "{e}"
-            );
-            if mortar::petsc::is_built() {
-                let its = |tol: &str| {
-                    f.ok(&[
-                        ("solve.backend", "\"petsc\""),
-                        ("solve.linear_tolerance", tol),
-                    ])
-                    .num("linear_solver.iterations.0")
-                };
-                let (tight, loose) = (its("1e-12"), its("1e-4"));
-                assert!(loose < tight, "{loose} {tight}");
-            }
+            linear_tolerance_row(f, "0.0", "1e-4")
         }),
         ("solve.petsc_options", |f| {
-            // Read after the picked method's options: they override it.
-            if mortar::petsc::is_built() {
-                let o = f.ok(&[
-                    ("solve.backend", "\"petsc\""),
-                    ("solve.petsc_options", "\"-ksp_type minres\""),
-                ]);
-                assert_eq!(o.text("linear_solver.methods.0"), "minres+gamg");
-                assert!(off(&pressures(&o), SIGMA) < 1e-8);
-            } else {
-                let e = f.err(&[
-                    ("solve.backend", "\"petsc\""),
-                    ("solve.petsc_options", "\"-ksp_type minres\""),
-                ]);
-                assert!(e.contains("--features petsc"), "{e}");
-            }
+            petsc_options_row(f, |_, o| assert!(off(&pressures(o), SIGMA) < 1e-8))
         }),
         ("bodies.*.mesh", |f| {
             let o = f.ok(&[("bodies.lower.mesh", "\"lower_fine.msh\"")]);
