@@ -134,8 +134,10 @@ impl Factor {
 #[derive(Debug)]
 pub struct TiedSystem {
     layout: Layout,
-    /// The global block-diagonal matrix.
-    a: SparseMatrix,
+    /// Row `j`: the row of the block-diagonal matrix at constraint row `j`'s own slave
+    /// unknown (`row_own[j]`), what the condensed solve's multipliers need of it (the whole
+    /// matrix is not kept: a copy of the bodies' matrices beside the system's).
+    own_rows: SparseMatrix,
     /// The system's coupling to the Dirichlet values (system rows x Dirichlet unknowns).
     a_fd: SparseMatrix,
     /// The symmetric scaling `S` of the factorised matrix (`S K S`), by system unknown: powers
@@ -250,6 +252,8 @@ impl TiedSystem {
             exp_w,
         };
         let (mut matrix, a_fd) = layout.system_matrix(&a);
+        let own_rows = rows_of(&a, &layout.row_own);
+        drop(a);
         let scale = layout.scaling(&matrix);
         scale_symmetric(&mut matrix, &scale);
         let t1 = Instant::now();
@@ -263,7 +267,7 @@ impl TiedSystem {
         let factorisation = factor.name();
         Ok(Self {
             layout,
-            a,
+            own_rows,
             a_fd,
             scale,
             factor,
@@ -292,8 +296,8 @@ impl TiedSystem {
     /// factors are then kept).
     pub fn refactor(&mut self, matrices: [&SparseMatrix; 2]) -> Result<(), PhysicsError> {
         let t0 = Instant::now();
-        let a = block_diagonal(matrices[0], matrices[1]);
-        if a.shape() != self.a.shape() {
+        let n = self.layout.n;
+        if (0..2).any(|b| matrices[b].shape() != (n[b], n[b])) {
             return Err(SolverError::PatternMismatch(format!(
                 "body matrices of {}x{} and {}x{} for a tied system of {} and {} nodes",
                 matrices[0].rows(),
@@ -305,8 +309,10 @@ impl TiedSystem {
             ))
             .into());
         }
-        let old = std::mem::replace(&mut self.a, a);
-        let (mut matrix, a_fd) = self.layout.system_matrix(&self.a);
+        let a = block_diagonal(matrices[0], matrices[1]);
+        let (mut matrix, a_fd) = self.layout.system_matrix(&a);
+        let own_rows = rows_of(&a, &self.layout.row_own);
+        drop(a);
         let scale = self.layout.scaling(&matrix);
         scale_symmetric(&mut matrix, &scale);
         let t1 = Instant::now();
@@ -324,10 +330,8 @@ impl TiedSystem {
             Factor::Backend(f) => f.refactor(&matrix),
         };
         self.report.factorisation = self.factor.name();
-        if let Err(e) = done {
-            self.a = old;
-            return Err(e.into());
-        }
+        done?;
+        self.own_rows = own_rows;
         self.a_fd = a_fd;
         self.scale = scale;
         self.seconds = SystemSeconds {
@@ -434,7 +438,7 @@ impl TiedSystem {
                 x[l.nfree + j]
             } else {
                 let s = l.row_own[j] as usize;
-                let row = self.a.outer_view(s).expect("row in range");
+                let row = self.own_rows.outer_view(j).expect("row in range");
                 let r = b[s] - row.iter().map(|(k, v)| v * t[k]).sum::<f64>();
                 let d = l
                     .rows
@@ -1180,6 +1184,24 @@ fn row_major(m: &SparseMatrix) -> std::borrow::Cow<'_, SparseMatrix> {
     } else {
         std::borrow::Cow::Owned(m.to_csr())
     }
+}
+
+/// The rows `rows` of `a`, in that order, as a matrix of `rows.len()` rows (each row's
+/// entries in `a`'s order).
+fn rows_of(a: &SparseMatrix, rows: &[u32]) -> SparseMatrix {
+    let mut indptr = Vec::with_capacity(rows.len() + 1);
+    indptr.push(0);
+    let (mut indices, mut data) = (Vec::new(), Vec::new());
+    for &r in rows {
+        if let Some(row) = a.outer_view(r as usize) {
+            for (k, v) in row.iter() {
+                indices.push(k);
+                data.push(*v);
+            }
+        }
+        indptr.push(indices.len());
+    }
+    SparseMatrix::new((rows.len(), a.cols()), indptr, indices, data)
 }
 
 fn block_diagonal(a: &SparseMatrix, b: &SparseMatrix) -> SparseMatrix {
