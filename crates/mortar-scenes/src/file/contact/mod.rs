@@ -35,7 +35,6 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar_core::linalg::SparseMatrix;
 use mortar_fem::mesh::BoundaryFace;
 use mortar_physics::contact::{ContactSolution, NormalGap};
@@ -44,6 +43,7 @@ use mortar_physics::tied::Tie;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
+use crate::file::interface_table::interface_table;
 use crate::NamedLaw;
 
 pub(super) use output::steps_json;
@@ -144,77 +144,31 @@ pub enum LawSpec {
     Exponential,
 }
 
-/// The contact interface.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactInterfaceSpec {
-    /// The slave side.
-    pub slave: SideSpec,
-    /// The master side.
-    pub master: SideSpec,
-    /// The law.
-    #[serde(default)]
-    pub law: LawSpec,
-    /// A law by name from the shipped [`LawRegistry`](mortar_physics::laws::LawRegistry) (or a
-    /// program's own, through [`ContactSpec::solve_with`](crate::file::FileScene::solve_with)),
-    /// with its parameters, in place of `law`: `named_law = { name = "exponential_pressure",
-    /// base_pressure = 1e5, stiffness = 1e12, onset = 1e-6 }`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub named_law: Option<NamedLaw>,
-    /// `P_o` of the exponential law.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub base_pressure: Option<f64>,
-    /// `S` of the exponential law.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stiffness: Option<f64>,
-    /// `xi` of the exponential law.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub onset: Option<f64>,
-    /// The multiplier space (default dual, the vocabulary's: [`Multipliers::default`]).
-    #[serde(default)]
-    pub multipliers: Multipliers,
-    /// The integration strategy.
-    #[serde(default)]
-    pub integration: Integration,
-    /// The quadrature degree (default automatic).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub degree: Option<u32>,
-    /// Segment-based: the curved-face subdivision tolerance (see
-    /// [`CouplingSettings::curved_tolerance`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub curved_tolerance: Option<f64>,
-    /// Segment-based: a fixed curved-face subdivision level.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub subdivision: Option<u32>,
-    /// Segment-based: the cut of non-parallelogram slave quads (see
-    /// [`CouplingSettings::quad_subdivision`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub quad_subdivision: Option<u32>,
-    /// How far along the slave normals the search looks for master faces, a distance (see
-    /// [`CouplingSettings::search_radius`]; default: as far as the nearest master surface,
-    /// within a bound relative to the interface's size).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub search_radius: Option<f64>,
-    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
-    /// of warnings.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub require_full_coverage: bool,
-}
-
-impl ContactInterfaceSpec {
-    /// The coupling settings of these keys.
-    pub fn settings(&self) -> CouplingSettings {
-        CouplingSettings {
-            multipliers: self.multipliers,
-            integration: self.integration,
-            degree: self.degree,
-            curved_tolerance: self.curved_tolerance,
-            subdivision: self.subdivision,
-            quad_subdivision: self.quad_subdivision,
-            search_radius: self.search_radius,
-            require_full_coverage: self.require_full_coverage,
-            threads: None,
-        }
+interface_table! {
+    /// The contact interface.
+    pub struct ContactInterfaceSpec {
+        /// The slave side.
+        pub slave: SideSpec,
+        /// The master side.
+        pub master: SideSpec,
+        /// The law.
+        #[serde(default)]
+        pub law: LawSpec,
+        /// A law by name from the shipped [`LawRegistry`](mortar_physics::laws::LawRegistry) (or a
+        /// program's own, through [`ContactSpec::solve_with`](crate::file::FileScene::solve_with)),
+        /// with its parameters, in place of `law`: `named_law = { name = "exponential_pressure",
+        /// base_pressure = 1e5, stiffness = 1e12, onset = 1e-6 }`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub named_law: Option<NamedLaw>,
+        /// `P_o` of the exponential law.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub base_pressure: Option<f64>,
+        /// `S` of the exponential law.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub stiffness: Option<f64>,
+        /// `xi` of the exponential law.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub onset: Option<f64>,
     }
 }
 

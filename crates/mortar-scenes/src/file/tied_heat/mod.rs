@@ -42,9 +42,10 @@ use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use mortar::io::{CouplingSettings, Integration, Multipliers};
 use mortar_physics::heat::{TiedHeat, TiedHeatSolution};
 use serde::{Deserialize, Serialize};
+
+use crate::file::interface_table::interface_table;
 
 pub use solve_spec::{FormulationSpec, Mode, SolveSpec};
 
@@ -134,59 +135,13 @@ pub struct SideSpec {
     pub group: String,
 }
 
-/// The interface and its mortar coupling.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct InterfaceSpec {
-    /// The slave side: it carries the multipliers.
-    pub slave: SideSpec,
-    /// The master side.
-    pub master: SideSpec,
-    /// The multiplier space (default dual, the vocabulary's: [`Multipliers::default`]).
-    #[serde(default)]
-    pub multipliers: Multipliers,
-    /// The integration strategy.
-    #[serde(default)]
-    pub integration: Integration,
-    /// The quadrature degree (default automatic).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub degree: Option<u32>,
-    /// Segment-based: the curved-face subdivision tolerance (see
-    /// [`CouplingSettings::curved_tolerance`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub curved_tolerance: Option<f64>,
-    /// Segment-based: a fixed curved-face subdivision level.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub subdivision: Option<u32>,
-    /// Segment-based: the cut of non-parallelogram slave quads (see
-    /// [`CouplingSettings::quad_subdivision`]).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub quad_subdivision: Option<u32>,
-    /// How far along the slave normals the search looks for master faces, a distance (see
-    /// [`CouplingSettings::search_radius`]; default: as far as the nearest master surface,
-    /// within a bound relative to the interface's size).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub search_radius: Option<f64>,
-    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
-    /// of warnings.
-    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
-    pub require_full_coverage: bool,
-}
-
-impl InterfaceSpec {
-    /// The coupling settings of these keys.
-    pub fn settings(&self) -> CouplingSettings {
-        CouplingSettings {
-            multipliers: self.multipliers,
-            integration: self.integration,
-            degree: self.degree,
-            curved_tolerance: self.curved_tolerance,
-            subdivision: self.subdivision,
-            quad_subdivision: self.quad_subdivision,
-            search_radius: self.search_radius,
-            require_full_coverage: self.require_full_coverage,
-            threads: None,
-        }
+interface_table! {
+    /// The interface and its mortar coupling.
+    pub struct InterfaceSpec {
+        /// The slave side: it carries the multipliers.
+        pub slave: SideSpec,
+        /// The master side.
+        pub master: SideSpec,
     }
 }
 
