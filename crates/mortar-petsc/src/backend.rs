@@ -33,6 +33,7 @@ pub struct PetscBackend {
     solver: PetscSolver,
     automatic: bool,
     reports: Arc<Mutex<Vec<SolveReport>>>,
+    failures: Arc<Mutex<Vec<String>>>,
 }
 
 impl PetscBackend {
@@ -42,6 +43,7 @@ impl PetscBackend {
             solver: PetscSolver::new(options),
             automatic: false,
             reports: Arc::default(),
+            failures: Arc::default(),
         }
     }
 
@@ -93,6 +95,21 @@ impl PetscBackend {
     pub fn reports(&self) -> Vec<SolveReport> {
         self.reports.lock().map(|r| r.clone()).unwrap_or_default()
     }
+
+    /// The set-ups and solves through this backend (and its clones) that failed, in order, as
+    /// their errors' messages: what a caller that retries another way (a general solve after
+    /// a failed symmetric one) would otherwise leave unsaid.
+    pub fn failures(&self) -> Vec<String> {
+        self.failures.lock().map(|f| f.clone()).unwrap_or_default()
+    }
+
+    /// Records the failure `e` and gives it back.
+    fn failed(failures: &Mutex<Vec<String>>, e: SolverError) -> SolverError {
+        if let Ok(mut f) = failures.lock() {
+            f.push(e.to_string());
+        }
+        e
+    }
 }
 
 /// A system set up for PETSc's solves: its matrix (full), and PETSc's solver with the
@@ -109,6 +126,7 @@ struct PetscSystem {
     #[cfg(feature = "petsc")]
     prepared: crate::petsc::Prepared,
     reports: Arc<Mutex<Vec<SolveReport>>>,
+    failures: Arc<Mutex<Vec<String>>>,
 }
 
 /// What a refactor must keep of a matrix: its size and its pattern (by a hash of the row
@@ -172,7 +190,7 @@ impl Factorization for PetscSystem {
             let blocked = self.blocks.as_ref().map(|b| b.scatter(x));
             let rhs = blocked.as_deref().unwrap_or(x);
             let (solution, report) = crate::petsc::solve_prepared(&self.prepared, rhs)
-                .map_err(|e| solver_error(e, self.rtol))?;
+                .map_err(|e| PetscBackend::failed(&self.failures, solver_error(e, self.rtol)))?;
             if solution.iter().any(|v| !v.is_finite()) {
                 return Err(SolverError::Singular { pivot: None });
             }
@@ -187,7 +205,7 @@ impl Factorization for PetscSystem {
         }
         #[cfg(not(feature = "petsc"))]
         {
-            let _ = &self.reports;
+            let _ = (&self.reports, &self.failures);
             Err(solver_error(PetscError::NotBuilt, self.rtol))
         }
     }
@@ -313,8 +331,8 @@ impl SparseSolver for PetscBackend {
         };
         let pattern = Pattern::of(&a);
         #[cfg(feature = "petsc")]
-        let prepared =
-            crate::petsc::prepare(a, options, modes).map_err(|e| solver_error(e, options.rtol))?;
+        let prepared = crate::petsc::prepare(a, options, modes)
+            .map_err(|e| Self::failed(&self.failures, solver_error(e, options.rtol)))?;
         #[cfg(not(feature = "petsc"))]
         let _ = (modes, a);
         Ok(Box::new(PetscSystem {
@@ -325,6 +343,7 @@ impl SparseSolver for PetscBackend {
             #[cfg(feature = "petsc")]
             prepared,
             reports: Arc::clone(&self.reports),
+            failures: Arc::clone(&self.failures),
         }))
     }
 }

@@ -185,6 +185,15 @@ impl PickedSolver {
         self.petsc.as_ref().map(|p| p.reports()).unwrap_or_default()
     }
 
+    /// The PETSc set-ups and solves that failed so far, as their messages (a symmetric solve
+    /// that the physics then retried as a general one, say).
+    pub fn failures(&self) -> Vec<String> {
+        self.petsc
+            .as_ref()
+            .map(|p| p.failures())
+            .unwrap_or_default()
+    }
+
     /// The report's `"linear_solver"` entry: the backend, why, and per PETSc solve the
     /// method, preconditioner, iterations and residual.
     pub fn json(&self) -> Value {
@@ -196,6 +205,7 @@ impl PickedSolver {
             "solves": reports.len(),
             "iterations": iterations,
             "methods": methods(&reports),
+            "failed": self.failures(),
             "largest_relative_residual": reports
                 .iter()
                 .map(|r| r.relative_residual)
@@ -216,6 +226,12 @@ impl PickedSolver {
                 ": solves {}, {}, iterations {lo} to {hi}",
                 reports.len(),
                 methods(&reports).join(", ")
+            ));
+        }
+        let failed = self.failures().len();
+        if failed > 0 {
+            line.push_str(&format!(
+                "; {failed} failed (in report.json's linear_solver.failed), retried"
             ));
         }
         line

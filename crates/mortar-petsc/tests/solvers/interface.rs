@@ -85,6 +85,12 @@ fn a_solve_that_cannot_converge_is_the_interfaces_error() {
         }
         e => panic!("{e}"),
     }
+    // The failure is kept by the backend, for a caller that retries another way; the
+    // successful solves' reports stay empty.
+    let failures = petsc.failures();
+    assert_eq!(failures.len(), 1, "{failures:?}");
+    assert!(failures[0].contains("DIVERGED_ITS"), "{failures:?}");
+    assert!(petsc.reports().is_empty());
     let mut x = vec![0.0; 3];
     assert!(matches!(
         f.solve_in_place(&mut x),
