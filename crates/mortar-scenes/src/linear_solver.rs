@@ -66,8 +66,9 @@ impl AutoSwitch {
     /// The switch of a scene of `kind` (`"contact"`, `"tied_heat"`) in dimension `dim`: in 3D
     /// from [`AUTO_PETSC_MIN`] (contact) or [`AUTO_PETSC_MIN_TIED_HEAT_3D`] (tied heat)
     /// unknowns; in 2D never, the direct solve's fill growing only as `n log n` (tied heat
-    /// at 1.0e6 unknowns: 2.7 s direct against 5.6 s through PETSc, `bench_tied_heat`; 2D
-    /// contact through PETSc is not measured).
+    /// at 1.0e6 unknowns: the direct solve in 0.5 to 0.6 of PETSc's time over two runs of
+    /// `bench_tied_heat`, docs/bench_tied_heat.json; 2D contact through PETSc is not
+    /// measured).
     pub fn of(kind: &str, dim: usize) -> Self {
         match (kind, dim) {
             ("tied_heat", 3) => Self {
@@ -82,7 +83,7 @@ impl AutoSwitch {
             _ => Self {
                 min_unknowns: None,
                 measured: "2D, the quicker at every size measured (tied heat at 1e6 unknowns: \
-                           2.7 s against PETSc's 5.6 s)",
+                           about half PETSc's time)",
             },
         }
     }
