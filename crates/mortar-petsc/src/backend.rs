@@ -298,7 +298,8 @@ impl SparseSolver for PetscBackend {
             self.solver.options()
         };
         if !crate::is_built() {
-            return Err(solver_error(PetscError::NotBuilt, options.rtol));
+            let e = solver_error(PetscError::NotBuilt, options.rtol);
+            return Err(Self::failed(&self.failures, e));
         }
         let upper = kind == MatrixKind::SymmetricPositiveDefinite;
         // GAMG on a displacement field: the system in whole node blocks, the nodes' rigid
