@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use mortar_fem::linalg::{
     CholeskyFactorization, Factorization, LuFactorization, MatrixKind, SaddlePointFactorization,
-    SolverError, SparseMatrix, SubstructuredCholesky, SystemInfo, Triplets,
+    SolverError, SparseMatrix, SparseSolver, SubstructuredCholesky, SystemInfo, Triplets,
 };
 
 use super::crosspoint::shares;
@@ -258,7 +258,7 @@ impl TiedSystem {
         scale_symmetric(&mut matrix, &scale);
         let t1 = Instant::now();
         let factor = match (linear.backend, formulation) {
-            (Some(_), _) => layout.backend_factor(&matrix, linear)?,
+            (Some(backend), _) => layout.backend_factor(&matrix, backend, linear)?,
             (None, Formulation::SaddlePoint) => {
                 Factor::saddle_point(&matrix, nrows, &layout.eliminated_last())?
             }
@@ -293,7 +293,8 @@ impl TiedSystem {
     ///
     /// # Errors
     /// [`PhysicsError::Solver`] if a pattern differs or the factorisation fails (the previous
-    /// factors are then kept).
+    /// factors are then kept); [`PhysicsError::LinearSolve`] naming the system when a
+    /// backend's set-up fails.
     pub fn refactor(&mut self, matrices: [&SparseMatrix; 2]) -> Result<(), PhysicsError> {
         let t0 = Instant::now();
         let n = self.layout.n;
@@ -330,7 +331,7 @@ impl TiedSystem {
             Factor::Backend(f) => f.refactor(&matrix),
         };
         self.report.factorisation = self.factor.name();
-        done?;
+        done.map_err(|e| self.error_of(e))?;
         self.own_rows = own_rows;
         self.a_fd = a_fd;
         self.scale = scale;
@@ -339,6 +340,15 @@ impl TiedSystem {
             factorisation: t1.elapsed().as_secs_f64(),
         };
         Ok(())
+    }
+
+    /// A failure of the factorisation's refactor or solve: a backend's named with the system
+    /// and what to change ([`Layout::backend_error`]), the direct solves' as it is.
+    fn error_of(&self, e: SolverError) -> PhysicsError {
+        match self.factor {
+            Factor::Backend(_) => self.layout.backend_error(e),
+            _ => e.into(),
+        }
     }
 
     /// Which formulation is used, and why.
@@ -410,10 +420,7 @@ impl TiedSystem {
         self.factor
             .factorization()
             .solve_in_place(&mut x)
-            .map_err(|e| match self.factor {
-                Factor::Backend(_) => self.layout.backend_error(e),
-                _ => e.into(),
-            })?;
+            .map_err(|e| self.error_of(e))?;
         for (xi, si) in x.iter_mut().zip(&self.scale) {
             *xi *= si;
         }
@@ -581,9 +588,9 @@ impl Layout {
     fn backend_factor(
         &self,
         matrix: &SparseMatrix,
+        backend: &dyn SparseSolver,
         linear: &LinearSolve<'_>,
     ) -> Result<Factor, PhysicsError> {
-        let backend = linear.backend.expect("a backend");
         let condensed = self.formulation == Formulation::DualCondensed;
         if let Some(b) = (0..2).find(|&b| !condensed && self.nd[b] == 0) {
             return Err(PhysicsError::InvalidInput {
