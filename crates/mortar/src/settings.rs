@@ -48,38 +48,124 @@ pub enum Integration {
     Element,
 }
 
-/// The choices of a coupling run, as a user states them.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct CouplingSettings {
-    /// The multiplier space.
-    pub multipliers: Multipliers,
-    /// The integration strategy.
-    pub integration: Integration,
-    /// The quadrature degree (`None`: automatic, exact on affine faces for segment-based).
-    pub degree: Option<u32>,
-    /// Worker threads (`None`: rayon's default).
-    pub threads: Option<usize>,
-    /// How far along the slave normals to look for master faces, in the coordinates' units
-    /// (`None`: the default, as far as the nearest master surface within a quarter of the
-    /// interface's size).
-    pub search_radius: Option<f64>,
-    /// Make uncovered slave area, overlapping master faces and skipped pairs errors instead
-    /// of warnings.
-    #[serde(default)]
-    pub require_full_coverage: bool,
-    /// Segment-based, curved second-order faces in 3D: the subdivision tolerance (`None`:
-    /// [`DEFAULT_CURVED_TOLERANCE`](mortar_core::integration::curved_3d::DEFAULT_CURVED_TOLERANCE));
-    /// see [`SegmentBased::with_curved_tolerance`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub curved_tolerance: Option<f64>,
-    /// Segment-based, curved second-order faces in 3D: a fixed subdivision level instead of
-    /// the tolerance's; see [`SegmentBased::with_subdivision`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub subdivision: Option<u32>,
-    /// Segment-based, slave quads that are not parallelograms: each clip triangle cut into
-    /// `m^2`; see [`SegmentBased::with_quad_subdivision`].
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub quad_subdivision: Option<u32>,
+/// Declares a struct (serde, unknown keys refused, every key optional) with the fields given
+/// and then the keys of the coupling vocabulary, the fields of [`CouplingSettings`]:
+/// `multipliers`, `integration`, `degree`, `curved_tolerance`, `subdivision`,
+/// `quad_subdivision`, `search_radius`, `require_full_coverage`; and its `settings()`, those
+/// keys as [`CouplingSettings`] (with `threads` unset). The scene files' interface tables are
+/// declared so, so that they and `mortar couple` and Python share one list and one default.
+/// The calling crate depends on `serde`.
+///
+/// A macro rather than a struct flattened into the table: serde's `flatten` under
+/// `deny_unknown_fields` loses the line of a bad value and the list of the accepted keys in
+/// the error for an unknown one, which the scene files' messages give.
+///
+/// ```
+/// mortar::coupling_keys! {
+///     /// An interface table of a program's own scene.
+///     pub struct Glue {
+///         /// The slave side's group.
+///         pub slave: String,
+///     }
+/// }
+/// let glue: Glue = serde_json::from_str(r#"{"slave": "top", "multipliers": "standard"}"#)
+///     .unwrap();
+/// assert_eq!(glue.settings().multipliers, mortar::settings::Multipliers::Standard);
+/// assert_eq!(glue.settings().integration, mortar::settings::Integration::Segment);
+/// ```
+#[macro_export]
+macro_rules! coupling_keys {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $( $(#[$field_meta:meta])* pub $field:ident : $ty:ty, )*
+        }
+    ) => {
+        $crate::coupling_keys! {
+            @struct
+            $(#[$meta])*
+            pub struct $name {
+                $( $(#[$field_meta])* pub $field: $ty, )*
+            }
+        }
+
+        impl $name {
+            /// The coupling settings of these keys (`threads` unset: rayon's default).
+            pub fn settings(&self) -> $crate::settings::CouplingSettings {
+                $crate::settings::CouplingSettings {
+                    multipliers: self.multipliers,
+                    integration: self.integration,
+                    degree: self.degree,
+                    curved_tolerance: self.curved_tolerance,
+                    subdivision: self.subdivision,
+                    quad_subdivision: self.quad_subdivision,
+                    search_radius: self.search_radius,
+                    require_full_coverage: self.require_full_coverage,
+                    threads: None,
+                }
+            }
+        }
+    };
+    (
+        @struct
+        $(#[$meta:meta])*
+        pub struct $name:ident {
+            $( $(#[$field_meta:meta])* pub $field:ident : $ty:ty, )*
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            $( $(#[$field_meta])* pub $field: $ty, )*
+            /// The multiplier space (default dual: [`Multipliers::default`]).
+            ///
+            /// [`Multipliers::default`]: $crate::settings::Multipliers
+            #[serde(default)]
+            pub multipliers: $crate::settings::Multipliers,
+            /// The integration strategy (default segment-based).
+            #[serde(default)]
+            pub integration: $crate::settings::Integration,
+            /// The quadrature degree (`None`: automatic, exact on affine faces for
+            /// segment-based).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub degree: Option<u32>,
+            /// Segment-based, curved second-order faces in 3D: the subdivision tolerance
+            /// (`None`: `mortar_core::integration::curved_3d::DEFAULT_CURVED_TOLERANCE`;
+            /// see `SegmentBased::with_curved_tolerance`).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub curved_tolerance: Option<f64>,
+            /// Segment-based, curved second-order faces in 3D: a fixed subdivision level
+            /// instead of the tolerance's (see `SegmentBased::with_subdivision`).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub subdivision: Option<u32>,
+            /// Segment-based, slave quads that are not parallelograms: each clip triangle
+            /// cut into `m^2` (see `SegmentBased::with_quad_subdivision`).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub quad_subdivision: Option<u32>,
+            /// How far along the slave normals the search looks for master faces, in the
+            /// coordinates' units (`None`: as far as the nearest master surface, within a
+            /// quarter of the interface's size).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub search_radius: Option<f64>,
+            /// Make uncovered slave area, overlapping master faces and skipped pairs errors
+            /// instead of warnings.
+            #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+            pub require_full_coverage: bool,
+        }
+    };
+}
+
+coupling_keys! {
+    @struct
+    /// The choices of a coupling run, as a user states them: the coupling vocabulary's keys
+    /// (see [`coupling_keys!`](crate::coupling_keys)) and the worker threads.
+    #[derive(Copy, Default)]
+    pub struct CouplingSettings {
+        /// Worker threads (`None`: rayon's default).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub threads: Option<usize>,
+    }
 }
 
 impl CouplingSettings {

@@ -37,7 +37,6 @@ pub mod contact;
 pub mod contact_files;
 pub(crate) mod error;
 mod file_scene;
-mod interface_table;
 pub mod tied_heat;
 mod two_bodies;
 

@@ -43,7 +43,6 @@ use mortar_physics::tied::Tie;
 use serde::{Deserialize, Serialize};
 
 use super::tied_heat::SideSpec;
-use crate::file::interface_table::interface_table;
 use crate::NamedLaw;
 
 pub(super) use output::steps_json;
@@ -144,7 +143,7 @@ pub enum LawSpec {
     Exponential,
 }
 
-interface_table! {
+mortar::coupling_keys! {
     /// The contact interface.
     pub struct ContactInterfaceSpec {
         /// The slave side.

@@ -45,8 +45,6 @@ use std::time::Instant;
 use mortar_physics::heat::{TiedHeat, TiedHeatSolution};
 use serde::{Deserialize, Serialize};
 
-use crate::file::interface_table::interface_table;
-
 pub use solve_spec::{FormulationSpec, Mode, SolveSpec};
 
 /// The most time steps a transient tied-heat scene may ask for (the pellet scene's limit too):
@@ -135,7 +133,7 @@ pub struct SideSpec {
     pub group: String,
 }
 
-interface_table! {
+mortar::coupling_keys! {
     /// The interface and its mortar coupling.
     pub struct InterfaceSpec {
         /// The slave side: it carries the multipliers.
