@@ -21,12 +21,28 @@
 //! traits may be imported together; their constants `KIND` are the same.
 
 use std::path::Path;
+use std::time::Instant;
 
 use mortar::extend::Registries;
+use mortar::io::GmshVolume;
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
+use super::error::Errors;
+use super::two_bodies::MeshSource;
 use super::{SceneError, SceneOutput, SceneSource};
+
+/// A two-body scene's meshes, read: what [`FileScene::solve_read`] solves.
+pub struct ReadScene<'a> {
+    /// The scene file, named in messages and in the report.
+    pub path: &'a Path,
+    /// The two bodies' names and cells, slave first, of one dimension.
+    pub volumes: [(String, GmshVolume); 2],
+    /// The cells and laws (the shipped ones and a program's own).
+    pub registries: &'a Registries,
+    /// When the solve started: the meshes' reading counts in the scene's timings.
+    pub started: Instant,
+}
 
 /// A solved scene, ready to render.
 pub trait SolvedScene {
@@ -53,21 +69,47 @@ pub trait FileScene: Serialize + DeserializeOwned {
     /// [`SceneError::Invalid`] naming the key.
     fn check(&self, path: &Path) -> Result<(), SceneError>;
 
-    /// Reads the meshes (through `source`, paths relative to `base`, the scene file's
-    /// folder) with the cells (and laws) of `registries` (the shipped ones and a program's
-    /// own), builds and solves the problem, without rendering. `path` names the scene file
-    /// in messages and in the report.
+    /// The two bodies' `(name, mesh file, physical group)`, slave first, as the scene names
+    /// them (the mesh paths relative to the scene file's folder).
+    fn sides(&self) -> [(&str, &Path, &str); 2];
+
+    /// Builds and solves the problem from the bodies' meshes, read and of one dimension,
+    /// without rendering.
     ///
     /// # Errors
     /// [`SceneError`] naming the key, the file and the group, or the solve that failed (see
     /// each kind).
+    fn solve_read(&self, read: ReadScene<'_>) -> Result<Self::Solved, SceneError>;
+
+    /// Reads the meshes of [`sides`](Self::sides) (through `source`, paths relative to
+    /// `base`, the scene file's folder) with the cells of `registries` (the shipped ones and
+    /// a program's own), checks that they are of one dimension and
+    /// [`solve_read`](Self::solve_read)s them with the laws of `registries`. `path` names the
+    /// scene file in messages and in the report.
+    ///
+    /// # Errors
+    /// [`SceneError::Mesh`] for a missing mesh file, a missing group or a group of the wrong
+    /// dimension (naming the key, the file and the group); [`SceneError::Invalid`] (key
+    /// `bodies`) for bodies of different dimensions; as [`solve_read`](Self::solve_read)
+    /// otherwise.
     fn solve_with(
         &self,
         path: &Path,
         base: &Path,
         source: &dyn SceneSource,
         registries: &Registries,
-    ) -> Result<Self::Solved, SceneError>;
+    ) -> Result<Self::Solved, SceneError> {
+        let started = Instant::now();
+        let errors = Errors { path };
+        let volumes =
+            MeshSource::new(base, source, registries).read_sides(&errors, self.sides())?;
+        self.solve_read(ReadScene {
+            path,
+            volumes,
+            registries,
+            started,
+        })
+    }
 
     /// Parses a scene file's text and [`check`](Self::check)s it; `path` names it in
     /// messages.

@@ -48,7 +48,7 @@ pub use builtin::{
 };
 pub use builtin_contact::{run_builtin_contact, HERTZ_ARC_CELLS};
 pub use error::SceneError;
-pub use file_scene::{FileScene, SolvedScene};
+pub use file_scene::{FileScene, ReadScene, SolvedScene};
 
 use mortar::io::IoError;
 

@@ -92,6 +92,20 @@ pub(super) fn check_side_bodies<B>(
     Ok(())
 }
 
+/// The `(name, mesh file, physical group)` of the bodies that the `slave` and `master` sides
+/// name, slave first, with `mesh_of` a body's mesh file and group. The sides are checked
+/// ([`check_side_bodies`]) to name bodies of the scene.
+pub(super) fn mesh_sides<'a, B>(
+    [slave, master]: [&'a SideSpec; 2],
+    bodies: &'a BTreeMap<String, B>,
+    mesh_of: impl Fn(&'a B) -> (&'a Path, &'a str),
+) -> [(&'a str, &'a Path, &'a str); 2] {
+    [slave, master].map(|side| {
+        let (mesh, group) = mesh_of(&bodies[&side.body]);
+        (side.body.as_str(), mesh, group)
+    })
+}
+
 /// The names of a scene's bodies joined by `", "`, for a message that lists them.
 pub(super) fn body_names<B>(bodies: &BTreeMap<String, B>) -> String {
     bodies.keys().cloned().collect::<Vec<_>>().join(", ")
@@ -149,15 +163,31 @@ impl<'a> MeshSource<'a> {
     /// [`read`](Self::read) does, with its name.
     ///
     /// # Errors
-    /// As [`read`](Self::read), for the first body that fails.
+    /// As [`read`](Self::read), for the first body that fails; [`SceneError::Invalid`] (key
+    /// `bodies`) for two bodies of different dimensions.
     pub(super) fn read_sides(
         &self,
         errors: &Errors,
-        sides: [(&str, &Path, &str); 2],
-    ) -> Result<Vec<(String, GmshVolume)>, SceneError> {
-        let mut volumes = Vec::with_capacity(2);
-        for (name, mesh, group) in sides {
-            volumes.push((name.to_string(), self.read(errors, name, mesh, group)?));
+        [slave, master]: [(&str, &Path, &str); 2],
+    ) -> Result<[(String, GmshVolume); 2], SceneError> {
+        let read = |(name, mesh, group): (&str, &Path, &str)| {
+            Ok::<_, SceneError>((name.to_string(), self.read(errors, name, mesh, group)?))
+        };
+        let volumes = [read(slave)?, read(master)?];
+        let dims = [volumes[0].1.dimension, volumes[1].1.dimension];
+        if dims[0] != dims[1] {
+            return Err(errors.invalid(
+                "bodies".into(),
+                format!(
+                    "body \"{}\" ({}) is {}D but body \"{}\" ({}) is {}D",
+                    volumes[0].0,
+                    volumes[0].1.label(),
+                    dims[0],
+                    volumes[1].0,
+                    volumes[1].1.label(),
+                    dims[1]
+                ),
+            ));
         }
         Ok(volumes)
     }

@@ -7,7 +7,6 @@ use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-use mortar::extend::Registries;
 use mortar::io::GmshVolume;
 use mortar_core::linalg::SparseMatrix;
 use mortar_core::{CouplingOptions, SurfaceMesh};
@@ -27,8 +26,8 @@ use nalgebra::Vector3;
 
 use super::{Component, ComponentValue, ContactSpec, DisplacementSpec, LawSpec, SolvedContact};
 use crate::file::error::Errors;
-use crate::file::two_bodies::{interface_of, MeshSource};
-use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
+use crate::file::two_bodies::{interface_of, mesh_sides};
+use crate::file::{face_nodes, FileScene, ReadScene, SceneError};
 use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for ContactSpec {
@@ -40,26 +39,27 @@ impl FileScene for ContactSpec {
         self.check_keys(path)
     }
 
-    /// Reads the meshes and solves (see the [module](super)), with the bodies' cells looked up
-    /// in `registries.cells` and a `named_law` made by `registries.laws` (the shipped ones and
-    /// a program's own).
+    fn sides(&self) -> [(&str, &Path, &str); 2] {
+        let sides = [&self.contact.slave, &self.contact.master];
+        mesh_sides(sides, &self.bodies, |b| (&b.mesh, &b.group))
+    }
+
+    /// Solves the bodies' meshes (see the [module](super)), with a `named_law` made by
+    /// `read.registries.laws` (the shipped ones and a program's own).
     ///
     /// # Errors
-    /// [`SceneError::Mesh`] for a missing file or group, [`SceneError::Invalid`] for a
-    /// component or traction that does not fit the dimension and for a load step whose
-    /// Newton iteration fails (naming it), [`SceneError::Invalid`] (key `contact.named_law`)
-    /// for a law the registry does not know or whose parameters it refuses,
-    /// [`SceneError::Physics`] otherwise.
-    fn solve_with(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-        registries: &Registries,
-    ) -> Result<SolvedContact, SceneError> {
-        let t_start = Instant::now();
+    /// [`SceneError::Invalid`] for a component or traction that does not fit the dimension
+    /// and for a load step whose Newton iteration fails (naming it), [`SceneError::Invalid`]
+    /// (key `contact.named_law`) for a law the registry does not know or whose parameters it
+    /// refuses, [`SceneError::Physics`] otherwise.
+    fn solve_read(&self, read: ReadScene<'_>) -> Result<SolvedContact, SceneError> {
+        let ReadScene {
+            path,
+            volumes,
+            registries,
+            started: t_start,
+        } = read;
         let errors = Errors { path };
-        let volumes = self.read_volumes(&errors, MeshSource::new(base, source, registries))?;
         let dim = volumes[0].1.dimension as usize;
         let ReadBodies {
             bodies,
@@ -223,31 +223,6 @@ impl ContactSpec {
             (None, e) => errors.physics(name_bodies(e, names, held)),
         }
     }
-
-    /// The bodies' meshes, slave first (from `meshes`), of one dimension.
-    fn read_volumes(
-        &self,
-        errors: &Errors,
-        meshes: MeshSource,
-    ) -> Result<Vec<(String, GmshVolume)>, SceneError> {
-        let sides = [&self.contact.slave, &self.contact.master].map(|side| {
-            let b = &self.bodies[&side.body];
-            (side.body.as_str(), b.mesh.as_path(), b.group.as_str())
-        });
-        let volumes = meshes.read_sides(errors, sides)?;
-        let dim = volumes[0].1.dimension;
-        if volumes[1].1.dimension != dim {
-            return Err(errors.invalid(
-                "bodies".into(),
-                format!(
-                    "body \"{}\" is {}D but body \"{}\" is {}D",
-                    volumes[0].0, dim, volumes[1].0, volumes[1].1.dimension
-                ),
-            ));
-        }
-        Ok(volumes)
-    }
-
     /// Body `name` of the mesh `v` (`dim` components): its material, its displacement
     /// conditions and its tractions.
     fn elastic_body(

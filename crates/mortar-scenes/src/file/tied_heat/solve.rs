@@ -4,9 +4,7 @@
 
 use std::path::Path;
 use std::sync::Arc;
-use std::time::Instant;
 
-use mortar::extend::Registries;
 use mortar::io::GmshVolume;
 use mortar_core::{CouplingOptions, SurfaceMesh};
 use mortar_physics::heat::{
@@ -17,8 +15,8 @@ use mortar_physics::LinearSolve;
 
 use super::{Mode, SolvedTiedHeat, TiedHeatSpec};
 use crate::file::error::Errors;
-use crate::file::two_bodies::{interface_of, MeshSource};
-use crate::file::{face_nodes, FileScene, SceneError, SceneSource};
+use crate::file::two_bodies::{interface_of, mesh_sides};
+use crate::file::{face_nodes, FileScene, ReadScene, SceneError};
 use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for TiedHeatSpec {
@@ -30,27 +28,27 @@ impl FileScene for TiedHeatSpec {
         self.check_keys(path)
     }
 
-    /// Reads the meshes (through `source`, paths relative to `base`, the scene file's
-    /// folder), with the bodies' cells looked up in `registries.cells` (the shipped cells and
-    /// a program's own; the interface faces are the surface elements of their faces), builds
-    /// and solves the problem. `path` names the scene file in messages and in the report.
+    fn sides(&self) -> [(&str, &Path, &str); 2] {
+        let sides = [&self.interface.slave, &self.interface.master];
+        mesh_sides(sides, &self.bodies, |b| (&b.mesh, &b.group))
+    }
+
+    /// Builds and solves the problem from the bodies' meshes (the interface faces are the
+    /// surface elements of their cells' faces).
     ///
     /// # Errors
-    /// [`SceneError::Mesh`] for a missing mesh file, a missing group or a group of the wrong
-    /// dimension (each naming the key, the file and the group); [`SceneError::Invalid`] for
-    /// bodies of different dimensions or not of `dimension`; [`SceneError::Physics`] for a
+    /// [`SceneError::Mesh`] for an interface group of the wrong dimension;
+    /// [`SceneError::Invalid`] for bodies not of `dimension`; [`SceneError::Physics`] for a
     /// problem that cannot be built or solved (an inverted cell, an interface without
     /// overlap, a singular system).
-    fn solve_with(
-        &self,
-        path: &Path,
-        base: &Path,
-        source: &dyn SceneSource,
-        registries: &Registries,
-    ) -> Result<SolvedTiedHeat, SceneError> {
-        let t_start = Instant::now();
+    fn solve_read(&self, read: ReadScene<'_>) -> Result<SolvedTiedHeat, SceneError> {
+        let ReadScene {
+            path,
+            volumes,
+            started: t_start,
+            ..
+        } = read;
         let errors = Errors { path };
-        let volumes = self.read_volumes(&errors, MeshSource::new(base, source, registries))?;
         let dimension = self.dimension_of(&errors, &volumes)?;
 
         // Boundary conditions and interface sides.
@@ -108,19 +106,6 @@ impl FileScene for TiedHeatSpec {
 }
 
 impl TiedHeatSpec {
-    /// The bodies' meshes, slave first (from `meshes`).
-    fn read_volumes(
-        &self,
-        errors: &Errors,
-        meshes: MeshSource,
-    ) -> Result<Vec<(String, GmshVolume)>, SceneError> {
-        let sides = [&self.interface.slave, &self.interface.master].map(|side| {
-            let b = &self.bodies[&side.body];
-            (side.body.as_str(), b.mesh.as_path(), b.group.as_str())
-        });
-        meshes.read_sides(errors, sides)
-    }
-
     /// The dimension of the meshes `volumes`: one for both, and the scene's `dimension` when
     /// it gives one.
     fn dimension_of(
@@ -129,20 +114,6 @@ impl TiedHeatSpec {
         volumes: &[(String, GmshVolume)],
     ) -> Result<u8, SceneError> {
         let dims = [volumes[0].1.dimension, volumes[1].1.dimension];
-        if dims[0] != dims[1] {
-            return Err(errors.invalid(
-                "bodies".into(),
-                format!(
-                    "body \"{}\" ({}) is {}D but body \"{}\" ({}) is {}D",
-                    volumes[0].0,
-                    volumes[0].1.label(),
-                    dims[0],
-                    volumes[1].0,
-                    volumes[1].1.label(),
-                    dims[1]
-                ),
-            ));
-        }
         if let Some(d) = self.dimension {
             if d != dims[0] {
                 return Err(errors.invalid(
