@@ -239,6 +239,46 @@ impl PickedSolver {
     }
 }
 
+/// Declares a scene's `[solve]` table `$name` of the scene kind `$kind` (serde, unknown keys
+/// refused) with the fields given and then the linear solver's keys `backend`,
+/// `linear_tolerance` and `petsc_options`, and its [`LinearSolverKeys`]. A macro for the
+/// reason of `mortar::coupling_keys!`: a flattened struct would lose the line of a bad value
+/// and the list of the accepted keys in the scene files' messages.
+macro_rules! solve_table {
+    (
+        $(#[$meta:meta])*
+        pub struct $name:ident of $kind:literal {
+            $( $(#[$field_meta:meta])* pub $field:ident : $ty:ty, )*
+        }
+    ) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        pub struct $name {
+            $( $(#[$field_meta])* pub $field: $ty, )*
+            /// Where the systems go ([`crate::linear_solver`]).
+            #[serde(default, skip_serializing_if = "crate::linear_solver::BackendChoice::is_auto")]
+            pub backend: $crate::linear_solver::BackendChoice,
+            /// The Krylov solves' relative tolerance (PETSc).
+            #[serde(default, skip_serializing_if = "Option::is_none")]
+            pub linear_tolerance: Option<f64>,
+            /// Further PETSc options (`-ksp_monitor ...`).
+            #[serde(default, skip_serializing_if = "String::is_empty")]
+            pub petsc_options: String,
+        }
+
+        impl $crate::linear_solver::LinearSolverKeys for $name {
+            const KIND: &'static str = $kind;
+
+            fn linear_keys(&self) -> ($crate::linear_solver::BackendChoice, Option<f64>, &str) {
+                (self.backend, self.linear_tolerance, &self.petsc_options)
+            }
+        }
+    };
+}
+
+pub(crate) use solve_table;
+
 /// A scene's `[solve]` with the keys `backend`, `linear_tolerance` and `petsc_options`: their
 /// pick and their check, written once for every scene kind that has them.
 pub(crate) trait LinearSolverKeys {

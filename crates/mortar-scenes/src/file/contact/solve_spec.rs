@@ -2,35 +2,25 @@
 //! options they make. A key of the section is added here, beside its check and its use.
 
 use mortar_physics::contact::ContactOptions;
-use serde::{Deserialize, Serialize};
 
-use crate::linear_solver::{BackendChoice, LinearSolverKeys};
+use crate::linear_solver::{solve_table, BackendChoice, LinearSolverKeys};
 
 use crate::file::error::Errors;
 use crate::file::SceneError;
 
-/// The settings of the solve.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSolveSpec {
-    /// Load increments.
-    #[serde(default = "one")]
-    pub load_steps: usize,
-    /// Newton steps allowed per load step.
-    #[serde(default = "thirty")]
-    pub max_newton_steps: usize,
-    /// The relative tolerance of Newton's iteration.
-    #[serde(default = "tol")]
-    pub tolerance: f64,
-    /// Where the Newton systems go ([`crate::linear_solver`]).
-    #[serde(default, skip_serializing_if = "BackendChoice::is_auto")]
-    pub backend: BackendChoice,
-    /// The Krylov solves' relative tolerance (PETSc).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub linear_tolerance: Option<f64>,
-    /// Further PETSc options (`-ksp_monitor ...`).
-    #[serde(default, skip_serializing_if = "String::is_empty")]
-    pub petsc_options: String,
+solve_table! {
+    /// The settings of the solve.
+    pub struct ContactSolveSpec of "contact" {
+        /// Load increments.
+        #[serde(default = "one")]
+        pub load_steps: usize,
+        /// Newton steps allowed per load step.
+        #[serde(default = "thirty")]
+        pub max_newton_steps: usize,
+        /// The relative tolerance of Newton's iteration.
+        #[serde(default = "tol")]
+        pub tolerance: f64,
+    }
 }
 
 fn one() -> usize {
@@ -83,13 +73,5 @@ impl ContactSolveSpec {
             max_newton_steps: self.max_newton_steps,
             tolerance: self.tolerance,
         }
-    }
-}
-
-impl LinearSolverKeys for ContactSolveSpec {
-    const KIND: &'static str = "contact";
-
-    fn linear_keys(&self) -> (BackendChoice, Option<f64>, &str) {
-        (self.backend, self.linear_tolerance, &self.petsc_options)
     }
 }

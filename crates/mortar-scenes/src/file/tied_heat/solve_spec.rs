@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::MAX_STEPS;
 use crate::file::error::Errors;
 use crate::file::SceneError;
-use crate::linear_solver::{BackendChoice, LinearSolverKeys};
+use crate::linear_solver::{solve_table, LinearSolverKeys};
 
 /// Steady or transient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -33,31 +33,23 @@ pub enum FormulationSpec {
     DualCondensed,
 }
 
-/// The settings of the solve.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SolveSpec {
-    /// Steady or transient.
-    #[serde(default)]
-    pub mode: Mode,
-    /// The time step of a transient solve.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub dt: Option<f64>,
-    /// The number of time steps of a transient solve.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub steps: Option<usize>,
-    /// The formulation.
-    #[serde(default)]
-    pub formulation: FormulationSpec,
-    /// Where the system goes ([`crate::linear_solver`]).
-    #[serde(default, skip_serializing_if = "BackendChoice::is_auto")]
-    pub backend: BackendChoice,
-    /// The Krylov solve's relative tolerance (PETSc).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub linear_tolerance: Option<f64>,
-    /// Further PETSc options (`-ksp_monitor ...`).
-    #[serde(default, skip_serializing_if = "String::is_empty")]
-    pub petsc_options: String,
+solve_table! {
+    /// The settings of the solve.
+    #[derive(Default)]
+    pub struct SolveSpec of "tied_heat" {
+        /// Steady or transient.
+        #[serde(default)]
+        pub mode: Mode,
+        /// The time step of a transient solve.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub dt: Option<f64>,
+        /// The number of time steps of a transient solve.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        pub steps: Option<usize>,
+        /// The formulation.
+        #[serde(default)]
+        pub formulation: FormulationSpec,
+    }
 }
 
 impl SolveSpec {
@@ -126,13 +118,5 @@ impl SolveSpec {
     /// otherwise).
     pub(super) fn time_steps(&self) -> (f64, usize) {
         (self.dt.unwrap_or(1.0), self.steps.unwrap_or(1))
-    }
-}
-
-impl LinearSolverKeys for SolveSpec {
-    const KIND: &'static str = "tied_heat";
-
-    fn linear_keys(&self) -> (BackendChoice, Option<f64>, &str) {
-        (self.backend, self.linear_tolerance, &self.petsc_options)
     }
 }
