@@ -35,8 +35,7 @@ use mortar_physics::elastic::ElasticMaterial;
 use mortar_physics::PhysicsError;
 
 use super::{
-    contact_modulus, first_cell, hertz_scene_files, near_to, vertical_force, HalfWidth,
-    HertzProblem,
+    contact_modulus, first_cell, near_to, vertical_force, HalfWidth, HertzBodies, HertzProblem,
 };
 use crate::file::contact::Component;
 use crate::file::contact_files::{ContactSceneFiles, SceneBody};
@@ -193,13 +192,7 @@ impl HertzScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
-        HertzProblem::of_bodies(
-            self.bodies()?,
-            self.contact_zone * self.radius,
-            &self.coupling,
-            2,
-            self.block_cell_count(),
-        )
+        self.problem()
     }
 
     /// The scene as a scene file and its meshes (`cylinder.msh`, `block.msh`; groups
@@ -210,78 +203,7 @@ impl HertzScene {
     /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
     /// coupling a scene file cannot state.
     pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
-        hertz_scene_files(
-            "2D Hertz contact: a cylinder on a block (plane strain, half model)",
-            self.bodies(),
-            self.contact_zone * self.radius,
-            &self.coupling,
-            &self.contact,
-        )
-    }
-
-    /// The two bodies with their groups and conditions (see the [module](self)).
-    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
-        let invalid = |what: String| PhysicsError::InvalidInput {
-            body: "hertz scene".into(),
-            what,
-        };
-        let r = self.radius;
-        if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 1.0) {
-            return Err(invalid(format!(
-                "block size {} (over the radius, above 1) or contact zone {} (a fraction of \
-                 the radius, in (0, 1))",
-                self.block_size, self.contact_zone
-            )));
-        }
-        let (w, h) = (self.block_size * r, self.block_size * r);
-        let disc = quarter_disc_mesh(
-            r,
-            [0.0, r],
-            self.arc_cells,
-            self.grading,
-            CellShape::Tensor,
-            1,
-        )?;
-        let nb = self.block_cell_count();
-        let xs = graded_points(0.0, w, nb, self.block_grading);
-        let mut ys = graded_points(0.0, -h, nb, self.block_grading);
-        ys.reverse();
-        let block = grid_rectangle_mesh(&xs, &ys, CellShape::Tensor, 1_000_001)?;
-        let (disc, block) = match self.order {
-            None => (disc, block),
-            Some(family) => (
-                second_order_mesh(&disc, family, onto_sphere([0.0, r, 0.0], r))?,
-                second_order_mesh(&block, family, |x, _| *x)?,
-            ),
-        };
-
-        let near = near_to(r);
-        // The slave surface: the arc faces near the contact. The gap grows to
-        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
-        let coords = disc.coords().to_vec();
-        let zone = self.contact_zone * r;
-        let on_arc = move |f: &BoundaryFace| {
-            f.nodes.iter().all(|&n| {
-                let x = coords[n as usize];
-                (x.x.hypot(x.y - r) - r).abs() <= 1e-9 * r && x.x <= zone
-            })
-        };
-        let scene = |e: SceneError| invalid(e.to_string());
-        let slave = SceneBody::new("cylinder", disc, self.cylinder)
-            .group("axis", |f| near(f.centroid.x, 0.0))
-            .and_then(|b| b.group("top", |f| near(f.centroid.y, r)))
-            .and_then(|b| b.group("contact", on_arc))
-            .map_err(scene)?
-            .hold("axis", Component::X, 0.0)
-            .hold("top", Component::Y, -self.approach);
-        let master = SceneBody::new("block", block, self.block)
-            .group("axis", |f| near(f.centroid.x, 0.0))
-            .and_then(|b| b.group("bottom", |f| near(f.centroid.y, -h)))
-            .and_then(|b| b.group("top", |f| near(f.centroid.y, 0.0)))
-            .map_err(scene)?
-            .hold("axis", Component::X, 0.0)
-            .hold("bottom", Component::Y, 0.0);
-        Ok([slave, master])
+        self.files()
     }
 
     /// Builds and solves the scene and compares it with the closed form.
@@ -376,6 +298,82 @@ impl HertzScene {
             seconds,
             profile: nodes,
         }
+    }
+}
+
+impl HertzBodies for HertzScene {
+    const TITLE: &'static str =
+        "2D Hertz contact: a cylinder on a block (plane strain, half model)";
+    const DIMENSION: usize = 2;
+
+    /// The two bodies with their groups and conditions (see the [module](self)).
+    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
+        let invalid = |what: String| PhysicsError::InvalidInput {
+            body: "hertz scene".into(),
+            what,
+        };
+        let r = self.radius;
+        if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 1.0) {
+            return Err(invalid(format!(
+                "block size {} (over the radius, above 1) or contact zone {} (a fraction of \
+                 the radius, in (0, 1))",
+                self.block_size, self.contact_zone
+            )));
+        }
+        let (w, h) = (self.block_size * r, self.block_size * r);
+        let disc = quarter_disc_mesh(
+            r,
+            [0.0, r],
+            self.arc_cells,
+            self.grading,
+            CellShape::Tensor,
+            1,
+        )?;
+        let nb = self.block_cell_count();
+        let xs = graded_points(0.0, w, nb, self.block_grading);
+        let mut ys = graded_points(0.0, -h, nb, self.block_grading);
+        ys.reverse();
+        let block = grid_rectangle_mesh(&xs, &ys, CellShape::Tensor, 1_000_001)?;
+        let (disc, block) = match self.order {
+            None => (disc, block),
+            Some(family) => (
+                second_order_mesh(&disc, family, onto_sphere([0.0, r, 0.0], r))?,
+                second_order_mesh(&block, family, |x, _| *x)?,
+            ),
+        };
+
+        let near = near_to(r);
+        // The slave surface: the arc faces near the contact. The gap grows to
+        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
+        let coords = disc.coords().to_vec();
+        let zone = self.contact_zone * r;
+        let on_arc = move |f: &BoundaryFace| {
+            f.nodes.iter().all(|&n| {
+                let x = coords[n as usize];
+                (x.x.hypot(x.y - r) - r).abs() <= 1e-9 * r && x.x <= zone
+            })
+        };
+        let scene = |e: SceneError| invalid(e.to_string());
+        let slave = SceneBody::new("cylinder", disc, self.cylinder)
+            .group("axis", |f| near(f.centroid.x, 0.0))
+            .and_then(|b| b.group("top", |f| near(f.centroid.y, r)))
+            .and_then(|b| b.group("contact", on_arc))
+            .map_err(scene)?
+            .hold("axis", Component::X, 0.0)
+            .hold("top", Component::Y, -self.approach);
+        let master = SceneBody::new("block", block, self.block)
+            .group("axis", |f| near(f.centroid.x, 0.0))
+            .and_then(|b| b.group("bottom", |f| near(f.centroid.y, -h)))
+            .and_then(|b| b.group("top", |f| near(f.centroid.y, 0.0)))
+            .map_err(scene)?
+            .hold("axis", Component::X, 0.0)
+            .hold("bottom", Component::Y, 0.0);
+        Ok([slave, master])
+    }
+
+    fn settings(&self) -> (f64, &CouplingOptions, &ContactOptions, usize) {
+        let zone = self.contact_zone * self.radius;
+        (zone, &self.coupling, &self.contact, self.block_cell_count())
     }
 }
 

@@ -31,32 +31,58 @@ use crate::file::contact::SolvedContact;
 use crate::file::contact_files::{contact_scene_files, ContactSceneFiles, SceneBody, SceneContact};
 use crate::file::SceneError;
 
-/// The scene file of a Hertz scene's bodies: the slave's group `contact` against the master's
-/// group `top` with the exact law, the slave's full coverage required, the search as far as
-/// `search_distance`.
-///
-/// # Errors
-/// [`SceneError::Other`] for bodies that could not be made (`bodies`' error) and for a
-/// coupling a scene file cannot state.
-pub(crate) fn hertz_scene_files(
-    title: &str,
-    bodies: Result<[SceneBody; 2], PhysicsError>,
-    search_distance: f64,
-    coupling: &CouplingOptions,
-    solve: &ContactOptions,
-) -> Result<ContactSceneFiles, SceneError> {
-    contact_scene_files(
-        title,
-        bodies.map_err(|e| SceneError::Other(e.to_string()))?,
-        &SceneContact {
-            slave: "contact",
-            master: "top",
-            coupling,
-            search_radius: Some(search_distance),
-            require_full_coverage: true,
-            solve,
-        },
-    )
+/// A Hertz scene as its two bodies: what the cylinder and the sphere give, and the problem and
+/// the scene file made of it the same way for both.
+pub(crate) trait HertzBodies {
+    /// The scene file's title.
+    const TITLE: &'static str;
+    /// 2 or 3.
+    const DIMENSION: usize;
+
+    /// The two bodies with their groups and conditions, slave (the curved body) first.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation.
+    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError>;
+
+    /// How far the search looks (the contact zone, a distance), the coupling, the contact
+    /// solver's options and the block's cells per direction.
+    fn settings(&self) -> (f64, &CouplingOptions, &ContactOptions, usize);
+
+    /// The two bodies, their stiffness matrices, loads and Dirichlet data, the tie and the
+    /// normal gap of the scene, and the law with automatic `c`.
+    ///
+    /// # Errors
+    /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
+    /// coupling (with full coverage of the slave surface required) and of the assembly.
+    fn problem(&self) -> Result<HertzProblem, PhysicsError> {
+        let (zone, coupling, _, block_cells) = self.settings();
+        HertzProblem::of_bodies(self.bodies()?, zone, coupling, Self::DIMENSION, block_cells)
+    }
+
+    /// The scene file of the bodies: the slave's group `contact` against the master's group
+    /// `top` with the exact law, the slave's full coverage required, the search as far as the
+    /// contact zone.
+    ///
+    /// # Errors
+    /// [`SceneError::Other`] for bodies that could not be made (`bodies`' error) and for a
+    /// coupling a scene file cannot state.
+    fn files(&self) -> Result<ContactSceneFiles, SceneError> {
+        let (zone, coupling, solve, _) = self.settings();
+        contact_scene_files(
+            Self::TITLE,
+            self.bodies()
+                .map_err(|e| SceneError::Other(e.to_string()))?,
+            &SceneContact {
+                slave: "contact",
+                master: "top",
+                coupling,
+                search_radius: Some(zone),
+                require_full_coverage: true,
+                solve,
+            },
+        )
+    }
 }
 
 /// Whether two coordinates are the same to `1e-12` of the radius `r`: how the scenes find the

@@ -54,8 +54,7 @@ use mortar_physics::PhysicsError;
 use nalgebra::Vector3;
 
 use super::{
-    contact_modulus, first_cell, hertz_scene_files, near_to, vertical_force, HalfWidth,
-    HertzProblem,
+    contact_modulus, first_cell, near_to, vertical_force, HalfWidth, HertzBodies, HertzProblem,
 };
 use crate::file::contact::Component;
 use crate::file::contact_files::{ContactSceneFiles, SceneBody};
@@ -247,13 +246,7 @@ impl HertzSphereScene {
     /// [`PhysicsError::InvalidInput`] for bad geometry; the errors of mesh generation, of the
     /// coupling (with full coverage of the slave surface required) and of the assembly.
     pub fn build(&self) -> Result<HertzProblem, PhysicsError> {
-        HertzProblem::of_bodies(
-            self.bodies()?,
-            self.contact_zone * self.radius,
-            &self.coupling,
-            3,
-            self.block_cell_count(),
-        )
+        self.problem()
     }
 
     /// The scene as a scene file and its meshes (`sphere.msh`, `block.msh`; groups
@@ -264,70 +257,7 @@ impl HertzSphereScene {
     /// The errors of [`build`](Self::build)'s meshing, and [`SceneError::Other`] for a
     /// coupling a scene file cannot state.
     pub fn scene_files(&self) -> Result<ContactSceneFiles, SceneError> {
-        hertz_scene_files(
-            "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
-            self.bodies(),
-            self.contact_zone * self.radius,
-            &self.coupling,
-            &self.contact,
-        )
-    }
-
-    /// The two bodies with their groups and conditions (see the [module](self)).
-    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
-        let r = self.radius;
-        if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 0.7) {
-            return Err(PhysicsError::InvalidInput {
-                body: "hertz sphere scene".into(),
-                what: format!(
-                    "block size {} (over the radius, above 1) or contact zone {} (a fraction \
-                     of the radius, in (0, 0.7): the octant's cap around the pole)",
-                    self.block_size, self.contact_zone
-                ),
-            });
-        }
-        let (w, h) = (self.block_size * r, self.block_size * r);
-        let ball = ball_octant_mesh(r, [0.0, 0.0, r], self.cells, self.grading, 1)?;
-        let nb = self.block_cell_count();
-        let xs = graded_points(0.0, w, nb, self.block_grading);
-        let mut zs = graded_points(0.0, -h, nb, self.block_grading);
-        zs.reverse();
-        let block = grid_box_mesh(&xs, &xs, &zs, CellShape::Tensor, 1_000_001)?;
-
-        let near = near_to(r);
-        // The slave surface: the sphere's faces near the pole. The gap grows to
-        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
-        let coords = ball.coords().to_vec();
-        let zone = self.contact_zone * r;
-        let centre = Vector3::new(0.0, 0.0, r);
-        let on_cap = move |f: &BoundaryFace| {
-            f.nodes.iter().all(|&n| {
-                let x = coords[n as usize];
-                ((x - centre).norm() - r).abs() <= 1e-9 * r && x.x.hypot(x.y) <= zone
-            })
-        };
-        let symmetric = |body: SceneBody| -> Result<SceneBody, SceneError> {
-            Ok(body
-                .group("x0", |f| near(f.centroid.x, 0.0))?
-                .group("y0", |f| near(f.centroid.y, 0.0))?
-                .hold("x0", Component::X, 0.0)
-                .hold("y0", Component::Y, 0.0))
-        };
-        let scene = |e: SceneError| PhysicsError::InvalidInput {
-            body: "hertz sphere scene".into(),
-            what: e.to_string(),
-        };
-        let slave = symmetric(SceneBody::new("sphere", ball, self.sphere))
-            .and_then(|b| b.group("top", |f| near(f.centroid.z, r)))
-            .and_then(|b| b.group("contact", on_cap))
-            .map_err(scene)?
-            .hold("top", Component::Z, -self.approach);
-        let master = symmetric(SceneBody::new("block", block, self.block))
-            .and_then(|b| b.group("bottom", |f| near(f.centroid.z, -h)))
-            .and_then(|b| b.group("top", |f| near(f.centroid.z, 0.0)))
-            .map_err(scene)?
-            .hold("bottom", Component::Z, 0.0);
-        Ok([slave, master])
+        self.files()
     }
 
     /// Builds and solves the scene and compares it with the closed form.
@@ -448,6 +378,73 @@ impl HertzSphereScene {
             seconds,
             profile: nodes,
         }
+    }
+}
+
+impl HertzBodies for HertzSphereScene {
+    const TITLE: &'static str = "3D Hertz contact: a sphere on a block (quarter model, Hex8)";
+    const DIMENSION: usize = 3;
+
+    /// The two bodies with their groups and conditions (see the [module](self)).
+    fn bodies(&self) -> Result<[SceneBody; 2], PhysicsError> {
+        let r = self.radius;
+        if !(self.block_size > 1.0 && self.contact_zone > 0.0 && self.contact_zone < 0.7) {
+            return Err(PhysicsError::InvalidInput {
+                body: "hertz sphere scene".into(),
+                what: format!(
+                    "block size {} (over the radius, above 1) or contact zone {} (a fraction \
+                     of the radius, in (0, 0.7): the octant's cap around the pole)",
+                    self.block_size, self.contact_zone
+                ),
+            });
+        }
+        let (w, h) = (self.block_size * r, self.block_size * r);
+        let ball = ball_octant_mesh(r, [0.0, 0.0, r], self.cells, self.grading, 1)?;
+        let nb = self.block_cell_count();
+        let xs = graded_points(0.0, w, nb, self.block_grading);
+        let mut zs = graded_points(0.0, -h, nb, self.block_grading);
+        zs.reverse();
+        let block = grid_box_mesh(&xs, &xs, &zs, CellShape::Tensor, 1_000_001)?;
+
+        let near = near_to(r);
+        // The slave surface: the sphere's faces near the pole. The gap grows to
+        // r - sqrt(r^2 - zone^2) < zone at the zone's end: the search looks that far.
+        let coords = ball.coords().to_vec();
+        let zone = self.contact_zone * r;
+        let centre = Vector3::new(0.0, 0.0, r);
+        let on_cap = move |f: &BoundaryFace| {
+            f.nodes.iter().all(|&n| {
+                let x = coords[n as usize];
+                ((x - centre).norm() - r).abs() <= 1e-9 * r && x.x.hypot(x.y) <= zone
+            })
+        };
+        let symmetric = |body: SceneBody| -> Result<SceneBody, SceneError> {
+            Ok(body
+                .group("x0", |f| near(f.centroid.x, 0.0))?
+                .group("y0", |f| near(f.centroid.y, 0.0))?
+                .hold("x0", Component::X, 0.0)
+                .hold("y0", Component::Y, 0.0))
+        };
+        let scene = |e: SceneError| PhysicsError::InvalidInput {
+            body: "hertz sphere scene".into(),
+            what: e.to_string(),
+        };
+        let slave = symmetric(SceneBody::new("sphere", ball, self.sphere))
+            .and_then(|b| b.group("top", |f| near(f.centroid.z, r)))
+            .and_then(|b| b.group("contact", on_cap))
+            .map_err(scene)?
+            .hold("top", Component::Z, -self.approach);
+        let master = symmetric(SceneBody::new("block", block, self.block))
+            .and_then(|b| b.group("bottom", |f| near(f.centroid.z, -h)))
+            .and_then(|b| b.group("top", |f| near(f.centroid.z, 0.0)))
+            .map_err(scene)?
+            .hold("bottom", Component::Z, 0.0);
+        Ok([slave, master])
+    }
+
+    fn settings(&self) -> (f64, &CouplingOptions, &ContactOptions, usize) {
+        let zone = self.contact_zone * self.radius;
+        (zone, &self.coupling, &self.contact, self.block_cell_count())
     }
 }
 
