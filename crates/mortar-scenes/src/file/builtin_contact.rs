@@ -5,14 +5,15 @@
 
 use std::time::Instant;
 
+use mortar_physics::contact::ContactStep;
 use mortar_physics::PhysicsError;
 
 use super::contact::{steps_json, SolvedContact};
 use super::contact_files::ContactSceneFiles;
 use super::two_bodies::report_bytes;
 use super::{SceneError, SceneOutput, SolvedScene};
-use crate::hertz::HertzProblem;
-use crate::shrink_fit::ShrinkFitSolved;
+use crate::hertz::{HertzProblem, HertzRun, HertzSphereRun};
+use crate::shrink_fit::{ShrinkFitRun, ShrinkFitSolved};
 
 /// The built-in contact scenes ([`BUILTIN_CONTACT_SCENES`](super::BUILTIN_CONTACT_SCENES)),
 /// made as scene files with meshes and solved from them: `hertz2d`
@@ -98,7 +99,7 @@ fn hertz2d(t: Instant) -> Result<BuiltinRun, SceneError> {
     let (problem, sol) =
         HertzProblem::from_solved(solved, scene.block_cell_count()).map_err(fail)?;
     let run = scene.evaluate(&problem, &sol, seconds);
-    let report = serde_json::json!({
+    let mut report = serde_json::json!({
         "kind": "contact",
         "scene": "hertz2d",
         "title": "2D Hertz contact: a cylinder on a block (plane strain, half model)",
@@ -125,12 +126,9 @@ fn hertz2d(t: Instant) -> Result<BuiltinRun, SceneError> {
             "profile_l2": run.profile_l2,
             "equilibrium": run.equilibrium_error(),
         },
-        "load_steps": steps_json(&run.steps),
-        "active": run.active,
         "contact_force": run.force,
-        "complementarity": run.complementarity,
-        "seconds": { "run": run.seconds, "total": t.elapsed().as_secs_f64() },
     });
+    solve_figures(&mut report, &run);
     let summary = format!(
         "hertz2d: P = {:.6e} N/m; a = {:.6e} m (closed form {:.6e}, {:+.2e}); p0 = {:.6e} Pa (closed form {:.6e}, {:+.2e})",
         run.load,
@@ -164,7 +162,7 @@ fn hertz3d(t: Instant) -> Result<BuiltinRun, SceneError> {
     let run = scene.evaluate(&problem, &sol, [build, seconds]);
     let bracket = |h: &crate::hertz::HalfWidth| [h.last_in_contact, h.first_open];
     let closed_json = |c: &crate::hertz::HertzContact| serde_json::json!({ "a": c.radius, "p0": c.peak, "P": c.load, "d": c.approach });
-    let report = serde_json::json!({
+    let mut report = serde_json::json!({
         "kind": "contact",
         "scene": "hertz3d",
         "title": "3D Hertz contact: a sphere on a block (quarter model, Hex8)",
@@ -208,14 +206,12 @@ fn hertz3d(t: Instant) -> Result<BuiltinRun, SceneError> {
             },
             "equilibrium": run.equilibrium_error(),
         },
-        "load_steps": steps_json(&run.steps),
-        "active": run.active,
         "slave_nodes": run.slave_nodes,
         "unknowns": run.unknowns,
         "contact_force": run.force,
-        "complementarity": run.complementarity,
-        "seconds": { "build": run.seconds_build, "run": run.seconds, "total": t.elapsed().as_secs_f64() },
+        "seconds": { "build": run.seconds_build },
     });
+    solve_figures(&mut report, &run);
     let summary = format!(
         "hertz3d: d = {:.6e} m, P = {:.6e} N ({:+.2e} off the closed form at d); a = {:.6e} m (closed form {:.6e} at d, {:.6e} at P); p0 = {:.6e} Pa (closed form {:.6e} at d, {:+.2e}; {:.6e} at P, {:+.2e})",
         scene.approach,
@@ -257,7 +253,7 @@ fn shrink_fit(t: Instant) -> Result<BuiltinRun, SceneError> {
         seconds,
     );
     let fit = scene.fit;
-    let report = serde_json::json!({
+    let mut report = serde_json::json!({
         "kind": "contact",
         "scene": "shrink_fit",
         "title": "shrink fit: a disc in a ring (plane strain, quarter model)",
@@ -274,11 +270,8 @@ fn shrink_fit(t: Instant) -> Result<BuiltinRun, SceneError> {
         "computed": { "p_mean": run.mean, "p_min": run.min, "p_max": run.max },
         "closed_form": { "p": run.exact, "p_faceted": run.faceted_pressure },
         "error": { "worst": run.worst_error(), "mean": run.mean_error() },
-        "load_steps": steps_json(&run.steps),
-        "active": run.active,
-        "complementarity": run.complementarity,
-        "seconds": { "run": run.seconds, "total": t.elapsed().as_secs_f64() },
     });
+    solve_figures(&mut report, &run);
     let summary = format!(
         "shrink_fit: p mean {:.6e} Pa in [{:.6e}, {:.6e}] (closed form {:.6e}, mean error {:+.2e})",
         run.mean,
@@ -293,6 +286,36 @@ fn shrink_fit(t: Instant) -> Result<BuiltinRun, SceneError> {
         report,
         summary,
     })
+}
+
+/// A built-in contact scene's evaluated run: its load steps, its active slave nodes, its
+/// complementarity residual and its solve's seconds.
+trait ContactRun {
+    fn figures(&self) -> (&[ContactStep], usize, f64, f64);
+}
+
+/// [`ContactRun`] of run types with the fields `steps`, `active`, `complementarity`, `seconds`.
+macro_rules! contact_run {
+    ($($run:ty),*) => {
+        $(impl ContactRun for $run {
+            fn figures(&self) -> (&[ContactStep], usize, f64, f64) {
+                (&self.steps, self.active, self.complementarity, self.seconds)
+            }
+        })*
+    };
+}
+
+contact_run!(HertzRun, HertzSphereRun, ShrinkFitRun);
+
+/// The figures of the solve that every built-in contact scene reports, added to `report`: the
+/// load steps, the active slave nodes, the complementarity residual and the solve's seconds
+/// (the total is added with the outputs).
+fn solve_figures(report: &mut serde_json::Value, run: &impl ContactRun) {
+    let (steps, active, complementarity, seconds) = run.figures();
+    report["load_steps"] = serde_json::json!(steps_json(steps));
+    report["active"] = serde_json::json!(active);
+    report["complementarity"] = serde_json::json!(complementarity);
+    report["seconds"]["run"] = serde_json::json!(seconds);
 }
 
 /// The scene files made, solved from and rendered.
