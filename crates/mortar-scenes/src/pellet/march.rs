@@ -205,13 +205,17 @@ impl<'a, TL: ConstraintLaw, ML: ConstraintLaw> March<'a, TL, ML> {
         }
         self.observe(0.0, json!("initial"))?;
         let rep0 = self.solver.stats;
-        self.rows.push((
-            0.0,
-            summary(self.problem, &self.x, self.centre),
-            rep0.newton_iterations,
-            rep0.linear_iterations,
-            0,
-        ));
+        let s = summary(self.problem, &self.x, self.centre);
+        let row = (0.0, s, rep0.newton_iterations, rep0.linear_iterations, 0);
+        self.record(row, true)
+    }
+
+    /// The history's `row` of the time reached, and its snapshot if `snapshot`.
+    fn record(&mut self, row: Row, snapshot: bool) -> Result<(), PelletError> {
+        self.rows.push(row);
+        if !snapshot {
+            return Ok(());
+        }
         write_snapshot(
             self.out,
             self.problem,
@@ -270,24 +274,17 @@ impl<'a, TL: ConstraintLaw, ML: ConstraintLaw> March<'a, TL, ML> {
         self.cuts_total += cuts;
         let s = summary(self.problem, &self.x, self.centre);
         self.observe(self.time, json!(k))?;
-        self.rows.push((
+        let row = (
             self.time,
             s,
             self.solver.stats.newton_iterations - before.newton_iterations,
             self.solver.stats.linear_iterations - before.linear_iterations,
             cuts,
-        ));
-        if k.is_multiple_of(scene.time.snapshot_every()) || k == steps {
-            write_snapshot(
-                self.out,
-                self.problem,
-                &self.x,
-                self.time,
-                &mut self.files,
-                &mut self.outputs,
-            )?;
-        }
-        Ok(())
+        );
+        self.record(
+            row,
+            k.is_multiple_of(scene.time.snapshot_every()) || k == steps,
+        )
     }
 
     /// The steady state at full power (at the end, or the ramp's end if later); its time.
@@ -642,61 +639,62 @@ pub(super) fn history_plots(
     Ok(Vec::new())
 }
 
+/// A history plot: its file, title, y axis and the scale of its values, and its curves'
+/// legends and values.
+#[cfg(feature = "plots")]
+type HistoryPlot = (
+    &'static str,
+    &'static str,
+    &'static str,
+    f64,
+    &'static [HistoryCurve],
+);
+
+/// A curve of a history plot: its legend and its value in a step's summary.
+#[cfg(feature = "plots")]
+type HistoryCurve = (&'static str, fn(&Summary) -> f64);
+
+/// The history's plots over time.
+#[cfg(feature = "plots")]
+#[rustfmt::skip]
+const HISTORY_PLOTS: [HistoryPlot; 3] = [
+    ("temperatures.png", "Pellet temperatures", "temperature (K)", 1.0, &[
+        ("centre", |s| s.center),
+        ("pellet surface", |s| s.pellet_surface),
+        ("cladding inner surface", |s| s.cladding_inner),
+    ]),
+    ("gap.png", "Pellet-cladding gap", "gap (um)", 1e6, &[
+        ("mean gap", |s| s.gap),
+        ("smallest gap", |s| s.min_gap),
+    ]),
+    ("pressures.png", "Pressures", "pressure (MPa)", 1e-6, &[
+        ("interface pressure P_c (mean)", |s| s.interface_pressure),
+        ("interface pressure (peak)", |s| s.peak_pressure),
+        ("plenum pressure P_o", |s| s.plenum),
+    ]),
+];
+
 /// PNG plots of the history: temperatures, gap, pressures.
 #[cfg(feature = "plots")]
 pub(super) fn history_plots(
     rows: &[(f64, Summary, usize, usize, usize)],
 ) -> Result<Vec<(String, Vec<u8>)>, PelletError> {
-    let curve = |name: &'static str, scale: f64, f: fn(&Summary) -> f64| Curve {
-        name,
-        points: rows.iter().map(|r| (r.0, scale * f(&r.1))).collect(),
-    };
-    // Each plot over time: its file, title, y axis and curves.
-    let over_time = |file: &'static str, title: &'static str, y_label, curves| {
+    let mut out = Vec::new();
+    for (file, title, y_label, scale, curves) in HISTORY_PLOTS {
+        let curves = curves
+            .iter()
+            .map(|&(name, value)| Curve {
+                name,
+                points: rows.iter().map(|r| (r.0, scale * value(&r.1))).collect(),
+            })
+            .collect();
         let chart = Chart {
             title,
             x_label: "time (s)",
             y_label,
             curves,
         };
-        (file, chart)
-    };
-    let charts = [
-        over_time(
-            "temperatures.png",
-            "Pellet temperatures",
-            "temperature (K)",
-            vec![
-                curve("centre", 1.0, |s| s.center),
-                curve("pellet surface", 1.0, |s| s.pellet_surface),
-                curve("cladding inner surface", 1.0, |s| s.cladding_inner),
-            ],
-        ),
-        over_time(
-            "gap.png",
-            "Pellet-cladding gap",
-            "gap (um)",
-            vec![
-                curve("mean gap", 1e6, |s| s.gap),
-                curve("smallest gap", 1e6, |s| s.min_gap),
-            ],
-        ),
-        over_time(
-            "pressures.png",
-            "Pressures",
-            "pressure (MPa)",
-            vec![
-                curve("interface pressure P_c (mean)", 1e-6, |s| {
-                    s.interface_pressure
-                }),
-                curve("interface pressure (peak)", 1e-6, |s| s.peak_pressure),
-                curve("plenum pressure P_o", 1e-6, |s| s.plenum),
-            ],
-        ),
-    ];
-    let mut out = Vec::new();
-    for (name, chart) in charts {
-        out.push((name.to_string(), line_chart_png(&chart)?));
+        out.push((file.to_string(), line_chart_png(&chart)?));
     }
     Ok(out)
 }
