@@ -1723,6 +1723,8 @@ fn pellet_full() -> toml::Table {
         1e-4,
     ));
     s.laws.contact = Some(law("exponential_contact", "onset", 5e-6));
+    s.solver.backend = mortar_scenes::linear_solver::BackendChoice::Direct;
+    s.solver.linear_tolerance = Some(1e-10);
     toml::from_str(&toml::to_string(&s).unwrap()).unwrap()
 }
 
@@ -2081,6 +2083,42 @@ fn pellet_rows() -> Vec<Row<Pellet>> {
             assert!(its(&f.report) > 0.0 && its(&r) == 0.0);
             let key = "steady.center_temperature";
             assert!(off(&[num(&r, key)], num(&f.report, key)) < 1e-8);
+        }),
+        ("solver.backend", |f| {
+            assert_eq!(text(&f.report, "linear_solver.backend"), "direct");
+            assert!(text(&f.report, "linear_solver.why").contains("auto"));
+            let r = f.ok(&[("solver.backend", "\"direct\"")]);
+            assert!(text(&r, "linear_solver.why").contains("asked for"));
+            let petsc = [("solver.backend", "\"petsc\"")];
+            if !mortar::petsc::is_built() {
+                assert!(f.err(&petsc).contains("--features petsc"));
+                return;
+            }
+            // PETSc takes Newton's Jacobians: the picked JFNK becomes Newton.
+            let r = f.ok(&petsc);
+            assert_eq!(text(&r, "linear_solver.backend"), "petsc");
+            assert_eq!(text(&r, "method"), "newton");
+            assert!(text(&r, "solver_choice.why").contains("PETSc"));
+            let key = "steady.center_temperature";
+            assert!(off(&[num(&r, key)], num(&f.report, key)) < 1e-8);
+            let jfnk = [petsc[0], ("solver.method", "\"jfnk\"")];
+            assert!(f.err(&jfnk).contains("solver.backend"));
+        }),
+        ("solver.linear_tolerance", |f| {
+            assert!(f
+                .err(&[("solver.linear_tolerance", "2")])
+                .contains("solver.linear_tolerance"));
+            if !mortar::petsc::is_built() {
+                return;
+            }
+            let iterations = |tol: &str| {
+                let r = f.ok(&[
+                    ("solver.backend", "\"petsc\""),
+                    ("solver.linear_tolerance", tol),
+                ]);
+                num(&r, "linear_solver.iterations.0")
+            };
+            assert!(iterations("1e-4") < iterations("1e-12"));
         }),
         ("solver.relative_tolerance", |f| {
             let r = f.ok(&[("solver.relative_tolerance", "1e-4")]);

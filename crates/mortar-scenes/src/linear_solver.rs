@@ -71,6 +71,11 @@ impl AutoSwitch {
     /// measured).
     pub fn of(kind: &str, dim: usize) -> Self {
         match (kind, dim) {
+            ("pellet", _) => Self {
+                min_unknowns: None,
+                measured: "the pellet, whose sizes the direct solve and JFNK serve (PETSc when \
+                           asked for)",
+            },
             ("tied_heat", 3) => Self {
                 min_unknowns: Some(AUTO_PETSC_MIN_TIED_HEAT_3D),
                 measured: "3D tied heat, where PETSc's multigrid is the quicker from about 3e4",
@@ -168,6 +173,13 @@ impl PickedSolver {
                 ))),
             },
         }
+    }
+
+    /// The PETSc backend, shared, when it was picked: for a solver state that keeps it.
+    pub fn shared(&self) -> Option<Arc<dyn SparseSolver>> {
+        self.petsc
+            .as_ref()
+            .map(|p| Arc::clone(p) as Arc<dyn SparseSolver>)
     }
 
     /// The solver to give the physics: `None` for the direct solve (the physics' own, by

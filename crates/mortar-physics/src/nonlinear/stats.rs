@@ -73,7 +73,7 @@ impl SolverStats {
 
     /// Refactors the factorisation in `lu` with `a` if there is one and that succeeds, else
     /// `build`s a new one (a symbolic analysis); counted.
-    fn counted<'a, F: Factorization>(
+    pub(crate) fn counted<'a, F: Factorization>(
         &mut self,
         lu: &'a mut Option<F>,
         a: &SparseMatrix,

@@ -1,10 +1,12 @@
 //! The solves of the thermomechanical problem: Newton on the assembled Jacobian (the axial
 //! unknowns as a bordered LU's border) or JFNK with the block lower-triangular preconditioner.
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use mortar_fem::linalg::{
-    BorderedLu, LuFactorization, Preconditioner, SolverError, SparseMatrix, Triplets,
+    BorderedLu, Factorization, LuFactorization, MatrixKind, Preconditioner, SolverError,
+    SparseMatrix, SparseSolver, Triplets,
 };
 
 use super::problem::{GapThermoMechanics, Offsets};
@@ -20,7 +22,9 @@ use crate::nonlinear::{
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ThermoMechSolver {
     /// Newton on the assembled exact Jacobian of the whole problem, sparse LU (symbolic
-    /// analysis reused while the pattern holds), refactorised every Newton step.
+    /// analysis reused while the pattern holds), refactorised every Newton step; or, with a
+    /// backend ([`ThermoMechSolverState::with_backend`]), each Jacobian handed to it as a
+    /// general (nonsymmetric) matrix.
     Newton,
     /// Jacobian-free Newton-Krylov on the whole residual: GMRES on finite-difference
     /// products, right-preconditioned by the block lower-triangular preconditioner of the
@@ -47,6 +51,10 @@ pub struct ThermoMechSolverState {
     /// The method.
     pub method: ThermoMechSolver,
     lu: Option<BorderedLu>,
+    /// The backend Newton's Jacobians go to, if not the bordered LU.
+    backend: Option<Arc<dyn SparseSolver>>,
+    /// The backend's set-up of the last Jacobian.
+    backend_factors: Option<Box<dyn Factorization>>,
     block: Option<BlockPreconditioner>,
     /// GMRES iterations of the first solve after the last factorisation, and of the last.
     iterations: (usize, usize),
@@ -60,10 +68,20 @@ impl ThermoMechSolverState {
         Self {
             method,
             lu: None,
+            backend: None,
+            backend_factors: None,
             block: None,
             iterations: (0, 0),
             stats: ThermoMechStats::default(),
         }
+    }
+
+    /// Newton's Jacobians solved by `backend` (a PETSc Krylov solve, say) as general
+    /// matrices, in place of the bordered sparse LU; JFNK's block preconditioner keeps its own
+    /// factorisations.
+    pub fn with_backend(mut self, backend: Arc<dyn SparseSolver>) -> Self {
+        self.backend = Some(backend);
+        self
     }
 
     fn slowed_down(&self) -> bool {
@@ -282,13 +300,20 @@ impl<TL: ConstraintLaw, ML: ConstraintLaw> NewtonProblem for Step<'_, TL, ML> {
                 )?;
                 let t0 = Instant::now();
                 let solver = &mut *self.solver;
-                // The axial unknowns (last, dense rows and columns) as the border.
-                let border = self.problem.axial_unknowns();
-                let lu = solver
-                    .stats
-                    .factorize_bordered(&mut solver.lu, &a, border)?;
                 dx.copy_from_slice(r);
-                lu.solve_in_place(dx)?;
+                if let Some(backend) = &solver.backend {
+                    let factors = solver.stats.counted(&mut solver.backend_factors, &a, || {
+                        backend.factor(&a, MatrixKind::General)
+                    })?;
+                    factors.solve_in_place(dx)?;
+                } else {
+                    // The axial unknowns (last, dense rows and columns) as the border.
+                    let border = self.problem.axial_unknowns();
+                    let lu = solver
+                        .stats
+                        .factorize_bordered(&mut solver.lu, &a, border)?;
+                    lu.solve_in_place(dx)?;
+                }
                 solver.stats.linear_seconds += t0.elapsed().as_secs_f64();
                 Ok(1)
             }

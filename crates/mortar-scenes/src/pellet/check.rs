@@ -3,7 +3,8 @@
 //! mechanics' data, the `[model]` choices that go together, and the mesh file. Each step
 //! returns the first value it refuses, in this order.
 
-use super::{AxialModel, Geometry, PelletError, PelletScene};
+use super::{AxialModel, Geometry, PelletError, PelletScene, SolverMethod};
+use crate::linear_solver::BackendChoice;
 
 /// A value out of range: the check's error.
 fn bad(what: String) -> Result<(), PelletError> {
@@ -101,6 +102,14 @@ impl PelletScene {
         if self.solver.max_iterations == 0 || self.solver.gmres_restart == 0 {
             return bad("solver.max_iterations and solver.gmres_restart must be positive".into());
         }
+        if self.solver.backend == BackendChoice::Petsc && self.solver.method == SolverMethod::Jfnk {
+            return bad(
+                "solver.backend = \"petsc\" solves Newton's Jacobians: method = \"jfnk\" \
+                        would not use it (method = \"newton\" or \"auto\")"
+                    .into(),
+            );
+        }
+        self.solver.linear_solver(usize::MAX)?;
         if self.time.end / self.time.step > 1e6 {
             return bad(format!(
                 "time.end / time.step = {} steps is too many",

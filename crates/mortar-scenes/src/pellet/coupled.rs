@@ -180,12 +180,16 @@ fn run_with<TL: ConstraintLaw + Clone, ML: ConstraintLaw + Clone>(
     let scene = &scene;
     let problem = problem_of(scene, file.as_ref(), laws.0, laws.1, relocation)?;
     let setup_seconds = start.elapsed().as_secs_f64();
-    let choice = scene
-        .solver
-        .choose(true, scene.model.geometry.is_plane(), problem.dimension());
+    let linear = scene.solver.linear_solver(problem.dimension())?;
+    let choice = scene.solver.choose_with(
+        scene
+            .solver
+            .choose(true, scene.model.geometry.is_plane(), problem.dimension()),
+        &linear,
+    );
     let steps = scene.time.steps();
     let bar = progress_bar(progress, steps as u64 + 1);
-    let mut march = March::new(scene, &problem, &choice, out);
+    let mut march = March::new(scene, &problem, (&choice, &linear), out);
     march.initial()?;
     for k in 1..=steps {
         if let Err(e) = march.step(k) {

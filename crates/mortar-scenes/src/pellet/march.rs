@@ -2,6 +2,8 @@
 //! steady state, the history and snapshots, the report, and the outputs of a failure.
 
 use std::path::Path;
+
+use crate::linear_solver::PickedSolver;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -111,6 +113,8 @@ pub(super) struct March<'a, TL: ConstraintLaw, ML: ConstraintLaw> {
     pub(super) scene: &'a PelletScene,
     pub(super) problem: &'a GapThermoMechanics<TL, ML>,
     pub(super) choice: &'a SolverChoice,
+    /// Where Newton's Jacobians go.
+    pub(super) linear: &'a PickedSolver,
     pub(super) out: &'a Path,
     pub(super) newton: NewtonOptions,
     pub(super) solver: ThermoMechSolverState,
@@ -129,12 +133,12 @@ pub(super) struct March<'a, TL: ConstraintLaw, ML: ConstraintLaw> {
 }
 
 impl<'a, TL: ConstraintLaw, ML: ConstraintLaw> March<'a, TL, ML> {
-    /// The run of `problem` (of `scene`) by the method of `choice`, from the uniform outer
-    /// temperature, writing into `out`.
+    /// The run of `problem` (of `scene`) by the method of `choice`, Newton's Jacobians to
+    /// `linear`, from the uniform outer temperature, writing into `out`.
     pub(super) fn new(
         scene: &'a PelletScene,
         problem: &'a GapThermoMechanics<TL, ML>,
-        choice: &'a SolverChoice,
+        (choice, linear): (&'a SolverChoice, &'a PickedSolver),
         out: &'a Path,
     ) -> Self {
         let method = match choice.method {
@@ -149,9 +153,13 @@ impl<'a, TL: ConstraintLaw, ML: ConstraintLaw> March<'a, TL, ML> {
             scene,
             problem,
             choice,
+            linear,
             out,
             newton: scene.solver.newton_options(scene.power.linear_power),
-            solver: ThermoMechSolverState::new(method),
+            solver: match linear.shared() {
+                Some(backend) => ThermoMechSolverState::new(method).with_backend(backend),
+                None => ThermoMechSolverState::new(method),
+            },
             fallback: None,
             x: problem.state([&t0, &t1]),
             centre: nearest_node(&bodies[0].mesh, Vector3::zeros()),
@@ -437,6 +445,7 @@ impl CoupledReport<'_> {
                 .collect::<Vec<_>>(),
             "steady": self.steady_json(march, heat_out)?,
             "solver": self.solver_json(march),
+            "linear_solver": march.linear.json(),
             "mesh": self.mesh_json(march),
             "vtu": march.files.iter().map(|(f, _)| f.clone()).collect::<Vec<_>>(),
             "seconds": { "setup": self.seconds.0, "total": self.seconds.1.elapsed().as_secs_f64() },

@@ -116,6 +116,8 @@ use mortar_physics::laws::{GapConductance, GasConductivity, LawError};
 use mortar_physics::PhysicsError;
 use serde::{Deserialize, Serialize};
 
+use crate::linear_solver::{AutoSwitch, BackendChoice, PickedSolver};
+
 /// Errors of the pellet scene.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -567,6 +569,14 @@ impl SolverMethod {
     }
 }
 
+/// The PETSc options of the pellet's Newton Jacobians: GMRES (the backend's pick for a general
+/// matrix) with ILU(0). GAMG, the backend's default, stalls on the coupled thermomechanical
+/// Jacobian with its dense axial rows (the built-in scene's first solve: relative residual
+/// 8e-7 after 10,000 iterations); ILU(0) converges (400 to 2,000 iterations a solve at 2,730
+/// unknowns) but does not scale: a preconditioner split by physics is what larger pellets
+/// need.
+pub const PELLET_PETSC_OPTIONS: &str = "-pc_type ilu";
+
 /// The size of a 2D cross-section (unknowns) above which `[solver] method = "auto"` takes
 /// Newton rather than JFNK ([`SolverData::choose`]).
 pub const AUTO_NEWTON_ABOVE_2D: usize = 8_000;
@@ -594,6 +604,15 @@ pub struct SolverData {
     pub max_iterations: usize,
     /// GMRES restart length (JFNK).
     pub gmres_restart: usize,
+    /// Where Newton's Jacobians go ([`crate::linear_solver`]): `"auto"` (the direct solve,
+    /// the bordered sparse LU), `"direct"` or `"petsc"` (GMRES with
+    /// [`PELLET_PETSC_OPTIONS`] on the whole Jacobian; Newton then, JFNK's block
+    /// preconditioner being factorised directly).
+    #[serde(skip_serializing_if = "BackendChoice::is_auto")]
+    pub backend: BackendChoice,
+    /// The Krylov solves' relative tolerance (PETSc).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub linear_tolerance: Option<f64>,
 }
 
 impl SolverData {
@@ -641,6 +660,40 @@ impl SolverData {
         }
     }
 
+    /// The linear solver of Newton's Jacobians for `unknowns` unknowns
+    /// ([`PickedSolver::pick`], `"auto"` the direct solve).
+    ///
+    /// # Errors
+    /// [`PelletError::Invalid`] naming the key for PETSc asked for in a build without it or a
+    /// tolerance out of range.
+    pub fn linear_solver(&self, unknowns: usize) -> Result<PickedSolver, PelletError> {
+        PickedSolver::pick(
+            self.backend,
+            self.linear_tolerance,
+            PELLET_PETSC_OPTIONS,
+            unknowns,
+            AutoSwitch::of("pellet", 2),
+        )
+        .map_err(|(key, what)| {
+            PelletError::Invalid(format!("{}: {what}", key.replacen("solve.", "solver.", 1)))
+        })
+    }
+
+    /// The method of [`choose`](Self::choose) with the linear solver `linear`: PETSc runs
+    /// Newton's Jacobians, so that a picked JFNK becomes Newton (saying why).
+    pub fn choose_with(&self, choice: SolverChoice, linear: &PickedSolver) -> SolverChoice {
+        if linear.name == "petsc" && choice.method == SolverMethod::Jfnk && choice.picked {
+            return SolverChoice {
+                method: SolverMethod::Newton,
+                picked: true,
+                reason: "backend = \"petsc\": Newton, its Jacobians solved by PETSc (JFNK's \
+                         block preconditioner is factorised directly)"
+                    .into(),
+            };
+        }
+        choice
+    }
+
     /// The GMRES settings of JFNK.
     pub fn jfnk_options(&self) -> mortar_physics::nonlinear::JfnkOptions {
         mortar_physics::nonlinear::JfnkOptions {
@@ -669,6 +722,8 @@ impl Default for SolverData {
             relative_tolerance: 1e-10,
             max_iterations: 30,
             gmres_restart: 30,
+            backend: BackendChoice::Auto,
+            linear_tolerance: None,
         }
     }
 }
