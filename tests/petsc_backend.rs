@@ -218,9 +218,9 @@ fn tied_heat_rates_through_petsc_are_the_direct_ones() {
 }
 
 /// The coupled pellet (the built-in scene, to 12 s: the gap closes at about 9 s) with Newton's
-/// Jacobians through PETSc (GMRES with ILU(0)) against Newton with the bordered sparse LU.
+/// Jacobians through PETSc (GMRES(100) with ILU(0)) against Newton with the bordered sparse LU.
 /// Source: the direct run of the same scene; the Krylov solves' relative tolerance (1e-12)
-/// leaves Newton's iterates, and so the history, as the direct one's (measured 9e-12 relative
+/// leaves Newton's iterates, and so the history, as the direct one's (measured 7e-12 relative
 /// over the whole 30 s history, the same 88 Newton steps).
 #[test]
 fn the_coupled_pellet_through_petsc_matches_the_direct_newton() {
