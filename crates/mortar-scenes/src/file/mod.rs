@@ -37,6 +37,7 @@ pub mod contact;
 pub mod contact_files;
 pub(crate) mod error;
 mod file_scene;
+pub(crate) mod solve_keys;
 pub mod tied_heat;
 mod two_bodies;
 

@@ -26,9 +26,9 @@ use nalgebra::Vector3;
 
 use super::{Component, ComponentValue, ContactSpec, DisplacementSpec, LawSpec, SolvedContact};
 use crate::file::error::Errors;
+use crate::file::solve_keys::LinearSolverKeys;
 use crate::file::two_bodies::{interface_of, mesh_sides};
 use crate::file::{face_nodes, FileScene, ReadScene, SceneError};
-use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for ContactSpec {
     const KIND: &'static str = "contact";

@@ -3,7 +3,8 @@
 
 use mortar_physics::contact::ContactOptions;
 
-use crate::linear_solver::{solve_table, BackendChoice, LinearSolverKeys};
+use crate::file::solve_keys::{solve_table, LinearSolverKeys};
+use crate::linear_solver::BackendChoice;
 
 use crate::file::error::Errors;
 use crate::file::SceneError;

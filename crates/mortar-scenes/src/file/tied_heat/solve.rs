@@ -15,9 +15,9 @@ use mortar_physics::LinearSolve;
 
 use super::{Mode, SolvedTiedHeat, TiedHeatSpec};
 use crate::file::error::Errors;
+use crate::file::solve_keys::LinearSolverKeys;
 use crate::file::two_bodies::{interface_of, mesh_sides};
 use crate::file::{face_nodes, FileScene, ReadScene, SceneError};
-use crate::linear_solver::LinearSolverKeys;
 
 impl FileScene for TiedHeatSpec {
     const KIND: &'static str = "tied_heat";

@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use super::MAX_STEPS;
 use crate::file::error::Errors;
+use crate::file::solve_keys::{solve_table, LinearSolverKeys};
 use crate::file::SceneError;
-use crate::linear_solver::{solve_table, LinearSolverKeys};
 
 /// Steady or transient.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
