@@ -274,3 +274,59 @@ fn the_coupled_pellet_through_petsc_matches_the_direct_newton() {
     assert!(history.contains_key("center_temperature"));
     assert!(worst < 1e-6, "history differs by {worst:e}");
 }
+
+/// The Hertz verifications with the contact Newton's systems through PETSc (CG with GAMG, the
+/// bodies' rigid motions as its near null space) against the direct solves: a cylinder of 24
+/// arc cells (2D) and a sphere octant of 8 cells a direction (3D). Source: the direct runs of
+/// the same scenes (Johnson's closed forms are the direct runs' own checks); the Krylov
+/// tolerance (1e-12) leaves the Newton steps, the active set and the errors against the closed
+/// forms the direct ones'.
+#[test]
+fn hertz_errors_through_petsc_are_the_direct_ones() {
+    use mortar_scenes::hertz::{HertzScene, HertzSphereScene};
+    let backend = PetscBackend::automatic(1e-12, "");
+    let cylinder = HertzScene::new(24);
+    let direct = cylinder.run().unwrap();
+    let problem = cylinder.build().unwrap();
+    let solved = problem.solve_on(&cylinder.contact, Some(&backend));
+    if !mortar::petsc::is_built() {
+        let e = solved.unwrap_err().to_string();
+        assert!(e.contains("--features petsc"), "{e}");
+        return;
+    }
+    let petsc = cylinder.evaluate(&problem, &solved.unwrap(), 0.0);
+    assert_eq!(
+        (petsc.steps.len(), petsc.active),
+        (direct.steps.len(), direct.active)
+    );
+    for (p, d) in [
+        (petsc.peak_error(), direct.peak_error()),
+        (petsc.half_width_error(), direct.half_width_error()),
+    ] {
+        assert!((p - d).abs() < 1e-8, "2D: {p:e} against {d:e}");
+    }
+    let sphere = HertzSphereScene::new(8);
+    let direct = sphere.run().unwrap();
+    let petsc = sphere.run_on(Some(&backend)).unwrap();
+    assert_eq!(
+        (petsc.steps.len(), petsc.active, petsc.max_newton_steps()),
+        (direct.steps.len(), direct.active, direct.max_newton_steps())
+    );
+    for (p, d) in [
+        (
+            petsc.peak_error_at_approach(),
+            direct.peak_error_at_approach(),
+        ),
+        (
+            petsc.load_error_at_approach(),
+            direct.load_error_at_approach(),
+        ),
+        (
+            petsc.radius_error_at_approach(),
+            direct.radius_error_at_approach(),
+        ),
+    ] {
+        assert!((p - d).abs() < 1e-8, "3D: {p:e} against {d:e}");
+    }
+    assert!(backend.reports().iter().all(|r| r.ksp_type == "cg"));
+}
