@@ -39,6 +39,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 use mortar::extend::Registries;
 use mortar::settings::{parse_name, CouplingSettings, Integration, Multipliers};
+use mortar_scenes::linear_solver::BackendChoice;
 
 /// Mortar coupling of non-conforming interfaces: the operators D and M, tied heat, gap
 /// conductance.
@@ -122,6 +123,11 @@ struct RunArgs {
     /// Output directory (created if missing).
     #[arg(short, long, value_name = "DIR")]
     out: PathBuf,
+
+    /// Where the scene's linear systems go, in place of its `[solve] backend` (`[solver]` for
+    /// a pellet): auto, direct or petsc (a build with `--features petsc`).
+    #[arg(long, value_name = "BACKEND", value_parser = parse_name::<BackendChoice>)]
+    backend: Option<BackendChoice>,
 }
 
 /// Arguments of `mortar couple`.

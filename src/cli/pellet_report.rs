@@ -209,4 +209,20 @@ fn print_solver(report: &Value) {
     if let Some(t) = choice["fallback_to_newton"]["time"].as_f64() {
         say!("{:<28} JFNK failed at t = {t} s: Newton took over", "");
     }
+    let linear = &report["linear_solver"];
+    if linear["backend"].as_str() == Some("petsc") {
+        let its: Vec<u64> = linear["iterations"]
+            .as_array()
+            .map(|a| a.iter().filter_map(Value::as_u64).collect())
+            .unwrap_or_default();
+        let (lo, hi) = (its.iter().min(), its.iter().max());
+        say!(
+            "{:<28} PETSc {}: {} solves, {} to {} iterations",
+            "linear solver",
+            linear["methods"][0].as_str().unwrap_or("?"),
+            its.len(),
+            lo.map_or("?".into(), u64::to_string),
+            hi.map_or("?".into(), u64::to_string)
+        );
+    }
 }

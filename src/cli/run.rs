@@ -6,8 +6,9 @@ use std::path::Path;
 
 use mortar::io::write_outputs;
 use mortar_scenes::file::{
-    builtin_scene, run_builtin_contact, FileSystem, InMemory, BUILTIN_CONTACT_SCENES,
+    builtin_scene, run_builtin_contact_on, FileSystem, InMemory, BUILTIN_CONTACT_SCENES,
 };
+use mortar_scenes::linear_solver::{with_backend, BackendChoice};
 use mortar_scenes::pellet::PelletScene;
 use mortar_scenes::{run_scene, SceneContext};
 
@@ -48,6 +49,7 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
         (Some(path), None) => {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| format!("cannot read scene file {}: {e}", path.display()))?;
+            let text = backend_in(text, args.backend)?;
             let base = path.parent().unwrap_or(Path::new(""));
             let ctx = ctx(path, base, &FileSystem);
             (
@@ -57,10 +59,13 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
         }
         (None, Some(name)) if name == "pellet" => {
             // The built-in pellet is the scene file of every default, written out beside it.
-            let scene = PelletScene {
+            let mut scene = PelletScene {
                 scene: Some("pellet".into()),
                 ..PelletScene::default()
             };
+            if let Some(b) = args.backend {
+                scene.solver.backend = b;
+            }
             let toml = toml::to_string(&scene).map_err(|e| e.to_string())?;
             let path = args.out.join("scene.toml");
             let ctx = ctx(&path, &args.out, &FileSystem);
@@ -68,7 +73,7 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
             (run, vec![("scene.toml".to_string(), toml.into_bytes())])
         }
         (None, Some(name)) if BUILTIN_CONTACT_SCENES.contains(&name.as_str()) => {
-            let output = run_builtin_contact(name)
+            let output = run_builtin_contact_on(name, args.backend)
                 .map_err(|e| e.to_string())?
                 .ok_or_else(|| format!("no built-in contact scene named \"{name}\""))?;
             let ctx = ctx(Path::new(name.as_str()), &args.out, &FileSystem);
@@ -77,7 +82,8 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
             (run, Vec::new())
         }
         (None, Some(name)) => {
-            let scene = builtin_scene(name).map_err(|e| e.to_string())?;
+            let mut scene = builtin_scene(name).map_err(|e| e.to_string())?;
+            scene.toml = backend_in(scene.toml, args.backend)?;
             // The scene runs from its meshes in memory, as if written into DIR; they are
             // written there with its scene file, beside the results.
             let base = args.out.clone();
@@ -120,4 +126,12 @@ pub(super) fn run(args: &RunArgs, json: bool, registries: &Registries) -> Result
         say!("output: {} ({})", args.out.display(), names.join(", "));
     }
     Ok(())
+}
+
+/// The scene file `text` with `--backend`'s choice, if given.
+fn backend_in(text: String, backend: Option<BackendChoice>) -> Result<String, String> {
+    match backend {
+        Some(b) => with_backend(&text, b),
+        None => Ok(text),
+    }
 }

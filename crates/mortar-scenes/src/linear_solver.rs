@@ -257,6 +257,29 @@ fn methods(reports: &[SolveReport]) -> Vec<String> {
     set.into_iter().collect()
 }
 
+/// The scene file `text` with its linear solver's `backend` set to `backend`: `[solver]
+/// backend` for a pellet scene, `[solve] backend` for the others (`mortar run --backend`).
+/// The text is parsed and written back, so that its comments are dropped.
+///
+/// # Errors
+/// The parser's message for a text that is not TOML.
+pub fn with_backend(text: &str, backend: BackendChoice) -> Result<String, String> {
+    let mut doc: toml::Table = toml::from_str(text).map_err(|e| e.to_string())?;
+    let section = match doc.get("kind").and_then(toml::Value::as_str) {
+        Some("pellet") => "solver",
+        _ => "solve",
+    };
+    let table = doc
+        .entry(section)
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    let toml::Value::Table(table) = table else {
+        return Err(format!("`{section}` is not a table"));
+    };
+    let name = toml::Value::try_from(backend).map_err(|e| e.to_string())?;
+    table.insert("backend".into(), name);
+    toml::to_string(&doc).map_err(|e| e.to_string())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -297,5 +320,20 @@ mod tests {
         let (key, _) =
             PickedSolver::pick(BackendChoice::Petsc, Some(0.0), "", 10, contact).unwrap_err();
         assert_eq!(key, "solve.linear_tolerance");
+    }
+
+    #[test]
+    fn with_backend_sets_the_key_of_the_kind() {
+        let contact = "kind = \"contact\"\n[solve]\nload_steps = 2\n";
+        let out: toml::Table =
+            toml::from_str(&with_backend(contact, BackendChoice::Petsc).unwrap()).unwrap();
+        assert_eq!(out["solve"]["backend"].as_str(), Some("petsc"));
+        assert_eq!(out["solve"]["load_steps"].as_integer(), Some(2));
+        let pellet = "kind = \"pellet\"\n";
+        let out: toml::Table =
+            toml::from_str(&with_backend(pellet, BackendChoice::Direct).unwrap()).unwrap();
+        assert_eq!(out["solver"]["backend"].as_str(), Some("direct"));
+        assert!(with_backend("kind = \"contact\"\nsolve = 1\n", BackendChoice::Auto).is_err());
+        assert!(with_backend("not toml [", BackendChoice::Auto).is_err());
     }
 }

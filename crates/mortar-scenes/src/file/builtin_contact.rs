@@ -3,16 +3,20 @@
 //! with them (`scene.toml`, `NAME.msh`), with a VTU per body and `interface.vtu`, and with a
 //! `report.json` that compares the solution with its closed form.
 
+use std::path::Path;
 use std::time::Instant;
 
 use mortar_physics::contact::ContactStep;
 use mortar_physics::PhysicsError;
 
-use super::contact::{steps_json, SolvedContact};
+use super::contact::{steps_json, ContactSpec, SolvedContact};
 use super::contact_files::ContactSceneFiles;
+use super::contact_files::SCENE_FILE;
 use super::two_bodies::report_bytes;
+use super::FileScene;
 use super::{SceneError, SceneOutput, SolvedScene};
 use crate::hertz::{HertzProblem, HertzRun, HertzSphereRun};
+use crate::linear_solver::{with_backend, BackendChoice};
 use crate::shrink_fit::{ShrinkFitRun, ShrinkFitSolved};
 
 /// The built-in contact scenes ([`BUILTIN_CONTACT_SCENES`](super::BUILTIN_CONTACT_SCENES)),
@@ -29,11 +33,24 @@ use crate::shrink_fit::{ShrinkFitRun, ShrinkFitSolved};
 /// # Errors
 /// [`SceneError::Other`] if the scene cannot be built or solved.
 pub fn run_builtin_contact(name: &str) -> Result<Option<SceneOutput>, SceneError> {
+    run_builtin_contact_on(name, None)
+}
+
+/// [`run_builtin_contact`] with the scene file's `[solve] backend` set to `backend` (`None`:
+/// the scene's own, `"auto"`), in the scene file written beside the results too.
+///
+/// # Errors
+/// As [`run_builtin_contact`]; [`SceneError::Invalid`] (key `solve.backend`) for PETSc in a
+/// build without it.
+pub fn run_builtin_contact_on(
+    name: &str,
+    backend: Option<BackendChoice>,
+) -> Result<Option<SceneOutput>, SceneError> {
     let t = Instant::now();
     let run = match name {
-        "hertz2d" => hertz2d(t)?,
-        "hertz3d" => hertz3d(t)?,
-        "shrink_fit" => shrink_fit(t)?,
+        "hertz2d" => hertz2d(t, backend)?,
+        "hertz3d" => hertz3d(t, backend)?,
+        "shrink_fit" => shrink_fit(t, backend)?,
         _ => return Ok(None),
     };
     run.into_output(t).map(Some)
@@ -90,11 +107,11 @@ fn fail(name: &str) -> impl Fn(PhysicsError) -> SceneError + '_ {
 
 /// `hertz2d` (started at `t`): the cylinder on the block, its half-width, peak pressure and
 /// profile against the closed form.
-fn hertz2d(t: Instant) -> Result<BuiltinRun, SceneError> {
+fn hertz2d(t: Instant, backend: Option<BackendChoice>) -> Result<BuiltinRun, SceneError> {
     let fail = fail("hertz2d");
     let scene = crate::hertz::HertzScene::new(HERTZ_ARC_CELLS);
     let closed = scene.closed_form();
-    let (files, solved, output) = solve(scene.scene_files())?;
+    let (files, solved, output) = solve(scene.scene_files(), backend)?;
     let seconds = t.elapsed().as_secs_f64();
     let (problem, sol) =
         HertzProblem::from_solved(solved, scene.block_cell_count()).map_err(fail)?;
@@ -149,11 +166,11 @@ fn hertz2d(t: Instant) -> Result<BuiltinRun, SceneError> {
 
 /// `hertz3d` (started at `t`): the sphere on the block, compared with the closed form at the
 /// imposed approach and at the computed load.
-fn hertz3d(t: Instant) -> Result<BuiltinRun, SceneError> {
+fn hertz3d(t: Instant, backend: Option<BackendChoice>) -> Result<BuiltinRun, SceneError> {
     let fail = fail("hertz3d");
     let scene = crate::hertz::HertzSphereScene::default();
     let closed = scene.closed_form();
-    let (files, solved, output) = solve(scene.scene_files())?;
+    let (files, solved, output) = solve(scene.scene_files(), backend)?;
     let seconds = t.elapsed().as_secs_f64();
     // Building: reading the files, the coupling and the assembly.
     let build: f64 = solved.seconds()[..3].iter().map(|(_, s)| s).sum();
@@ -235,9 +252,9 @@ fn hertz3d(t: Instant) -> Result<BuiltinRun, SceneError> {
 }
 
 /// `shrink_fit` (started at `t`): the disc in the ring, its contact pressure against Lamé's.
-fn shrink_fit(t: Instant) -> Result<BuiltinRun, SceneError> {
+fn shrink_fit(t: Instant, backend: Option<BackendChoice>) -> Result<BuiltinRun, SceneError> {
     let scene = crate::shrink_fit::ShrinkFitScene::new(32, 32);
-    let (files, solved, output) = solve(scene.scene_files())?;
+    let (files, solved, output) = solve(scene.scene_files(), backend)?;
     let seconds = t.elapsed().as_secs_f64();
     let run = scene.evaluate(
         ShrinkFitSolved {
@@ -321,8 +338,13 @@ fn solve_figures(report: &mut serde_json::Value, run: &impl ContactRun) {
 /// The scene files made, solved from and rendered.
 fn solve(
     files: Result<ContactSceneFiles, SceneError>,
+    backend: Option<BackendChoice>,
 ) -> Result<(ContactSceneFiles, SolvedContact, SceneOutput), SceneError> {
-    let files = files?;
+    let mut files = files?;
+    if let Some(b) = backend {
+        files.toml = with_backend(&files.toml, b).map_err(SceneError::Other)?;
+        files.spec = ContactSpec::parse(&files.toml, Path::new(SCENE_FILE))?;
+    }
     let solved = files.solve()?;
     let output = solved.output()?;
     Ok((files, solved, output))

@@ -47,7 +47,7 @@ pub use builtin::{
     builtin_scene, tied_block, tied_block_exact, BuiltinScene, BUILTIN_CONTACT_SCENES,
     BUILTIN_SCENES,
 };
-pub use builtin_contact::{run_builtin_contact, HERTZ_ARC_CELLS};
+pub use builtin_contact::{run_builtin_contact, run_builtin_contact_on, HERTZ_ARC_CELLS};
 pub use error::SceneError;
 pub use file_scene::{FileScene, ReadScene, SolvedScene};
 
