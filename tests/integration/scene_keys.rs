@@ -2334,4 +2334,15 @@ fn the_thermal_pellet_refuses_laws_by_name() {
             "{e}"
         );
     }
+    // Regression: the heat-only scene took `[solver] backend = "petsc"` and solved directly.
+    let text = format!("{base}\n[solver]\nbackend = \"petsc\"\n");
+    let e = PelletScene::from_toml(&text).unwrap_err().to_string();
+    // (A build without PETSc may refuse the backend itself first.)
+    let without = !mortar::petsc::is_built() && e.contains("--features petsc");
+    assert!(
+        without || e.contains("solver.backend = \"petsc\" with model.mechanics = false"),
+        "{e}"
+    );
+    let text = format!("{base}\n[solver]\nbackend = \"direct\"\n");
+    assert!(PelletScene::from_toml(&text).is_ok());
 }

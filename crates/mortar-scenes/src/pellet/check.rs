@@ -234,6 +234,14 @@ impl PelletScene {
                 ));
             }
         }
+        // The heat-only scene solves directly: PETSc asked for would be passed over.
+        if self.solver.backend == BackendChoice::Petsc && !m.mechanics {
+            return bad(
+                "solver.backend = \"petsc\" with model.mechanics = false: the heat-only scene \
+                 solves its Newton systems directly; PETSc takes the thermomechanical scene's"
+                    .into(),
+            );
+        }
         if !(m.segment_height > 0.0 && m.segment_height.is_finite()) {
             return bad(format!(
                 "model.segment_height = {} is not positive and finite",
