@@ -2,8 +2,6 @@
 //! steady state, the history and snapshots, the report, and the outputs of a failure.
 
 use std::path::Path;
-
-use crate::linear_solver::PickedSolver;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -21,6 +19,7 @@ use super::file_mesh::FileGeometry;
 use super::limits::{extremes, LimitWatch, When};
 use super::outputs::{nearest_node, pvd, write_scene_outputs};
 use super::{PelletError, PelletScene, SolverChoice, SolverMethod};
+use crate::linear_solver::PickedSolver;
 #[cfg(feature = "plots")]
 use crate::plot::{line_chart_png, Chart, Curve};
 use mortar::io::vtu::{surface_vtu_string, vtu_string_with_vectors, VtuPiece};
