@@ -119,6 +119,16 @@ fn a_contact_scene_through_petsc_matches_the_direct_solve() {
     );
     assert_eq!(steps(a), steps(b));
     assert_eq!(petsc.linear_solver.name, "petsc");
+    assert!(
+        b.formulation.contains("backend") && !b.formulation.contains("Cholesky"),
+        "the formulation names the backend, not the direct factorisation: {}",
+        b.formulation
+    );
+    assert!(
+        a.formulation.contains("sparse Cholesky"),
+        "{}",
+        a.formulation
+    );
     assert!(!reports.is_empty());
     assert!(reports
         .iter()
@@ -307,7 +317,20 @@ fn hertz_errors_through_petsc_are_the_direct_ones() {
     }
     let sphere = HertzSphereScene::new(8);
     let direct = sphere.run().unwrap();
+    let before = backend.reports().len();
     let petsc = sphere.run_on(Some(&backend)).unwrap();
+    let sphere_reports = &backend.reports()[before..];
+    assert!(
+        !sphere_reports.is_empty()
+            && sphere_reports
+                .iter()
+                .all(|r| r.ksp_type == "cg" && r.pc_type == "hypre"),
+        "3D elasticity through BoomerAMG: {:?}",
+        sphere_reports
+            .iter()
+            .map(|r| (&r.ksp_type, &r.pc_type))
+            .collect::<Vec<_>>()
+    );
     assert_eq!(
         (petsc.steps.len(), petsc.active, petsc.max_newton_steps()),
         (direct.steps.len(), direct.active, direct.max_newton_steps())

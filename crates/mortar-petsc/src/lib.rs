@@ -40,6 +40,7 @@ pub use backend::PetscBackend;
 pub use error::PetscError;
 pub use options::{
     accepted_residual, FieldSplit, KrylovMethod, Preconditioner, RigidBodyModes, SolveOptions,
+    BOOMERAMG_ELASTICITY_3D,
 };
 pub use report::{ConvergedReason, SolveReport};
 

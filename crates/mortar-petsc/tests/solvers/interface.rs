@@ -193,3 +193,41 @@ fn an_automatic_backend_picks_the_method_by_the_system() {
         .collect();
     assert_eq!(ran, [("cg", "gamg"), ("gmres", "fieldsplit")]);
 }
+
+/// The method an automatic backend picks for a displacement field's SPD system: BoomerAMG
+/// tuned for elasticity in 3D (the measured choice, docs/solvers.md), GAMG in 2D and for an
+/// axisymmetric field; its options complete the pick and the caller's come after them.
+#[test]
+fn a_3d_displacement_field_gets_boomeramg_for_elasticity() {
+    use mortar_fem::linalg::{SystemInfo, UnknownPlaces};
+    use mortar_petsc::BOOMERAMG_ELASTICITY_3D;
+
+    let petsc = PetscBackend::automatic(1e-10, "-pc_hypre_boomeramg_strong_threshold 0.5");
+    let points = [[0.0, 0.0, 0.0]; 3];
+    let pick = |dim: usize, axisymmetric: bool| {
+        let info = SystemInfo {
+            displacements: Some(UnknownPlaces {
+                dim,
+                axisymmetric,
+                points: &points,
+                components: &[0, 1, 2],
+            }),
+            ..SystemInfo::default()
+        };
+        petsc.method_for(MatrixKind::SymmetricPositiveDefinite, &info, 3)
+    };
+    let three = pick(3, false);
+    assert_eq!(three.method, KrylovMethod::Cg);
+    assert_eq!(three.preconditioner, Preconditioner::BoomerAmgElasticity3d);
+    let text = three.options_string();
+    assert!(
+        text.starts_with("-pc_hypre_type boomeramg")
+            && text.contains(BOOMERAMG_ELASTICITY_3D)
+            && text.ends_with("-pc_hypre_boomeramg_strong_threshold 0.5"),
+        "{text}"
+    );
+    assert_eq!(pick(2, false).preconditioner, Preconditioner::Gamg);
+    assert_eq!(pick(3, true).preconditioner, Preconditioner::Gamg);
+    let general = petsc.method_for(MatrixKind::General, &SystemInfo::default(), 3);
+    assert_eq!(general.preconditioner, Preconditioner::Gamg);
+}

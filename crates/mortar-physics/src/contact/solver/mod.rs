@@ -237,18 +237,27 @@ fn check_sizes(
 
 /// What [`ContactSolution::formulation`] says: the saddle point when D is not diagonal, else
 /// the condensation, with how many of the `total_steps` Newton steps were condensed
-/// (`condensed_steps`) and solved by body (`by_body_steps`).
+/// (`condensed_steps`) and solved by body (`by_body_steps`), and which solve: the direct
+/// factorisations, or (`on_backend`) the backend the systems went to, whose reports say its
+/// method.
 fn formulation(
     diagonal: bool,
     condensed_steps: usize,
     by_body_steps: usize,
     total_steps: usize,
+    on_backend: bool,
 ) -> String {
+    let (lu, cholesky) = if on_backend {
+        ("the linear solver's backend", "the linear solver's backend")
+    } else {
+        ("sparse LU", "sparse Cholesky")
+    };
     if !diagonal {
-        "saddle point of displacements and pressures, sparse LU: D is not diagonal (standard \
-         or linear multipliers, or a partly covered interface), so the pressures cannot be \
-         condensed"
-            .to_string()
+        format!(
+            "saddle point of displacements and pressures, {lu}: D is not diagonal (standard \
+             or linear multipliers, or a partly covered interface), so the pressures cannot be \
+             condensed"
+        )
     } else if condensed_steps == total_steps {
         let by_body = match by_body_steps {
             0 => String::new(),
@@ -259,13 +268,13 @@ fn formulation(
         };
         format!(
             "pressures condensed out (D is diagonal: dual multipliers), symmetric system of the \
-             displacements less one unknown per slave node in contact, sparse Cholesky{by_body}"
+             displacements less one unknown per slave node in contact, {cholesky}{by_body}"
         )
     } else {
         format!(
             "pressures condensed out in {condensed_steps} of {total_steps} Newton steps (D is \
-             diagonal); the saddle point (LU) where a node in contact had no free displacement \
-             along its normal"
+             diagonal, {cholesky}); the saddle point ({lu}) where a node in contact had no \
+             free displacement along its normal"
         )
     }
 }

@@ -365,6 +365,7 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
             mut p,
             condensed_steps,
             by_body_steps,
+            linear,
             ..
         } = self;
         let gaps = gap.nodal(&u);
@@ -372,7 +373,13 @@ impl<'a, L: ConstraintLaw> ContactNewton<'a, L> {
         // The pressure the corners' multipliers stand for, at the nodes without one.
         gap.interpolate_rows_without_multiplier(&mut p);
         let total_steps: usize = steps.iter().map(|s| s.newton_steps).sum();
-        let formulation = formulation(gap.diagonal, condensed_steps, by_body_steps, total_steps);
+        let formulation = formulation(
+            gap.diagonal,
+            condensed_steps,
+            by_body_steps,
+            total_steps,
+            linear.backend.is_some(),
+        );
         let master = u.split_off(unknowns.n[0]);
         ContactSolution {
             formulation,
