@@ -11,7 +11,6 @@
 //! interface's default, the finite-element crate's own GMRES: PETSc sees assembled matrices
 //! only.
 
-use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
 
 use mortar_core::linalg::SparseMatrix;
@@ -69,8 +68,8 @@ impl PetscBackend {
     /// a symmetric positive definite matrix of a 3D displacement field (`info.displacements`
     /// in 3D, not axisymmetric) by CG with BoomerAMG tuned for elasticity
     /// ([`Preconditioner::BoomerAmgElasticity3d`]: fewer than half of GAMG's iterations on
-    /// uniform blocks, a ninth on graded meshes); any other symmetric positive definite matrix by CG
-    /// with GAMG; any other by GMRES with GAMG. A displacement field's rigid motions reach
+    /// uniform blocks, a ninth on graded meshes); any other symmetric positive definite
+    /// matrix by CG with GAMG; any other by GMRES with GAMG. A displacement field's rigid motions reach
     /// GAMG through `info` (see [`factor_system`](SparseSolver::factor_system)). The
     /// tolerance and the further options are the backend's.
     pub fn method_for(&self, kind: MatrixKind, info: &SystemInfo<'_>, n: usize) -> SolveOptions {
@@ -294,30 +293,6 @@ impl SparseSolver for PetscBackend {
         kind: MatrixKind,
         info: SystemInfo<'_>,
     ) -> Result<Box<dyn Factorization>, SolverError> {
-        self.factor_matrix(Cow::Borrowed(a), kind, info)
-    }
-
-    /// As [`factor_system`](SparseSolver::factor_system), `a` dropped once PETSc's matrix
-    /// is built from it, before the preconditioner is.
-    fn factor_system_owned(
-        &self,
-        a: SparseMatrix,
-        kind: MatrixKind,
-        info: SystemInfo<'_>,
-    ) -> Result<Box<dyn Factorization>, SolverError> {
-        self.factor_matrix(Cow::Owned(a), kind, info)
-    }
-}
-
-impl PetscBackend {
-    /// [`SparseSolver::factor_system`] of `a`, borrowed or owned: an owned `a` is dropped
-    /// once the matrix PETSc copies (blocked or mirrored) is built from it.
-    fn factor_matrix(
-        &self,
-        a: Cow<'_, SparseMatrix>,
-        kind: MatrixKind,
-        info: SystemInfo<'_>,
-    ) -> Result<Box<dyn Factorization>, SolverError> {
         let (rows, cols) = a.shape();
         if rows != cols {
             return Err(SolverError::DimensionMismatch {
@@ -352,7 +327,7 @@ impl PetscBackend {
             .filter(|p| by_nodes && p.points.len() == rows && p.components.len() == rows);
         let blocks = places.as_ref().and_then(Blocks::of);
         let blocked_options;
-        let (matrix, options) = match &blocks {
+        let (a, options) = match &blocks {
             Some(b) => {
                 blocked_options = SolveOptions {
                     near_null_space: Some(RigidBodyModes {
@@ -361,12 +336,10 @@ impl PetscBackend {
                     }),
                     ..options.clone()
                 };
-                (petsc_matrix(&a, upper, Some(b)), &blocked_options)
+                (petsc_matrix(a, upper, Some(b)), &blocked_options)
             }
-            None => (petsc_matrix(&a, upper, None), options),
+            None => (petsc_matrix(a, upper, None), options),
         };
-        drop(a);
-        let a = matrix;
         crate::check_input(&a, &vec![0.0; a.rows()], options)
             .map_err(|e| solver_error(e, options.rtol))?;
         let modes = match (&blocks, places) {

@@ -29,18 +29,9 @@ pub fn inf_norm(x: &[f64]) -> f64 {
 /// assert!(!well_conditioned(&a, &[0.5, 1e20], 1.0));
 /// ```
 pub fn well_conditioned(a: &SparseMatrix, x: &[f64], b_norm: f64) -> bool {
-    well_conditioned_by_norm(matrix_inf_norm(a), x, b_norm)
-}
-
-/// The infinity norm of `a` (its largest sum of absolute values along a row).
-pub fn matrix_inf_norm(a: &SparseMatrix) -> f64 {
-    a.outer_iterator()
+    let a_norm = a
+        .outer_iterator()
         .map(|row| row.iter().map(|(_, v)| v.abs()).sum::<f64>())
-        .fold(0.0f64, f64::max)
-}
-
-/// [`well_conditioned`] given the matrix's infinity norm `a_norm` ([`matrix_inf_norm`])
-/// instead of the matrix, for a caller that no longer holds it.
-pub fn well_conditioned_by_norm(a_norm: f64, x: &[f64], b_norm: f64) -> bool {
+        .fold(0.0f64, f64::max);
     a_norm * inf_norm(x) <= MAX_CONDITION * b_norm
 }

@@ -25,9 +25,7 @@ mod substructured;
 mod system_info;
 
 pub use bordered::BorderedLu;
-pub use conditioning::{
-    inf_norm, matrix_inf_norm, well_conditioned, well_conditioned_by_norm, MAX_CONDITION,
-};
+pub use conditioning::{inf_norm, well_conditioned, MAX_CONDITION};
 pub use faer_backend::{
     fill_reducing_ordering, solve_sparse_lu, CholeskyFactorization, FaerError, FaerSolver,
     LuFactorization, SaddlePointFactorization, NESTED_DISSECTION_MIN, PARALLEL_MIN_COLUMN,

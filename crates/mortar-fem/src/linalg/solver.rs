@@ -178,22 +178,6 @@ pub trait SparseSolver: Send + Sync + Debug {
         self.factor(a, kind)
     }
 
-    /// [`factor_system`](Self::factor_system) given the matrix to keep or drop: a backend
-    /// that makes its own copy (PETSc's) drops `a` as soon as it holds that copy, before it
-    /// builds its preconditioner, so that the caller's copy is not part of the peak memory.
-    /// By default `factor_system` on `a`.
-    ///
-    /// # Errors
-    /// As [`factor`](Self::factor).
-    fn factor_system_owned(
-        &self,
-        a: SparseMatrix,
-        kind: MatrixKind,
-        info: SystemInfo<'_>,
-    ) -> Result<Box<dyn Factorization>, SolverError> {
-        self.factor_system(&a, kind, info)
-    }
-
     /// Solves `A x = b` iteratively, right-preconditioned by `preconditioner`, from the `x`
     /// given; `a` is an assembled matrix or a matrix-free product. By default this crate's
     /// restarted [`gmres`](super::gmres), which any backend may keep.

@@ -3,11 +3,10 @@
 //! regularisation where a rigid mode is held by nothing, and the recovery of the increments.
 
 use mortar_fem::linalg::{
-    fill_reducing_ordering, inf_norm, matrix_inf_norm, well_conditioned_by_norm, SolverError,
-    SparseMatrix, Triplets,
+    fill_reducing_ordering, inf_norm, well_conditioned, SolverError, SparseMatrix, Triplets,
 };
 
-use super::linear::{solve_symmetric, solve_symmetric_on, Backend, Linearised, Step};
+use super::linear::{solve_symmetric, Backend, Linearised, Step};
 
 /// Marks "none" in the index maps of this file.
 const NONE: u32 = u32::MAX;
@@ -96,40 +95,20 @@ pub(super) fn condensed_step(
     let mut perm = |s: &SparseMatrix| order.make(s);
     let b_norm = inf_norm(&b);
     let mut rhs_b = b.clone();
-    let s_norm = matrix_inf_norm(&s);
-    // A backend is given S to keep (PETSc drops it once it holds its copy, so that S is not
-    // part of the peak beside the preconditioner); S is built again only on the rare paths
-    // that need it after the solve.
-    let kept = match backend {
-        Some(on) => {
-            solve_symmetric_on(s, &|| sys.reduced_system().0, &mut b, on)?;
-            None
-        }
-        None => {
-            *by_body += usize::from(solve_symmetric(&s, &mut perm, &master, &mut b)?);
-            Some(s)
-        }
-    };
+    *by_body += usize::from(solve_symmetric(&s, &mut perm, &master, &mut b, backend)?);
     // A system without a correct digit has a rigid mode held by nothing (a body held only by
     // contact, before contact, or on a flat branch of a regularised law): each row without
     // stiffness gets a spring that pulls its gap shut ([`Condensed::springs`]), and the step
     // is solved again: the body moves into contact, where the law takes over. The residual
     // is not changed, so neither is the solution; only this step is.
     let mut regularised = false;
-    if !well_conditioned_by_norm(s_norm, &b, b_norm) {
-        let s = kept.unwrap_or_else(|| sys.reduced_system().0);
-        let spring = sys.springs(&s, &mut rhs_b).to_csr(red.nr, red.nr);
-        let held = &s + &spring;
-        let held_norm = matrix_inf_norm(&held);
+    if !well_conditioned(&s, &b, b_norm) {
+        let spring = sys.springs(&s, &mut rhs_b);
+        let held = &s + &spring.to_csr(red.nr, red.nr);
         b = rhs_b;
         let b_norm = inf_norm(&b);
-        match backend {
-            Some(on) => solve_symmetric_on(held, &|| &s + &spring, &mut b, on)?,
-            None => {
-                solve_symmetric(&held, &mut perm, &master, &mut b)?;
-            }
-        }
-        if !well_conditioned_by_norm(held_norm, &b, b_norm) {
+        solve_symmetric(&held, &mut perm, &master, &mut b, backend)?;
+        if !well_conditioned(&held, &b, b_norm) {
             return Err(SolverError::Singular { pivot: None });
         }
         regularised = true;

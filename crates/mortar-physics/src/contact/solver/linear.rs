@@ -104,12 +104,27 @@ pub(super) fn saddle_step(
 /// master body's: the two bodies factorised side by side, the unknowns between them last),
 /// else Cholesky in the elimination order that `perm` makes for `a` (asked for only then), or
 /// LU if `a` is not positive definite. Whether it was solved by body.
+///
+/// With a `backend` (and where `a`'s unknowns sit, if told), `a` goes to it as symmetric
+/// positive definite, or as a general matrix if that solve fails.
 pub(super) fn solve_symmetric(
     a: &SparseMatrix,
     perm: &mut dyn FnMut(&SparseMatrix) -> Result<Vec<usize>, SolverError>,
     master: &[bool],
     b: &mut [f64],
+    backend: Option<(&dyn SparseSolver, Option<&Places>)>,
 ) -> Result<bool, SolverError> {
+    if let Some((solver, places)) = backend {
+        let info = places.map(Places::info).unwrap_or_default();
+        let rhs = b.to_vec();
+        return match solve_by(solver, a, MatrixKind::SymmetricPositiveDefinite, info, b) {
+            Ok(()) => Ok(false),
+            Err(_) => {
+                b.copy_from_slice(&rhs);
+                solve_by(solver, a, MatrixKind::General, info, b).map(|()| false)
+            }
+        };
+    }
     if let Ok(Some(f)) = SubstructuredCholesky::try_new_if_worthwhile(a, master) {
         return f.solve_in_place(b).map(|()| true);
     }
@@ -118,26 +133,4 @@ pub(super) fn solve_symmetric(
         Err(_) => solve_general(a, b),
     }
     .map(|()| false)
-}
-
-/// Solves the symmetric `a x = b` in place by a backend (`on`: the solver and where `a`'s
-/// unknowns sit, if told), which is given `a` to keep or drop
-/// ([`SparseSolver::factor_system_owned`]): as symmetric positive definite, or, if that solve
-/// fails, `rebuild()` (the same matrix, made again) as a general matrix.
-pub(super) fn solve_symmetric_on(
-    a: SparseMatrix,
-    rebuild: &dyn Fn() -> SparseMatrix,
-    b: &mut [f64],
-    (solver, places): (&dyn SparseSolver, Option<&Places>),
-) -> Result<(), SolverError> {
-    let info = places.map(Places::info).unwrap_or_default();
-    let rhs = b.to_vec();
-    let spd = solver
-        .factor_system_owned(a, MatrixKind::SymmetricPositiveDefinite, info)
-        .and_then(|f| f.solve_in_place(b));
-    if spd.is_ok() {
-        return Ok(());
-    }
-    b.copy_from_slice(&rhs);
-    solve_by(solver, &rebuild(), MatrixKind::General, info, b)
 }
