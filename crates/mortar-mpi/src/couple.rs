@@ -22,10 +22,11 @@ use mortar_core::mesh::SurfaceMesh;
 use mortar_core::{Interface, MortarError, SearchRadius, Tolerances};
 use mortar_elements::ElementRegistry;
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::time::Instant;
 
 use crate::error::{DistributedError, Result};
 use crate::exchange::{agree, Exchange};
-use crate::rows::{RankCounts, RankRows, TaggedRows};
+use crate::rows::{RankCounts, RankRows, RankSeconds, TaggedRows};
 use crate::wire::{Bounds, Faces, Reader, Writer};
 
 /// What a distributed coupling computes with: the core's options and tolerances, and the
@@ -41,6 +42,22 @@ pub struct DistributedOptions {
     pub tolerances: Tolerances,
     /// The element types by name.
     pub elements: ElementRegistry,
+}
+
+/// The start of a phase.
+struct Lap(Instant);
+
+impl Lap {
+    /// Seconds since the last lap (or the start), and a new lap.
+    fn lap(&mut self) -> f64 {
+        let now = Instant::now();
+        let s = (now - self.0).as_secs_f64();
+        self.0 = now;
+        s
+    }
+    fn restart(&mut self) {
+        self.0 = Instant::now();
+    }
 }
 
 /// One rank's summary, gathered by all.
@@ -116,21 +133,21 @@ fn send_faces(
 ) -> Result<(Faces, Vec<usize>)> {
     let (rank, size) = (ex.rank(), ex.size());
     let boxes: Vec<Bounds> = (0..faces.len()).map(|f| faces.face_box(f)).collect();
+    let (wanted, boxes) = (&wanted, &boxes);
+    let which = |q: usize| (0..faces.len()).filter(move |&f| wanted(q, &boxes[f]));
+    // This rank's own faces stay here, unencoded.
     let to: Vec<Vec<u8>> = (0..size)
         .map(|q| {
-            let which: Vec<usize> = (0..faces.len()).filter(|&f| wanted(q, &boxes[f])).collect();
-            if which.is_empty() {
+            if q == rank || which(q).next().is_none() {
                 Vec::new()
             } else {
-                faces.write(which.iter().copied())
+                faces.write(which(q))
             }
         })
         .collect();
-    for (q, m) in to.iter().enumerate() {
-        if q != rank && !m.is_empty() {
-            counts.messages_sent += 1;
-            counts.bytes_sent += m.len() as u64;
-        }
+    for m in to.iter().filter(|m| !m.is_empty()) {
+        counts.messages_sent += 1;
+        counts.bytes_sent += m.len() as u64;
     }
     let got = ex.all_to_all(&to);
     let read = (|| {
@@ -138,7 +155,13 @@ fn send_faces(
         let mut from = Vec::new();
         for (q, m) in got.iter().enumerate() {
             let before = all.len();
-            all.read(m, rank, q, elements)?;
+            if q == rank {
+                for f in which(q) {
+                    all.push_from(faces, f);
+                }
+            } else {
+                all.read(m, rank, q, elements)?;
+            }
             from.extend(std::iter::repeat_n(q, all.len() - before));
         }
         Ok((all, from))
@@ -226,6 +249,9 @@ pub fn couple_distributed(
     options: &DistributedOptions,
 ) -> Result<RankRows> {
     let (rank, size) = (ex.rank(), ex.size());
+    let start = Instant::now();
+    let mut seconds = RankSeconds::default();
+    let mut lap = Lap(Instant::now());
     let own_slave = Faces::of_mesh(slave);
     let own_master = Faces::of_mesh(master);
     let mut counts = RankCounts {
@@ -254,6 +280,7 @@ pub fn couple_distributed(
         whole_slave.union(&s.slave_box);
     }
     let slave_faces_total: u64 = summaries.iter().map(|s| s.slave_faces).sum();
+    seconds.summaries += lap.lap();
     let master_faces_total: u64 = summaries.iter().map(|s| s.master_faces).sum();
 
     // 2. Slave faces to the ranks whose faces they may neighbour.
@@ -271,6 +298,7 @@ pub fn couple_distributed(
         &options.elements,
         &mut counts,
     )?;
+    seconds.slave_exchange += lap.lap();
 
     // 3. Owners, and the ghost faces kept.
     let kept = agree(ex, ghost_slave_faces(rank, &own_slave, &received, &from))?;
@@ -288,6 +316,7 @@ pub fn couple_distributed(
     };
     let mut reach_of = radius;
     let slave_mesh = agree(ex, mesh_of(&slave_faces, rank))?;
+    seconds.ghosts += lap.lap();
     let own_master_tags: FxHashSet<u64> = own_master.tags.iter().copied().collect();
     let mut passes = 0;
     loop {
@@ -313,11 +342,16 @@ pub fn couple_distributed(
             &mut counts,
         )?;
         let masters = agree(ex, checked_masters(rank, masters, &master_from))?;
-        counts.ghost_master_faces = masters
+        seconds.master_exchange += lap.lap();
+        let mut ghosts: Vec<u64> = masters
             .tags
             .iter()
+            .copied()
             .filter(|t| !own_master_tags.contains(t))
-            .count();
+            .collect();
+        ghosts.sort_unstable();
+        ghosts.dedup();
+        counts.ghost_master_faces = ghosts.len();
 
         // 5. The coupling of this rank's faces, and its owned rows.
         let coupled = agree(
@@ -327,10 +361,11 @@ pub fn couple_distributed(
                 &slave_mesh,
                 &masters,
                 options,
-                &whole_slave,
-                &local_box,
+                (&whole_slave, &local_box),
+                &mut seconds,
             ),
         )?;
+        lap.restart();
         let uncovered = coupled.as_ref().is_some_and(|c| {
             c.warnings
                 .iter()
@@ -367,7 +402,11 @@ pub fn couple_distributed(
             t.dedup();
             t
         };
-        return Ok(owned_rows(coupled, &owner, rank, master_nodes, counts));
+        let mut rows = owned_rows(coupled, &owner, rank, master_nodes, counts);
+        seconds.rows += lap.lap();
+        seconds.total = start.elapsed().as_secs_f64();
+        rows.seconds = seconds;
+        return Ok(rows);
     }
 }
 
@@ -424,17 +463,16 @@ fn ghost_slave_faces(
 }
 
 /// The master faces received, each tag once, their nodes' coordinates checked.
+/// ([`mesh_of`] takes each tag once.)
 fn checked_masters(rank: usize, faces: Faces, from: &[usize]) -> Result<Faces> {
     let mut coords = NodeCoords::default();
-    let mut out = Faces::default();
     let mut taken: FxHashSet<u64> = FxHashSet::default();
     for f in 0..faces.len() {
         if taken.insert(faces.tags[f]) {
             coords.add(&faces, f, from[f], rank, "master")?;
-            out.push_from(&faces, f);
         }
     }
-    Ok(out)
+    Ok(faces)
 }
 
 /// The core's coupling of this rank's slave faces against the master faces received; `None`
@@ -444,12 +482,13 @@ fn couple_local(
     slave: &SurfaceMesh,
     masters: &Faces,
     options: &DistributedOptions,
-    whole_slave: &Bounds,
-    local_box: &Bounds,
+    (whole_slave, local_box): (&Bounds, &Bounds),
+    seconds: &mut RankSeconds,
 ) -> Result<Option<mortar_core::Coupling>> {
     if slave.face_count() == 0 || masters.len() == 0 {
         return Ok(None);
     }
+    let t = Instant::now();
     let err = |source| DistributedError::Coupling { rank, source };
     let master = mesh_of(masters, rank)?;
     let mut tolerances = options.tolerances;
@@ -464,7 +503,11 @@ fn couple_local(
         }
     }
     let interface = Interface::with_tolerances(slave.clone(), master, tolerances).map_err(err)?;
-    match assemble_coupling(&interface, &options.coupling) {
+    let t_coupling = Instant::now();
+    seconds.interface += (t_coupling - t).as_secs_f64();
+    let coupled = assemble_coupling(&interface, &options.coupling);
+    seconds.coupling += t_coupling.elapsed().as_secs_f64();
+    match coupled {
         Ok(c) => Ok(Some(c)),
         Err(MortarError::NoOverlap { .. }) => Ok(None),
         Err(e) => Err(err(e)),
@@ -522,6 +565,7 @@ fn owned_rows(
         master_nodes,
         counts,
         warnings,
+        seconds: RankSeconds::default(),
     }
 }
 
@@ -531,7 +575,8 @@ fn row_of<'a>(
     i: usize,
     tags: &'a [u64],
 ) -> impl Iterator<Item = (u64, f64)> + 'a {
-    a.outer_view(i)
-        .into_iter()
-        .flat_map(move |row| row.iter().map(|(k, &v)| (tags[k], v)).collect::<Vec<_>>())
+    let range = a.indptr().outer_inds_sz(i);
+    let cols = &a.indices()[range.clone()];
+    let vals = &a.data()[range];
+    cols.iter().zip(vals).map(move |(&k, &v)| (tags[k], v))
 }

@@ -49,4 +49,4 @@ pub use error::{DistributedError, Result};
 pub use exchange::{agree, Exchange, SelfExchange};
 #[cfg(feature = "mpi")]
 pub use mpi::{Mpi, MpiExchange};
-pub use rows::{gather, GatheredCoupling, RankCounts, RankRows, TaggedRows};
+pub use rows::{gather, GatheredCoupling, RankCounts, RankRows, RankSeconds, TaggedRows};

@@ -66,6 +66,28 @@ pub struct RankCounts {
     pub passes: usize,
 }
 
+/// Where a rank's time went in a distributed coupling, in seconds of wall-clock time (the
+/// exchanges include the wait for the other ranks).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RankSeconds {
+    /// The ranks' boxes and face sizes gathered.
+    pub summaries: f64,
+    /// Slave faces sent to the ranks they may neighbour.
+    pub slave_exchange: f64,
+    /// The nodes' owners, the ghost slave faces kept and this rank's slave surface built.
+    pub ghosts: f64,
+    /// Master faces sent to the ranks whose slave faces they may meet (every pass).
+    pub master_exchange: f64,
+    /// This rank's interface built and checked ([`Interface::with_tolerances`](mortar_core::Interface::with_tolerances)).
+    pub interface: f64,
+    /// The core's coupling of this rank's faces.
+    pub coupling: f64,
+    /// The owned rows taken out in the global numbering.
+    pub rows: f64,
+    /// Everything.
+    pub total: f64,
+}
+
 /// One rank's part of a distributed coupling: the rows of D and M of the slave nodes it owns.
 #[derive(Debug, Clone)]
 pub struct RankRows {
@@ -82,6 +104,8 @@ pub struct RankRows {
     /// The warnings of this rank's coupling (its ghost slave faces included, so that a face
     /// near a part's boundary may be reported by two ranks).
     pub warnings: Vec<CouplingWarning>,
+    /// Where this rank's time went.
+    pub seconds: RankSeconds,
 }
 
 /// D and M put together from every rank's rows: the one-process coupling's layout (rows the
