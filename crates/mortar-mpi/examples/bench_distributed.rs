@@ -5,7 +5,7 @@
 //! a line a person can read; each time is the median of `--repeats` runs.
 //!
 //! ```sh
-//! mpirun -n 2 target/release/examples/bench_distributed --case plane3d --n 708 --repeats 3
+//! mpirun -n 2 target/release/examples/bench_distributed --case plane3d --n 708 --repeats 3 --split strips-together
 //! ```
 
 mod support;
@@ -31,7 +31,7 @@ fn max_over_ranks(ex: &impl Exchange, x: f64) -> f64 {
 
 fn run(mpi: &Mpi) -> Res<()> {
     let (mut case, mut split, mut n, mut repeats) =
-        ("plane3d".to_string(), "strips".to_string(), 200, 3);
+        ("plane3d".to_string(), "strips-together".to_string(), 200, 3);
     let mut it = std::env::args().skip(1);
     while let Some(k) = it.next() {
         let v = it.next().ok_or(format!("{k} needs a value"))?;

@@ -27,7 +27,7 @@ use std::time::Instant;
 use crate::error::{DistributedError, Result};
 use crate::exchange::{agree, Exchange};
 use crate::rows::{RankCounts, RankRows, RankSeconds, TaggedRows};
-use crate::wire::{Bounds, Faces, Reader, Writer};
+use crate::wire::{Bounds, FaceSource, Faces, Reader, Writer};
 
 /// What a distributed coupling computes with: the core's options and tolerances, and the
 /// element types faces from other ranks may have (the built-in ones by default; register user
@@ -71,21 +71,21 @@ struct Summary {
 }
 
 impl Summary {
-    fn of(slave: &Faces, master: &Faces) -> Self {
+    fn of(slave: &SurfaceMesh, master: &SurfaceMesh) -> Self {
         let mut s = Summary {
             slave_box: Bounds::EMPTY,
             master_box: Bounds::EMPTY,
             slave_diameter: 0.0,
             master_diameter: 0.0,
-            slave_faces: slave.len() as u64,
-            master_faces: master.len() as u64,
+            slave_faces: slave.face_count() as u64,
+            master_faces: master.face_count() as u64,
         };
-        for f in 0..slave.len() {
+        for f in 0..slave.face_count() {
             let b = slave.face_box(f);
             s.slave_diameter = s.slave_diameter.max(b.diagonal());
             s.slave_box.union(&b);
         }
-        for f in 0..master.len() {
+        for f in 0..master.face_count() {
             let b = master.face_box(f);
             s.master_diameter = s.master_diameter.max(b.diagonal());
             s.master_box.union(&b);
@@ -121,27 +121,26 @@ impl Summary {
     }
 }
 
-/// Sends to each rank the faces of `faces` that `wanted(q, face box)` says it wants and
-/// returns what every rank sent here, with the sender of each face; counts the messages and
-/// bytes sent to other ranks.
+/// Sends to each other rank `q` the faces of `mesh` whose box `wanted(q, box)` accepts, and
+/// returns what the other ranks sent here, with each face's sender; counts the messages and
+/// bytes sent.
 fn send_faces(
     ex: &impl Exchange,
-    faces: &Faces,
+    mesh: &SurfaceMesh,
     wanted: impl Fn(usize, &Bounds) -> bool,
     elements: &ElementRegistry,
     counts: &mut RankCounts,
 ) -> Result<(Faces, Vec<usize>)> {
     let (rank, size) = (ex.rank(), ex.size());
-    let boxes: Vec<Bounds> = (0..faces.len()).map(|f| faces.face_box(f)).collect();
+    let boxes: Vec<Bounds> = (0..mesh.face_count()).map(|f| mesh.face_box(f)).collect();
     let (wanted, boxes) = (&wanted, &boxes);
-    let which = |q: usize| (0..faces.len()).filter(move |&f| wanted(q, &boxes[f]));
-    // This rank's own faces stay here, unencoded.
+    let which = |q: usize| (0..mesh.face_count()).filter(move |&f| wanted(q, &boxes[f]));
     let to: Vec<Vec<u8>> = (0..size)
         .map(|q| {
             if q == rank || which(q).next().is_none() {
                 Vec::new()
             } else {
-                faces.write(which(q))
+                mesh.write(which(q))
             }
         })
         .collect();
@@ -154,75 +153,88 @@ fn send_faces(
         let mut all = Faces::default();
         let mut from = Vec::new();
         for (q, m) in got.iter().enumerate() {
-            let before = all.len();
-            if q == rank {
-                for f in which(q) {
-                    all.push_from(faces, f);
-                }
-            } else {
+            if q != rank {
+                let before = all.len();
                 all.read(m, rank, q, elements)?;
+                from.extend(std::iter::repeat_n(q, all.len() - before));
             }
-            from.extend(std::iter::repeat_n(q, all.len() - before));
         }
         Ok((all, from))
     })();
     agree(ex, read)
 }
 
-/// Node coordinates by tag, checked for agreement between ranks.
-#[derive(Default)]
-struct NodeCoords {
-    at: FxHashMap<u64, ([f64; 3], usize)>,
+/// The coordinates of the nodes received, by tag, checked against this rank's own nodes and
+/// between the senders.
+struct NodeCheck<'a> {
+    own: &'a SurfaceMesh,
+    side: &'static str,
+    rank: usize,
+    received: FxHashMap<u64, ([f64; 3], usize)>,
 }
 
-impl NodeCoords {
-    fn add(
-        &mut self,
-        faces: &Faces,
-        f: usize,
-        from: usize,
-        rank: usize,
-        side: &'static str,
-    ) -> Result<()> {
+impl<'a> NodeCheck<'a> {
+    fn new(own: &'a SurfaceMesh, side: &'static str, rank: usize) -> Self {
+        Self {
+            own,
+            side,
+            rank,
+            received: FxHashMap::default(),
+        }
+    }
+
+    /// Checks the nodes of face `f` of `faces`, which rank `from` sent.
+    fn check(&mut self, faces: &Faces, f: usize, from: usize) -> Result<()> {
         for (t, x) in faces.nodes(f) {
-            match self.at.get(&t) {
-                None => {
-                    self.at.insert(t, (x, from));
+            let (ours, q) = match self.own.node_index(t) {
+                Some(i) => {
+                    let c = self.own.coords()[i as usize];
+                    ([c.x, c.y, c.z], self.rank)
                 }
-                Some(&(ours, q)) if ours != x => {
-                    return Err(DistributedError::InconsistentNode {
-                        rank,
-                        from: if q == rank { from } else { q },
-                        side,
-                        tag: t,
-                        ours,
-                        theirs: x,
-                    });
-                }
-                Some(_) => {}
+                None => *self.received.entry(t).or_insert((x, from)),
+            };
+            if ours != x {
+                return Err(DistributedError::InconsistentNode {
+                    rank: self.rank,
+                    from: if q == self.rank { from } else { q },
+                    side: self.side,
+                    tag: t,
+                    ours,
+                    theirs: x,
+                });
             }
         }
         Ok(())
     }
 }
 
-/// A surface mesh of `faces` (in ascending face tag order, each tag once).
-fn mesh_of(faces: &Faces, rank: usize) -> Result<SurfaceMesh> {
-    let mut order: Vec<usize> = (0..faces.len()).collect();
-    order.sort_by_key(|&f| faces.tags[f]);
-    order.dedup_by_key(|f| faces.tags[*f]);
-    let mut mesh = SurfaceMesh::with_capacity(faces.node_tags.len(), order.len());
-    let mut seen = FxHashSet::default();
+/// `own` with the faces of `extra` that `keep` selects appended (those whose tag `own` or an
+/// earlier one has skipped), their new nodes added.
+fn extended(
+    own: &SurfaceMesh,
+    extra: &Faces,
+    keep: impl Fn(usize) -> bool,
+    rank: usize,
+) -> Result<SurfaceMesh> {
+    let mut mesh = own.clone();
+    if extra.len() == 0 {
+        return Ok(mesh);
+    }
     let err = |source| DistributedError::Coupling { rank, source };
-    for &f in &order {
-        let mut tags = Vec::new();
-        for (t, x) in faces.nodes(f) {
-            if seen.insert(t) {
+    let mut tags: FxHashSet<u64> = (0..own.face_count()).map(|f| own.face(f).tag).collect();
+    let mut node_tags = Vec::new();
+    for f in (0..extra.len()).filter(|&f| keep(f)) {
+        if !tags.insert(extra.tags[f]) {
+            continue;
+        }
+        node_tags.clear();
+        for (t, x) in extra.nodes(f) {
+            if mesh.node_index(t).is_none() {
                 mesh.add_node(t, x).map_err(err)?;
             }
-            tags.push(t);
+            node_tags.push(t);
         }
-        mesh.add_face_with_tag(faces.tags[f], faces.elements[f], &tags)
+        mesh.add_face_with_tag(extra.tags[f], extra.elements[f], &node_tags)
             .map_err(err)?;
     }
     Ok(mesh)
@@ -252,16 +264,14 @@ pub fn couple_distributed(
     let start = Instant::now();
     let mut seconds = RankSeconds::default();
     let mut lap = Lap(Instant::now());
-    let own_slave = Faces::of_mesh(slave);
-    let own_master = Faces::of_mesh(master);
     let mut counts = RankCounts {
-        slave_faces: own_slave.len(),
-        master_faces: own_master.len(),
+        slave_faces: slave.face_count(),
+        master_faces: master.face_count(),
         ..RankCounts::default()
     };
 
     // 1. Summaries.
-    let all = ex.all_gather(&Summary::of(&own_slave, &own_master).write());
+    let all = ex.all_gather(&Summary::of(slave, master).write());
     let summaries = agree(
         ex,
         all.iter()
@@ -280,44 +290,37 @@ pub fn couple_distributed(
         whole_slave.union(&s.slave_box);
     }
     let slave_faces_total: u64 = summaries.iter().map(|s| s.slave_faces).sum();
-    seconds.summaries += lap.lap();
     let master_faces_total: u64 = summaries.iter().map(|s| s.master_faces).sum();
+    seconds.summaries += lap.lap();
 
     // 2. Slave faces to the ranks whose faces they may neighbour.
     let reach: Vec<Bounds> = summaries
         .iter()
-        .map(|s| {
-            s.slave_box
-                .inflated(2.0 * ds * (1.0 + 1e-9) + f64::EPSILON * ds)
-        })
+        .map(|s| s.slave_box.inflated(2.0 * ds * (1.0 + 1e-9)))
         .collect();
     let (received, from) = send_faces(
         ex,
-        &own_slave,
-        |q, b| q != rank && b.meets(&reach[q]),
+        slave,
+        |q, b| b.meets(&reach[q]),
         &options.elements,
         &mut counts,
     )?;
     seconds.slave_exchange += lap.lap();
 
     // 3. Owners, and the ghost faces kept.
-    let kept = agree(ex, ghost_slave_faces(rank, &own_slave, &received, &from))?;
-    let (slave_faces, owner) = kept;
-    counts.ghost_slave_faces = slave_faces.len() - own_slave.len();
+    let (slave_mesh, owner) = agree(ex, with_ghost_faces(rank, slave, &received, &from))?;
+    counts.ghost_slave_faces = slave_mesh.face_count() - slave.face_count();
+    seconds.ghosts += lap.lap();
 
     let mut local_box = Bounds::EMPTY;
-    for f in 0..slave_faces.len() {
-        local_box.union(&slave_faces.face_box(f));
+    for f in 0..slave_mesh.face_count() {
+        local_box.union(&slave_mesh.face_box(f));
     }
-    let radius = match options.tolerances.search_radius {
+    let mut reach_of = match options.tolerances.search_radius {
         SearchRadius::FaceSize(k) => k * ds,
         SearchRadius::Distance(d) => d,
         SearchRadius::Nearest { .. } => ds,
     };
-    let mut reach_of = radius;
-    let slave_mesh = agree(ex, mesh_of(&slave_faces, rank))?;
-    seconds.ghosts += lap.lap();
-    let own_master_tags: FxHashSet<u64> = own_master.tags.iter().copied().collect();
     let mut passes = 0;
     loop {
         passes += 1;
@@ -336,22 +339,21 @@ pub fn couple_distributed(
         )?;
         let (masters, master_from) = send_faces(
             ex,
-            &own_master,
+            master,
             |q, b| b.meets(&needs[q]),
             &options.elements,
             &mut counts,
         )?;
-        let masters = agree(ex, checked_masters(rank, masters, &master_from))?;
+        let checked = (|| {
+            let mut check = NodeCheck::new(master, "master", rank);
+            for f in 0..masters.len() {
+                check.check(&masters, f, master_from[f])?;
+            }
+            extended(master, &masters, |_| true, rank)
+        })();
+        let master_mesh = agree(ex, checked)?;
+        counts.ghost_master_faces = master_mesh.face_count() - master.face_count();
         seconds.master_exchange += lap.lap();
-        let mut ghosts: Vec<u64> = masters
-            .tags
-            .iter()
-            .copied()
-            .filter(|t| !own_master_tags.contains(t))
-            .collect();
-        ghosts.sort_unstable();
-        ghosts.dedup();
-        counts.ghost_master_faces = ghosts.len();
 
         // 5. The coupling of this rank's faces, and its owned rows.
         let coupled = agree(
@@ -359,7 +361,7 @@ pub fn couple_distributed(
             couple_local(
                 rank,
                 &slave_mesh,
-                &masters,
+                master_mesh,
                 options,
                 (&whole_slave, &local_box),
                 &mut seconds,
@@ -396,13 +398,7 @@ pub fn couple_distributed(
         }
         counts.pairs = pairs as usize;
         counts.passes = passes;
-        let master_nodes: Vec<u64> = {
-            let mut t: Vec<u64> = own_master.node_tags.clone();
-            t.sort_unstable();
-            t.dedup();
-            t
-        };
-        let mut rows = owned_rows(coupled, &owner, rank, master_nodes, counts);
+        let mut rows = owned_rows(coupled, slave, &owner, rank, master, counts);
         seconds.rows += lap.lap();
         seconds.total = start.elapsed().as_secs_f64();
         rows.seconds = seconds;
@@ -410,87 +406,77 @@ pub fn couple_distributed(
     }
 }
 
-/// The received slave faces this rank keeps (two layers around its owned nodes) after its
-/// own, and each local node's owner.
-fn ghost_slave_faces(
+/// This rank's slave faces with the received ones it keeps (two layers around its owned
+/// nodes) appended, and the owner of each of its own nodes (by node index of `own`).
+fn with_ghost_faces(
     rank: usize,
-    own: &Faces,
+    own: &SurfaceMesh,
     received: &Faces,
     from: &[usize],
-) -> Result<(Faces, FxHashMap<u64, usize>)> {
-    let mut coords = NodeCoords::default();
-    let mut owner: FxHashMap<u64, usize> = FxHashMap::default();
-    for f in 0..own.len() {
-        coords.add(own, f, rank, rank, "slave")?;
-        for (t, _) in own.nodes(f) {
-            owner.insert(t, rank);
-        }
-    }
+) -> Result<(SurfaceMesh, Vec<usize>)> {
+    let mut check = NodeCheck::new(own, "slave", rank);
+    let mut owner = vec![rank; own.node_count()];
     for f in 0..received.len() {
+        check.check(received, f, from[f])?;
         for (t, _) in received.nodes(f) {
-            if let Some(o) = owner.get_mut(&t) {
-                *o = (*o).min(from[f]);
+            if let Some(i) = own.node_index(t) {
+                owner[i as usize] = owner[i as usize].min(from[f]);
             }
         }
     }
-    let owned = |t: &u64| owner.get(t) == Some(&rank);
-    // Layer one: faces around owned nodes; their nodes, with those of own faces around owned
-    // nodes, are where the normals must be whole.
-    let mut near: FxHashSet<u64> = FxHashSet::default();
+    let own_index = |t: u64| own.node_index(t).map(|i| i as usize);
+    let owned = |t: u64| own_index(t).is_some_and(|i| owner[i] == rank);
+    // Layer one: received faces around owned nodes. The nodes of the faces around owned
+    // nodes (own or received) are where the normals must be whole: own ones marked by index,
+    // the others by tag.
+    let mut near_own = vec![false; own.node_count()];
+    for f in 0..own.face_count() {
+        let nodes = own.face(f).nodes;
+        if nodes.iter().any(|&n| owner[n as usize] == rank) {
+            for &n in nodes {
+                near_own[n as usize] = true;
+            }
+        }
+    }
+    let mut near_ghost: FxHashSet<u64> = FxHashSet::default();
     let mut layer_one = vec![false; received.len()];
     for (f, one) in layer_one.iter_mut().enumerate() {
-        if received.nodes(f).any(|(t, _)| owned(&t)) {
+        if received.nodes(f).any(|(t, _)| owned(t)) {
             *one = true;
-            near.extend(received.nodes(f).map(|(t, _)| t));
+            for (t, _) in received.nodes(f) {
+                match own_index(t) {
+                    Some(i) => near_own[i] = true,
+                    None => {
+                        near_ghost.insert(t);
+                    }
+                }
+            }
         }
     }
-    for f in 0..own.len() {
-        if own.nodes(f).any(|(t, _)| owned(&t)) {
-            near.extend(own.nodes(f).map(|(t, _)| t));
-        }
-    }
-    let own_tags: FxHashSet<u64> = own.tags.iter().copied().collect();
-    let mut faces = own.clone();
-    let mut taken: FxHashSet<u64> = FxHashSet::default();
-    for f in 0..received.len() {
-        let keep = layer_one[f] || received.nodes(f).any(|(t, _)| near.contains(&t));
-        if keep && !own_tags.contains(&received.tags[f]) && taken.insert(received.tags[f]) {
-            coords.add(received, f, from[f], rank, "slave")?;
-            faces.push_from(received, f);
-        }
-    }
-    Ok((faces, owner))
+    let near = |t: u64| match own_index(t) {
+        Some(i) => near_own[i],
+        None => near_ghost.contains(&t),
+    };
+    let keep = |f: usize| layer_one[f] || received.nodes(f).any(|(t, _)| near(t));
+    let mesh = extended(own, received, keep, rank)?;
+    Ok((mesh, owner))
 }
 
-/// The master faces received, each tag once, their nodes' coordinates checked.
-/// ([`mesh_of`] takes each tag once.)
-fn checked_masters(rank: usize, faces: Faces, from: &[usize]) -> Result<Faces> {
-    let mut coords = NodeCoords::default();
-    let mut taken: FxHashSet<u64> = FxHashSet::default();
-    for f in 0..faces.len() {
-        if taken.insert(faces.tags[f]) {
-            coords.add(&faces, f, from[f], rank, "master")?;
-        }
-    }
-    Ok(faces)
-}
-
-/// The core's coupling of this rank's slave faces against the master faces received; `None`
-/// when there is nothing to couple (no slave or no master face here, or no overlap).
+/// The core's coupling of this rank's slave faces against its master faces; `None` when
+/// there is nothing to couple (no slave or no master face here, or no overlap).
 fn couple_local(
     rank: usize,
     slave: &SurfaceMesh,
-    masters: &Faces,
+    master: SurfaceMesh,
     options: &DistributedOptions,
     (whole_slave, local_box): (&Bounds, &Bounds),
     seconds: &mut RankSeconds,
 ) -> Result<Option<mortar_core::Coupling>> {
-    if slave.face_count() == 0 || masters.len() == 0 {
+    if slave.face_count() == 0 || master.face_count() == 0 {
         return Ok(None);
     }
     let t = Instant::now();
     let err = |source| DistributedError::Coupling { rank, source };
-    let master = mesh_of(masters, rank)?;
     let mut tolerances = options.tolerances;
     if let SearchRadius::Nearest { bound } = tolerances.search_radius {
         // The bound is a fraction of the slave surface's size: the whole surface's, not this
@@ -514,18 +500,25 @@ fn couple_local(
     }
 }
 
-/// The rows of the slave nodes `rank` owns, in ascending tag order.
+/// The rows of the slave nodes `rank` owns (of `own`'s nodes used by a face, `owner[i] ==
+/// rank`), in ascending tag order; the master node tags of `master`'s faces.
 fn owned_rows(
     coupled: Option<mortar_core::Coupling>,
-    owner: &FxHashMap<u64, usize>,
+    own: &SurfaceMesh,
+    owner: &[usize],
     rank: usize,
-    master_nodes: Vec<u64>,
+    master: &SurfaceMesh,
     counts: RankCounts,
 ) -> RankRows {
-    let mut rows: Vec<u64> = owner
-        .iter()
-        .filter(|(_, &o)| o == rank)
-        .map(|(&t, _)| t)
+    let mut used = vec![false; own.node_count()];
+    for f in 0..own.face_count() {
+        for &n in own.face(f).nodes {
+            used[n as usize] = true;
+        }
+    }
+    let mut rows: Vec<u64> = (0..own.node_count())
+        .filter(|&i| used[i] && owner[i] == rank)
+        .map(|i| own.node_tags()[i])
         .collect();
     rows.sort_unstable();
     let mut d = TaggedRows::default();
@@ -537,27 +530,35 @@ fn owned_rows(
             m.indptr = vec![0; rows.len() + 1];
         }
         Some(c) => {
-            let at: FxHashMap<u64, usize> = c
-                .slave_nodes
-                .iter()
-                .enumerate()
-                .map(|(i, &t)| (t, i))
-                .collect();
+            // The coupling's rows are its slave nodes in ascending tag order, a superset of
+            // `rows`: one merge.
+            let mut i = 0;
             for &t in &rows {
-                match at.get(&t) {
-                    Some(&i) => {
-                        d.push_row(row_of(&c.d, i, &c.slave_nodes));
-                        m.push_row(row_of(&c.m, i, &c.master_nodes));
-                    }
-                    None => {
-                        d.push_row(std::iter::empty());
-                        m.push_row(std::iter::empty());
-                    }
+                while i < c.slave_nodes.len() && c.slave_nodes[i] < t {
+                    i += 1;
+                }
+                if c.slave_nodes.get(i) == Some(&t) {
+                    d.push_row(row_of(&c.d, i, &c.slave_nodes));
+                    m.push_row(row_of(&c.m, i, &c.master_nodes));
+                } else {
+                    d.push_row(std::iter::empty());
+                    m.push_row(std::iter::empty());
                 }
             }
             warnings = c.warnings;
         }
     }
+    let mut master_nodes: Vec<u64> = (0..master.face_count())
+        .flat_map(|f| {
+            master
+                .face(f)
+                .nodes
+                .iter()
+                .map(|&n| master.node_tags()[n as usize])
+        })
+        .collect();
+    master_nodes.sort_unstable();
+    master_nodes.dedup();
     RankRows {
         rows,
         d,

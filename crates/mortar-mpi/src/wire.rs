@@ -100,22 +100,19 @@ pub(crate) struct Faces {
     pub(crate) coords: Vec<[f64; 3]>,
 }
 
-impl Faces {
-    pub(crate) fn len(&self) -> usize {
-        self.tags.len()
-    }
-
-    /// The nodes of face `f`: tags and coordinates.
-    pub(crate) fn nodes(&self, f: usize) -> impl Iterator<Item = (u64, [f64; 3])> + '_ {
-        let r = self.offsets[f]..self.offsets[f + 1];
-        self.node_tags[r.clone()]
-            .iter()
-            .copied()
-            .zip(self.coords[r].iter().copied())
-    }
+/// Faces to read and send: a rank's own surface mesh, or faces received.
+pub(crate) trait FaceSource {
+    /// The number of faces.
+    fn len(&self) -> usize;
+    /// Face `f`'s tag.
+    fn tag(&self, f: usize) -> u64;
+    /// Face `f`'s element type.
+    fn element(&self, f: usize) -> ElementRef;
+    /// Face `f`'s nodes: tags and coordinates.
+    fn nodes(&self, f: usize) -> impl Iterator<Item = (u64, [f64; 3])> + '_;
 
     /// Face `f`'s nodes' bounding box.
-    pub(crate) fn face_box(&self, f: usize) -> Bounds {
+    fn face_box(&self, f: usize) -> Bounds {
         let mut b = Bounds::EMPTY;
         for (_, x) in self.nodes(f) {
             b.add(x);
@@ -123,27 +120,76 @@ impl Faces {
         b
     }
 
-    /// Every face of `mesh`.
-    pub(crate) fn of_mesh(mesh: &SurfaceMesh) -> Self {
-        let mut faces = Self {
-            offsets: vec![0],
-            ..Self::default()
-        };
-        for f in 0..mesh.face_count() {
-            let view = mesh.face(f);
-            let nodes = view
-                .nodes
-                .iter()
-                .map(|&n| (mesh.node_tags()[n as usize], mesh.coords()[n as usize]));
-            faces.push(
-                view.tag,
-                view.element,
-                nodes.map(|(t, x)| (t, [x.x, x.y, x.z])),
-            );
+    /// The faces `which` as a message: the element names once, then each face.
+    fn write(&self, which: impl Iterator<Item = usize> + Clone) -> Vec<u8> {
+        let mut names: Vec<&'static str> = Vec::new();
+        for f in which.clone() {
+            let name = self.element(f).name();
+            if !names.contains(&name) {
+                names.push(name);
+            }
         }
-        faces
+        let mut w = Writer::default();
+        w.u32(FACES);
+        w.u32(names.len() as u32);
+        for n in &names {
+            w.str(n);
+        }
+        w.u64(which.clone().count() as u64);
+        for f in which {
+            w.u64(self.tag(f));
+            let name = self.element(f).name();
+            w.u32(names.iter().position(|n| *n == name).expect("listed") as u32);
+            w.u32(self.nodes(f).count() as u32);
+            for (t, x) in self.nodes(f) {
+                w.u64(t);
+                for c in x {
+                    w.f64(c);
+                }
+            }
+        }
+        w.bytes
     }
+}
 
+impl FaceSource for SurfaceMesh {
+    fn len(&self) -> usize {
+        self.face_count()
+    }
+    fn tag(&self, f: usize) -> u64 {
+        self.face(f).tag
+    }
+    fn element(&self, f: usize) -> ElementRef {
+        self.face(f).element
+    }
+    fn nodes(&self, f: usize) -> impl Iterator<Item = (u64, [f64; 3])> + '_ {
+        self.face(f).nodes.iter().map(|&n| {
+            let x = self.coords()[n as usize];
+            (self.node_tags()[n as usize], [x.x, x.y, x.z])
+        })
+    }
+}
+
+impl FaceSource for Faces {
+    fn len(&self) -> usize {
+        self.tags.len()
+    }
+    fn tag(&self, f: usize) -> u64 {
+        self.tags[f]
+    }
+    fn element(&self, f: usize) -> ElementRef {
+        self.elements[f]
+    }
+    fn nodes(&self, f: usize) -> impl Iterator<Item = (u64, [f64; 3])> + '_ {
+        let r = self.offsets[f]..self.offsets[f + 1];
+        self.node_tags[r.clone()]
+            .iter()
+            .copied()
+            .zip(self.coords[r].iter().copied())
+    }
+}
+
+impl Faces {
     pub(crate) fn push(
         &mut self,
         tag: u64,
@@ -160,42 +206,6 @@ impl Faces {
             self.coords.push(x);
         }
         self.offsets.push(self.node_tags.len());
-    }
-
-    /// Copies face `f` of `other` here.
-    pub(crate) fn push_from(&mut self, other: &Faces, f: usize) {
-        self.push(other.tags[f], other.elements[f], other.nodes(f));
-    }
-
-    /// The faces `which` as a message: the element names once, then each face.
-    pub(crate) fn write(&self, which: impl Iterator<Item = usize> + Clone) -> Vec<u8> {
-        let mut names: Vec<&'static str> = Vec::new();
-        for f in which.clone() {
-            let name = self.elements[f].name();
-            if !names.contains(&name) {
-                names.push(name);
-            }
-        }
-        let mut w = Writer::default();
-        w.u32(FACES);
-        w.u32(names.len() as u32);
-        for n in &names {
-            w.str(n);
-        }
-        w.u64(which.clone().count() as u64);
-        for f in which {
-            w.u64(self.tags[f]);
-            let name = self.elements[f].name();
-            w.u32(names.iter().position(|n| *n == name).expect("listed") as u32);
-            w.u32((self.offsets[f + 1] - self.offsets[f]) as u32);
-            for (t, x) in self.nodes(f) {
-                w.u64(t);
-                for c in x {
-                    w.f64(c);
-                }
-            }
-        }
-        w.bytes
     }
 
     /// Appends the faces of a message that rank `from` sent to rank `rank`, their element
@@ -346,6 +356,7 @@ mod tests {
     fn faces_come_back_as_they_were_sent() {
         let sent = two_faces();
         let mut got = Faces::default();
+        assert_eq!(sent.len(), 2);
         got.read(&sent.write(0..2), 1, 0, &ElementRegistry::new())
             .expect("read");
         assert_eq!(got.tags, sent.tags);

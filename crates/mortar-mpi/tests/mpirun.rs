@@ -110,6 +110,7 @@ fn other_cases_and_splits_on_three_ranks_match_one_process() {
         ("arc2d", "apart", 30),
         ("plane3d", "apart", 8),
         ("arc2d-gap", "strips", 40),
+        ("cylinder", "strips-together", 16),
     ] {
         let json = matches_one_process(3, case, split, n);
         if case == "arc2d-gap" {

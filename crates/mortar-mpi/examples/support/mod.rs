@@ -47,7 +47,10 @@ pub fn surfaces(case: &str, n: usize) -> Res<(SurfaceMesh, SurfaceMesh)> {
 /// by `split`; `salt` makes the slave's and the master's splits differ.
 pub fn rank_of(split: &str, f: usize, x: [f64; 3], p: usize, salt: u64) -> Res<usize> {
     Ok(match split {
-        // Strips across x, the master's reversed.
+        // Strips across x, the master's in the same order: a finite-element code's partition
+        // of two bodies that touch, each rank holding both sides of its part of the interface.
+        "strips-together" => ((x[0] * p as f64) as usize).min(p - 1),
+        // Strips across x, the master's reversed: every master face away from its slave faces.
         "strips" => {
             let s = ((x[0] * p as f64) as usize).min(p - 1);
             if salt == 0 {
