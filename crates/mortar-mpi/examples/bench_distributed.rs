@@ -1,19 +1,24 @@
-//! The distributed coupling's time on P ranks against the one-process coupling's on one
-//! thread, measured in one run: every rank couples its part (`couple_distributed`, one thread
-//! per rank), then rank 0 couples the whole interface alone (`assemble_coupling`, one thread)
-//! while the others wait. Mesh generation and the split are not timed. Prints one JSON line and
+//! The distributed coupling's time on P ranks against one rank's and the one-process
+//! coupling's on one thread, measured in one run: every rank couples its part
+//! (`couple_distributed`, one thread per rank), then rank 0 builds and couples the whole
+//! interface alone (`Interface::new` and `assemble_coupling`, one thread) and runs
+//! `couple_distributed` of the whole interface on the one-rank exchange, while the others
+//! wait. Mesh generation and the split are not timed. Prints one JSON line and
 //! a line a person can read; each time is the median of `--repeats` runs.
 //!
 //! ```sh
-//! mpirun -n 2 target/release/examples/bench_distributed --case plane3d --n 708 --repeats 3 --split strips-together
+//! mpirun -n 2 target/release/examples/bench_distributed --case plane3d --n 708 --repeats 5 \
+//!     --split strips-together --json docs/bench_distributed.jsonl
 //! ```
+//!
+//! `--json FILE` appends the JSON line to FILE.
 
 mod support;
 
 use std::time::Instant;
 
 use mortar_core::{assemble_coupling, CouplingOptions, Interface};
-use mortar_mpi::{couple_distributed, DistributedOptions, Exchange, Mpi};
+use mortar_mpi::{couple_distributed, DistributedOptions, Exchange, Mpi, SelfExchange};
 use support::{parts, surfaces, Res};
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -32,6 +37,7 @@ fn max_over_ranks(ex: &impl Exchange, x: f64) -> f64 {
 fn run(mpi: &Mpi) -> Res<()> {
     let (mut case, mut split, mut n, mut repeats) =
         ("plane3d".to_string(), "strips-together".to_string(), 200, 3);
+    let mut json_path = None;
     let mut it = std::env::args().skip(1);
     while let Some(k) = it.next() {
         let v = it.next().ok_or(format!("{k} needs a value"))?;
@@ -40,6 +46,7 @@ fn run(mpi: &Mpi) -> Res<()> {
             "--split" => split = v,
             "--n" => n = v.parse()?,
             "--repeats" => repeats = v.parse()?,
+            "--json" => json_path = Some(std::path::PathBuf::from(v)),
             _ => return Err(format!("unknown argument {k:?}").into()),
         }
     }
@@ -69,6 +76,7 @@ fn run(mpi: &Mpi) -> Res<()> {
         .sum();
     let mut serial = Vec::new();
     let mut serial_interface = Vec::new();
+    let mut one_rank = Vec::new();
     let mut serial_pairs = 0;
     if rank == 0 {
         for _ in 0..repeats {
@@ -88,11 +96,20 @@ fn run(mpi: &Mpi) -> Res<()> {
             serial.push(t.elapsed().as_secs_f64());
             serial_pairs = c.stats.pairs;
         }
+        // The distributed coupling of the whole interface on one rank: the same algorithm on
+        // the one-rank exchange.
+        for _ in 0..repeats {
+            let t = Instant::now();
+            let rows = couple_distributed(&SelfExchange, &slave, &master, &options)?;
+            one_rank.push(t.elapsed().as_secs_f64());
+            drop(rows);
+        }
     }
     ex.all_gather(&[]);
     if rank == 0 {
         let (d, s) = (median(distributed), median(serial));
         let si = median(serial_interface);
+        let o = median(one_rank);
         let (c, sec) = counts.expect("one repeat at least");
         let json = serde_json::json!({
             "case": case, "split": split, "n": n, "ranks": p, "repeats": repeats,
@@ -100,6 +117,7 @@ fn run(mpi: &Mpi) -> Res<()> {
             "serial_pairs": serial_pairs, "distributed_pairs": all_pairs,
             "distributed_seconds": d, "one_process_seconds": s, "speedup": s / d,
             "one_process_interface_seconds": si, "speedup_with_interface": (s + si) / d,
+            "one_rank_seconds": o, "speedup_over_one_rank": o / d,
             "rank0_ghost_slave_faces": c.ghost_slave_faces,
             "rank0_ghost_master_faces": c.ghost_master_faces,
             "rank0_bytes_sent": c.bytes_sent,
@@ -111,9 +129,19 @@ fn run(mpi: &Mpi) -> Res<()> {
             },
         });
         println!("{json}");
+        if let Some(path) = &json_path {
+            // One line per run, appended: the runs of several rank counts in one file.
+            use std::io::Write;
+            let mut file = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(path)?;
+            writeln!(file, "{json}")?;
+        }
         println!(
-            "{case} {split} n={n} ({} slave faces): {p} ranks {d:.3} s; one process on one thread: coupling {s:.3} s ({:.2}x), interface built and checked {si:.3} s more ({:.2}x with it); medians of {repeats}",
+            "{case} {split} n={n} ({} slave faces): {p} ranks {d:.3} s; one rank {o:.3} s ({:.2}x); one process on one thread: coupling {s:.3} s ({:.2}x), interface built and checked {si:.3} s more ({:.2}x with it); medians of {repeats}",
             slave.face_count(),
+            o / d,
             s / d,
             (s + si) / d
         );

@@ -60,6 +60,31 @@ impl Lap {
     }
 }
 
+/// The box of the slave faces another rank sends to a rank whose slave faces span `slave_box`:
+/// two slave face diameters `ds` around it, where the faces around its nodes and around
+/// those faces' nodes lie.
+pub(crate) fn slave_reach(slave_box: &Bounds, ds: f64) -> Bounds {
+    slave_box.inflated(2.0 * ds * (1.0 + 1e-9))
+}
+
+/// How far from a slave face the first search looks, for the largest slave face diameter
+/// `ds`.
+pub(crate) fn search_reach(tolerances: &Tolerances, ds: f64) -> f64 {
+    match tolerances.search_radius {
+        SearchRadius::FaceSize(k) => k * ds,
+        SearchRadius::Distance(d) => d,
+        SearchRadius::Nearest { .. } => ds,
+    }
+}
+
+/// The box of the master faces a rank needs whose slave faces (ghosts included) span
+/// `local_box`: the search's reach beyond it, a slave face diameter for the projection's
+/// slant and a master face diameter, so that every master face a slave face's search box
+/// meets has a node inside.
+pub(crate) fn master_need(local_box: &Bounds, reach: f64, ds: f64, dm: f64) -> Bounds {
+    local_box.inflated((reach + ds + dm) * (1.0 + 1e-9))
+}
+
 /// One rank's summary, gathered by all.
 struct Summary {
     slave_box: Bounds,
@@ -296,7 +321,7 @@ pub fn couple_distributed(
     // 2. Slave faces to the ranks whose faces they may neighbour.
     let reach: Vec<Bounds> = summaries
         .iter()
-        .map(|s| s.slave_box.inflated(2.0 * ds * (1.0 + 1e-9)))
+        .map(|s| slave_reach(&s.slave_box, ds))
         .collect();
     let (received, from) = send_faces(
         ex,
@@ -316,16 +341,12 @@ pub fn couple_distributed(
     for f in 0..slave_mesh.face_count() {
         local_box.union(&slave_mesh.face_box(f));
     }
-    let mut reach_of = match options.tolerances.search_radius {
-        SearchRadius::FaceSize(k) => k * ds,
-        SearchRadius::Distance(d) => d,
-        SearchRadius::Nearest { .. } => ds,
-    };
+    let mut reach_of = search_reach(&options.tolerances, ds);
     let mut passes = 0;
     loop {
         passes += 1;
         // 4. Master faces to the ranks whose slave faces they may meet.
-        let need = local_box.inflated((reach_of + ds + dm) * (1.0 + 1e-9));
+        let need = master_need(&local_box, reach_of, ds, dm);
         let mut w = Writer::default();
         need.write(&mut w);
         let needs = ex.all_gather(&w.bytes);
@@ -408,7 +429,7 @@ pub fn couple_distributed(
 
 /// This rank's slave faces with the received ones it keeps (two layers around its owned
 /// nodes) appended, and the owner of each of its own nodes (by node index of `own`).
-fn with_ghost_faces(
+pub(crate) fn with_ghost_faces(
     rank: usize,
     own: &SurfaceMesh,
     received: &Faces,

@@ -39,6 +39,7 @@
 mod couple;
 mod error;
 mod exchange;
+mod model;
 #[cfg(feature = "mpi")]
 mod mpi;
 mod rows;
@@ -47,6 +48,7 @@ mod wire;
 pub use couple::{couple_distributed, DistributedOptions};
 pub use error::{DistributedError, Result};
 pub use exchange::{agree, Exchange, SelfExchange};
+pub use model::{modelled_counts, ModelledRank};
 #[cfg(feature = "mpi")]
 pub use mpi::{Mpi, MpiExchange};
 pub use rows::{gather, GatheredCoupling, RankCounts, RankRows, RankSeconds, TaggedRows};
