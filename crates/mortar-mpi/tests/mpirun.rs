@@ -1,7 +1,8 @@
 //! The distributed coupling under `mpirun` on 1 to 4 ranks (the system's Open MPI, ranks
 //! oversubscribed on a small machine): the gathered D and M against the one-process coupling
-//! of the same interface (`examples/distributed_check.rs`, which states the comparison), and a
-//! failure on one rank stopping every rank with an error naming it.
+//! of the same interface (`examples/distributed_check.rs`, which states the comparison), the
+//! partition model's counts against the ranks', and a failure on one rank stopping every rank
+//! with an error naming it.
 
 use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
@@ -67,6 +68,8 @@ fn matches_one_process(ranks: usize, case: &str, split: &str, n: usize) -> serde
     let json: serde_json::Value = serde_json::from_str(line).expect("JSON");
     assert_eq!(json["ranks"], ranks);
     assert_eq!(json["nodes_match"], true, "{json}");
+    // `modelled_counts` of the same parts gives every rank's counts of the run.
+    assert_eq!(json["model_matches"], true, "{json}");
     for key in ["d_max_rel_diff", "m_max_rel_diff"] {
         let diff = json[key].as_f64().expect("patterns equal");
         assert!(
