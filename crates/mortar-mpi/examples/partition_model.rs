@@ -14,12 +14,9 @@ use mortar::generate::{square_triangles, Diagonal};
 use mortar_core::SurfaceMesh;
 use mortar_mpi::{modelled_counts, DistributedOptions, ModelledRank};
 
-type Res<T> = std::result::Result<T, Box<dyn std::error::Error>>;
+mod support;
 
-/// The master's cell count for a slave of `n` (as the other distributed examples).
-fn master_n(n: usize) -> usize {
-    (n * 7).div_ceil(5) + 1
-}
+use support::{master_n, split_mesh, Res};
 
 /// A cut of the bisection: below `value` along `axis` to `low`, else to `high`.
 enum Tree {
@@ -40,11 +37,11 @@ impl Tree {
         faces: &mut [u32],
         first: usize,
         parts: usize,
-        part: &mut [u32],
+        part: &mut [usize],
     ) -> Tree {
         if parts == 1 || faces.len() < 2 {
             for &f in faces.iter() {
-                part[f as usize] = first as u32;
+                part[f as usize] = first;
             }
             return Tree::Leaf(first);
         }
@@ -116,27 +113,6 @@ fn centres(mesh: &SurfaceMesh) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// `mesh` split by `part` into `parts` meshes (tags kept), in one pass.
-fn split(mesh: &SurfaceMesh, part: &[u32], parts: usize) -> Res<Vec<SurfaceMesh>> {
-    let mut out: Vec<SurfaceMesh> = (0..parts).map(|_| SurfaceMesh::new()).collect();
-    let mut tags = Vec::new();
-    for f in 0..mesh.face_count() {
-        let into = &mut out[part[f] as usize];
-        let face = mesh.face(f);
-        tags.clear();
-        for &n in face.nodes {
-            let t = mesh.node_tags()[n as usize];
-            if into.node_index(t).is_none() {
-                let x = mesh.coords()[n as usize];
-                into.add_node(t, [x.x, x.y, x.z])?;
-            }
-            tags.push(t);
-        }
-        into.add_face_with_tag(face.tag, face.element, &tags)?;
-    }
-    Ok(out)
-}
-
 fn stats(ranks: &[ModelledRank], of: impl Fn(&ModelledRank) -> f64) -> (f64, f64) {
     let max = ranks.iter().map(&of).fold(0.0, f64::max);
     let mean = ranks.iter().map(&of).sum::<f64>() / ranks.len() as f64;
@@ -172,12 +148,12 @@ fn main() -> Res<()> {
     let mut p = 2;
     while p <= largest {
         let mut order: Vec<u32> = (0..slave.face_count() as u32).collect();
-        let mut slave_part = vec![0u32; slave.face_count()];
+        let mut slave_part = vec![0usize; slave.face_count()];
         let tree = Tree::build(&sc, &mut order, 0, p, &mut slave_part);
-        let master_part: Vec<u32> = mc.iter().map(|c| tree.part_of(c) as u32).collect();
+        let master_part: Vec<usize> = mc.iter().map(|c| tree.part_of(c)).collect();
         let ranks = modelled_counts(
-            &split(&slave, &slave_part, p)?,
-            &split(&master, &master_part, p)?,
+            &split_mesh(&slave, &slave_part, p)?,
+            &split_mesh(&master, &master_part, p)?,
             &options,
         )?;
         let faces = stats(&ranks, |r| r.slave_faces as f64);

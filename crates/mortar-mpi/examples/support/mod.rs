@@ -1,5 +1,6 @@
 //! What the distributed examples share: the test surfaces, the ways of splitting them over the
-//! ranks, and a rank's part of a surface.
+//! ranks, and a rank's part of a surface. (Each example uses part of it.)
+#![allow(dead_code)]
 
 use mortar::generate::{cylinder_surface, half_circle_mesh, line_mesh, square_triangles, Diagonal};
 use mortar_core::SurfaceMesh;
@@ -78,24 +79,23 @@ pub fn rank_of(split: &str, f: usize, x: [f64; 3], p: usize, salt: u64) -> Res<u
     })
 }
 
-/// The faces of `mesh` that `keep` selects, with their nodes, tags kept.
-pub fn part_of(mesh: &SurfaceMesh, keep: impl Fn(usize) -> Res<bool>) -> Res<SurfaceMesh> {
-    let mut out = SurfaceMesh::new();
+/// `mesh` split by `part` (a part per face) into `parts` meshes, tags kept, in one pass.
+pub fn split_mesh(mesh: &SurfaceMesh, part: &[usize], parts: usize) -> Res<Vec<SurfaceMesh>> {
+    let mut out: Vec<SurfaceMesh> = (0..parts).map(|_| SurfaceMesh::new()).collect();
+    let mut tags = Vec::new();
     for f in 0..mesh.face_count() {
-        if !keep(f)? {
-            continue;
-        }
+        let into = &mut out[part[f]];
         let face = mesh.face(f);
-        let mut tags = Vec::new();
+        tags.clear();
         for &n in face.nodes {
             let t = mesh.node_tags()[n as usize];
-            if out.node_index(t).is_none() {
+            if into.node_index(t).is_none() {
                 let x = mesh.coords()[n as usize];
-                out.add_node(t, [x.x, x.y, x.z])?;
+                into.add_node(t, [x.x, x.y, x.z])?;
             }
             tags.push(t);
         }
-        out.add_face_with_tag(face.tag, face.element, &tags)?;
+        into.add_face_with_tag(face.tag, face.element, &tags)?;
     }
     Ok(out)
 }
@@ -130,12 +130,14 @@ pub fn parts(
     rank: usize,
     ranks: usize,
 ) -> Res<(SurfaceMesh, SurfaceMesh)> {
-    let (sx, mx) = (x_range(slave), x_range(master));
-    let my_slave = part_of(slave, |f| {
-        Ok(rank_of(split, f, centre(slave, f, sx), ranks, 0)? == rank)
-    })?;
-    let my_master = part_of(master, |f| {
-        Ok(rank_of(split, f, centre(master, f, mx), ranks, 1)? == rank)
-    })?;
-    Ok((my_slave, my_master))
+    let mut mine = Vec::new();
+    for (mesh, salt) in [(slave, 0), (master, 1)] {
+        let range = x_range(mesh);
+        let part = (0..mesh.face_count())
+            .map(|f| rank_of(split, f, centre(mesh, f, range), ranks, salt))
+            .collect::<Res<Vec<usize>>>()?;
+        mine.push(split_mesh(mesh, &part, ranks)?.swap_remove(rank));
+    }
+    let master_part = mine.pop().expect("two sides");
+    Ok((mine.pop().expect("two sides"), master_part))
 }
