@@ -150,7 +150,7 @@ impl Summary {
 /// returns what the other ranks sent here, with each face's sender; counts the messages and
 /// bytes sent.
 fn send_faces(
-    ex: &impl Exchange,
+    ex: &(impl Exchange + ?Sized),
     mesh: &SurfaceMesh,
     wanted: impl Fn(usize, &Bounds) -> bool,
     elements: &ElementRegistry,
@@ -280,7 +280,7 @@ fn extended(
 /// a rank does not know, a node tag with different coordinates on two ranks;
 /// [`DistributedError::NoOverlap`] when no rank has an overlapping pair.
 pub fn couple_distributed(
-    ex: &impl Exchange,
+    ex: &(impl Exchange + ?Sized),
     slave: &SurfaceMesh,
     master: &SurfaceMesh,
     options: &DistributedOptions,

@@ -4,8 +4,8 @@
 use crate::error::{DistributedError, Result};
 
 /// The collectives the distributed coupling is written on: each is called by every rank of
-/// the communicator, in the same order. [`MpiExchange`](crate::MpiExchange) (feature `mpi`)
-/// runs them on MPI; [`SelfExchange`] is the communicator of one rank.
+/// the communicator, in the same order. `MpiExchange` (feature `mpi`) runs them on MPI;
+/// [`SelfExchange`] is the communicator of one rank.
 pub trait Exchange {
     /// This rank, `0..size()`.
     fn rank(&self) -> usize;
@@ -46,7 +46,7 @@ impl Exchange for SelfExchange {
 /// on the failing ranks their own error and on the others [`DistributedError::RankFailed`]
 /// with the lowest failing rank and its message. Collective: every rank calls it at the same
 /// point, so that a rank that failed never leaves the others waiting in a later collective.
-pub fn agree<T>(exchange: &impl Exchange, local: Result<T>) -> Result<T> {
+pub fn agree<T>(exchange: &(impl Exchange + ?Sized), local: Result<T>) -> Result<T> {
     let status = match &local {
         Ok(_) => Vec::new(),
         Err(e) => {

@@ -7,9 +7,10 @@
 //! puts them together on one rank.
 //!
 //! MPI is the system's (Open MPI from Debian's `libopenmpi-dev`), through rsmpi, with the
-//! `mpi` feature ([`Mpi`], [`MpiExchange`]); without it the crate builds with no C
-//! dependency and offers the one-rank [`SelfExchange`], so that a caller writes one code path
-//! for both builds. Everything here is written on the [`Exchange`] trait.
+//! `mpi` feature (`Mpi`, `MpiExchange`, which exist only in that build); without it the
+//! crate builds with no C dependency and offers the one-rank [`SelfExchange`], so that a
+//! caller writes one code path for both builds. Everything here is written on the
+//! [`Exchange`] trait. What is checked and measured: `docs/distributed.md`.
 //!
 //! ```
 //! use mortar_core::mesh::SurfaceMesh;

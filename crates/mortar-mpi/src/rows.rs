@@ -167,7 +167,7 @@ fn csr(rows: &[Vec<(u64, f64)>], cols: &[u64]) -> SparseMatrix {
 /// # Errors
 /// A malformed message, on every rank.
 pub fn gather(
-    ex: &impl Exchange,
+    ex: &(impl Exchange + ?Sized),
     part: &RankRows,
     root: usize,
 ) -> Result<Option<GatheredCoupling>> {

@@ -104,3 +104,17 @@ fn a_degenerate_face_is_the_cores_error_with_the_rank() {
     );
     assert!(err.to_string().contains("degenerate"), "{err}");
 }
+
+#[test]
+fn the_coupling_takes_an_exchange_behind_a_trait_object() {
+    let exchange: &dyn mortar_mpi::Exchange = &SelfExchange;
+    let rows = couple_distributed(
+        exchange,
+        &half_circle_mesh(6, false, 1).expect("mesh"),
+        &half_circle_mesh(9, true, 1).expect("mesh"),
+        &DistributedOptions::default(),
+    )
+    .expect("couples");
+    let all = gather(exchange, &rows, 0).expect("gathers").expect("root");
+    assert_eq!(all.slave_nodes, (1..=7).collect::<Vec<u64>>());
+}
