@@ -20,6 +20,9 @@ mod cli;
 #[path = "integration/cli_errors.rs"]
 mod cli_errors;
 
+#[path = "integration/cli_mpirun.rs"]
+mod cli_mpirun;
+
 #[path = "integration/scene.rs"]
 mod scene;
 

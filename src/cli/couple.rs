@@ -1,12 +1,14 @@
 //! `mortar couple`: two Gmsh surfaces in, D, M and a summary out.
 
 use mortar::core::mesh::orient::face_each_other;
+use mortar::core::mesh::SurfaceMesh;
 use mortar::extend::Registries;
 use mortar::io::{
-    parse_interface_arg, read_gmsh_surface, write_coupling, CouplingSummary, GmshSurface,
-    OrientationMethod, OrientationSummary, SideOrientation,
+    parse_interface_arg, read_gmsh_surface, write_coupling, write_operators, CouplingSummary,
+    GmshSurface, OrientationMethod, OrientationSummary, SideOrientation,
 };
-use mortar::{assemble_coupling, Interface};
+use mortar::{assemble_coupling, CouplingOptions, Interface, Tolerances};
+use mortar_mpi::{couple_distributed, gather, DistributedOptions, Exchange, World};
 
 use super::report::{core_error, print_summary, print_warnings};
 use super::CoupleArgs;
@@ -14,6 +16,8 @@ use super::CoupleArgs;
 /// Runs the command with the surface elements of `registries`; the error is the message for
 /// the user.
 pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Result<(), String> {
+    // Under `mpirun` on several ranks, MPI first (before anything else could start it).
+    let world = World::start().map_err(|e| e.to_string())?;
     let slave_arg = parse_interface_arg(&args.slave).map_err(|e| format!("--slave: {e}"))?;
     let master_arg = parse_interface_arg(&args.master).map_err(|e| format!("--master: {e}"))?;
     let settings = args.settings();
@@ -30,6 +34,11 @@ pub(super) fn run(args: &CoupleArgs, json: bool, registries: &Registries) -> Res
     } else {
         Some(orient(&mut slave, &mut master)?)
     };
+
+    if let Some(world) = &world {
+        let parts = (&slave, &master);
+        return run_on_ranks(world, args, json, registries, parts, options, tolerances);
+    }
 
     let interface = Interface::with_tolerances(
         std::mem::take(&mut slave.mesh),
@@ -106,4 +115,109 @@ fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<Orientati
         slave: side(s, &rs),
         master: side(m, &rm),
     })
+}
+
+/// Face `rank`'s share of `mesh` among `ranks`: its faces in `ranks` contiguous blocks of the
+/// file's order, this rank's block with its nodes.
+fn block_of(mesh: &SurfaceMesh, rank: usize, ranks: usize) -> Result<SurfaceMesh, String> {
+    let n = mesh.face_count();
+    let (start, end) = (n * rank / ranks, n * (rank + 1) / ranks);
+    let mut part = SurfaceMesh::with_capacity(0, end - start);
+    let mut tags = Vec::new();
+    for f in start..end {
+        let face = mesh.face(f);
+        tags.clear();
+        for &i in face.nodes {
+            let tag = mesh.node_tags()[i as usize];
+            if part.node_index(tag).is_none() {
+                let x = mesh.coords()[i as usize];
+                part.add_node(tag, [x.x, x.y, x.z])
+                    .map_err(|e| e.to_string())?;
+            }
+            tags.push(tag);
+        }
+        part.add_face_with_tag(face.tag, face.element, &tags)
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(part)
+}
+
+/// `mortar couple` on the ranks of `world`: each rank reads both files, takes its block of
+/// each surface's faces and couples it ([`couple_distributed`]); rank 0 gathers the rows and
+/// writes `D.mtx`, `M.mtx` (as one process writes them, to round-off) and a `summary.json`
+/// with every rank's counts. `gap.mtx` and `normals.mtx` are one process's only.
+fn run_on_ranks(
+    world: &World,
+    args: &CoupleArgs,
+    json: bool,
+    registries: &Registries,
+    (slave, master): (&GmshSurface, &GmshSurface),
+    coupling: CouplingOptions,
+    tolerances: Tolerances,
+) -> Result<(), String> {
+    let (rank, ranks) = (world.rank(), world.size());
+    let my_slave = block_of(&slave.mesh, rank, ranks)?;
+    let my_master = block_of(&master.mesh, rank, ranks)?;
+    let options = DistributedOptions {
+        coupling,
+        tolerances,
+        elements: registries.elements.clone(),
+    };
+    let rows =
+        couple_distributed(world, &my_slave, &my_master, &options).map_err(|e| e.to_string())?;
+    // Each rank's warnings (a face next to a part's boundary may be reported by two ranks).
+    print_warnings(&rows.warnings, &args.settings().widen_search_hint());
+    let Some(all) = gather(world, &rows, 0).map_err(|e| e.to_string())? else {
+        return Ok(());
+    };
+    let per_rank: Vec<serde_json::Value> = all
+        .counts
+        .iter()
+        .map(|c| {
+            serde_json::json!({
+                "slave_faces": c.slave_faces,
+                "ghost_slave_faces": c.ghost_slave_faces,
+                "master_faces": c.master_faces,
+                "ghost_master_faces": c.ghost_master_faces,
+                "pairs": c.pairs,
+                "messages_sent": c.messages_sent,
+                "bytes_sent": c.bytes_sent,
+                "passes": c.passes,
+            })
+        })
+        .collect();
+    let summary = serde_json::json!({
+        "ranks": ranks,
+        "distribution": "each surface's faces in contiguous blocks of the file's order, one per rank",
+        "slave": slave.label(),
+        "master": master.label(),
+        "slave_faces": slave.mesh.face_count(),
+        "master_faces": master.mesh.face_count(),
+        "slave_nodes": all.slave_nodes,
+        "master_nodes": all.master_nodes,
+        "per_rank": per_rank,
+        "written": ["D.mtx", "M.mtx", "summary.json"],
+    });
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| e.to_string())?;
+    write_operators(&args.out, &all.d, &all.m, &text).map_err(|e| e.to_string())?;
+    if json {
+        println!("{text}");
+    } else {
+        say!(
+            "{:<9}{} slave and {} master faces on {ranks} ranks: D {} x {}, M {} x {}",
+            "coupled",
+            slave.mesh.face_count(),
+            master.mesh.face_count(),
+            all.d.rows(),
+            all.d.cols(),
+            all.m.rows(),
+            all.m.cols()
+        );
+        say!(
+            "{:<9}{} (D.mtx, M.mtx, summary.json)",
+            "output",
+            args.out.display()
+        );
+    }
+    Ok(())
 }

@@ -77,10 +77,12 @@ enum Command {
     /// --require-full-coverage). Rows of D and M are the slave nodes, columns the slave (D)
     /// or master (M) nodes, each by ascending node tag; gap.mtx and normals.mtx are dense
     /// arrays, a row per slave node (as D's rows), a column per coordinate (2 in 2D). Nothing
-    /// is written unless everything succeeds.
+    /// is written unless everything succeeds. Under `mpirun -n P` (a build with `--features
+    /// mpi`), the P ranks each couple a block of the faces and rank 0 writes D.mtx, M.mtx (the
+    /// one-process operators, to round-off) and summary.json with every rank's counts.
     #[command(
         disable_help_flag = true,
-        after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual"
+        after_help = "Example:\n  mortar couple --slave block.msh#contact --master plate.msh#top --out out --lm dual\n  mpirun -n 2 mortar couple --slave block.msh#contact --master plate.msh#top --out out"
     )]
     Couple(CoupleArgs),
 

@@ -63,6 +63,17 @@ pub enum DistributedError {
         /// What was wrong.
         what: &'static str,
     },
+    /// The program was started by `mpirun` on several ranks, but built without MPI.
+    #[error("started on {ranks} MPI ranks, but built without MPI: build with `--features mortar-mpi/mpi` (Open MPI: apt-get install libopenmpi-dev openmpi-bin libclang-dev)")]
+    NotBuilt {
+        /// The ranks `mpirun` started.
+        ranks: usize,
+    },
+    /// MPI was already started, by this program or a library, when the toolkit tried to.
+    #[error(
+        "MPI was already started: start it once, with `World::start`, before anything else uses it"
+    )]
+    AlreadyStarted,
     /// No slave face of any rank overlaps a master face.
     #[error("no slave face of any of the {ranks} ranks overlaps a master face ({slave_faces} slave faces, {master_faces} master faces in all)")]
     NoOverlap {

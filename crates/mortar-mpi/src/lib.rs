@@ -45,6 +45,7 @@ mod model;
 mod mpi;
 mod rows;
 mod wire;
+mod world;
 
 pub use couple::{couple_distributed, DistributedOptions};
 pub use error::{DistributedError, Result};
@@ -53,3 +54,4 @@ pub use model::{modelled_counts, ModelledRank};
 #[cfg(feature = "mpi")]
 pub use mpi::{Mpi, MpiExchange};
 pub use rows::{gather, GatheredCoupling, RankCounts, RankRows, RankSeconds, TaggedRows};
+pub use world::{launched_ranks, World, BUILT_WITH_MPI};

@@ -52,7 +52,7 @@ pub use gmsh::{
     PhysicalGroup,
 };
 pub use interface_arg::{parse_interface_arg, InterfaceArg};
-pub use output::{remove_stale_outputs, write_coupling, write_outputs};
+pub use output::{remove_stale_outputs, write_coupling, write_operators, write_outputs};
 pub use summary::{
     warning_text, CouplingSummary, GapSummary, OrientationMethod, OrientationSummary, PhaseSummary,
     SideOrientation, ThreadSecondsSummary, WarningSummary, RECOMBINATION_FILE,

@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
+use mortar_core::linalg::SparseMatrix;
 use mortar_core::{Coupling, Interface, SpatialDim};
 
 use super::error::IoError;
@@ -56,7 +57,6 @@ pub fn write_coupling(
         dim,
         &["n_j: averaged unit normal of each slave node (rows of D), pointing out of the slave side"],
     );
-    const SLAVE_ROWS: &str = "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)";
     let d = match &coupling.recombined {
         Some(r) => matrix_market::to_string(
             &r.d,
@@ -65,18 +65,9 @@ pub fn write_coupling(
                 SLAVE_ROWS,
             ],
         ),
-        None => matrix_market::to_string(
-            &coupling.d,
-            &["D[j,k] = int Phi_j N_k^s (mortar)", SLAVE_ROWS],
-        ),
+        None => d_file(&coupling.d),
     };
-    let m = matrix_market::to_string(
-        &coupling.m,
-        &[
-            "M[j,l] = int Phi_j N_l^m (mortar)",
-            "rows: slave nodes, columns: master nodes, both by ascending node tag (summary.json: slave_nodes, master_nodes)",
-        ],
-    );
+    let m = m_file(&coupling.m);
     let mut json = summary.to_json();
     json.push('\n');
     let mut files = vec![
@@ -101,6 +92,55 @@ pub fn write_coupling(
     // A T.mtx of an earlier run into the same folder would pass for this run's.
     let written: Vec<&str> = files.iter().map(|(n, _)| *n).collect();
     remove_stale_outputs(dir, &written, |n| n == RECOMBINATION_FILE)?;
+    Ok(())
+}
+
+/// The comment of the rows and columns of D (and T).
+const SLAVE_ROWS: &str =
+    "rows: slave nodes, columns: slave nodes, both by ascending node tag (summary.json: slave_nodes)";
+
+/// `D.mtx`'s text.
+fn d_file(d: &SparseMatrix) -> String {
+    matrix_market::to_string(d, &["D[j,k] = int Phi_j N_k^s (mortar)", SLAVE_ROWS])
+}
+
+/// `M.mtx`'s text.
+fn m_file(m: &SparseMatrix) -> String {
+    matrix_market::to_string(
+        m,
+        &[
+            "M[j,l] = int Phi_j N_l^m (mortar)",
+            "rows: slave nodes, columns: master nodes, both by ascending node tag (summary.json: slave_nodes, master_nodes)",
+        ],
+    )
+}
+
+/// Writes `D.mtx` and `M.mtx` as [`write_coupling`] does, and `summary.json` from
+/// `summary_json`, into `dir`, all or none: the operators of a coupling computed elsewhere
+/// (gathered from MPI ranks, say), without the interface that `gap.mtx` and `normals.mtx`
+/// need. A `gap.mtx`, `normals.mtx` or `T.mtx` of an earlier run in `dir` is removed, so that
+/// it does not pass for this run's.
+///
+/// # Errors
+/// As [`write_outputs`].
+pub fn write_operators(
+    dir: impl AsRef<Path>,
+    d: &SparseMatrix,
+    m: &SparseMatrix,
+    summary_json: &str,
+) -> Result<(), IoError> {
+    let mut json = summary_json.to_string();
+    json.push('\n');
+    let files = [
+        ("D.mtx", d_file(d).into_bytes()),
+        ("M.mtx", m_file(m).into_bytes()),
+        ("summary.json", json.into_bytes()),
+    ];
+    let dir = dir.as_ref();
+    write_outputs(dir, &files)?;
+    remove_stale_outputs(dir, &["D.mtx", "M.mtx", "summary.json"], |n| {
+        ["gap.mtx", "normals.mtx", RECOMBINATION_FILE].contains(&n)
+    })?;
     Ok(())
 }
 
