@@ -334,13 +334,17 @@ pub fn couple_distributed(
 
     // 3. Owners, and the ghost faces kept.
     let (slave_mesh, owner) = agree(ex, with_ghost_faces(rank, slave, &received, &from))?;
-    counts.ghost_slave_faces = slave_mesh.face_count() - slave.face_count();
-    seconds.ghosts += lap.lap();
-
+    // Moved into the first pass's interface; built again for a second pass.
+    let mut slave_mesh = Some(slave_mesh);
+    let local_faces = slave_mesh.as_ref().map_or(0, SurfaceMesh::face_count);
+    counts.ghost_slave_faces = local_faces - slave.face_count();
     let mut local_box = Bounds::EMPTY;
-    for f in 0..slave_mesh.face_count() {
-        local_box.union(&slave_mesh.face_box(f));
+    if let Some(mesh) = &slave_mesh {
+        for f in 0..mesh.face_count() {
+            local_box.union(&mesh.face_box(f));
+        }
     }
+    seconds.ghosts += lap.lap();
     let mut reach_of = search_reach(&options.tolerances, ds);
     let mut passes = 0;
     loop {
@@ -377,16 +381,22 @@ pub fn couple_distributed(
         seconds.master_exchange += lap.lap();
 
         // 5. The coupling of this rank's faces, and its owned rows.
+        let local = match slave_mesh.take() {
+            Some(mesh) => Ok(mesh),
+            None => with_ghost_faces(rank, slave, &received, &from).map(|(mesh, _)| mesh),
+        };
         let coupled = agree(
             ex,
-            couple_local(
-                rank,
-                &slave_mesh,
-                master_mesh,
-                options,
-                (&whole_slave, &local_box),
-                &mut seconds,
-            ),
+            local.and_then(|local| {
+                couple_local(
+                    rank,
+                    local,
+                    master_mesh,
+                    options,
+                    (&whole_slave, &local_box),
+                    &mut seconds,
+                )
+            }),
         )?;
         lap.restart();
         let uncovered = coupled.as_ref().is_some_and(|c| {
@@ -487,7 +497,7 @@ pub(crate) fn with_ghost_faces(
 /// there is nothing to couple (no slave or no master face here, or no overlap).
 fn couple_local(
     rank: usize,
-    slave: &SurfaceMesh,
+    slave: SurfaceMesh,
     master: SurfaceMesh,
     options: &DistributedOptions,
     (whole_slave, local_box): (&Bounds, &Bounds),
@@ -509,7 +519,7 @@ fn couple_local(
             };
         }
     }
-    let interface = Interface::with_tolerances(slave.clone(), master, tolerances).map_err(err)?;
+    let interface = Interface::with_tolerances(slave, master, tolerances).map_err(err)?;
     let t_coupling = Instant::now();
     seconds.interface += (t_coupling - t).as_secs_f64();
     let coupled = assemble_coupling(&interface, &options.coupling);
@@ -551,6 +561,11 @@ fn owned_rows(
             m.indptr = vec![0; rows.len() + 1];
         }
         Some(c) => {
+            for (rows_of, a) in [(&mut d, &c.d), (&mut m, &c.m)] {
+                rows_of.cols.reserve(a.nnz());
+                rows_of.values.reserve(a.nnz());
+                rows_of.indptr.reserve(rows.len() + 1);
+            }
             // The coupling's rows are its slave nodes in ascending tag order, a superset of
             // `rows`: one merge.
             let mut i = 0;
