@@ -141,16 +141,10 @@ fn run(mpi: &Mpi) -> Res<u8> {
         .counts
         .iter()
         .map(|c| {
-            serde_json::json!({
-                "slave_faces": c.slave_faces,
-                "ghost_slave_faces": c.ghost_slave_faces,
-                "master_faces": c.master_faces,
-                "ghost_master_faces": c.ghost_master_faces,
-                "pairs": c.pairs,
-                "messages_sent": c.messages_sent,
-                "bytes_sent": c.bytes_sent,
-                "passes": c.passes,
-            })
+            let fields = c
+                .named()
+                .map(|(k, v)| (k.to_string(), serde_json::Value::from(v)));
+            serde_json::Value::Object(fields.into_iter().collect())
         })
         .collect();
     let json = serde_json::json!({

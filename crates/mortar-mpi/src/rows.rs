@@ -66,6 +66,22 @@ pub struct RankCounts {
     pub passes: usize,
 }
 
+impl RankCounts {
+    /// The counts by name (the names of the fields), for a report.
+    pub fn named(&self) -> [(&'static str, u64); 8] {
+        [
+            ("slave_faces", self.slave_faces as u64),
+            ("ghost_slave_faces", self.ghost_slave_faces as u64),
+            ("master_faces", self.master_faces as u64),
+            ("ghost_master_faces", self.ghost_master_faces as u64),
+            ("pairs", self.pairs as u64),
+            ("messages_sent", self.messages_sent as u64),
+            ("bytes_sent", self.bytes_sent),
+            ("passes", self.passes as u64),
+        ]
+    }
+}
+
 /// Where a rank's time went in a distributed coupling, in seconds of wall-clock time (the
 /// exchanges include the wait for the other ranks).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -172,18 +188,8 @@ pub fn gather(
     root: usize,
 ) -> Result<Option<GatheredCoupling>> {
     let mut w = Writer::default();
-    let c = &part.counts;
-    for v in [
-        c.slave_faces,
-        c.ghost_slave_faces,
-        c.master_faces,
-        c.ghost_master_faces,
-        c.pairs,
-        c.messages_sent,
-        c.bytes_sent as usize,
-        c.passes,
-    ] {
-        w.u64(v as u64);
+    for (_, v) in part.counts.named() {
+        w.u64(v);
     }
     w.u64(part.rows.len() as u64);
     for &t in &part.rows {
