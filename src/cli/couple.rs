@@ -117,29 +117,12 @@ fn orient(slave: &mut GmshSurface, master: &mut GmshSurface) -> Result<Orientati
     })
 }
 
-/// Face `rank`'s share of `mesh` among `ranks`: its faces in `ranks` contiguous blocks of the
+/// Rank `rank`'s share of `mesh` among `ranks`: its faces in `ranks` contiguous blocks of the
 /// file's order, this rank's block with its nodes.
 fn block_of(mesh: &SurfaceMesh, rank: usize, ranks: usize) -> Result<SurfaceMesh, String> {
     let n = mesh.face_count();
-    let (start, end) = (n * rank / ranks, n * (rank + 1) / ranks);
-    let mut part = SurfaceMesh::with_capacity(0, end - start);
-    let mut tags = Vec::new();
-    for f in start..end {
-        let face = mesh.face(f);
-        tags.clear();
-        for &i in face.nodes {
-            let tag = mesh.node_tags()[i as usize];
-            if part.node_index(tag).is_none() {
-                let x = mesh.coords()[i as usize];
-                part.add_node(tag, [x.x, x.y, x.z])
-                    .map_err(|e| e.to_string())?;
-            }
-            tags.push(tag);
-        }
-        part.add_face_with_tag(face.tag, face.element, &tags)
-            .map_err(|e| e.to_string())?;
-    }
-    Ok(part)
+    mesh.part(n * rank / ranks..n * (rank + 1) / ranks)
+        .map_err(|e| e.to_string())
 }
 
 /// `mortar couple` on the ranks of `world`: each rank reads both files, takes its block of

@@ -252,6 +252,44 @@ impl SurfaceMesh {
         }
     }
 
+    /// The faces `faces` (indices, in that order) as a mesh of their own, with the nodes they
+    /// use (in the order first used), tags kept: a rank's part of a surface, say.
+    ///
+    /// ```
+    /// # use mortar_core::mesh::SurfaceMesh;
+    /// # fn line2() -> mortar_core::element::ElementRef { unimplemented!() }
+    /// # fn demo(line: &SurfaceMesh) -> mortar_core::error::Result<()> {
+    /// // The second half of a line's faces.
+    /// let n = line.face_count();
+    /// let half = line.part(n / 2..n)?;
+    /// assert_eq!(half.face_count(), n - n / 2);
+    /// assert_eq!(half.face(0).tag, line.face(n / 2).tag);
+    /// # Ok(()) }
+    /// ```
+    ///
+    /// # Errors
+    /// None for faces of this mesh (the `Result` carries the mesh-building errors through).
+    ///
+    /// # Panics
+    /// If an index is not below `face_count()`.
+    pub fn part(&self, faces: impl IntoIterator<Item = usize>) -> Result<SurfaceMesh> {
+        let mut out = SurfaceMesh::new();
+        let mut tags = Vec::new();
+        for f in faces {
+            let face = self.face(f);
+            tags.clear();
+            for &i in face.nodes {
+                let tag = self.nodes.tags[i as usize];
+                if out.node_index(tag).is_none() {
+                    out.add_node(tag, self.nodes.coords[i as usize].into())?;
+                }
+                tags.push(tag);
+            }
+            out.add_face_with_tag(face.tag, face.element, &tags)?;
+        }
+        Ok(out)
+    }
+
     /// Moves every node by `f` (rigid motions, scaling, or a deformed configuration).
     ///
     /// # Errors

@@ -79,25 +79,16 @@ pub fn rank_of(split: &str, f: usize, x: [f64; 3], p: usize, salt: u64) -> Res<u
     })
 }
 
-/// `mesh` split by `part` (a part per face) into `parts` meshes, tags kept, in one pass.
+/// `mesh` split by `part` (a part per face) into `parts` meshes, tags kept.
 pub fn split_mesh(mesh: &SurfaceMesh, part: &[usize], parts: usize) -> Res<Vec<SurfaceMesh>> {
-    let mut out: Vec<SurfaceMesh> = (0..parts).map(|_| SurfaceMesh::new()).collect();
-    let mut tags = Vec::new();
-    for f in 0..mesh.face_count() {
-        let into = &mut out[part[f]];
-        let face = mesh.face(f);
-        tags.clear();
-        for &n in face.nodes {
-            let t = mesh.node_tags()[n as usize];
-            if into.node_index(t).is_none() {
-                let x = mesh.coords()[n as usize];
-                into.add_node(t, [x.x, x.y, x.z])?;
-            }
-            tags.push(t);
-        }
-        into.add_face_with_tag(face.tag, face.element, &tags)?;
+    let mut faces: Vec<Vec<usize>> = vec![Vec::new(); parts];
+    for (f, &p) in part.iter().enumerate() {
+        faces[p].push(f);
     }
-    Ok(out)
+    Ok(faces
+        .into_iter()
+        .map(|list| mesh.part(list))
+        .collect::<Result<_, _>>()?)
 }
 
 /// The smallest and largest x of `mesh`'s nodes.
