@@ -150,6 +150,22 @@ fn run_on_ranks(
         couple_distributed(world, &my_slave, &my_master, &options).map_err(|e| e.to_string())?;
     // Each rank's warnings (a face next to a part's boundary may be reported by two ranks).
     print_warnings(&rows.warnings, &args.settings().widen_search_hint());
+    if !rows.uncoupled_faces.is_empty() {
+        let first: Vec<String> = rows
+            .uncoupled_faces
+            .iter()
+            .take(5)
+            .map(u64::to_string)
+            .collect();
+        let line = format!(
+            "warning: rank {rank}: none of its {} slave faces meets a master face within the search's reach (faces {}{}): their rows of D and M are zero\n",
+            rows.uncoupled_faces.len(),
+            first.join(", "),
+            if rows.uncoupled_faces.len() > 5 { ", ..." } else { "" }
+        );
+        // One write, so that the ranks' lines do not interleave.
+        std::io::Write::write_all(&mut std::io::stderr(), line.as_bytes()).ok();
+    }
     let Some(all) = gather(world, &rows, 0).map_err(|e| e.to_string())? else {
         return Ok(());
     };

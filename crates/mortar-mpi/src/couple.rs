@@ -399,11 +399,15 @@ pub fn couple_distributed(
             }),
         )?;
         lap.restart();
-        let uncovered = coupled.as_ref().is_some_and(|c| {
-            c.warnings
+        // Slave faces here and nothing coupled (no master face within reach, or none that
+        // overlaps) is uncovered area too, as the core's `NoOverlap` is to one process.
+        let uncovered = match &coupled {
+            Some(c) => c
+                .warnings
                 .iter()
-                .any(|w| matches!(w, CouplingWarning::UncoveredSlaveArea { .. }))
-        });
+                .any(|w| matches!(w, CouplingWarning::UncoveredSlaveArea { .. })),
+            None => local_faces > 0,
+        };
         let any_uncovered = ex
             .all_gather(&[u8::from(uncovered)])
             .iter()
@@ -555,8 +559,10 @@ fn owned_rows(
     let mut d = TaggedRows::default();
     let mut m = TaggedRows::default();
     let mut warnings = Vec::new();
+    let mut uncoupled_faces = Vec::new();
     match coupled {
         None => {
+            uncoupled_faces = (0..own.face_count()).map(|f| own.face(f).tag).collect();
             d.indptr = vec![0; rows.len() + 1];
             m.indptr = vec![0; rows.len() + 1];
         }
@@ -595,6 +601,10 @@ fn owned_rows(
         .collect();
     master_nodes.sort_unstable();
     master_nodes.dedup();
+    let counts = RankCounts {
+        uncoupled_faces: uncoupled_faces.len(),
+        ..counts
+    };
     RankRows {
         rows,
         d,
@@ -602,6 +612,7 @@ fn owned_rows(
         master_nodes,
         counts,
         warnings,
+        uncoupled_faces,
         seconds: RankSeconds::default(),
     }
 }

@@ -61,6 +61,8 @@ pub struct RankCounts {
     pub messages_sent: usize,
     /// Their bytes.
     pub bytes_sent: u64,
+    /// This rank's own slave faces when it coupled nothing ([`RankRows::uncoupled_faces`]).
+    pub uncoupled_faces: usize,
     /// Exchanges of master faces: 1, or 2 when the widened search of an open gap needed
     /// master faces farther away.
     pub passes: usize,
@@ -68,7 +70,7 @@ pub struct RankCounts {
 
 impl RankCounts {
     /// The counts by name (the names of the fields), for a report.
-    pub fn named(&self) -> [(&'static str, u64); 8] {
+    pub fn named(&self) -> [(&'static str, u64); 9] {
         [
             ("slave_faces", self.slave_faces as u64),
             ("ghost_slave_faces", self.ghost_slave_faces as u64),
@@ -77,6 +79,7 @@ impl RankCounts {
             ("pairs", self.pairs as u64),
             ("messages_sent", self.messages_sent as u64),
             ("bytes_sent", self.bytes_sent),
+            ("uncoupled_faces", self.uncoupled_faces as u64),
             ("passes", self.passes as u64),
         ]
     }
@@ -120,6 +123,10 @@ pub struct RankRows {
     /// The warnings of this rank's coupling (its ghost slave faces included, so that a face
     /// near a part's boundary may be reported by two ranks).
     pub warnings: Vec<CouplingWarning>,
+    /// The tags of this rank's own slave faces when it coupled nothing (no master face within
+    /// the search's reach, or none that overlaps): their rows are zero, as a one-process
+    /// coupling leaves uncovered area; empty when the rank coupled. Report them as a warning.
+    pub uncoupled_faces: Vec<u64>,
     /// Where this rank's time went.
     pub seconds: RankSeconds,
 }
@@ -209,7 +216,7 @@ pub fn gather(
         let mut counts = Vec::new();
         for (q, bytes) in parts.iter().enumerate() {
             let mut r = Reader::new(bytes, ex.rank(), q);
-            let mut v = [0u64; 8];
+            let mut v = [0u64; 9];
             for x in v.iter_mut() {
                 *x = r.u64()?;
             }
@@ -221,7 +228,8 @@ pub fn gather(
                 pairs: v[4] as usize,
                 messages_sent: v[5] as usize,
                 bytes_sent: v[6],
-                passes: v[7] as usize,
+                uncoupled_faces: v[7] as usize,
+                passes: v[8] as usize,
             });
             let n = r.u64()? as usize;
             for _ in 0..n {

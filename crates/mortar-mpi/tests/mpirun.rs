@@ -125,6 +125,18 @@ fn other_cases_and_splits_on_three_ranks_match_one_process() {
 }
 
 #[test]
+fn a_rank_that_couples_nothing_names_its_faces_and_widens_the_search() {
+    let json = matches_one_process(3, "plane3d-far", "strips", 12);
+    let per_rank = json["per_rank"].as_array().expect("per rank");
+    // The last strip (x above 2/3) is beyond the master (x below 0.4): nothing coupled there,
+    // counted, and the uncovered area asks every rank for the second exchange.
+    assert_eq!(per_rank[2]["pairs"], 0, "{json}");
+    assert!(per_rank[2]["uncoupled_faces"].as_u64() > Some(0), "{json}");
+    assert_eq!(per_rank[0]["uncoupled_faces"], 0, "{json}");
+    assert!(per_rank.iter().all(|r| r["passes"] == 2), "{json}");
+}
+
+#[test]
 fn a_failure_on_one_rank_stops_every_rank_with_its_name() {
     let out = mpirun(
         3,

@@ -20,6 +20,13 @@ pub fn surfaces(case: &str, n: usize) -> Res<(SurfaceMesh, SurfaceMesh)> {
             square_triangles(n, Diagonal::Main, 0.0, false, 1)?,
             square_triangles(master_n(n), Diagonal::Anti, 0.0, true, 1)?,
         ),
+        // The master under the slave's first 0.4 x 0.4 only: a rank of strips beyond it
+        // couples nothing.
+        "plane3d-far" => {
+            let mut master = square_triangles(master_n(n), Diagonal::Anti, 0.0, true, 1)?;
+            master.transform(|x| x * 0.4)?;
+            (square_triangles(n, Diagonal::Main, 0.0, false, 1)?, master)
+        }
         "cylinder" => {
             let along = (n / 4).max(1);
             (
