@@ -17,11 +17,14 @@
 //!    [`SearchRadius::Nearest`], if some rank left slave area uncovered, steps 4-5 run again
 //!    with the master faces within the search's bound.
 
-use mortar_core::assembly::{assemble_coupling, CouplingOptions, CouplingWarning};
+use mortar_core::assembly::{assemble_coupling, CouplingOptions, CouplingWarning, WholeInterface};
+use mortar_core::element::ElementRef;
 use mortar_core::mesh::SurfaceMesh;
-use mortar_core::{Interface, MortarError, SearchRadius, Tolerances};
+use mortar_core::{Interface, MortarError, SearchRadius, SpatialDim, Tolerances};
 use mortar_elements::ElementRegistry;
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::Instant;
 
 use crate::error::{DistributedError, Result};
@@ -93,6 +96,11 @@ struct Summary {
     master_diameter: f64,
     slave_faces: u64,
     master_faces: u64,
+    /// The box of the first nodes of the slave faces (the order of the whole's faces).
+    anchors: Bounds,
+    /// The element types of the slave and master faces, by name.
+    slave_types: Vec<String>,
+    master_types: Vec<String>,
 }
 
 impl Summary {
@@ -104,6 +112,10 @@ impl Summary {
             master_diameter: 0.0,
             slave_faces: slave.face_count() as u64,
             master_faces: master.face_count() as u64,
+            anchors: WholeInterface::anchor_box(slave)
+                .map_or(Bounds::EMPTY, |(lo, hi)| Bounds { lo, hi }),
+            slave_types: names(slave),
+            master_types: names(master),
         };
         for f in 0..slave.face_count() {
             let b = slave.face_box(f);
@@ -126,6 +138,13 @@ impl Summary {
         w.f64(self.master_diameter);
         w.u64(self.slave_faces);
         w.u64(self.master_faces);
+        self.anchors.write(&mut w);
+        for types in [&self.slave_types, &self.master_types] {
+            w.u32(types.len() as u32);
+            for t in types {
+                w.str(t);
+            }
+        }
         w.bytes
     }
 
@@ -138,12 +157,111 @@ impl Summary {
             master_diameter: r.f64()?,
             slave_faces: r.u64()?,
             master_faces: r.u64()?,
+            anchors: Bounds::read(&mut r)?,
+            slave_types: read_names(&mut r)?,
+            master_types: read_names(&mut r)?,
         };
         if !r.is_done() {
             return Err(r.malformed("bytes after a summary"));
         }
         Ok(s)
     }
+}
+
+/// The names of the element types of `mesh`'s faces.
+fn names(mesh: &SurfaceMesh) -> Vec<String> {
+    mesh.element_types()
+        .iter()
+        .map(|e| e.name().to_string())
+        .collect()
+}
+
+/// A list of names as [`Summary::write`] writes it.
+fn read_names(r: &mut Reader<'_>) -> Result<Vec<String>> {
+    let n = r.u32()?;
+    (0..n).map(|_| r.str()).collect()
+}
+
+/// The element types named in `lists` (the ranks', in rank order), each once, in the order
+/// first named.
+fn resolve<'a>(
+    lists: impl Iterator<Item = &'a Vec<String>>,
+    elements: &ElementRegistry,
+    rank: usize,
+) -> Result<Vec<ElementRef>> {
+    let mut seen = FxHashSet::default();
+    let mut out = Vec::new();
+    for (q, list) in lists.enumerate() {
+        for name in list {
+            if seen.insert(name.as_str()) {
+                let e = elements
+                    .by_name(name)
+                    .ok_or_else(|| DistributedError::UnknownElement {
+                        rank,
+                        from: q,
+                        name: name.clone(),
+                    })?;
+                out.push(e);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// What every rank's coupling must know of the whole interface, from the ranks' summaries and
+/// their slave faces' buckets (gathered here: collective).
+fn whole_interface(
+    ex: &(impl Exchange + ?Sized),
+    slave: &SurfaceMesh,
+    summaries: &[Summary],
+    elements: &ElementRegistry,
+) -> Result<Option<WholeInterface>> {
+    let rank = ex.rank();
+    let mut anchors = Bounds::EMPTY;
+    for s in summaries {
+        anchors.union(&s.anchors);
+    }
+    let types = (|| {
+        let slave = resolve(summaries.iter().map(|s| &s.slave_types), elements, rank)?;
+        let master = resolve(summaries.iter().map(|s| &s.master_types), elements, rank)?;
+        Ok((slave, master))
+    })();
+    let (slave_types, master_types) = agree(ex, types)?;
+    let faces: u64 = summaries.iter().map(|s| s.slave_faces).sum();
+    let Some(first) = slave_types.first() else {
+        return Ok(None);
+    };
+    let dim = if first.domain().dim() == 1 {
+        SpatialDim::Two
+    } else {
+        SpatialDim::Three
+    };
+    let anchors = (anchors.lo, anchors.hi);
+    // Every rank's buckets, summed bucket by bucket.
+    let mine = WholeInterface::bucket_counts(slave, &anchors, faces, dim);
+    let mut w = Writer::default();
+    for &(b, n) in &mine {
+        w.u64(b);
+        w.u64(n);
+    }
+    let mut counts: BTreeMap<u64, u64> = BTreeMap::new();
+    for (q, bytes) in ex.all_gather(&w.bytes).iter().enumerate() {
+        let mut r = Reader::new(bytes, rank, q);
+        while !r.is_done() {
+            let (b, n) = (r.u64()?, r.u64()?);
+            *counts.entry(b).or_insert(0) += n;
+        }
+    }
+    let counts: Vec<(u64, u64)> = counts.into_iter().collect();
+    Ok(Some(WholeInterface::new(
+        anchors,
+        faces,
+        dim,
+        &counts,
+        slave_types,
+        master_types,
+        true,
+    )))
 }
 
 /// Sends to each other rank `q` the faces of `mesh` whose box `wanted(q, box)` accepts, and
@@ -332,6 +450,9 @@ pub fn couple_distributed(
     )?;
     seconds.slave_exchange += lap.lap();
 
+    // What the ranks' couplings must know of the whole interface to sum as it does.
+    let mut whole = whole_interface(ex, slave, &summaries, &options.elements)?.map(Arc::new);
+
     // 3. Owners, and the ghost faces kept.
     let (slave_mesh, owner) = agree(ex, with_ghost_faces(rank, slave, &received, &from))?;
     // Moved into the first pass's interface; built again for a second pass.
@@ -385,10 +506,10 @@ pub fn couple_distributed(
             Some(mesh) => Ok(mesh),
             None => with_ghost_faces(rank, slave, &received, &from).map(|(mesh, _)| mesh),
         };
-        let coupled = agree(
+        let interface = agree(
             ex,
             local.and_then(|local| {
-                couple_local(
+                local_interface(
                     rank,
                     local,
                     master_mesh,
@@ -398,6 +519,26 @@ pub fn couple_distributed(
                 )
             }),
         )?;
+        if let Some(w) = whole.as_mut() {
+            // Both sides of the whole are chains of lines when every rank's are (each rank
+            // holds every face around its nodes).
+            let chains = interface
+                .as_ref()
+                .is_none_or(WholeInterface::lines_are_chains);
+            let all = ex.all_gather(&[u8::from(chains)]);
+            Arc::make_mut(w).set_chains(all.iter().all(|b| b.first() == Some(&1)));
+        }
+        let coupled = agree(
+            ex,
+            couple_part(
+                rank,
+                interface.as_ref(),
+                options,
+                whole.as_ref(),
+                &mut seconds,
+            ),
+        )?;
+        drop(interface);
         lap.restart();
         // Slave faces here and nothing coupled (no master face within reach, or none that
         // overlaps) is uncovered area too, as the core's `NoOverlap` is to one process.
@@ -497,16 +638,31 @@ pub(crate) fn with_ghost_faces(
     Ok((mesh, owner))
 }
 
-/// The core's coupling of this rank's slave faces against its master faces; `None` when
-/// there is nothing to couple (no slave or no master face here, or no overlap).
-fn couple_local(
+/// `mesh`'s faces in ascending tag order: the whole interface's order of them (when its
+/// faces ascend by tag, as Gmsh and the generators write them), which the coupling's sums
+/// follow (the nodal normals, the ties of the Morton order, the candidates).
+fn by_tag(mesh: SurfaceMesh, rank: usize) -> Result<SurfaceMesh> {
+    let tags: Vec<u64> = (0..mesh.face_count()).map(|f| mesh.face(f).tag).collect();
+    if tags.is_sorted() {
+        return Ok(mesh);
+    }
+    let mut order: Vec<usize> = (0..tags.len()).collect();
+    order.sort_unstable_by_key(|&f| tags[f]);
+    mesh.part(order)
+        .map_err(|source| DistributedError::Coupling { rank, source })
+}
+
+/// This rank's interface: its slave faces (its own and the kept ones) against its master
+/// faces, each side by tag; `None` when there is nothing to couple (no slave or no master
+/// face here).
+fn local_interface(
     rank: usize,
     slave: SurfaceMesh,
     master: SurfaceMesh,
     options: &DistributedOptions,
     (whole_slave, local_box): (&Bounds, &Bounds),
     seconds: &mut RankSeconds,
-) -> Result<Option<mortar_core::Coupling>> {
+) -> Result<Option<Interface>> {
     if slave.face_count() == 0 || master.face_count() == 0 {
         return Ok(None);
     }
@@ -523,15 +679,33 @@ fn couple_local(
             };
         }
     }
+    let (slave, master) = (by_tag(slave, rank)?, by_tag(master, rank)?);
     let interface = Interface::with_tolerances(slave, master, tolerances).map_err(err)?;
+    seconds.interface += t.elapsed().as_secs_f64();
+    Ok(Some(interface))
+}
+
+/// The core's coupling of this rank's interface as a part of `whole`; `None` when there is
+/// nothing to couple (no interface here, or no overlap).
+fn couple_part(
+    rank: usize,
+    interface: Option<&Interface>,
+    options: &DistributedOptions,
+    whole: Option<&Arc<WholeInterface>>,
+    seconds: &mut RankSeconds,
+) -> Result<Option<mortar_core::Coupling>> {
+    let Some(interface) = interface else {
+        return Ok(None);
+    };
     let t_coupling = Instant::now();
-    seconds.interface += (t_coupling - t).as_secs_f64();
-    let coupled = assemble_coupling(&interface, &options.coupling);
+    let mut coupling = options.coupling.clone();
+    coupling.whole = whole.cloned();
+    let coupled = assemble_coupling(interface, &coupling);
     seconds.coupling += t_coupling.elapsed().as_secs_f64();
     match coupled {
         Ok(c) => Ok(Some(c)),
         Err(MortarError::NoOverlap { .. }) => Ok(None),
-        Err(e) => Err(err(e)),
+        Err(e) => Err(DistributedError::Coupling { rank, source: e }),
     }
 }
 

@@ -14,8 +14,8 @@ use super::key_index::KeyIndex;
 use super::local::{integrate_batch_into, LocalBlocks};
 use super::master_coverage;
 use super::straight_line;
-use super::{CouplingOptions, CouplingWarning};
-use crate::element::MAX_FACE_NODES;
+use super::{anchor, ChunkPlan, CouplingOptions, CouplingWarning};
+use crate::element::{ElementRef, MAX_FACE_NODES};
 use crate::error::{MortarError, Result, Side};
 use crate::integration::affine_moments::{affine_moments_into, PendingBlock};
 use crate::integration::closed_form::{self, closed_form_into, ClosedForm, ClosedFormScratch};
@@ -28,14 +28,10 @@ use crate::linalg::{sort_short_by_key, PartList, RowAccumulator, SparseMatrix};
 use crate::memory::{collect_populated, populated, Spare};
 use crate::multiplier::{slave_recombination, LmBasis, MultiplierSpace};
 use crate::search::{
-    face_search_radius, keep_within_radius, nearest_master_radii, spatial_order, ChainSearch,
+    face_search_radius, keep_within_radius, nearest_master_radii, spatial_keys, ChainSearch,
     GroupScratch, LineChains, MasterLineCache, MasterTree, Padding, WALK_LIMIT,
 };
 use crate::tolerances::SearchRadius;
-
-/// Slave faces per work chunk. Fixed, so that the summation order (and hence every bit of D
-/// and M) does not depend on the thread count.
-const CHUNK: usize = 256;
 
 /// Seconds per phase. The phases `tree`, `faces`, `assembly` and `total` are wall-clock
 /// time; [`ThreadSeconds`] splits the per-face work by kind, summed over the threads (with
@@ -388,6 +384,14 @@ impl ChunkWorkspace {
             offsets[geometry.len()] = kept;
             all.truncate(kept);
         }
+        // Each face meets its candidates by ascending master face index: its blocks are then
+        // summed in an order the tree's layout (slabs and slots of this interface's master
+        // faces) does not decide, the same in a part of the interface as in the whole.
+        for i in 0..geometry.len() {
+            sort_short_by_key(&mut all[offsets[i]..offsets[i + 1]], |&slot| {
+                ctx.masters.face_index(slot as usize)
+            });
+        }
     }
 }
 
@@ -531,52 +535,99 @@ enum Search {
     },
 }
 
+/// The order in which a coupling processes its slave faces, cut into chunks.
+struct FaceOrder {
+    /// Face indices in processing order.
+    faces: Vec<u32>,
+    /// Each chunk's key and its positions in `faces`.
+    chunks: Vec<(u64, std::ops::Range<usize>)>,
+}
+
 impl Search {
     /// The search of `interface` for `options`, the master faces by slot and the order in
-    /// which the slave faces are processed.
+    /// which the slave faces are processed, in chunks.
     /// `lines` are [`line_chains`]'s.
+    ///
+    /// The chunks are cells of the Morton order of the slave faces' first nodes (in the whole
+    /// interface's box and buckets, for a part: see [`WholeInterface`](super::WholeInterface)),
+    /// so that which faces share a chunk depends on where they are, not on how many faces the
+    /// interface has elsewhere. The tree takes the faces in that order: the queries of a chunk
+    /// then walk the same branches of the tree, whatever the file's numbering (by their first
+    /// nodes: one read of the node coordinates per face, in the file's order, which may be
+    /// random). The chain walk takes each chunk's faces along their chains.
     fn build(
         interface: &Interface,
         options: &CouplingOptions,
         lines: Option<(LineSegments, LineChains, LineChains)>,
         padding: Padding,
         radii: Option<Arc<[f64]>>,
-    ) -> (Self, MasterFaces, Vec<u32>) {
-        if let Some((rule, slave, master)) = lines {
+    ) -> (Self, MasterFaces, FaceOrder) {
+        let slave = interface.slave();
+        let planar = interface.dim() == SpatialDim::Two;
+        let whole = options.whole.as_deref();
+        let keys = spatial_keys(
+            slave.face_count(),
+            |f| anchor(slave, f),
+            planar,
+            whole.map(|w| &w.anchors),
+        );
+        let own_plan;
+        let plan = match whole {
+            Some(w) => &w.plan,
+            None => {
+                own_plan = ChunkPlan::of_keys(&keys, interface.dim());
+                &own_plan
+            }
+        };
+        if let Some((rule, slave_chains, master)) = lines {
             let masters = MasterFaces::new(interface, master.order.iter().copied());
             debug_assert_eq!(
                 padding.master, 0.0,
                 "two-node lines lie in their nodes' box"
             );
             let search = ChainSearch::new(interface, &masters, master, padding.slave, radii);
-            let follows = (0..slave.order.len())
-                .map(|p| p > 0 && slave.prev[p] == p as u32 - 1)
+            // Each face's chunk, then the chain positions by chunk (stable: along the chains
+            // within a chunk).
+            let mut chunk_of = vec![0u32; slave.face_count()];
+            for &k in &keys {
+                chunk_of[k as u32 as usize] = plan.chunk_of((k >> 32) as u64) as u32;
+            }
+            drop(keys);
+            let mut positions: Vec<u32> = (0..slave_chains.order.len() as u32).collect();
+            positions.sort_by_key(|&p| chunk_of[slave_chains.order[p as usize] as usize]);
+            let follows = (0..positions.len())
+                .map(|q| q > 0 && slave_chains.prev[positions[q] as usize] == positions[q - 1])
                 .collect();
+            let faces: Vec<u32> = positions
+                .iter()
+                .map(|&p| slave_chains.order[p as usize])
+                .collect();
+            let chunks = plan.ranges(faces.len(), |q| chunk_of[faces[q] as usize] as usize);
             let lines = Search::Lines {
                 search,
                 follows,
                 rule,
             };
-            return (lines, masters, slave.order);
+            return (lines, masters, FaceOrder { faces, chunks });
         }
         let (tree, masters) = MasterTree::build_with_faces(interface, padding);
         let tree = tree.with_radii(radii);
-        // Slave faces are processed in the Morton order of their centres: the queries of a
-        // chunk then walk the same branches of the tree, whatever the file's numbering.
-        // (Ordered by their first nodes: one read of the node coordinates per face, in the
-        // file's order, which may be random.)
-        let slave = interface.slave();
-        let anchor = |f: usize| slave.coords()[slave.face(f).nodes[0] as usize];
-        let order = spatial_order(
-            slave.face_count(),
-            anchor,
-            interface.dim() == SpatialDim::Two,
-        );
-        let closed_form = SegmentBased::of(options.integration.as_ref())
-            .and_then(|s| closed_form::applies(interface, s.polygon_segments()));
+        let chunks = plan.ranges(keys.len(), |p| plan.chunk_of((keys[p] >> 32) as u64));
+        let faces = keys.into_iter().map(|k| k as u32).collect();
+        let closed_form = SegmentBased::of(options.integration.as_ref()).and_then(|s| {
+            closed_form::applies(interface, s.polygon_segments(), whole_types(options))
+        });
         let search = Search::Tree { tree, closed_form };
-        (search, masters, order)
+        (search, masters, FaceOrder { faces, chunks })
     }
+}
+
+/// The element types of both sides of the whole interface, where the interface is a part.
+fn whole_types(options: &CouplingOptions) -> Option<(&[ElementRef], &[ElementRef])> {
+    options
+        .whole
+        .as_deref()
+        .map(|w| (&w.slave_types[..], &w.master_types[..]))
 }
 
 /// The strategy's rule when the fused kernel (and the sorted merge of a straight interface)
@@ -587,13 +638,23 @@ fn line_rule(interface: &Interface, options: &CouplingOptions) -> Option<LineSeg
         return None;
     }
     let rule = SegmentBased::of(options.integration.as_ref())?.line_segments();
-    let (slave, master) = (interface.slave(), interface.master());
-    let types = slave.element_types().iter().chain(master.element_types());
+    let (slave, master) = whole_types(options).unwrap_or((
+        interface.slave().element_types(),
+        interface.master().element_types(),
+    ));
+    let types = slave.iter().chain(master);
     types.copied().all(is_linear_line).then_some(rule)
 }
 
 /// The chains of both sides, if both are chains (no branch, oriented alike).
-fn line_chains(interface: &Interface) -> Option<(LineChains, LineChains)> {
+fn line_chains(
+    interface: &Interface,
+    options: &CouplingOptions,
+) -> Option<(LineChains, LineChains)> {
+    // A part of a whole whose sides are not both chains searches as the whole does.
+    if options.whole.as_ref().is_some_and(|w| !w.chains) {
+        return None;
+    }
     // Both sides at once: each chain walk is sequential.
     let (slave, master) = rayon::join(
         || LineChains::of(interface.slave()),
@@ -1021,7 +1082,7 @@ fn assemble_on_pool(
             drop(spare); // what D and M did not take
             return Ok(merged_coupling(interface, options, merged, threads, start));
         }
-        lines = line_chains(interface).map(|(s, m)| (rule, s, m));
+        lines = line_chains(interface, options).map(|(s, m)| (rule, s, m));
     }
     // The general path holds its parts while it works and frees them before D and M take
     // their memory: spare arrays held beside the parts would add their size to the peak
@@ -1053,7 +1114,7 @@ fn assemble_on_pool(
         })
         .collect();
     let lines = line_rule(interface, options)
-        .and_then(|rule| line_chains(interface).map(|(s, m)| (rule, s, m)));
+        .and_then(|rule| line_chains(interface, options).map(|(s, m)| (rule, s, m)));
     let mut coupling = general_path(interface, options, threads, lines, Some(radii), start)?;
     coupling.stats.widened_search_faces = widened;
     coupling.stats.widest_search = widest;
@@ -1086,6 +1147,10 @@ fn general_path(
 ) -> Result<Coupling> {
     let padding = Padding::of(interface, Some(options.projector.as_ref()));
     let (search, masters, order) = Search::build(interface, options, lines, padding, radii.clone());
+    let FaceOrder {
+        faces: order,
+        chunks: chunk_ranges,
+    } = order;
     let ctx = SegmentContext {
         interface,
         projector: options.projector.as_ref(),
@@ -1098,7 +1163,7 @@ fn general_path(
     // failure are skipped. Parts are keyed by chunk, so which worker took which chunk does not
     // change a bit of D and M.
     let first_error = AtomicUsize::new(usize::MAX);
-    let chunks = faces.div_ceil(CHUNK);
+    let chunks = chunk_ranges.len();
     // One accumulator per worker, the chunks handed out one at a time from a counter (each
     // worker takes the next as it finishes one, whatever the faces cost), so that each
     // worker's part buffers can be sized for its share at once.
@@ -1114,7 +1179,7 @@ fn general_path(
             if c > first_error.load(Ordering::Relaxed) {
                 continue;
             }
-            let range = c * CHUNK..((c + 1) * CHUNK).min(faces);
+            let (key, range) = chunk_ranges[c].clone();
             if let Err(e) = chunk(
                 interface,
                 options,
@@ -1123,7 +1188,7 @@ fn general_path(
                 radii.as_deref(),
                 &order,
                 range,
-                c as u64,
+                key,
                 &mut acc,
             ) {
                 first_error.fetch_min(c, Ordering::Relaxed);
@@ -1135,7 +1200,7 @@ fn general_path(
     });
 
     // What only the per-face work needed goes before the matrices are built.
-    drop((search, order, masters));
+    drop((search, order, chunk_ranges, masters));
     let t_asm = Instant::now();
     let faces_seconds = (t_asm - start).as_secs_f64() - tree_seconds;
     let total = Accumulator::merged(accs);

@@ -4,10 +4,12 @@
 //! surfaces, rows following the slave interface nodes and columns the slave (D) or master (M)
 //! interface nodes, each by ascending node tag.
 //!
-//! Work is split into fixed chunks of slave faces, processed in parallel on a rayon pool of
-//! the requested size; every chunk writes its own triplets and chunks are concatenated in
-//! order, so the sum of each entry is taken in the same order whatever the thread count: D and
-//! M are bit-for-bit identical serial or parallel.
+//! Work is split into chunks of slave faces fixed by their places in space, processed in
+//! parallel on a rayon pool of the requested size; every chunk writes its own triplets and
+//! chunks are concatenated in order, so the sum of each entry is taken in the same order
+//! whatever the thread count: D and M are bit-for-bit identical serial or parallel, and a
+//! part of an interface that knows the whole ([`WholeInterface`]) computes its rows as the
+//! whole does.
 
 mod coupling;
 mod key_index;
@@ -17,6 +19,7 @@ mod options;
 mod pool;
 mod straight_line;
 mod warning;
+mod whole;
 
 pub use coupling::{
     assemble_coupling, assemble_coupling_reusing, Coupling, CouplingStats, PhaseSeconds,
@@ -26,3 +29,5 @@ pub use local::{integrate_batch_into, integrate_face_into, LocalBlocks};
 pub use master_coverage::MASTER_OVERLAP_RATIO;
 pub use options::CouplingOptions;
 pub use warning::CouplingWarning;
+pub(crate) use whole::{anchor, ChunkPlan};
+pub use whole::{WholeInterface, BUCKET_FACES};

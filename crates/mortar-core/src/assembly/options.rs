@@ -3,6 +3,7 @@
 
 use std::sync::Arc;
 
+use super::WholeInterface;
 use crate::error::Result;
 use crate::geometry::ModelGeometry;
 use crate::integration::{ElementBased, IntegrationStrategy, SegmentBased};
@@ -47,6 +48,11 @@ pub struct CouplingOptions {
     /// The body assemblies of `mortar-physics` take the same setting in their options; give
     /// both the same.
     pub geometry: ModelGeometry,
+    /// The whole interface this one is a part of (`None`: this interface is whole): the
+    /// order, chunks and paths are then the whole's, so that the rows of the slave nodes
+    /// whose faces and their neighbours' this part holds are the whole's bit for bit (see
+    /// [`WholeInterface`]). A distributed coupling sets it.
+    pub whole: Option<Arc<WholeInterface>>,
 }
 
 impl Default for CouplingOptions {
@@ -58,6 +64,7 @@ impl Default for CouplingOptions {
             threads: None,
             require_full_coverage: false,
             geometry: ModelGeometry::Cartesian,
+            whole: None,
         }
     }
 }

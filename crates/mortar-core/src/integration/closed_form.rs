@@ -73,29 +73,35 @@ impl ClosedForm {
 /// triangles ([`is_linear_triangle`]) or bilinear quads
 /// ([`is_bilinear_quad`](super::affine_moments::is_bilinear_quad)), with a degree (if fixed)
 /// at least the integrands'. `None` where it may not.
-pub(crate) fn applies(interface: &Interface, rule: PolygonSegments) -> Option<ClosedForm> {
+pub(crate) fn applies(
+    interface: &Interface,
+    rule: PolygonSegments,
+    whole: Option<(&[ElementRef], &[ElementRef])>,
+) -> Option<ClosedForm> {
     if interface.dim() != SpatialDim::Three {
         return None;
     }
     let (slave, master) = (interface.slave(), interface.master());
     // Every element type's shape, once; the first few kept for the faces' lookups.
     let mut shapes = [None; 4];
-    let mut triangles = true;
     let types = slave.element_types().iter().chain(master.element_types());
     for (i, &e) in types.enumerate() {
         let shape = FlatShape::of(e)?;
-        triangles &= shape == FlatShape::Triangle;
         if let Some(slot) = shapes.get_mut(i) {
             *slot = Some((e, shape));
         }
     }
+    // Whether they apply, and whether every face is a triangle, is the whole interface's
+    // choice where this one is a part of it.
+    let (slave, master) = whole.unwrap_or((slave.element_types(), master.element_types()));
+    let mut triangles = true;
+    for &e in slave.iter().chain(master) {
+        triangles &= FlatShape::of(e)? == FlatShape::Triangle;
+    }
     let exact = rule.degree.is_none_or(|d| {
-        slave.element_types().iter().all(|s| {
-            master
-                .element_types()
-                .iter()
-                .all(|m| d >= default_degree(*s, *m))
-        })
+        slave
+            .iter()
+            .all(|s| master.iter().all(|m| d >= default_degree(*s, *m)))
     });
     exact.then_some(ClosedForm {
         rule,

@@ -29,6 +29,6 @@ pub(crate) use candidates::face_search_radius;
 pub use candidates::{find_candidates, Candidates, GroupScratch, MasterTree};
 pub(crate) use chains::{ChainSearch, LineChains, WALK_LIMIT};
 pub(crate) use master_cache::{MasterCorners, MasterCornersCache, MasterLine, MasterLineCache};
-pub(crate) use morton::spatial_order;
+pub(crate) use morton::{bounds_of, morton_code, spatial_keys};
 pub(crate) use nearest::{keep_within_radius, nearest_master_radii};
 pub use padding::{in_hull_of_nodes, Padding};

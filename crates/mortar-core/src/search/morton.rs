@@ -79,22 +79,39 @@ pub(crate) fn bounds_of(
 }
 
 /// The indices `0..n` sorted by the Morton code of the points `centre(i)` (ties by index, so
-/// the order depends on the coordinates only, not on the thread count). Each point is
+/// the order depends on the coordinates only, not on the thread count), as the low 32 bits of
+/// keys `code << 32 | index`, in the box `frame` (`None`: the points' own box). Each point is
 /// computed twice (for the bounds, then for its code) rather than stored: reading a face's
 /// first node again costs less than the pages of a vector of every point.
-pub(crate) fn spatial_order(
+pub(crate) fn spatial_keys(
     n: usize,
     centre: impl Fn(usize) -> Vector3<f64> + Sync,
     planar: bool,
-) -> Vec<u32> {
-    let (lo, hi) = bounds_of(n, &centre);
+    frame: Option<&(Vector3<f64>, Vector3<f64>)>,
+) -> Vec<u128> {
+    let (lo, hi) = match frame {
+        Some(&b) => b,
+        None => bounds_of(n, &centre),
+    };
     // (code, index) packed into one integer: one comparison per pair in the sort.
     let mut keyed: Vec<u128> = (0..n)
         .into_par_iter()
         .map(|i| (morton_code(&centre(i), &lo, &hi, planar) as u128) << 32 | i as u128)
         .collect();
     keyed.par_sort_unstable();
-    keyed.into_iter().map(|key| key as u32).collect()
+    keyed
+}
+
+/// The indices `0..n` by the Morton code of `centre(i)` in the points' own box
+/// ([`spatial_keys`]).
+#[cfg(test)]
+pub(crate) fn spatial_order(
+    n: usize,
+    centre: impl Fn(usize) -> Vector3<f64> + Sync,
+    planar: bool,
+) -> Vec<u32> {
+    let keys = spatial_keys(n, centre, planar, None);
+    keys.into_iter().map(|key| key as u32).collect()
 }
 
 #[cfg(test)]
